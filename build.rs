@@ -1,0 +1,298 @@
+//! Compiles every `shaders/*.{vert,frag,comp}` (and each of its permutations) to SPIR-V with
+//! glslang, validates the result with naga and generates `shaders.rs` in OUT_DIR: one
+//! `ShaderModuleInfo` per module holding its SPIR-V and its reflected bindings, push-constant
+//! size and workgroup size, so the Rust side cannot silently disagree with the shaders.
+//!
+//! Permutations: a line `// @permutation <suffix>: NAME=VALUE NAME2` in a shader compiles an
+//! extra module `<STEM>_<EXT>_<SUFFIX>` with those `#define`s. Without such lines one module is
+//! compiled with no defines.
+
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+
+struct Includer {
+    dir: PathBuf,
+    seen: Vec<PathBuf>,
+}
+
+impl glslang::include::IncludeHandler for Includer {
+    fn include(
+        &mut self,
+        _ty: glslang::include::IncludeType,
+        header_name: &str,
+        _includer_name: &str,
+        _depth: usize,
+    ) -> Option<glslang::include::IncludeResult> {
+        let path = self.dir.join(header_name);
+        let data = std::fs::read_to_string(&path).ok()?;
+        self.seen.push(path);
+        Some(glslang::include::IncludeResult {
+            name: header_name.to_string(),
+            data,
+        })
+    }
+}
+
+struct Permutation {
+    suffix: String,
+    defines: Vec<(String, Option<String>)>,
+}
+
+fn permutations(source: &str) -> Vec<Permutation> {
+    let mut out = Vec::new();
+    for line in source.lines() {
+        let Some(rest) = line.trim().strip_prefix("// @permutation ") else {
+            continue;
+        };
+        let (suffix, defs) = rest.split_once(':').unwrap_or((rest, ""));
+        let defines = defs
+            .split_whitespace()
+            .map(|d| match d.split_once('=') {
+                Some((k, v)) => (k.to_string(), Some(v.to_string())),
+                None => (d.to_string(), None),
+            })
+            .collect();
+        out.push(Permutation {
+            suffix: suffix.trim().to_string(),
+            defines,
+        });
+    }
+    if out.is_empty() {
+        out.push(Permutation {
+            suffix: String::new(),
+            defines: Vec::new(),
+        });
+    }
+    out
+}
+
+/// glslang reports `ERROR: 0:LINE: message`; rewrite to `file:LINE: message` so the build log
+/// names the shader file.
+fn locate_errors(file: &Path, log: &str) -> String {
+    let name = file.display().to_string();
+    log.lines()
+        .map(|l| {
+            let l = l.trim_start_matches("ERROR: ").trim_start_matches("WARNING: ");
+            match l.strip_prefix("0:") {
+                Some(rest) => format!("{name}:{rest}"),
+                None => l.to_string(),
+            }
+        })
+        .collect::<Vec<_>>()
+        .join("\n")
+}
+
+fn compile(
+    compiler: &glslang::Compiler,
+    file: &Path,
+    source: &str,
+    stage: glslang::ShaderStage,
+    perm: &Permutation,
+    include_dir: &Path,
+) -> Result<(Vec<u32>, Vec<PathBuf>), String> {
+    let src = glslang::ShaderSource::from(source);
+    let options = glslang::CompilerOptions {
+        source_language: glslang::SourceLanguage::GLSL,
+        target: glslang::Target::Vulkan {
+            version: glslang::VulkanVersion::Vulkan1_3,
+            spirv_version: glslang::SpirvVersion::SPIRV1_6,
+        },
+        version_profile: None,
+        messages: glslang::ShaderMessage::DEFAULT,
+    };
+    let mut includer = Includer {
+        dir: include_dir.to_path_buf(),
+        seen: Vec::new(),
+    };
+    let defines: Vec<(&str, Option<&str>)> = perm
+        .defines
+        .iter()
+        .map(|(k, v)| (k.as_str(), v.as_deref()))
+        .collect();
+    let input = glslang::ShaderInput::new(
+        &src,
+        stage,
+        &options,
+        Some(defines.as_slice()),
+        Some(&mut includer),
+    )
+    .map_err(|e| format!("{}: {e}", file.display()))?;
+    let shader = compiler.create_shader(input).map_err(|e| {
+        let log = match &e {
+            glslang::error::GlslangError::ParseError(l)
+            | glslang::error::GlslangError::PreprocessError(l)
+            | glslang::error::GlslangError::LinkError(l) => l.clone(),
+            other => other.to_string(),
+        };
+        locate_errors(file, &log)
+    })?;
+    let words = shader
+        .compile()
+        .map_err(|e| format!("{}: {e}", file.display()))?;
+    Ok((words, includer.seen))
+}
+
+fn descriptor_kind(module: &naga::Module, var: &naga::GlobalVariable) -> Option<&'static str> {
+    let mut ty = &module.types[var.ty].inner;
+    if let naga::TypeInner::BindingArray { base, .. } = ty {
+        ty = &module.types[*base].inner;
+    }
+    Some(match var.space {
+        naga::AddressSpace::Uniform => "UniformBuffer",
+        naga::AddressSpace::Storage { .. } => "StorageBuffer",
+        naga::AddressSpace::Handle => match ty {
+            naga::TypeInner::Sampler { .. } => "Sampler",
+            naga::TypeInner::Image {
+                class: naga::ImageClass::Storage { .. },
+                ..
+            } => "StorageImage",
+            naga::TypeInner::Image { .. } => "SampledImage",
+            _ => return None,
+        },
+        _ => return None,
+    })
+}
+
+fn reflect(file: &Path, words: &[u32], ident: &str, suffix: &str, out: &mut String) -> Result<(), String> {
+    let bytes: Vec<u8> = words.iter().flat_map(|w| w.to_le_bytes()).collect();
+    let options = naga::front::spv::Options {
+        adjust_coordinate_space: false,
+        strict_capabilities: false,
+        block_ctx_dump_prefix: None,
+    };
+    let module = naga::front::spv::parse_u8_slice(&bytes, &options)
+        .map_err(|e| format!("{}: naga could not parse the SPIR-V: {e}", file.display()))?;
+    naga::valid::Validator::new(
+        naga::valid::ValidationFlags::all(),
+        naga::valid::Capabilities::all(),
+    )
+    .validate(&module)
+    .map_err(|e| format!("{}: naga validation failed: {e:?}", file.display()))?;
+    let entry = module
+        .entry_points
+        .first()
+        .ok_or_else(|| format!("{}: no entry point", file.display()))?;
+    let stage = match entry.stage {
+        naga::ShaderStage::Vertex => "Vertex",
+        naga::ShaderStage::Fragment => "Fragment",
+        naga::ShaderStage::Compute => "Compute",
+        other => return Err(format!("{}: unsupported stage {other:?}", file.display())),
+    };
+    let mut layouter = naga::proc::Layouter::default();
+    layouter
+        .update(module.to_ctx())
+        .map_err(|e| format!("{}: layout: {e}", file.display()))?;
+    let mut bindings = Vec::new();
+    let mut push_constant_bytes = 0u32;
+    for (_, var) in module.global_variables.iter() {
+        if var.space == naga::AddressSpace::PushConstant {
+            push_constant_bytes = layouter[var.ty].size;
+            continue;
+        }
+        let (Some(rb), Some(kind)) = (&var.binding, descriptor_kind(&module, var)) else {
+            continue;
+        };
+        let count = match module.types[var.ty].inner {
+            naga::TypeInner::BindingArray {
+                size: naga::ArraySize::Constant(n),
+                ..
+            } => n.get(),
+            _ => 1,
+        };
+        bindings.push((rb.group, rb.binding, kind, count));
+    }
+    bindings.sort();
+    let file_name = file.file_name().unwrap().to_string_lossy();
+    let spv_name = if suffix.is_empty() {
+        format!("{file_name}.spv")
+    } else {
+        format!("{file_name}.{suffix}.spv")
+    };
+    let wg = entry.workgroup_size;
+    let _ = writeln!(
+        out,
+        "pub static {ident}: ShaderModuleInfo = ShaderModuleInfo {{\n    name: \"{file_name}\",\n    permutation: \"{suffix}\",\n    stage: ShaderStage::{stage},\n    spirv: include_bytes!(concat!(env!(\"OUT_DIR\"), \"/shaders/{spv_name}\")),\n    bindings: &["
+    );
+    for (set, binding, kind, count) in bindings {
+        let _ = writeln!(
+            out,
+            "        ReflectedBinding {{ set: {set}, binding: {binding}, kind: DescriptorKind::{kind}, count: {count} }},"
+        );
+    }
+    let _ = writeln!(
+        out,
+        "    ],\n    push_constant_bytes: {push_constant_bytes},\n    workgroup_size: [{}, {}, {}],\n}};\n",
+        wg[0], wg[1], wg[2]
+    );
+    let out_dir = PathBuf::from(std::env::var("OUT_DIR").unwrap()).join("shaders");
+    std::fs::write(out_dir.join(spv_name), &bytes).map_err(|e| e.to_string())?;
+    Ok(())
+}
+
+fn main() {
+    let root = PathBuf::from(std::env::var("CARGO_MANIFEST_DIR").unwrap());
+    let shader_dir = root.join("shaders");
+    let include_dir = shader_dir.join("include");
+    let out_dir = PathBuf::from(std::env::var("OUT_DIR").unwrap());
+    std::fs::create_dir_all(out_dir.join("shaders")).unwrap();
+    println!("cargo:rerun-if-changed=shaders");
+    println!("cargo:rerun-if-changed=shaders/include");
+
+    let mut files: Vec<PathBuf> = std::fs::read_dir(&shader_dir)
+        .expect("shaders/ directory")
+        .filter_map(|e| e.ok().map(|e| e.path()))
+        .filter(|p| {
+            matches!(
+                p.extension().and_then(|e| e.to_str()),
+                Some("vert" | "frag" | "comp")
+            )
+        })
+        .collect();
+    files.sort();
+    if let Ok(entries) = std::fs::read_dir(&include_dir) {
+        for e in entries.flatten() {
+            println!("cargo:rerun-if-changed={}", e.path().display());
+        }
+    }
+
+    let compiler = glslang::Compiler::acquire().expect("glslang compiler");
+    let mut generated = String::from("// Generated by build.rs from shaders/: do not edit.\n\n");
+    let mut all = Vec::new();
+    let mut errors = Vec::new();
+    for file in &files {
+        println!("cargo:rerun-if-changed={}", file.display());
+        let rel = file.strip_prefix(&root).unwrap_or(file).to_path_buf();
+        let source = std::fs::read_to_string(file).expect("read shader");
+        let ext = file.extension().unwrap().to_str().unwrap();
+        let stage = match ext {
+            "vert" => glslang::ShaderStage::Vertex,
+            "frag" => glslang::ShaderStage::Fragment,
+            _ => glslang::ShaderStage::Compute,
+        };
+        let stem = file.file_stem().unwrap().to_str().unwrap();
+        for perm in permutations(&source) {
+            let mut ident = format!("{}_{}", stem, ext).to_uppercase().replace('-', "_");
+            if !perm.suffix.is_empty() {
+                ident = format!("{ident}_{}", perm.suffix.to_uppercase());
+            }
+            match compile(compiler, &rel, &source, stage, &perm, &include_dir)
+                .and_then(|(words, _)| reflect(&rel, &words, &ident, &perm.suffix, &mut generated))
+            {
+                Ok(()) => all.push(ident),
+                Err(e) => errors.push(e),
+            }
+        }
+    }
+    if !errors.is_empty() {
+        for e in &errors {
+            eprintln!("{e}");
+        }
+        panic!("shader compilation failed:\n{}", errors.join("\n"));
+    }
+    let _ = writeln!(generated, "pub static ALL: &[&ShaderModuleInfo] = &[");
+    for ident in &all {
+        let _ = writeln!(generated, "    &{ident},");
+    }
+    let _ = writeln!(generated, "];");
+    std::fs::write(out_dir.join("shaders.rs"), generated).unwrap();
+}

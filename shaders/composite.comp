@@ -1,0 +1,32 @@
+#version 460
+// Composite and tonemap: direct light plus ambient times albedo, Reinhard tonemap, sRGB encode.
+#extension GL_GOOGLE_include_directive : require
+#extension GL_EXT_samplerless_texture_functions : require
+#include "frame.glsl"
+
+layout(local_size_x = 8, local_size_y = 8) in;
+
+layout(set = 1, binding = 0) uniform texture2D g_position;
+layout(set = 1, binding = 1) uniform texture2D g_albedo;
+layout(set = 1, binding = 2) uniform texture2D direct_light;
+layout(set = 1, binding = 3, rgba8) uniform writeonly image2D out_color;
+
+vec3 srgb_encode(vec3 linear) {
+    vec3 lo = linear * 12.92;
+    vec3 hi = 1.055 * pow(linear, vec3(1.0 / 2.4)) - 0.055;
+    return mix(hi, lo, lessThanEqual(linear, vec3(0.0031308)));
+}
+
+void main() {
+    ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
+    if (any(greaterThanEqual(uvec2(pixel), frame.size.xy))) return;
+    vec3 color = vec3(0.0);
+    if (texelFetch(g_position, pixel, 0).w != 0.0) {
+        vec3 albedo = texelFetch(g_albedo, pixel, 0).rgb;
+        color = texelFetch(direct_light, pixel, 0).rgb + frame.ambient.rgb * albedo;
+    }
+    // Non-finite input must not reach the image as garbage: show it as black.
+    if (any(isnan(color)) || any(isinf(color))) color = vec3(0.0);
+    color = color / (1.0 + color);
+    imageStore(out_color, pixel, vec4(srgb_encode(clamp(color, 0.0, 1.0)), 1.0));
+}

@@ -1,0 +1,6 @@
+//! Benchmark runs: timing aggregation and reports.
+
+pub mod report;
+pub mod stats;
+
+pub use report::Report;

@@ -1,0 +1,184 @@
+//! The benchmark report: per-pass statistics and per-frame timings, as a table and as JSON.
+//!
+//! JSON format, version 1 (later versions only add fields):
+//! ```text
+//! { "version": 1, "device": str, "driver": str, "width": u32, "height": u32,
+//!   "config": { scene, path, frames, warmup, rsm_size, pcf_samples, pcf_radius_texels, ... },
+//!   "passes": [ { "name", "median_ms", "mean_ms", "p95_ms", "fps_equivalent",
+//!                 "recorded", "skipped" } ],          // over measured frames (after warmup);
+//!                                                     // times are null if never recorded
+//!   "total":  { "median_ms", "mean_ms", "p95_ms", "fps_equivalent" },  // sum of passes per frame
+//!   "frames": [ { "index", "passes": { name: ms }, "skipped": [name], "counters": { name: n } } ] }
+//! ```
+
+use super::stats::summarize;
+use crate::vk::FrameTiming;
+use serde::Serialize;
+use std::collections::BTreeMap;
+
+pub const REPORT_VERSION: u32 = 1;
+
+#[derive(Clone, Debug, Serialize)]
+pub struct PassRow {
+    pub name: String,
+    pub median_ms: Option<f64>,
+    pub mean_ms: Option<f64>,
+    pub p95_ms: Option<f64>,
+    pub fps_equivalent: Option<f64>,
+    pub recorded: usize,
+    pub skipped: usize,
+}
+
+#[derive(Clone, Debug, Serialize)]
+pub struct TotalRow {
+    pub median_ms: Option<f64>,
+    pub mean_ms: Option<f64>,
+    pub p95_ms: Option<f64>,
+    pub fps_equivalent: Option<f64>,
+}
+
+#[derive(Clone, Debug, Serialize)]
+pub struct FrameRow {
+    pub index: u64,
+    pub passes: BTreeMap<String, f64>,
+    pub skipped: Vec<String>,
+    pub counters: BTreeMap<String, u64>,
+}
+
+#[derive(Clone, Debug, Serialize)]
+pub struct Report {
+    pub version: u32,
+    pub device: String,
+    pub driver: String,
+    pub width: u32,
+    pub height: u32,
+    pub config: serde_json::Value,
+    /// Frames after warmup, over which `passes` and `total` are computed.
+    pub measured_frames: usize,
+    pub passes: Vec<PassRow>,
+    pub total: TotalRow,
+    pub frames: Vec<FrameRow>,
+}
+
+fn fps(ms: Option<f64>) -> Option<f64> {
+    ms.filter(|m| *m > 0.0).map(|m| 1000.0 / m)
+}
+
+impl Report {
+    /// Build from every frame's timing; statistics use frames with index >= `warmup`, in the
+    /// order of `pass_order`.
+    pub fn new(
+        device: &crate::vk::DeviceInfo,
+        width: u32,
+        height: u32,
+        config: serde_json::Value,
+        pass_order: &[&str],
+        timings: &[FrameTiming],
+        warmup: u64,
+    ) -> Self {
+        let measured: Vec<&FrameTiming> = timings.iter().filter(|t| t.frame >= warmup).collect();
+        let passes = pass_order
+            .iter()
+            .map(|name| {
+                let times: Vec<f64> = measured
+                    .iter()
+                    .flat_map(|t| t.passes.iter())
+                    .filter(|(n, _)| n == name)
+                    .filter_map(|(_, ms)| *ms)
+                    .collect();
+                let recorded = measured
+                    .iter()
+                    .filter(|t| t.passes.iter().any(|(n, _)| n == name))
+                    .count();
+                let skipped = measured
+                    .iter()
+                    .filter(|t| t.skipped.iter().any(|n| n == name))
+                    .count();
+                let s = summarize(&times);
+                PassRow {
+                    name: name.to_string(),
+                    median_ms: s.map(|s| s.median),
+                    mean_ms: s.map(|s| s.mean),
+                    p95_ms: s.map(|s| s.p95),
+                    fps_equivalent: fps(s.map(|s| s.median)),
+                    recorded,
+                    skipped,
+                }
+            })
+            .collect();
+        let totals: Vec<f64> = measured
+            .iter()
+            .map(|t| t.passes.iter().filter_map(|(_, ms)| *ms).sum())
+            .collect();
+        let s = summarize(&totals);
+        let frames = timings
+            .iter()
+            .map(|t| FrameRow {
+                index: t.frame,
+                passes: t
+                    .passes
+                    .iter()
+                    .filter_map(|(n, ms)| ms.map(|ms| (n.to_string(), ms)))
+                    .collect(),
+                skipped: t.skipped.iter().map(|s| s.to_string()).collect(),
+                counters: BTreeMap::new(),
+            })
+            .collect();
+        Report {
+            version: REPORT_VERSION,
+            device: device.name.clone(),
+            driver: device.driver.clone(),
+            width,
+            height,
+            config,
+            measured_frames: measured.len(),
+            passes,
+            total: TotalRow {
+                median_ms: s.map(|s| s.median),
+                mean_ms: s.map(|s| s.mean),
+                p95_ms: s.map(|s| s.p95),
+                fps_equivalent: fps(s.map(|s| s.median)),
+            },
+            frames,
+        }
+    }
+
+    /// The human-readable table.
+    pub fn table(&self) -> String {
+        let mut out = format!(
+            "{} ({}) {}x{}, {} frames measured\n",
+            self.device,
+            self.driver,
+            self.width,
+            self.height,
+            self.measured_frames
+        );
+        let f = |v: Option<f64>| v.map_or("-".to_string(), |v| format!("{v:.3}"));
+        let f1 = |v: Option<f64>| v.map_or("-".to_string(), |v| format!("{v:.1}"));
+        out += &format!(
+            "{:<14} {:>10} {:>10} {:>10} {:>10} {:>9} {:>8}\n",
+            "pass", "median ms", "mean ms", "p95 ms", "fps equiv", "recorded", "skipped"
+        );
+        for p in &self.passes {
+            out += &format!(
+                "{:<14} {:>10} {:>10} {:>10} {:>10} {:>9} {:>8}\n",
+                p.name,
+                f(p.median_ms),
+                f(p.mean_ms),
+                f(p.p95_ms),
+                f1(p.fps_equivalent),
+                p.recorded,
+                p.skipped
+            );
+        }
+        out += &format!(
+            "{:<14} {:>10} {:>10} {:>10} {:>10}\n",
+            "total",
+            f(self.total.median_ms),
+            f(self.total.mean_ms),
+            f(self.total.p95_ms),
+            f1(self.total.fps_equivalent)
+        );
+        out
+    }
+}

@@ -1,0 +1,53 @@
+//! Headless frontend: render a camera path offscreen, collect GPU timings, write PNGs.
+
+use super::png::{visualize, write_rgba8};
+use super::progress::Progress;
+use crate::error::Result;
+use crate::renderer::targets::Target;
+use crate::renderer::Renderer;
+use crate::scene::CameraPath;
+use crate::vk::FrameTiming;
+use std::path::Path;
+
+/// Render `frames` frames along `path`; returns every frame's GPU timing in frame order.
+pub fn run(
+    renderer: &mut Renderer,
+    path: &CameraPath,
+    frames: u32,
+    progress: bool,
+) -> Result<Vec<FrameTiming>> {
+    let base = renderer.scene.camera;
+    let bounds = renderer.scene.mesh.bounds;
+    let mut timings = Vec::with_capacity(frames as usize);
+    let mut bar = Progress::new(frames as u64, "rendering", progress);
+    for i in 0..frames {
+        let camera = path.camera_at(&base, &bounds, i, frames);
+        if let Some(t) = renderer.render_frame(&camera)? {
+            timings.push(t);
+        }
+        bar.inc();
+    }
+    timings.extend(renderer.finish()?);
+    bar.finish();
+    Ok(timings)
+}
+
+/// Write the tonemapped output image.
+pub fn write_output(renderer: &mut Renderer, path: &Path) -> Result<()> {
+    let data = renderer.read(Target::Output)?;
+    let rgba = visualize(Target::Output, &data, &renderer.scene.mesh.bounds);
+    write_rgba8(path, data.width, data.height, &rgba)
+}
+
+/// Write every G-buffer and RSM target as `<dir>/<name>.png`.
+pub fn dump_targets(renderer: &mut Renderer, dir: &Path) -> Result<Vec<std::path::PathBuf>> {
+    let mut written = Vec::new();
+    for target in Target::ALL {
+        let data = renderer.read(target)?;
+        let rgba = visualize(target, &data, &renderer.scene.mesh.bounds);
+        let path = dir.join(format!("{}.png", target.name()));
+        write_rgba8(&path, data.width, data.height, &rgba)?;
+        written.push(path);
+    }
+    Ok(written)
+}

@@ -1,0 +1,86 @@
+//! PNG output: the tonemapped image as is, and false-colour views of G-buffer / RSM targets.
+
+use crate::error::{Error, Result};
+use crate::renderer::targets::Target;
+use crate::scene::Aabb;
+use crate::vk::ImageData;
+use std::path::Path;
+
+pub fn write_rgba8(path: &Path, width: u32, height: u32, rgba: &[u8]) -> Result<()> {
+    if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty()) {
+        std::fs::create_dir_all(dir).map_err(|source| Error::Io {
+            path: dir.to_path_buf(),
+            source,
+        })?;
+    }
+    image::save_buffer(path, rgba, width, height, image::ColorType::Rgba8).map_err(|e| {
+        Error::ImageWrite {
+            path: path.to_path_buf(),
+            message: e.to_string(),
+        }
+    })
+}
+
+fn to_u8(v: f32) -> u8 {
+    if v.is_finite() {
+        (v.clamp(0.0, 1.0) * 255.0 + 0.5) as u8
+    } else {
+        0
+    }
+}
+
+/// A viewable RGBA8 picture of `data`: positions mapped from the scene bounds to 0..1,
+/// normals as n/2 + 1/2, depth and flux normalised by their range over the image, radiance
+/// Reinhard-tonemapped.
+pub fn visualize(target: Target, data: &ImageData, bounds: &Aabb) -> Vec<u8> {
+    if let Some(rgba) = data.rgba8() {
+        return rgba;
+    }
+    let n = (data.width * data.height) as usize;
+    let texels: Vec<[f32; 4]> = (0..n)
+        .map(|i| data.texel(i as u32 % data.width, i as u32 / data.width))
+        .collect();
+    let ext = bounds.extent().max(glam::Vec3::splat(1e-6));
+    let (lo, hi) = match target {
+        Target::GDepth | Target::RsmDepth => texels
+            .iter()
+            .map(|t| t[0])
+            .filter(|d| *d < 1.0)
+            .fold((f32::MAX, f32::MIN), |(a, b), d| (a.min(d), b.max(d))),
+        Target::RsmFlux => (
+            0.0,
+            texels
+                .iter()
+                .map(|t| t[0].max(t[1]).max(t[2]))
+                .filter(|v| v.is_finite())
+                .fold(1e-20f32, f32::max),
+        ),
+        _ => (0.0, 1.0),
+    };
+    let range = (hi - lo).max(1e-20);
+    texels
+        .iter()
+        .flat_map(|t| {
+            let rgb = match target {
+                Target::GPosition | Target::RsmPosition => {
+                    if t[3] == 0.0 {
+                        [0.0; 3]
+                    } else {
+                        let p = (glam::Vec3::new(t[0], t[1], t[2]) - bounds.min) / ext;
+                        p.to_array()
+                    }
+                }
+                Target::GNormal | Target::RsmNormal => {
+                    [t[0] * 0.5 + 0.5, t[1] * 0.5 + 0.5, t[2] * 0.5 + 0.5]
+                }
+                Target::GDepth | Target::RsmDepth => {
+                    let v = if t[0] >= 1.0 { 0.0 } else { 1.0 - (t[0] - lo) / range };
+                    [v, v, v]
+                }
+                Target::RsmFlux => [t[0] / range, t[1] / range, t[2] / range],
+                _ => [t[0] / (1.0 + t[0]), t[1] / (1.0 + t[1]), t[2] / (1.0 + t[2])],
+            };
+            [to_u8(rgb[0]), to_u8(rgb[1]), to_u8(rgb[2]), 255]
+        })
+        .collect()
+}

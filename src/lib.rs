@@ -1,0 +1,14 @@
+//! ssgi: screen-space global illumination on Vulkan (ash), reproducing and measuring cached
+//! screen-space GI (Lin 2013), SSAO/SSDO (Szentandrási) and CCIPCA filtering (Chang).
+
+pub mod bench;
+pub mod cli;
+pub mod error;
+pub mod frontend;
+pub mod passes;
+pub mod renderer;
+pub mod scene;
+pub mod shaders;
+pub mod vk;
+
+pub use error::{Error, Result};

@@ -1,0 +1,19 @@
+//! The `ssgi` command line.
+
+use clap::Parser;
+use ssgi::cli::{Cli, Command};
+
+fn main() -> std::process::ExitCode {
+    let cli = Cli::parse();
+    let result = match &cli.command {
+        Command::Render(args) => ssgi::cli::render(&cli, args),
+        Command::Bench(args) => ssgi::cli::bench(&cli, args),
+    };
+    match result {
+        Ok(()) => std::process::ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("error: {e}");
+            std::process::ExitCode::FAILURE
+        }
+    }
+}

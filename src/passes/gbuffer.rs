@@ -1,0 +1,76 @@
+//! G-buffer: world position (w = 1 on geometry, 0 on background), world normal (facing the
+//! eye), albedo, and depth, from the camera.
+
+use super::raster::{MaterialPipelines, RasterModules, FLAT_BINDINGS, TEXTURED_BINDINGS};
+use super::PassLayout;
+use crate::error::Result;
+use crate::renderer::scene_gpu::SceneGpu;
+use crate::renderer::targets::{GBuffer, DEPTH_FORMAT, GBUFFER_COLOR_FORMATS};
+use crate::shaders;
+use crate::vk::cmd::Recorder;
+use crate::vk::{Access, Context, Tracker};
+use ash::vk;
+use std::sync::Arc;
+
+const MODULES: RasterModules = RasterModules {
+    vertex: &shaders::MESH_VERT_CAMERA,
+    flat: &shaders::GBUFFER_FRAG_FLAT,
+    textured: &shaders::GBUFFER_FRAG_TEXTURED,
+};
+
+pub fn layouts() -> Vec<PassLayout> {
+    vec![
+        PassLayout {
+            pass: "gbuffer",
+            modules: vec![MODULES.vertex, MODULES.flat],
+            declared: FLAT_BINDINGS,
+        },
+        PassLayout {
+            pass: "gbuffer",
+            modules: vec![MODULES.vertex, MODULES.textured],
+            declared: TEXTURED_BINDINGS,
+        },
+    ]
+}
+
+pub struct GBufferPass {
+    pipelines: MaterialPipelines,
+}
+
+impl GBufferPass {
+    pub fn new(ctx: &Arc<Context>, textured: bool) -> Result<Self> {
+        let pipelines = MaterialPipelines::new(
+            ctx,
+            "gbuffer",
+            &MODULES,
+            &GBUFFER_COLOR_FORMATS,
+            DEPTH_FORMAT,
+            textured,
+        )?;
+        Ok(Self { pipelines })
+    }
+
+    pub fn record(
+        &self,
+        rec: &Recorder<'_>,
+        tracker: &mut Tracker,
+        frame_set: vk::DescriptorSet,
+        scene: &SceneGpu,
+        g: &GBuffer,
+    ) {
+        for target in [&g.position, &g.normal, &g.albedo] {
+            tracker.image(target, Access::Undefined);
+            tracker.image(target, Access::ColorAttachmentWrite);
+        }
+        tracker.image(&g.depth, Access::Undefined);
+        tracker.image(&g.depth, Access::DepthAttachmentWrite);
+        tracker.flush(rec.device, rec.cmd);
+        let zero = [0.0; 4];
+        rec.begin_rendering(
+            &[(&g.position, zero), (&g.normal, zero), (&g.albedo, zero)],
+            &g.depth,
+        );
+        self.pipelines.draw(rec, frame_set, scene);
+        rec.end_rendering();
+    }
+}

@@ -1,0 +1,81 @@
+//! Light view: the reflective shadow map (world position, normal, reflected flux) and its
+//! depth, which is also the shadow map. Rendered only when the light or geometry changed.
+
+use super::raster::{MaterialPipelines, RasterModules, FLAT_BINDINGS, TEXTURED_BINDINGS};
+use super::PassLayout;
+use crate::error::Result;
+use crate::renderer::scene_gpu::SceneGpu;
+use crate::renderer::targets::{Rsm, RSM_COLOR_FORMATS, DEPTH_FORMAT};
+use crate::shaders;
+use crate::vk::cmd::Recorder;
+use crate::vk::{Access, Context, Tracker};
+use ash::vk;
+use std::sync::Arc;
+
+const MODULES: RasterModules = RasterModules {
+    vertex: &shaders::MESH_VERT_LIGHT,
+    flat: &shaders::RSM_FRAG_FLAT,
+    textured: &shaders::RSM_FRAG_TEXTURED,
+};
+
+pub fn layouts() -> Vec<PassLayout> {
+    vec![
+        PassLayout {
+            pass: "light_view",
+            modules: vec![MODULES.vertex, MODULES.flat],
+            declared: FLAT_BINDINGS,
+        },
+        PassLayout {
+            pass: "light_view",
+            modules: vec![MODULES.vertex, MODULES.textured],
+            declared: TEXTURED_BINDINGS,
+        },
+    ]
+}
+
+pub struct LightViewPass {
+    pipelines: MaterialPipelines,
+}
+
+impl LightViewPass {
+    pub fn new(ctx: &Arc<Context>, textured: bool) -> Result<Self> {
+        let pipelines = MaterialPipelines::new(
+            ctx,
+            "light_view",
+            &MODULES,
+            &RSM_COLOR_FORMATS,
+            DEPTH_FORMAT,
+            textured,
+        )?;
+        Ok(Self { pipelines })
+    }
+
+    /// The set-1 layout of the textured permutation (material sets are allocated with it).
+    pub fn material_layout(&self) -> Option<vk::DescriptorSetLayout> {
+        self.pipelines.textured.as_ref().map(|p| p.set_layouts[1])
+    }
+
+    pub fn record(
+        &self,
+        rec: &Recorder<'_>,
+        tracker: &mut Tracker,
+        frame_set: vk::DescriptorSet,
+        scene: &SceneGpu,
+        rsm: &Rsm,
+    ) {
+        for target in [&rsm.position, &rsm.normal, &rsm.flux] {
+            tracker.image(target, Access::Undefined);
+            tracker.image(target, Access::ColorAttachmentWrite);
+        }
+        tracker.image(&rsm.depth, Access::Undefined);
+        tracker.image(&rsm.depth, Access::DepthAttachmentWrite);
+        tracker.flush(rec.device, rec.cmd);
+        let zero = [0.0; 4];
+        rec.begin_rendering(
+            &[(&rsm.position, zero), (&rsm.normal, zero), (&rsm.flux, zero)],
+            &rsm.depth,
+        );
+        self.pipelines.draw(rec, frame_set, scene);
+        rec.end_rendering();
+    }
+}

@@ -1,0 +1,74 @@
+//! One file per pass. `PassId` names are the rows of the timing report.
+
+pub mod composite;
+pub mod direct;
+pub mod gbuffer;
+pub mod light_view;
+pub mod raster;
+
+use crate::shaders::{DescriptorKind, ReflectedBinding, ShaderModuleInfo};
+
+/// The passes of one frame, in recording order.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum PassId {
+    /// Reflective shadow map + shadow depth from the spot light (only when light/geometry change).
+    LightView,
+    /// Camera G-buffer MRT.
+    GBuffer,
+    /// Direct spot light with PCF shadows.
+    Direct,
+    /// Composite + tonemap into the output image.
+    Composite,
+}
+
+impl PassId {
+    pub const ALL: [PassId; 4] = [
+        PassId::LightView,
+        PassId::GBuffer,
+        PassId::Direct,
+        PassId::Composite,
+    ];
+
+    pub fn name(self) -> &'static str {
+        match self {
+            PassId::LightView => "light_view",
+            PassId::GBuffer => "gbuffer",
+            PassId::Direct => "direct",
+            PassId::Composite => "composite",
+        }
+    }
+}
+
+/// The per-frame uniform buffer every pass reads (set 0, binding 0).
+pub const FRAME_BINDING: ReflectedBinding = ReflectedBinding {
+    set: 0,
+    binding: 0,
+    kind: DescriptorKind::UniformBuffer,
+    count: 1,
+};
+
+pub(crate) const fn binding(set: u32, binding: u32, kind: DescriptorKind) -> ReflectedBinding {
+    ReflectedBinding {
+        set,
+        binding,
+        kind,
+        count: 1,
+    }
+}
+
+/// One pipeline of a pass: the modules it is built from and the layout the pass declares.
+pub struct PassLayout {
+    pub pass: &'static str,
+    pub modules: Vec<&'static ShaderModuleInfo>,
+    pub declared: &'static [ReflectedBinding],
+}
+
+/// Every pipeline of every pass, for the reflection check (also done at pipeline creation).
+pub fn all_layouts() -> Vec<PassLayout> {
+    let mut v = Vec::new();
+    v.extend(light_view::layouts());
+    v.extend(gbuffer::layouts());
+    v.push(direct::layout());
+    v.push(composite::layout());
+    v
+}

@@ -1,0 +1,117 @@
+//! What the two raster passes (light view and G-buffer) share: the vertex layout, the two
+//! material permutations (flat colour / textured) and the draw loop over material ranges.
+
+use crate::error::Result;
+use crate::renderer::scene_gpu::SceneGpu;
+use crate::shaders::{DescriptorKind, ReflectedBinding, ShaderModuleInfo};
+use crate::vk::cmd::Recorder;
+use crate::vk::{Context, GraphicsDesc, Pipeline};
+use ash::vk;
+use std::sync::Arc;
+
+use super::{binding, FRAME_BINDING};
+
+/// Bindings of the flat-colour permutation: only the frame constants.
+pub const FLAT_BINDINGS: &[ReflectedBinding] = &[FRAME_BINDING];
+/// Textured permutation: plus the material's diffuse texture and sampler (set 1).
+pub const TEXTURED_BINDINGS: &[ReflectedBinding] = &[
+    FRAME_BINDING,
+    binding(1, 0, DescriptorKind::SampledImage),
+    binding(1, 1, DescriptorKind::Sampler),
+];
+
+const VERTEX_BINDINGS: [vk::VertexInputBindingDescription; 1] = [vk::VertexInputBindingDescription {
+    binding: 0,
+    stride: 32,
+    input_rate: vk::VertexInputRate::VERTEX,
+}];
+
+const VERTEX_ATTRIBUTES: [vk::VertexInputAttributeDescription; 3] = [
+    vk::VertexInputAttributeDescription {
+        location: 0,
+        binding: 0,
+        format: vk::Format::R32G32B32_SFLOAT,
+        offset: 0,
+    },
+    vk::VertexInputAttributeDescription {
+        location: 1,
+        binding: 0,
+        format: vk::Format::R32G32B32_SFLOAT,
+        offset: 12,
+    },
+    vk::VertexInputAttributeDescription {
+        location: 2,
+        binding: 0,
+        format: vk::Format::R32G32_SFLOAT,
+        offset: 24,
+    },
+];
+
+/// A raster pass's pipelines: flat always, textured only when the scene has textures.
+pub struct MaterialPipelines {
+    pub flat: Pipeline,
+    pub textured: Option<Pipeline>,
+}
+
+pub struct RasterModules {
+    pub vertex: &'static ShaderModuleInfo,
+    pub flat: &'static ShaderModuleInfo,
+    pub textured: &'static ShaderModuleInfo,
+}
+
+impl MaterialPipelines {
+    pub fn new(
+        ctx: &Arc<Context>,
+        name: &'static str,
+        modules: &RasterModules,
+        color_formats: &[vk::Format],
+        depth_format: vk::Format,
+        textured: bool,
+    ) -> Result<Self> {
+        let desc = |fragment| GraphicsDesc {
+            vertex: modules.vertex,
+            fragment,
+            vertex_bindings: &VERTEX_BINDINGS,
+            vertex_attributes: &VERTEX_ATTRIBUTES,
+            color_formats,
+            depth_format,
+        };
+        let flat = Pipeline::graphics(ctx, name, &desc(modules.flat), FLAT_BINDINGS)?;
+        let textured = if textured {
+            Some(Pipeline::graphics(
+                ctx,
+                name,
+                &desc(modules.textured),
+                TEXTURED_BINDINGS,
+            )?)
+        } else {
+            None
+        };
+        Ok(Self { flat, textured })
+    }
+
+    /// Draw every material range: flat materials first, then textured ones (one pipeline bind
+    /// each), with the material colour as push constant.
+    pub fn draw(&self, rec: &Recorder<'_>, frame_set: vk::DescriptorSet, scene: &SceneGpu) {
+        rec.bind(&self.flat, &[frame_set]);
+        rec.bind_mesh(&scene.vertices, &scene.indices);
+        for range in scene.ranges.iter() {
+            let material = &scene.materials[range.material];
+            if material.texture_set.is_none() {
+                rec.push(&self.flat, &material.push_bytes());
+                rec.draw_indexed(range.first_index, range.index_count);
+            }
+        }
+        if let Some(textured) = &self.textured {
+            rec.bind(textured, &[frame_set]);
+            for range in scene.ranges.iter() {
+                let material = &scene.materials[range.material];
+                if let Some(set) = material.texture_set {
+                    rec.bind_sets(textured, 1, &[set]);
+                    rec.push(textured, &material.push_bytes());
+                    rec.draw_indexed(range.first_index, range.index_count);
+                }
+            }
+        }
+    }
+}

@@ -1,0 +1,189 @@
+//! The scene on the GPU: one vertex and one index buffer, per-material colour and (optional)
+//! diffuse texture with its descriptor set.
+
+use crate::error::{Error, Result};
+use crate::scene::{DrawRange, Mesh, TextureImage};
+use crate::vk::{one_shot, Access, Buffer, Context, DescriptorPool, Image, ImageDesc, Sampler, SetWriter, Tracker};
+use ash::vk;
+use gpu_allocator::MemoryLocation;
+use std::collections::HashMap;
+use std::sync::Arc;
+
+pub struct MaterialGpu {
+    pub albedo: [f32; 3],
+    /// Set 1 of the textured permutation; `None` draws with the flat permutation.
+    pub texture_set: Option<vk::DescriptorSet>,
+}
+
+impl MaterialGpu {
+    /// The `Material` push-constant block (vec4 albedo).
+    pub fn push_bytes(&self) -> [u8; 16] {
+        let mut out = [0u8; 16];
+        for (i, v) in [self.albedo[0], self.albedo[1], self.albedo[2], 1.0].iter().enumerate() {
+            out[i * 4..i * 4 + 4].copy_from_slice(&v.to_le_bytes());
+        }
+        out
+    }
+}
+
+pub struct SceneGpu {
+    pub vertices: Buffer,
+    pub indices: Buffer,
+    pub ranges: Vec<DrawRange>,
+    pub materials: Vec<MaterialGpu>,
+    _textures: Vec<Image>,
+    _sampler: Option<Sampler>,
+}
+
+fn vertex_bytes(mesh: &Mesh) -> Vec<u8> {
+    let mut out = Vec::with_capacity(mesh.vertices.len() * 32);
+    for v in &mesh.vertices {
+        for f in v.position.iter().chain(&v.normal).chain(&v.uv) {
+            out.extend_from_slice(&f.to_le_bytes());
+        }
+    }
+    out
+}
+
+fn staging(ctx: &Arc<Context>, name: &str, data: &[u8]) -> Result<Buffer> {
+    let mut b = Buffer::new(
+        ctx,
+        name,
+        data.len() as u64,
+        vk::BufferUsageFlags::TRANSFER_SRC,
+        MemoryLocation::CpuToGpu,
+    )?;
+    b.write(data)?;
+    Ok(b)
+}
+
+impl SceneGpu {
+    /// Upload `mesh`. `material_layout` is the textured permutation's set-1 layout, present
+    /// only when the mesh has textures.
+    pub fn new(
+        ctx: &Arc<Context>,
+        tracker: &mut Tracker,
+        pool: &DescriptorPool,
+        mesh: &Mesh,
+        material_layout: Option<vk::DescriptorSetLayout>,
+    ) -> Result<Self> {
+        if mesh.indices.is_empty() || mesh.vertices.is_empty() {
+            return Err(Error::Config("the scene has no triangles to draw".into()));
+        }
+        let vdata = vertex_bytes(mesh);
+        let idata: Vec<u8> = mesh.indices.iter().flat_map(|i| i.to_le_bytes()).collect();
+        let vertices = Buffer::new(
+            ctx,
+            "vertices",
+            vdata.len() as u64,
+            vk::BufferUsageFlags::VERTEX_BUFFER | vk::BufferUsageFlags::TRANSFER_DST,
+            MemoryLocation::GpuOnly,
+        )?;
+        let indices = Buffer::new(
+            ctx,
+            "indices",
+            idata.len() as u64,
+            vk::BufferUsageFlags::INDEX_BUFFER | vk::BufferUsageFlags::TRANSFER_DST,
+            MemoryLocation::GpuOnly,
+        )?;
+        let vstage = staging(ctx, "vertices.staging", &vdata)?;
+        let istage = staging(ctx, "indices.staging", &idata)?;
+
+        // Textures: decode once per path (shared Arc), upload each once.
+        let mut unique: Vec<Arc<TextureImage>> = Vec::new();
+        let mut index_of: HashMap<*const TextureImage, usize> = HashMap::new();
+        if material_layout.is_some() {
+            for m in &mesh.materials {
+                if let Some(t) = &m.diffuse_texture {
+                    index_of.entry(Arc::as_ptr(t)).or_insert_with(|| {
+                        unique.push(t.clone());
+                        unique.len() - 1
+                    });
+                }
+            }
+        }
+        let mut textures = Vec::new();
+        let mut tex_staging = Vec::new();
+        for t in &unique {
+            if t.width == 0 || t.height == 0 || t.rgba8.len() != (t.width * t.height * 4) as usize {
+                return Err(Error::Config(format!(
+                    "texture {} has inconsistent size",
+                    t.path.display()
+                )));
+            }
+            textures.push(Image::new(
+                ctx,
+                &t.path.display().to_string(),
+                ImageDesc {
+                    width: t.width,
+                    height: t.height,
+                    format: vk::Format::R8G8B8A8_SRGB,
+                    usage: vk::ImageUsageFlags::SAMPLED | vk::ImageUsageFlags::TRANSFER_DST,
+                },
+            )?);
+            tex_staging.push(staging(ctx, "texture.staging", &t.rgba8)?);
+        }
+
+        one_shot(ctx, |cmd| {
+            let d = &ctx.device;
+            tracker.buffer(&vertices, Access::TransferDst);
+            tracker.buffer(&indices, Access::TransferDst);
+            for img in &textures {
+                tracker.image(img, Access::TransferDst);
+            }
+            tracker.flush(d, cmd);
+            // SAFETY: recording; staging and destination buffers are live and large enough;
+            // texture images are in TRANSFER_DST layout.
+            unsafe {
+                d.cmd_copy_buffer(cmd, vstage.raw, vertices.raw, &[vk::BufferCopy { src_offset: 0, dst_offset: 0, size: vdata.len() as u64 }]);
+                d.cmd_copy_buffer(cmd, istage.raw, indices.raw, &[vk::BufferCopy { src_offset: 0, dst_offset: 0, size: idata.len() as u64 }]);
+                for (img, src) in textures.iter().zip(&tex_staging) {
+                    let region = vk::BufferImageCopy::default()
+                        .image_subresource(vk::ImageSubresourceLayers {
+                            aspect_mask: vk::ImageAspectFlags::COLOR,
+                            mip_level: 0,
+                            base_array_layer: 0,
+                            layer_count: 1,
+                        })
+                        .image_extent(vk::Extent3D { width: img.desc.width, height: img.desc.height, depth: 1 });
+                    d.cmd_copy_buffer_to_image(cmd, src.raw, img.raw, vk::ImageLayout::TRANSFER_DST_OPTIMAL, &[region]);
+                }
+            }
+            tracker.buffer(&vertices, Access::VertexBufferRead);
+            tracker.buffer(&indices, Access::IndexBufferRead);
+            for img in &textures {
+                tracker.image(img, Access::FragmentSampledRead);
+            }
+            tracker.flush(d, cmd);
+            Ok(())
+        })?;
+
+        let sampler = if textures.is_empty() { None } else { Some(Sampler::linear_repeat(ctx)?) };
+        let mut materials = Vec::new();
+        for m in &mesh.materials {
+            let texture_set = match (&m.diffuse_texture, material_layout, &sampler) {
+                (Some(t), Some(layout), Some(s)) => {
+                    let set = pool.allocate(layout)?;
+                    SetWriter::new()
+                        .sampled(0, &textures[index_of[&Arc::as_ptr(t)]])
+                        .sampler(1, s.raw)
+                        .write(ctx, set);
+                    Some(set)
+                }
+                _ => None,
+            };
+            materials.push(MaterialGpu {
+                albedo: m.diffuse,
+                texture_set,
+            });
+        }
+        Ok(Self {
+            vertices,
+            indices,
+            ranges: mesh.ranges.clone(),
+            materials,
+            _textures: textures,
+            _sampler: sampler,
+        })
+    }
+}

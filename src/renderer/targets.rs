@@ -1,0 +1,168 @@
+//! Size-dependent render targets: G-buffer, reflective shadow map, direct light, output.
+
+use crate::error::Result;
+use crate::vk::{Context, Image, ImageDesc};
+use ash::vk;
+use std::sync::Arc;
+
+pub const DEPTH_FORMAT: vk::Format = vk::Format::D32_SFLOAT;
+/// World position needs fp32 (large scenes); normals and flux/radiance are fine in fp16.
+pub const GBUFFER_COLOR_FORMATS: [vk::Format; 3] = [
+    vk::Format::R32G32B32A32_SFLOAT,
+    vk::Format::R16G16B16A16_SFLOAT,
+    vk::Format::R8G8B8A8_UNORM,
+];
+pub const RSM_COLOR_FORMATS: [vk::Format; 3] = [
+    vk::Format::R32G32B32A32_SFLOAT,
+    vk::Format::R16G16B16A16_SFLOAT,
+    vk::Format::R16G16B16A16_SFLOAT,
+];
+pub const DIRECT_FORMAT: vk::Format = vk::Format::R16G16B16A16_SFLOAT;
+pub const OUTPUT_FORMAT: vk::Format = vk::Format::R8G8B8A8_UNORM;
+
+const ATTACHMENT_READ: vk::ImageUsageFlags = vk::ImageUsageFlags::from_raw(
+    vk::ImageUsageFlags::COLOR_ATTACHMENT.as_raw()
+        | vk::ImageUsageFlags::SAMPLED.as_raw()
+        | vk::ImageUsageFlags::TRANSFER_SRC.as_raw(),
+);
+const DEPTH_READ: vk::ImageUsageFlags = vk::ImageUsageFlags::from_raw(
+    vk::ImageUsageFlags::DEPTH_STENCIL_ATTACHMENT.as_raw()
+        | vk::ImageUsageFlags::SAMPLED.as_raw()
+        | vk::ImageUsageFlags::TRANSFER_SRC.as_raw(),
+);
+const STORAGE_READ: vk::ImageUsageFlags = vk::ImageUsageFlags::from_raw(
+    vk::ImageUsageFlags::STORAGE.as_raw()
+        | vk::ImageUsageFlags::SAMPLED.as_raw()
+        | vk::ImageUsageFlags::TRANSFER_SRC.as_raw(),
+);
+
+fn image(
+    ctx: &Arc<Context>,
+    name: &str,
+    size: (u32, u32),
+    format: vk::Format,
+    usage: vk::ImageUsageFlags,
+) -> Result<Image> {
+    Image::new(
+        ctx,
+        name,
+        ImageDesc {
+            width: size.0,
+            height: size.1,
+            format,
+            usage,
+        },
+    )
+}
+
+pub struct GBuffer {
+    pub position: Image,
+    pub normal: Image,
+    pub albedo: Image,
+    pub depth: Image,
+}
+
+pub struct Rsm {
+    pub position: Image,
+    pub normal: Image,
+    pub flux: Image,
+    pub depth: Image,
+    pub size: u32,
+}
+
+pub struct Targets {
+    pub width: u32,
+    pub height: u32,
+    pub gbuffer: GBuffer,
+    pub rsm: Rsm,
+    pub direct: Image,
+    pub output: Image,
+}
+
+/// Which target to read back or dump.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Target {
+    Output,
+    Direct,
+    GPosition,
+    GNormal,
+    GAlbedo,
+    GDepth,
+    RsmPosition,
+    RsmNormal,
+    RsmFlux,
+    RsmDepth,
+}
+
+impl Target {
+    pub const ALL: [Target; 10] = [
+        Target::Output,
+        Target::Direct,
+        Target::GPosition,
+        Target::GNormal,
+        Target::GAlbedo,
+        Target::GDepth,
+        Target::RsmPosition,
+        Target::RsmNormal,
+        Target::RsmFlux,
+        Target::RsmDepth,
+    ];
+
+    pub fn name(self) -> &'static str {
+        match self {
+            Target::Output => "output",
+            Target::Direct => "direct",
+            Target::GPosition => "gbuffer_position",
+            Target::GNormal => "gbuffer_normal",
+            Target::GAlbedo => "gbuffer_albedo",
+            Target::GDepth => "gbuffer_depth",
+            Target::RsmPosition => "rsm_position",
+            Target::RsmNormal => "rsm_normal",
+            Target::RsmFlux => "rsm_flux",
+            Target::RsmDepth => "rsm_depth",
+        }
+    }
+}
+
+impl Targets {
+    pub fn new(ctx: &Arc<Context>, width: u32, height: u32, rsm_size: u32) -> Result<Self> {
+        let s = (width, height);
+        let r = (rsm_size, rsm_size);
+        let [gp, gn, ga] = GBUFFER_COLOR_FORMATS;
+        let [rp, rn, rf] = RSM_COLOR_FORMATS;
+        Ok(Self {
+            width,
+            height,
+            gbuffer: GBuffer {
+                position: image(ctx, "gbuffer.position", s, gp, ATTACHMENT_READ)?,
+                normal: image(ctx, "gbuffer.normal", s, gn, ATTACHMENT_READ)?,
+                albedo: image(ctx, "gbuffer.albedo", s, ga, ATTACHMENT_READ)?,
+                depth: image(ctx, "gbuffer.depth", s, DEPTH_FORMAT, DEPTH_READ)?,
+            },
+            rsm: Rsm {
+                position: image(ctx, "rsm.position", r, rp, ATTACHMENT_READ)?,
+                normal: image(ctx, "rsm.normal", r, rn, ATTACHMENT_READ)?,
+                flux: image(ctx, "rsm.flux", r, rf, ATTACHMENT_READ)?,
+                depth: image(ctx, "rsm.depth", r, DEPTH_FORMAT, DEPTH_READ)?,
+                size: rsm_size,
+            },
+            direct: image(ctx, "direct", s, DIRECT_FORMAT, STORAGE_READ)?,
+            output: image(ctx, "output", s, OUTPUT_FORMAT, STORAGE_READ)?,
+        })
+    }
+
+    pub fn get(&self, target: Target) -> &Image {
+        match target {
+            Target::Output => &self.output,
+            Target::Direct => &self.direct,
+            Target::GPosition => &self.gbuffer.position,
+            Target::GNormal => &self.gbuffer.normal,
+            Target::GAlbedo => &self.gbuffer.albedo,
+            Target::GDepth => &self.gbuffer.depth,
+            Target::RsmPosition => &self.rsm.position,
+            Target::RsmNormal => &self.rsm.normal,
+            Target::RsmFlux => &self.rsm.flux,
+            Target::RsmDepth => &self.rsm.depth,
+        }
+    }
+}

@@ -1,0 +1,182 @@
+//! Spot light: a point source with a smooth cone falloff, also the RSM/shadow-map camera.
+
+use super::camera::{view_matrix, vulkan_perspective};
+use glam::{Mat4, Vec3};
+
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct SpotLight {
+    #[serde(with = "super::serde_vec3")]
+    pub position: Vec3,
+    /// Unit axis of the cone (normalised again where used, so a sloppy value is harmless).
+    #[serde(with = "super::serde_vec3")]
+    pub direction: Vec3,
+    /// Radiant intensity on the axis, W/sr per RGB channel.
+    #[serde(with = "super::serde_vec3")]
+    pub intensity: Vec3,
+    /// Half-angle (degrees) inside which the light is at full intensity.
+    pub inner_deg: f32,
+    /// Half-angle (degrees) outside which the light is zero.
+    pub outer_deg: f32,
+    /// Near/far planes of the light's shadow-map projection.
+    pub near: f32,
+    pub far: f32,
+}
+
+/// Margin added to the full cone angle for the shadow-map frustum, so the cone's edge does
+/// not land exactly on the map's border.
+pub const FRUSTUM_MARGIN_DEG: f32 = 2.0;
+
+impl SpotLight {
+    /// A light at `position` aimed at `target`.
+    pub fn aimed(
+        position: Vec3,
+        target: Vec3,
+        intensity: Vec3,
+        inner_deg: f32,
+        outer_deg: f32,
+        near: f32,
+        far: f32,
+    ) -> Self {
+        Self {
+            position,
+            direction: (target - position).normalize_or(Vec3::NEG_Y),
+            intensity,
+            inner_deg,
+            outer_deg,
+            near,
+            far,
+        }
+    }
+
+    fn axis(&self) -> Vec3 {
+        self.direction.normalize_or(Vec3::NEG_Y)
+    }
+
+    /// Cone falloff for a unit vector from the light towards a point:
+    /// `smoothstep(cos outer, cos inner, dot(axis, v))` with `t²(3 - 2t)`; 0 outside the cone,
+    /// 1 inside the inner cone. If `inner >= outer` the edge is a hard step at the outer angle.
+    pub fn spot_factor(&self, to_point_unit: Vec3) -> f32 {
+        let cos_theta = self.axis().dot(to_point_unit);
+        let cos_outer = self.outer_deg.to_radians().cos();
+        let cos_inner = self.inner_deg.to_radians().cos();
+        if cos_theta < cos_outer || cos_theta.is_nan() {
+            return 0.0;
+        }
+        let width = cos_inner - cos_outer;
+        if width <= 0.0 {
+            return 1.0;
+        }
+        let t = ((cos_theta - cos_outer) / width).clamp(0.0, 1.0);
+        t * t * (3.0 - 2.0 * t)
+    }
+
+    /// Floor for d² in the inverse-square law: near². Points closer than the light's own near
+    /// plane are outside its shadow map anyway, and the floor keeps 1/d² finite at d → 0.
+    /// It scales with the light (near is chosen per scene), so it is not a fixed world-space
+    /// epsilon; a near of 0 falls back to f32::MIN_POSITIVE (only guards division by zero).
+    pub fn min_distance_sq(&self) -> f32 {
+        (self.near * self.near).max(f32::MIN_POSITIVE)
+    }
+
+    /// Unshadowed irradiance at `p` on a surface with unit normal `n`:
+    /// `intensity × spot_factor × max(0, n·l) / max(d², near²)`, l the unit vector p → light.
+    pub fn irradiance(&self, p: Vec3, n: Vec3) -> Vec3 {
+        let to_light = self.position - p;
+        let d2 = to_light.length_squared();
+        let Some(l) = to_light.try_normalize() else {
+            return Vec3::ZERO;
+        };
+        let cos_surface = n.dot(l).max(0.0);
+        self.intensity * (self.spot_factor(-l) * cos_surface / d2.max(self.min_distance_sq()))
+    }
+
+    pub fn view(&self) -> Mat4 {
+        let axis = self.axis();
+        // Any up works for a round cone; avoid one parallel to the axis.
+        let up = if axis.y.abs() > 0.99 { Vec3::Z } else { Vec3::Y };
+        view_matrix(self.position, axis, up)
+    }
+
+    /// Square frustum covering the cone: fov = 2 × outer + 2° margin (clamped to 179°).
+    pub fn proj(&self) -> Mat4 {
+        vulkan_perspective(self.frustum_fov_deg(), 1.0, self.near, self.far)
+    }
+
+    pub fn frustum_fov_deg(&self) -> f32 {
+        2.0 * self.outer_deg + FRUSTUM_MARGIN_DEG
+    }
+
+    pub fn view_proj(&self) -> Mat4 {
+        self.proj() * self.view()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn light() -> SpotLight {
+        SpotLight {
+            position: Vec3::new(0.0, 2.0, 0.0),
+            direction: Vec3::NEG_Y,
+            intensity: Vec3::new(6.0, 5.2, 4.2),
+            inner_deg: 30.0,
+            outer_deg: 45.0,
+            near: 0.05,
+            far: 10.0,
+        }
+    }
+
+    #[test]
+    fn on_axis_irradiance_is_inverse_square() {
+        let l = light();
+        for d in [0.5f32, 1.0, 2.0] {
+            let e = l.irradiance(l.position - Vec3::Y * d, Vec3::Y);
+            assert!(e.abs_diff_eq(l.intensity / (d * d), 1e-5), "{e}");
+        }
+        // Facing away or behind: nothing.
+        assert_eq!(l.irradiance(Vec3::ZERO, Vec3::NEG_Y), Vec3::ZERO);
+        assert_eq!(l.irradiance(Vec3::new(0.0, 3.0, 0.0), Vec3::NEG_Y), Vec3::ZERO);
+        // At the light itself: finite.
+        assert!(l.irradiance(l.position, Vec3::Y).is_finite());
+    }
+
+    #[test]
+    fn tilted_surface_gets_cosine() {
+        let l = light();
+        let n = Vec3::new(1.0, 1.0, 0.0).normalize();
+        let e = l.irradiance(Vec3::ZERO, n);
+        assert!(e.abs_diff_eq(l.intensity / 4.0 * n.y, 1e-5));
+    }
+
+    #[test]
+    fn smoothstep_cone() {
+        let l = light();
+        let at = |deg: f32| {
+            let r = deg.to_radians();
+            l.spot_factor(Vec3::new(r.sin(), -r.cos(), 0.0))
+        };
+        assert_eq!(at(0.0), 1.0);
+        assert_eq!(at(29.9), 1.0);
+        assert_eq!(at(45.1), 0.0);
+        let (ci, co) = (30f32.to_radians().cos(), 45f32.to_radians().cos());
+        let c = 37f32.to_radians().cos();
+        let t = (c - co) / (ci - co);
+        assert!((at(37.0) - t * t * (3.0 - 2.0 * t)).abs() < 1e-5);
+        assert!(at(40.0) < at(35.0));
+    }
+
+    #[test]
+    fn cone_edge_fits_the_frustum() {
+        let l = light();
+        let vp = l.view_proj();
+        let r = 45f32.to_radians();
+        for dir in [Vec3::new(r.sin(), -r.cos(), 0.0), Vec3::new(0.0, -r.cos(), r.sin())] {
+            let clip = vp * (l.position + dir * 3.0).extend(1.0);
+            let ndc = clip.truncate() / clip.w;
+            assert!(ndc.x.abs() < 1.0 && ndc.y.abs() < 1.0, "{ndc}");
+            assert!(ndc.x.abs().max(ndc.y.abs()) > 0.9, "{ndc}");
+            assert!(ndc.z > 0.0 && ndc.z < 1.0);
+        }
+    }
+}

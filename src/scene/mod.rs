@@ -1,0 +1,51 @@
+//! Scenes on the CPU: OBJ/MTL loading with validation, procedural scenes, camera, spot
+//! light, camera paths and ray queries for reference values. No Vulkan here.
+//!
+//! Conventions: y up, metres for the built-in scenes, right-handed view, Vulkan clip space
+//! (depth 0..1, NDC y = -1 at the top row). Triangles of procedural meshes are wound
+//! counter-clockwise seen from the side their normal points to; loaded meshes keep the
+//! file's winding (most OBJ exporters use the same rule).
+
+mod builder;
+mod camera;
+mod error;
+mod light;
+mod mesh;
+mod normals;
+mod obj;
+mod path;
+mod procedural;
+mod raycast;
+mod serde_vec3;
+mod spec;
+mod texture;
+mod validate;
+
+pub use builder::MeshBuilder;
+pub use camera::{pixel_to_ndc, Camera};
+pub use error::SceneError;
+pub use light::SpotLight;
+pub use mesh::{Aabb, DrawRange, LoadStats, Material, Mesh, TextureImage, Vertex};
+pub use normals::area_weighted_normals;
+pub use obj::{is_degenerate, load_obj, DEGENERATE_RELATIVE_AREA};
+pub use path::{CameraPath, Keyframe};
+pub use procedural::{
+    box_room, cornell_box, cornell_camera, cornell_light, pyramids, CORNELL_GREEN, CORNELL_RED,
+    CORNELL_WHITE,
+};
+pub use raycast::Hit;
+pub use spec::{asset_dir_from_env, list_assets, load_scene, ASSETS_ENV, BUILTIN_SCENES};
+pub use validate::HUGE_COORDINATE;
+
+use glam::Vec3;
+
+/// Everything the renderer needs for one scene.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Scene {
+    pub name: String,
+    pub mesh: Mesh,
+    pub camera: Camera,
+    pub light: SpotLight,
+    /// Constant ambient radiance added in composite (RGB).
+    pub ambient: Vec3,
+}

@@ -1,0 +1,392 @@
+//! OBJ + MTL loading: validation pass, tobj parse, materials/textures, normals, degenerate
+//! triangle removal, merge of all tobj models into one [`Mesh`].
+
+use super::builder::MeshBuilder;
+use super::error::SceneError;
+use super::mesh::{Aabb, Material, Mesh, Vertex};
+use super::normals::area_weighted_normals;
+use super::texture::{resolve_texture_path, TextureCache};
+use super::validate::{validate_obj, ObjSummary};
+use glam::Vec3;
+use std::borrow::Cow;
+use std::cell::RefCell;
+use std::collections::HashMap;
+use std::io::Cursor;
+use std::path::{Path, PathBuf};
+
+/// Relative area below which a triangle counts as degenerate: `area < 1e-12 × diagonal²`
+/// (diagonal of the whole model's bounding box). Scale-free by construction; 1e-12 is an
+/// edge ratio of ~1e-6, i.e. a few f32 ulps of the model's size, below which the triangle's
+/// normal is noise and it covers no pixel at any sensible zoom.
+pub const DEGENERATE_RELATIVE_AREA: f64 = 1e-12;
+
+/// Loads an OBJ file (and its MTL files and diffuse textures) into one mesh.
+///
+/// Errors name the file and, for content errors, the line. Problems that still leave a
+/// drawable mesh (missing MTL or texture, unknown material, non-UTF-8 bytes) become warnings
+/// in `mesh.stats.warnings`.
+pub fn load_obj(path: &Path) -> Result<Mesh, SceneError> {
+    let bytes = std::fs::read(path).map_err(|source| SceneError::Io {
+        path: path.to_owned(),
+        source,
+    })?;
+    let mut warnings = Vec::new();
+    let text = match String::from_utf8(bytes) {
+        Ok(s) => s,
+        Err(e) => {
+            warnings.push(format!(
+                "{}: not valid UTF-8 (byte {}); invalid bytes were replaced",
+                path.display(),
+                e.utf8_error().valid_up_to()
+            ));
+            String::from_utf8_lossy(e.as_bytes()).into_owned()
+        }
+    };
+    // A byte-order mark would hide the first keyword from tobj and shift every index.
+    let text = text.strip_prefix('\u{feff}').unwrap_or(&text);
+
+    let summary = validate_obj(path, text)?;
+    if summary.faces == 0 {
+        return Err(SceneError::EmptyMesh {
+            path: path.to_owned(),
+            reason: "the file has no 'f' lines".into(),
+        });
+    }
+    let text = blank_line_elements(text, &summary, path, &mut warnings);
+
+    let parsed = parse_with_tobj(path, &text, &mut warnings)?;
+    let mut builder = MeshBuilder::new();
+    let materials = MaterialTable::new(&parsed, &summary, &mut warnings);
+    add_geometry(path, &parsed.models, materials, &mut builder)?;
+
+    let stats = builder.stats_mut();
+    stats.faces = summary.faces;
+    stats.warnings.splice(0..0, warnings);
+    let mesh = builder.build();
+    if mesh.indices.is_empty() {
+        return Err(SceneError::EmptyMesh {
+            path: path.to_owned(),
+            reason: format!(
+                "all {} triangles are degenerate (zero area)",
+                mesh.stats.triangles
+            ),
+        });
+    }
+    Ok(mesh)
+}
+
+/// tobj turns `l a b c` into a triangle; lines are not surfaces, so blank them (keeping line
+/// numbers intact) before tobj sees the text.
+fn blank_line_elements<'a>(
+    text: &'a str,
+    summary: &ObjSummary,
+    path: &Path,
+    warnings: &mut Vec<String>,
+) -> Cow<'a, str> {
+    if summary.line_elements.is_empty() {
+        return Cow::Borrowed(text);
+    }
+    warnings.push(format!(
+        "{}: ignored {} line element(s) ('l'), first on line {}",
+        path.display(),
+        summary.line_elements.len(),
+        summary.line_elements[0]
+    ));
+    let mut out = String::with_capacity(text.len());
+    let mut next = summary.line_elements.iter().peekable();
+    for (i, line) in text.lines().enumerate() {
+        if next.peek() == Some(&&(i + 1)) {
+            next.next();
+        } else {
+            out.push_str(line);
+        }
+        out.push('\n');
+    }
+    Cow::Owned(out)
+}
+
+struct Parsed {
+    models: Vec<tobj::Model>,
+    materials: Vec<tobj::Material>,
+    /// Directory of the MTL file each material came from (textures resolve against it).
+    material_dirs: Vec<PathBuf>,
+}
+
+fn parse_with_tobj(
+    path: &Path,
+    text: &str,
+    warnings: &mut Vec<String>,
+) -> Result<Parsed, SceneError> {
+    let obj_dir = path.parent().unwrap_or(Path::new("")).to_owned();
+    // tobj calls the loader once per `mtllib`, appending materials in call order; the log
+    // maps each material back to its file. A broken MTL becomes a warning and no materials.
+    let mtl_log: RefCell<Vec<(PathBuf, usize)>> = RefCell::default();
+    let mtl_warnings: RefCell<Vec<String>> = RefCell::default();
+    let load_mtl = |name: &Path| {
+        let full = obj_dir.join(name);
+        match tobj::load_mtl(&full) {
+            Ok(loaded) => {
+                mtl_log.borrow_mut().push((full, loaded.0.len()));
+                Ok(loaded)
+            }
+            Err(e) => {
+                let why = if e == tobj::LoadError::OpenFileFailed {
+                    "cannot open it".to_owned()
+                } else {
+                    format!("cannot parse it ({e})")
+                };
+                mtl_warnings.borrow_mut().push(format!(
+                    "material library {}: {why}; using the default material",
+                    full.display()
+                ));
+                Ok(Default::default())
+            }
+        }
+    };
+    let (models, materials) = tobj::load_obj_buf(
+        &mut Cursor::new(text.as_bytes()),
+        &tobj::GPU_LOAD_OPTIONS,
+        load_mtl,
+    )
+    .map_err(|e| SceneError::Obj {
+        path: path.to_owned(),
+        message: e.to_string(),
+    })?;
+    warnings.extend(mtl_warnings.into_inner());
+    // The loader never returns Err, so an Err here can only mean "no materials".
+    let materials = materials.unwrap_or_default();
+    let mut material_dirs = Vec::with_capacity(materials.len());
+    for (mtl_path, count) in mtl_log.into_inner() {
+        let dir = mtl_path.parent().unwrap_or(Path::new("")).to_owned();
+        material_dirs.extend(std::iter::repeat(dir).take(count));
+    }
+    material_dirs.resize(materials.len(), obj_dir);
+    Ok(Parsed {
+        models,
+        materials,
+        material_dirs,
+    })
+}
+
+/// Converts tobj materials to ours on first use, so unused materials cost no texture decode.
+struct MaterialTable<'a> {
+    parsed: &'a Parsed,
+    textures: TextureCache,
+    /// tobj material index -> builder material index.
+    converted: HashMap<usize, usize>,
+    default: Option<usize>,
+    warnings: &'a mut Vec<String>,
+}
+
+impl<'a> MaterialTable<'a> {
+    fn new(parsed: &'a Parsed, summary: &ObjSummary, warnings: &'a mut Vec<String>) -> Self {
+        for name in &summary.used_materials {
+            if !parsed.materials.iter().any(|m| &m.name == name) {
+                warnings.push(format!(
+                    "usemtl '{name}': no such material in the MTL files; using the default material"
+                ));
+            }
+        }
+        Self {
+            parsed,
+            textures: TextureCache::new(),
+            converted: HashMap::new(),
+            default: None,
+            warnings,
+        }
+    }
+
+    fn get(&mut self, id: Option<usize>, builder: &mut MeshBuilder) -> usize {
+        let Some(id) = id.filter(|&i| i < self.parsed.materials.len()) else {
+            return *self
+                .default
+                .get_or_insert_with(|| builder.add_material(Material::default_material()));
+        };
+        if let Some(&m) = self.converted.get(&id) {
+            return m;
+        }
+        let material = self.convert(id);
+        let m = builder.add_material(material);
+        self.converted.insert(id, m);
+        m
+    }
+
+    fn convert(&mut self, id: usize) -> Material {
+        let src = &self.parsed.materials[id];
+        let mut diffuse = Material::DEFAULT_DIFFUSE;
+        if let Some(kd) = src.diffuse {
+            if kd.iter().all(|c| c.is_finite()) {
+                // Albedo above 1 would create energy; below 0 is meaningless.
+                diffuse = kd.map(|c| c.clamp(0.0, 1.0));
+                if diffuse != kd {
+                    self.warnings.push(format!(
+                        "material '{}': Kd {kd:?} clamped to [0, 1]",
+                        src.name
+                    ));
+                }
+            } else {
+                self.warnings.push(format!(
+                    "material '{}': non-finite Kd {kd:?}; using {diffuse:?}",
+                    src.name
+                ));
+            }
+        }
+        let diffuse_texture = src.diffuse_texture.as_deref().and_then(|name| {
+            let path = resolve_texture_path(&self.parsed.material_dirs[id], name);
+            match self.textures.load(&path) {
+                Ok(tex) => Some(tex),
+                Err(e) => {
+                    self.warnings.push(format!(
+                        "material '{}': diffuse texture {} unusable ({e}); using its Kd colour",
+                        src.name,
+                        path.display()
+                    ));
+                    None
+                }
+            }
+        });
+        Material {
+            name: src.name.clone(),
+            diffuse,
+            diffuse_texture,
+        }
+    }
+}
+
+fn add_geometry(
+    path: &Path,
+    models: &[tobj::Model],
+    mut materials: MaterialTable,
+    builder: &mut MeshBuilder,
+) -> Result<(), SceneError> {
+    let bounds = Aabb::from_points(
+        models
+            .iter()
+            .flat_map(|m| m.mesh.positions.chunks_exact(3))
+            .map(|p| Vec3::new(p[0], p[1], p[2])),
+    );
+    let diagonal = bounds.diagonal();
+
+    for model in models {
+        let m = &model.mesh;
+        let positions: Vec<Vec3> = m
+            .positions
+            .chunks_exact(3)
+            .map(|p| Vec3::new(p[0], p[1], p[2]))
+            .collect();
+        let n = positions.len();
+        let mut triangles = Vec::with_capacity(m.indices.len() / 3);
+        let mut dropped = 0;
+        for t in m.indices.chunks_exact(3) {
+            let tri = [t[0], t[1], t[2]];
+            if tri.iter().any(|&i| i as usize >= n) {
+                return Err(SceneError::Obj {
+                    path: path.to_owned(),
+                    message: format!("object '{}': index out of range after parsing", model.name),
+                });
+            }
+            let [a, b, c] = tri.map(|i| positions[i as usize]);
+            if is_degenerate(a, b, c, diagonal) {
+                dropped += 1;
+            } else {
+                triangles.push(tri);
+            }
+        }
+        let stats = builder.stats_mut();
+        stats.triangles += m.indices.len() / 3;
+        stats.dropped_degenerate += dropped;
+        if triangles.is_empty() {
+            continue;
+        }
+
+        let normals = vertex_normals(model, &positions, &triangles, materials.warnings);
+        let uvs = texcoords(model, n, materials.warnings);
+        let material = materials.get(m.material_id, builder);
+        let base = builder.vertex_count() as u32;
+        for i in 0..n {
+            builder.push_vertex(Vertex::new(positions[i], normals[i], uvs(i)));
+        }
+        for tri in triangles {
+            builder.push_triangle(material, tri.map(|i| i + base));
+        }
+    }
+    Ok(())
+}
+
+/// File normals, normalised; computed area-weighted normals where the file has none, only
+/// some, or zero-length ones.
+fn vertex_normals(
+    model: &tobj::Model,
+    positions: &[Vec3],
+    triangles: &[[u32; 3]],
+    warnings: &mut Vec<String>,
+) -> Vec<Vec3> {
+    let file = &model.mesh.normals;
+    if file.len() != positions.len() * 3 {
+        if !file.is_empty() {
+            warnings.push(format!(
+                "object '{}': only some face corners have normals; computing all of them",
+                model.name
+            ));
+        }
+        return area_weighted_normals(positions, triangles);
+    }
+    let normalized: Vec<Option<Vec3>> = file
+        .chunks_exact(3)
+        .map(|n| Vec3::new(n[0], n[1], n[2]).try_normalize())
+        .collect();
+    if normalized.iter().all(Option::is_some) {
+        return normalized.into_iter().flatten().collect();
+    }
+    let computed = area_weighted_normals(positions, triangles);
+    normalized
+        .into_iter()
+        .zip(computed)
+        .map(|(n, c)| n.unwrap_or(c))
+        .collect()
+}
+
+/// UV lookup per vertex; `v` is flipped so (0, 0) is the image's first (top) row.
+fn texcoords<'m>(
+    model: &'m tobj::Model,
+    n: usize,
+    warnings: &mut Vec<String>,
+) -> impl Fn(usize) -> [f32; 2] + 'm {
+    let tc = &model.mesh.texcoords;
+    let usable = tc.len() == n * 2;
+    if !usable && !tc.is_empty() {
+        warnings.push(format!(
+            "object '{}': only some face corners have texture coordinates; using (0, 0)",
+            model.name
+        ));
+    }
+    move |i| {
+        if usable {
+            [tc[2 * i], 1.0 - tc[2 * i + 1]]
+        } else {
+            [0.0, 0.0]
+        }
+    }
+}
+
+/// Is this triangle degenerate in a model whose bounding box has this diagonal? Computed in
+/// f64 so the cross product of large coordinates neither overflows nor loses the small area.
+pub fn is_degenerate(a: Vec3, b: Vec3, c: Vec3, diagonal: f32) -> bool {
+    let d = diagonal as f64;
+    let cross = (b.as_dvec3() - a.as_dvec3()).cross(c.as_dvec3() - a.as_dvec3());
+    0.5 * cross.length() < DEGENERATE_RELATIVE_AREA * d * d
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn degenerate_threshold_is_scale_free() {
+        for scale in [1e-3f32, 1.0, 1e4] {
+            let (a, b) = (Vec3::ZERO, Vec3::X * scale);
+            assert!(is_degenerate(a, b, Vec3::X * 2.0 * scale, 3.0 * scale));
+            assert!(!is_degenerate(a, b, Vec3::Y * 1e-4 * scale, 3.0 * scale));
+        }
+    }
+}

@@ -1,0 +1,151 @@
+//! Thin typed wrappers over the command-recording calls passes use, so pass code stays free of
+//! raw `unsafe`. Every function requires `cmd` to be in the recording state.
+
+use super::{Buffer, Image, Pipeline};
+use ash::vk;
+
+pub struct Recorder<'a> {
+    pub device: &'a ash::Device,
+    pub cmd: vk::CommandBuffer,
+}
+
+impl Recorder<'_> {
+    pub fn bind(&self, pipeline: &Pipeline, sets: &[vk::DescriptorSet]) {
+        // SAFETY: recording; the pipeline and sets are live and the sets match its layout.
+        unsafe {
+            self.device
+                .cmd_bind_pipeline(self.cmd, pipeline.bind_point, pipeline.raw);
+            if !sets.is_empty() {
+                self.device.cmd_bind_descriptor_sets(
+                    self.cmd,
+                    pipeline.bind_point,
+                    pipeline.layout,
+                    0,
+                    sets,
+                    &[],
+                );
+            }
+        }
+    }
+
+    /// Bind sets starting at `first` (per-draw material sets).
+    pub fn bind_sets(&self, pipeline: &Pipeline, first: u32, sets: &[vk::DescriptorSet]) {
+        // SAFETY: recording; the sets match the pipeline layout from `first` on.
+        unsafe {
+            self.device.cmd_bind_descriptor_sets(
+                self.cmd,
+                pipeline.bind_point,
+                pipeline.layout,
+                first,
+                sets,
+                &[],
+            )
+        };
+    }
+
+    pub fn push(&self, pipeline: &Pipeline, bytes: &[u8]) {
+        // SAFETY: recording; the range was declared with these stages and at least this size
+        // (checked against reflection when the pipeline was built).
+        unsafe {
+            self.device.cmd_push_constants(
+                self.cmd,
+                pipeline.layout,
+                pipeline.push_stages,
+                0,
+                bytes,
+            )
+        };
+    }
+
+    /// Dispatch enough workgroups of the pipeline's size to cover `width x height`.
+    pub fn dispatch_2d(&self, pipeline: &Pipeline, width: u32, height: u32) {
+        let [wx, wy, _] = pipeline.workgroup_size;
+        // SAFETY: recording with a compute pipeline bound.
+        unsafe {
+            self.device.cmd_dispatch(
+                self.cmd,
+                width.div_ceil(wx.max(1)),
+                height.div_ceil(wy.max(1)),
+                1,
+            )
+        };
+    }
+
+    /// Begin dynamic rendering into `colors` (cleared to their values) and `depth` (cleared to
+    /// 1), with viewport and scissor covering the first attachment.
+    pub fn begin_rendering(&self, colors: &[(&Image, [f32; 4])], depth: &Image) {
+        let extent = depth.extent();
+        let color_infos: Vec<_> = colors
+            .iter()
+            .map(|(img, clear)| {
+                vk::RenderingAttachmentInfo::default()
+                    .image_view(img.view)
+                    .image_layout(vk::ImageLayout::COLOR_ATTACHMENT_OPTIMAL)
+                    .load_op(vk::AttachmentLoadOp::CLEAR)
+                    .store_op(vk::AttachmentStoreOp::STORE)
+                    .clear_value(vk::ClearValue {
+                        color: vk::ClearColorValue { float32: *clear },
+                    })
+            })
+            .collect();
+        let depth_info = vk::RenderingAttachmentInfo::default()
+            .image_view(depth.view)
+            .image_layout(vk::ImageLayout::DEPTH_ATTACHMENT_OPTIMAL)
+            .load_op(vk::AttachmentLoadOp::CLEAR)
+            .store_op(vk::AttachmentStoreOp::STORE)
+            .clear_value(vk::ClearValue {
+                depth_stencil: vk::ClearDepthStencilValue {
+                    depth: 1.0,
+                    stencil: 0,
+                },
+            });
+        let area = vk::Rect2D {
+            offset: vk::Offset2D { x: 0, y: 0 },
+            extent,
+        };
+        let info = vk::RenderingInfo::default()
+            .render_area(area)
+            .layer_count(1)
+            .color_attachments(&color_infos)
+            .depth_attachment(&depth_info);
+        let viewport = vk::Viewport {
+            x: 0.0,
+            y: 0.0,
+            width: extent.width as f32,
+            height: extent.height as f32,
+            min_depth: 0.0,
+            max_depth: 1.0,
+        };
+        // SAFETY: recording; attachments are in the layouts named above (the tracker
+        // transitioned them before this call).
+        unsafe {
+            self.device.cmd_begin_rendering(self.cmd, &info);
+            self.device.cmd_set_viewport(self.cmd, 0, &[viewport]);
+            self.device.cmd_set_scissor(self.cmd, 0, &[area]);
+        }
+    }
+
+    pub fn end_rendering(&self) {
+        // SAFETY: recording inside a dynamic rendering scope begun by `begin_rendering`.
+        unsafe { self.device.cmd_end_rendering(self.cmd) };
+    }
+
+    pub fn bind_mesh(&self, vertices: &Buffer, indices: &Buffer) {
+        // SAFETY: recording; buffers are live and were created with vertex/index usage.
+        unsafe {
+            self.device
+                .cmd_bind_vertex_buffers(self.cmd, 0, &[vertices.raw], &[0]);
+            self.device
+                .cmd_bind_index_buffer(self.cmd, indices.raw, 0, vk::IndexType::UINT32);
+        }
+    }
+
+    pub fn draw_indexed(&self, first_index: u32, index_count: u32) {
+        // SAFETY: recording inside rendering with a graphics pipeline and mesh bound; the
+        // range lies inside the index buffer (validated when the mesh was built).
+        unsafe {
+            self.device
+                .cmd_draw_indexed(self.cmd, index_count, 1, first_index, 0, 0)
+        };
+    }
+}

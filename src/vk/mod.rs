@@ -1,0 +1,23 @@
+//! All raw Vulkan (ash) lives here. Passes talk to the GPU through these typed helpers.
+
+pub mod cmd;
+pub mod commands;
+pub mod context;
+pub mod descriptors;
+pub mod instance;
+pub mod memory;
+pub mod pipeline;
+pub mod readback;
+pub mod sampler;
+pub mod sync;
+pub mod timing;
+
+pub use commands::{one_shot, FrameSlots};
+pub use context::{Context, ContextOptions, DeviceInfo};
+pub use descriptors::{DescriptorPool, SetWriter};
+pub use memory::{Buffer, Image, ImageDesc};
+pub use pipeline::{GraphicsDesc, Pipeline};
+pub use readback::{read_image, ImageData};
+pub use sampler::Sampler;
+pub use sync::{Access, Tracker};
+pub use timing::{FrameTiming, GpuTimer};
