@@ -72,7 +72,9 @@ fn locate_errors(file: &Path, log: &str) -> String {
     let name = file.display().to_string();
     log.lines()
         .map(|l| {
-            let l = l.trim_start_matches("ERROR: ").trim_start_matches("WARNING: ");
+            let l = l
+                .trim_start_matches("ERROR: ")
+                .trim_start_matches("WARNING: ");
             match l.strip_prefix("0:") {
                 Some(rest) => format!("{name}:{rest}"),
                 None => l.to_string(),
@@ -153,7 +155,13 @@ fn descriptor_kind(module: &naga::Module, var: &naga::GlobalVariable) -> Option<
     })
 }
 
-fn reflect(file: &Path, words: &[u32], ident: &str, suffix: &str, out: &mut String) -> Result<(), String> {
+fn reflect(
+    file: &Path,
+    words: &[u32],
+    ident: &str,
+    suffix: &str,
+    out: &mut String,
+) -> Result<(), String> {
     let bytes: Vec<u8> = words.iter().flat_map(|w| w.to_le_bytes()).collect();
     let options = naga::front::spv::Options {
         adjust_coordinate_space: false,

@@ -12,7 +12,11 @@ use clap::{Args, Parser, Subcommand};
 use std::path::PathBuf;
 
 #[derive(Parser, Debug)]
-#[command(name = "ssgi", version, about = "Screen-space global illumination renderer and benchmark (Vulkan)")]
+#[command(
+    name = "ssgi",
+    version,
+    about = "Screen-space global illumination renderer and benchmark (Vulkan)"
+)]
 pub struct Cli {
     /// Enable the Vulkan validation layers with synchronization validation; any validation
     /// message makes the command exit non-zero.
@@ -96,10 +100,18 @@ fn parse_size(s: &str) -> std::result::Result<(u32, u32), String> {
     let (w, h) = s
         .split_once(['x', 'X'])
         .ok_or_else(|| format!("expected WIDTHxHEIGHT like 512x512, got {s:?}"))?;
-    let w: u32 = w.trim().parse().map_err(|_| format!("bad width in {s:?}"))?;
-    let h: u32 = h.trim().parse().map_err(|_| format!("bad height in {s:?}"))?;
+    let w: u32 = w
+        .trim()
+        .parse()
+        .map_err(|_| format!("bad width in {s:?}"))?;
+    let h: u32 = h
+        .trim()
+        .parse()
+        .map_err(|_| format!("bad height in {s:?}"))?;
     if w == 0 || h == 0 || w > MAX_SIZE || h > MAX_SIZE {
-        return Err(format!("size {w}x{h} is outside 1..={MAX_SIZE} on each side"));
+        return Err(format!(
+            "size {w}x{h} is outside 1..={MAX_SIZE} on each side"
+        ));
     }
     Ok((w, h))
 }

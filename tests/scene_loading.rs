@@ -17,7 +17,10 @@ fn fixture(name: &str) -> PathBuf {
 
 fn load_err(name: &str) -> SceneError {
     match load_obj(&fixture(name)) {
-        Ok(m) => panic!("{name} loaded ({} triangles) but should fail", m.triangle_count()),
+        Ok(m) => panic!(
+            "{name} loaded ({} triangles) but should fail",
+            m.triangle_count()
+        ),
         Err(e) => e,
     }
 }
@@ -25,7 +28,10 @@ fn load_err(name: &str) -> SceneError {
 /// The message names the file and the line, compiler style.
 fn assert_names_line(e: &SceneError, file: &str, line: usize) {
     let msg = e.to_string();
-    assert!(msg.contains(&format!("{file}:{line}:")), "'{msg}' lacks {file}:{line}:");
+    assert!(
+        msg.contains(&format!("{file}:{line}:")),
+        "'{msg}' lacks {file}:{line}:"
+    );
 }
 
 /// A fresh directory under the system temp dir, removed on drop.
@@ -70,14 +76,34 @@ fn nan_vertex_message_is_exact() {
 #[test]
 fn inf_vertex() {
     let e = load_err("inf_vertex.obj");
-    assert!(matches!(e, SceneError::NonFinite { kind: "vertex", line: 4, .. }), "{e}");
+    assert!(
+        matches!(
+            e,
+            SceneError::NonFinite {
+                kind: "vertex",
+                line: 4,
+                ..
+            }
+        ),
+        "{e}"
+    );
     assert_names_line(&e, "inf_vertex.obj", 4);
 }
 
 #[test]
 fn bad_number() {
     let e = load_err("bad_number.obj");
-    assert!(matches!(e, SceneError::BadNumber { kind: "normal", line: 6, .. }), "{e}");
+    assert!(
+        matches!(
+            e,
+            SceneError::BadNumber {
+                kind: "normal",
+                line: 6,
+                ..
+            }
+        ),
+        "{e}"
+    );
     assert_names_line(&e, "bad_number.obj", 6);
     assert!(e.to_string().contains("'0.5x'"), "{e}");
 }
@@ -86,7 +112,15 @@ fn bad_number() {
 fn index_out_of_range() {
     let e = load_err("index_out_of_range.obj");
     assert!(
-        matches!(e, SceneError::IndexOutOfRange { index: 4, count: 3, line: 6, .. }),
+        matches!(
+            e,
+            SceneError::IndexOutOfRange {
+                index: 4,
+                count: 3,
+                line: 6,
+                ..
+            }
+        ),
         "{e}"
     );
     assert_names_line(&e, "index_out_of_range.obj", 6);
@@ -96,7 +130,15 @@ fn index_out_of_range() {
 fn negative_index_out_of_range() {
     let e = load_err("negative_index_out_of_range.obj");
     assert!(
-        matches!(e, SceneError::IndexOutOfRange { index: -4, count: 3, line: 6, .. }),
+        matches!(
+            e,
+            SceneError::IndexOutOfRange {
+                index: -4,
+                count: 3,
+                line: 6,
+                ..
+            }
+        ),
         "{e}"
     );
     assert_names_line(&e, "negative_index_out_of_range.obj", 6);
@@ -112,7 +154,10 @@ fn empty_file_has_no_faces() {
 #[test]
 fn huge_coordinate() {
     let e = load_err("huge_coord.obj");
-    assert!(matches!(e, SceneError::HugeCoordinate { line: 4, .. }), "{e}");
+    assert!(
+        matches!(e, SceneError::HugeCoordinate { line: 4, .. }),
+        "{e}"
+    );
     assert_names_line(&e, "huge_coord.obj", 4);
     assert!(e.to_string().contains("huge coordinate"), "{e}");
 }
@@ -128,15 +173,30 @@ fn malformed_face_among_good_ones() {
 #[test]
 fn face_with_two_vertices() {
     let e = load_err("too_few_vertices.obj");
-    assert!(matches!(e, SceneError::TooFewVertices { count: 2, line: 6, .. }), "{e}");
+    assert!(
+        matches!(
+            e,
+            SceneError::TooFewVertices {
+                count: 2,
+                line: 6,
+                ..
+            }
+        ),
+        "{e}"
+    );
     assert_names_line(&e, "too_few_vertices.obj", 6);
 }
 
 #[test]
 fn missing_file_names_the_path() {
-    let e = load_scene("tests/fixtures/does_not_exist.obj", None).err().unwrap();
+    let e = load_scene("tests/fixtures/does_not_exist.obj", None)
+        .err()
+        .unwrap();
     assert!(matches!(e, SceneError::Io { .. }), "{e}");
-    assert!(e.to_string().contains("tests/fixtures/does_not_exist.obj"), "{e}");
+    assert!(
+        e.to_string().contains("tests/fixtures/does_not_exist.obj"),
+        "{e}"
+    );
 }
 
 #[test]
@@ -167,9 +227,15 @@ fn degenerate_triangle_is_dropped_and_counted() {
 #[test]
 fn polygons_are_fan_triangulated() {
     let m = load_obj(&fixture("polygons.obj")).unwrap();
-    assert_eq!((m.stats.faces, m.stats.triangles, m.triangle_count()), (2, 5, 5));
+    assert_eq!(
+        (m.stats.faces, m.stats.triangles, m.triangle_count()),
+        (2, 5, 5)
+    );
     // No normals in the file: computed ones face +z for this planar data.
-    assert!(m.vertices.iter().all(|v| Vec3::from(v.normal).abs_diff_eq(Vec3::Z, 1e-6)));
+    assert!(m
+        .vertices
+        .iter()
+        .all(|v| Vec3::from(v.normal).abs_diff_eq(Vec3::Z, 1e-6)));
     assert_eq!(m.materials.len(), 1);
     assert_eq!(m.materials[0].diffuse, [0.8; 3]);
 }
@@ -178,7 +244,11 @@ fn polygons_are_fan_triangulated() {
 fn file_normals_are_normalised_and_zero_ones_replaced() {
     let m = load_obj(&fixture("normals.obj")).unwrap();
     for v in &m.vertices {
-        assert!(Vec3::from(v.normal).abs_diff_eq(Vec3::Z, 1e-6), "{:?}", v.normal);
+        assert!(
+            Vec3::from(v.normal).abs_diff_eq(Vec3::Z, 1e-6),
+            "{:?}",
+            v.normal
+        );
     }
 }
 
@@ -215,7 +285,10 @@ fn missing_texture_falls_back_to_colour_with_warning() {
     assert_eq!(m.materials[0].diffuse, [0.5, 0.25, 0.125]);
     assert!(m.materials[0].diffuse_texture.is_none());
     let w = m.stats.warnings.join("\n");
-    assert!(w.contains("no_such_texture.png") && w.contains("brick"), "{w}");
+    assert!(
+        w.contains("no_such_texture.png") && w.contains("brick"),
+        "{w}"
+    );
 }
 
 #[test]
@@ -257,9 +330,17 @@ fn textures_decode_once_and_uv_v_is_flipped() {
     let tb = m.materials[1].diffuse_texture.clone().unwrap();
     assert!(Arc::ptr_eq(&ta, &tb), "one decode for a texture used twice");
     assert_eq!((ta.width, ta.height, ta.rgba8.len()), (2, 2, 16));
-    assert_eq!(&ta.rgba8[..4], &[255, 0, 0, 255], "row 0 is the top of the image");
+    assert_eq!(
+        &ta.rgba8[..4],
+        &[255, 0, 0, 255],
+        "row 0 is the top of the image"
+    );
     // vt (0, 1) is the top of the image in OBJ; stored as uv (0, 0).
-    let top = m.vertices.iter().find(|v| v.position == [0.0, 1.0, 0.0]).unwrap();
+    let top = m
+        .vertices
+        .iter()
+        .find(|v| v.position == [0.0, 1.0, 0.0])
+        .unwrap();
     assert_eq!(top.uv, [0.0, 0.0]);
     assert!(m.has_textures());
 }
@@ -271,8 +352,13 @@ fn unknown_scene_lists_builtins_and_how_to_set_assets() {
     let e = load_scene("no-such-scene", Some(Path::new("/definitely/not/here"))).unwrap_err();
     assert!(matches!(e, SceneError::UnknownScene { .. }), "{e}");
     let msg = e.to_string();
-    for needle in ["no-such-scene", "cornell-box", "pyramids", "/definitely/not/here", "--assets"]
-    {
+    for needle in [
+        "no-such-scene",
+        "cornell-box",
+        "pyramids",
+        "/definitely/not/here",
+        "--assets",
+    ] {
         assert!(msg.contains(needle), "'{needle}' missing from: {msg}");
     }
 }
@@ -297,7 +383,10 @@ fn asset_folder_with_two_objs_is_ambiguous() {
     let s = load_scene("box:single", Some(&dir.0)).unwrap();
     assert_eq!(s.name, "box:only");
     let e = load_scene("nothing", Some(&dir.0)).unwrap_err().to_string();
-    assert!(e.contains("pair") && e.contains("single"), "lists available assets: {e}");
+    assert!(
+        e.contains("pair") && e.contains("single"),
+        "lists available assets: {e}"
+    );
 }
 
 #[test]
@@ -349,7 +438,10 @@ fn asset_face_counts_match_sources_md() {
             "{name}: drawn + dropped"
         );
         assert!(m.bounds.diagonal() > 0.0);
-        assert!(m.vertices.iter().all(|v| Vec3::from(v.normal).is_normalized()));
+        assert!(m
+            .vertices
+            .iter()
+            .all(|v| Vec3::from(v.normal).is_normalized()));
     }
 }
 
@@ -402,8 +494,14 @@ fn bunny_in_a_box() {
     let s = load_scene("box:bunny", Some(&dir)).unwrap();
     assert_eq!(s.name, "box:stanford-bunny");
     // The model is centred on the floor, ~0.9 m tall, inside the 2 m room.
-    let ray_down = s.mesh.raycast(Vec3::new(0.0, 1.9, 0.0), Vec3::NEG_Y, 2.0).unwrap();
-    assert!(ray_down.position.y > 0.05 && ray_down.position.y < 0.95, "{ray_down:?}");
+    let ray_down = s
+        .mesh
+        .raycast(Vec3::new(0.0, 1.9, 0.0), Vec3::NEG_Y, 2.0)
+        .unwrap();
+    assert!(
+        ray_down.position.y > 0.05 && ray_down.position.y < 0.95,
+        "{ray_down:?}"
+    );
     assert!(s.mesh.bounds.max.y <= 2.0 + 1e-5 && s.mesh.bounds.min.y >= -1e-6);
 }
 
@@ -422,7 +520,10 @@ fn camera_rays_project_back_to_their_pixels() {
         for t in [0.5, 2.0, 10.0] {
             let clip = vp * (o + d * t).extend(1.0);
             let ndc = clip.xyz() / clip.w;
-            assert!((ndc.x - nx).abs() < 1e-5 && (ndc.y - ny).abs() < 1e-5, "{ndc}");
+            assert!(
+                (ndc.x - nx).abs() < 1e-5 && (ndc.y - ny).abs() < 1e-5,
+                "{ndc}"
+            );
             assert!(ndc.z > 0.0 && ndc.z < 1.0);
         }
     }
@@ -439,7 +540,10 @@ fn spot_light_inverse_square_on_axis() {
     for d in [0.25f32, 1.0, 1.95] {
         let p = light.position + light.direction * d;
         let e = light.irradiance(p, -light.direction);
-        assert!(e.abs_diff_eq(light.intensity / (d * d), 1e-4 * e.max_element()), "{e}");
+        assert!(
+            e.abs_diff_eq(light.intensity / (d * d), 1e-4 * e.max_element()),
+            "{e}"
+        );
     }
 }
 
@@ -451,12 +555,21 @@ fn raycasts_in_the_cornell_box() {
     // The centre ray (x = 0, y = 1) meets the tall box's front face, the edge from
     // (-0.53, 0.09) to (0.04, -0.09) in (x, z): at x = 0, z = 0.09 - 0.18 * 0.53 / 0.57.
     let z = 0.09 - 0.18 * 0.53 / 0.57;
-    assert!(hit.position.abs_diff_eq(Vec3::new(0.0, 1.0, z), 1e-5), "{hit:?}");
+    assert!(
+        hit.position.abs_diff_eq(Vec3::new(0.0, 1.0, z), 1e-5),
+        "{hit:?}"
+    );
     assert!((hit.t - (3.4 - z)).abs() < 1e-5);
     assert!(hit.normal.z > 0.9 && hit.normal.dot(d) < 0.0);
 
-    let down = s.mesh.raycast(Vec3::new(-0.5, 1.5, 0.6), Vec3::NEG_Y, 10.0).unwrap();
-    assert!(down.position.abs_diff_eq(Vec3::new(-0.5, 0.0, 0.6), 1e-6), "{down:?}");
+    let down = s
+        .mesh
+        .raycast(Vec3::new(-0.5, 1.5, 0.6), Vec3::NEG_Y, 10.0)
+        .unwrap();
+    assert!(
+        down.position.abs_diff_eq(Vec3::new(-0.5, 0.0, 0.6), 1e-6),
+        "{down:?}"
+    );
     assert_eq!(down.normal, Vec3::Y);
 
     // The floor under the tall box is hidden from the light; the open floor is not.
@@ -493,7 +606,10 @@ fn keyframe_files_parse_and_interpolate() {
         let path = CameraPath::parse(file.to_str().unwrap()).unwrap();
         let at = |f| path.camera_at(&base.camera, &base.mesh.bounds, f, 5);
         assert_eq!(at(0).position, Vec3::new(0.0, 1.0, 3.0));
-        assert!(at(2).position.abs_diff_eq(Vec3::new(1.0, 1.0, 3.0), 1e-6), "{name}");
+        assert!(
+            at(2).position.abs_diff_eq(Vec3::new(1.0, 1.0, 3.0), 1e-6),
+            "{name}"
+        );
         assert_eq!(at(4).position, Vec3::new(2.0, 1.0, 3.0));
         assert_eq!(at(3).vfov_deg, base.camera.vfov_deg);
         assert_eq!(path.name(), "keyframes(2)");
@@ -505,7 +621,10 @@ fn bad_keyframe_files_name_the_path() {
     let dir = TempDir::new("badpaths");
     let cases = [
         ("syntax.json", r#"{"keyframes": [ {"time": 0.0, "#),
-        ("missing_field.json", r#"{"keyframes": [{"time": 0.0, "position": [0, 0, 0]}]}"#),
+        (
+            "missing_field.json",
+            r#"{"keyframes": [{"time": 0.0, "position": [0, 0, 0]}]}"#,
+        ),
         ("empty.toml", "keyframes = []\n"),
         (
             "backwards.json",
@@ -521,7 +640,9 @@ fn bad_keyframe_files_name_the_path() {
         assert!(matches!(e, SceneError::CameraPath { .. }), "{name}: {e}");
         assert!(e.to_string().contains(name), "{name}: {e}");
     }
-    let e = CameraPath::parse("/no/such/path.json").unwrap_err().to_string();
+    let e = CameraPath::parse("/no/such/path.json")
+        .unwrap_err()
+        .to_string();
     assert!(e.contains("/no/such/path.json"), "{e}");
 }
 
@@ -531,7 +652,8 @@ fn builtin_paths_from_a_scene() {
     let orbit = CameraPath::parse("orbit").unwrap();
     let c = orbit.camera_at(&s.camera, &s.mesh.bounds, 0, 8);
     let centre = s.mesh.bounds.center();
-    let radius = |c: &Camera| Vec3::new(c.position.x - centre.x, 0.0, c.position.z - centre.z).length();
+    let radius =
+        |c: &Camera| Vec3::new(c.position.x - centre.x, 0.0, c.position.z - centre.z).length();
     for f in 0..8 {
         let cf = orbit.camera_at(&s.camera, &s.mesh.bounds, f, 8);
         assert!((radius(&cf) - radius(&c)).abs() < 1e-4);

@@ -147,11 +147,7 @@ impl Report {
     pub fn table(&self) -> String {
         let mut out = format!(
             "{} ({}) {}x{}, {} frames measured\n",
-            self.device,
-            self.driver,
-            self.width,
-            self.height,
-            self.measured_frames
+            self.device, self.driver, self.width, self.height, self.measured_frames
         );
         let f = |v: Option<f64>| v.map_or("-".to_string(), |v| format!("{v:.3}"));
         let f1 = |v: Option<f64>| v.map_or("-".to_string(), |v| format!("{v:.1}"));

@@ -74,11 +74,19 @@ pub fn visualize(target: Target, data: &ImageData, bounds: &Aabb) -> Vec<u8> {
                     [t[0] * 0.5 + 0.5, t[1] * 0.5 + 0.5, t[2] * 0.5 + 0.5]
                 }
                 Target::GDepth | Target::RsmDepth => {
-                    let v = if t[0] >= 1.0 { 0.0 } else { 1.0 - (t[0] - lo) / range };
+                    let v = if t[0] >= 1.0 {
+                        0.0
+                    } else {
+                        1.0 - (t[0] - lo) / range
+                    };
                     [v, v, v]
                 }
                 Target::RsmFlux => [t[0] / range, t[1] / range, t[2] / range],
-                _ => [t[0] / (1.0 + t[0]), t[1] / (1.0 + t[1]), t[2] / (1.0 + t[2])],
+                _ => [
+                    t[0] / (1.0 + t[0]),
+                    t[1] / (1.0 + t[1]),
+                    t[2] / (1.0 + t[2]),
+                ],
             };
             [to_u8(rgb[0]), to_u8(rgb[1]), to_u8(rgb[2]), 255]
         })

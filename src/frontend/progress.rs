@@ -13,9 +13,9 @@ pub struct Progress {
 impl Progress {
     pub fn new(total: u64, label: &str, enabled: bool) -> Self {
         let bar = ProgressBar::with_draw_target(Some(total), ProgressDrawTarget::hidden());
-        if let Ok(style) =
-            ProgressStyle::with_template("{msg} [{bar:40}] {pos}/{len} frames ({per_sec}, eta {eta})")
-        {
+        if let Ok(style) = ProgressStyle::with_template(
+            "{msg} [{bar:40}] {pos}/{len} frames ({per_sec}, eta {eta})",
+        ) {
             bar.set_style(style.progress_chars("=> "));
         }
         bar.set_message(label.to_string());

@@ -32,8 +32,7 @@ pub struct CompositePass {
 
 impl CompositePass {
     pub fn new(ctx: &Arc<Context>, pool: &DescriptorPool) -> Result<Self> {
-        let pipeline =
-            Pipeline::compute(ctx, "composite", &shaders::COMPOSITE_COMP, BINDINGS)?;
+        let pipeline = Pipeline::compute(ctx, "composite", &shaders::COMPOSITE_COMP, BINDINGS)?;
         let set = pool.allocate(pipeline.set_layouts[1])?;
         Ok(Self { pipeline, set })
     }

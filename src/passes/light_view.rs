@@ -5,7 +5,7 @@ use super::raster::{MaterialPipelines, RasterModules, FLAT_BINDINGS, TEXTURED_BI
 use super::PassLayout;
 use crate::error::Result;
 use crate::renderer::scene_gpu::SceneGpu;
-use crate::renderer::targets::{Rsm, RSM_COLOR_FORMATS, DEPTH_FORMAT};
+use crate::renderer::targets::{Rsm, DEPTH_FORMAT, RSM_COLOR_FORMATS};
 use crate::shaders;
 use crate::vk::cmd::Recorder;
 use crate::vk::{Access, Context, Tracker};
@@ -72,7 +72,11 @@ impl LightViewPass {
         tracker.flush(rec.device, rec.cmd);
         let zero = [0.0; 4];
         rec.begin_rendering(
-            &[(&rsm.position, zero), (&rsm.normal, zero), (&rsm.flux, zero)],
+            &[
+                (&rsm.position, zero),
+                (&rsm.normal, zero),
+                (&rsm.flux, zero),
+            ],
             &rsm.depth,
         );
         self.pipelines.draw(rec, frame_set, scene);

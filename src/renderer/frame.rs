@@ -26,9 +26,9 @@ impl Pcf {
         if s == "hard" || s == "1" {
             return Ok(Pcf::HARD);
         }
-        let n: u32 = s
-            .parse()
-            .map_err(|_| format!("--pcf takes 'hard' or a square sample count like 9 or 49, not {s:?}"))?;
+        let n: u32 = s.parse().map_err(|_| {
+            format!("--pcf takes 'hard' or a square sample count like 9 or 49, not {s:?}")
+        })?;
         let side = (n as f64).sqrt().round() as u32;
         if side * side != n || !(2..=15).contains(&side) {
             return Err(format!(
@@ -78,9 +78,20 @@ impl FrameUniforms {
         let half_fov = (0.5 * light.frustum_fov_deg()).to_radians();
         vec4(camera.position.extend(1.0).to_array());
         vec4(light.position.extend(cos_outer).to_array());
-        vec4(light.direction.normalize_or(Vec3::NEG_Y).extend(cos_inner).to_array());
+        vec4(
+            light
+                .direction
+                .normalize_or(Vec3::NEG_Y)
+                .extend(cos_inner)
+                .to_array(),
+        );
         vec4(light.intensity.extend(light.near).to_array());
-        vec4([light.far, half_fov.tan(), rsm_size as f32, pcf.radius_texels]);
+        vec4([
+            light.far,
+            half_fov.tan(),
+            rsm_size as f32,
+            pcf.radius_texels,
+        ]);
         vec4(ambient.extend(0.0).to_array());
         w.extend([width, height, frame as u32, pcf.side]);
         Self { words: w }

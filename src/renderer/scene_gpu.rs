@@ -3,7 +3,10 @@
 
 use crate::error::{Error, Result};
 use crate::scene::{DrawRange, Mesh, TextureImage};
-use crate::vk::{one_shot, Access, Buffer, Context, DescriptorPool, Image, ImageDesc, Sampler, SetWriter, Tracker};
+use crate::vk::{
+    one_shot, Access, Buffer, Context, DescriptorPool, Image, ImageDesc, Sampler, SetWriter,
+    Tracker,
+};
 use ash::vk;
 use gpu_allocator::MemoryLocation;
 use std::collections::HashMap;
@@ -19,7 +22,10 @@ impl MaterialGpu {
     /// The `Material` push-constant block (vec4 albedo).
     pub fn push_bytes(&self) -> [u8; 16] {
         let mut out = [0u8; 16];
-        for (i, v) in [self.albedo[0], self.albedo[1], self.albedo[2], 1.0].iter().enumerate() {
+        for (i, v) in [self.albedo[0], self.albedo[1], self.albedo[2], 1.0]
+            .iter()
+            .enumerate()
+        {
             out[i * 4..i * 4 + 4].copy_from_slice(&v.to_le_bytes());
         }
         out
@@ -135,8 +141,26 @@ impl SceneGpu {
             // SAFETY: recording; staging and destination buffers are live and large enough;
             // texture images are in TRANSFER_DST layout.
             unsafe {
-                d.cmd_copy_buffer(cmd, vstage.raw, vertices.raw, &[vk::BufferCopy { src_offset: 0, dst_offset: 0, size: vdata.len() as u64 }]);
-                d.cmd_copy_buffer(cmd, istage.raw, indices.raw, &[vk::BufferCopy { src_offset: 0, dst_offset: 0, size: idata.len() as u64 }]);
+                d.cmd_copy_buffer(
+                    cmd,
+                    vstage.raw,
+                    vertices.raw,
+                    &[vk::BufferCopy {
+                        src_offset: 0,
+                        dst_offset: 0,
+                        size: vdata.len() as u64,
+                    }],
+                );
+                d.cmd_copy_buffer(
+                    cmd,
+                    istage.raw,
+                    indices.raw,
+                    &[vk::BufferCopy {
+                        src_offset: 0,
+                        dst_offset: 0,
+                        size: idata.len() as u64,
+                    }],
+                );
                 for (img, src) in textures.iter().zip(&tex_staging) {
                     let region = vk::BufferImageCopy::default()
                         .image_subresource(vk::ImageSubresourceLayers {
@@ -145,8 +169,18 @@ impl SceneGpu {
                             base_array_layer: 0,
                             layer_count: 1,
                         })
-                        .image_extent(vk::Extent3D { width: img.desc.width, height: img.desc.height, depth: 1 });
-                    d.cmd_copy_buffer_to_image(cmd, src.raw, img.raw, vk::ImageLayout::TRANSFER_DST_OPTIMAL, &[region]);
+                        .image_extent(vk::Extent3D {
+                            width: img.desc.width,
+                            height: img.desc.height,
+                            depth: 1,
+                        });
+                    d.cmd_copy_buffer_to_image(
+                        cmd,
+                        src.raw,
+                        img.raw,
+                        vk::ImageLayout::TRANSFER_DST_OPTIMAL,
+                        &[region],
+                    );
                 }
             }
             tracker.buffer(&vertices, Access::VertexBufferRead);
@@ -158,7 +192,11 @@ impl SceneGpu {
             Ok(())
         })?;
 
-        let sampler = if textures.is_empty() { None } else { Some(Sampler::linear_repeat(ctx)?) };
+        let sampler = if textures.is_empty() {
+            None
+        } else {
+            Some(Sampler::linear_repeat(ctx)?)
+        };
         let mut materials = Vec::new();
         for m in &mesh.materials {
             let texture_set = match (&m.diffuse_texture, material_layout, &sampler) {

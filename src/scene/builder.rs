@@ -108,11 +108,7 @@ impl MeshBuilder {
             materials.push(material);
             indices.extend_from_slice(&tris);
         }
-        let bounds = Aabb::from_points(
-            indices
-                .iter()
-                .map(|&i| self.vertices[i as usize].pos()),
-        );
+        let bounds = Aabb::from_points(indices.iter().map(|&i| self.vertices[i as usize].pos()));
         Mesh {
             vertices: self.vertices,
             indices,
@@ -164,8 +160,16 @@ mod tests {
         assert_eq!(
             mesh.ranges,
             [
-                DrawRange { material: 0, first_index: 0, index_count: 3 },
-                DrawRange { material: 1, first_index: 3, index_count: 6 },
+                DrawRange {
+                    material: 0,
+                    first_index: 0,
+                    index_count: 3
+                },
+                DrawRange {
+                    material: 1,
+                    first_index: 3,
+                    index_count: 6
+                },
             ]
         );
         assert_eq!(mesh.material_of_triangle(2), Some(1));

@@ -106,7 +106,10 @@ impl Camera {
     /// fits the vertical field of view (for aspect ≥ 1, the usual case).
     pub fn framing(bounds: &Aabb, vfov_deg: f32) -> Self {
         let center = bounds.center();
-        let radius = bounds.radius().max(1e-6 * center.abs().max_element()).max(1e-6);
+        let radius = bounds
+            .radius()
+            .max(1e-6 * center.abs().max_element())
+            .max(1e-6);
         let half = (0.5 * vfov_deg.clamp(MIN_FOV_DEG, MAX_FOV_DEG)).to_radians();
         let distance = radius / half.sin();
         Self::new(
@@ -154,14 +157,23 @@ mod tests {
     use glam::Vec4;
 
     fn cam() -> Camera {
-        Camera::new(Vec3::new(0.0, 1.0, 3.4), Vec3::new(0.0, 1.0, 0.0), 40.0, 0.05, 20.0)
+        Camera::new(
+            Vec3::new(0.0, 1.0, 3.4),
+            Vec3::new(0.0, 1.0, 0.0),
+            40.0,
+            0.05,
+            20.0,
+        )
     }
 
     #[test]
     fn y_flip_puts_up_at_top() {
         let c = cam();
         let above = c.view_proj(1.0) * Vec4::new(0.0, 1.5, 0.0, 1.0);
-        assert!(above.y / above.w < 0.0, "a point above the target is in the top half");
+        assert!(
+            above.y / above.w < 0.0,
+            "a point above the target is in the top half"
+        );
         let right = c.view_proj(1.0) * Vec4::new(0.5, 1.0, 0.0, 1.0);
         assert!(right.x / right.w > 0.0);
     }

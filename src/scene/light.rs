@@ -93,7 +93,11 @@ impl SpotLight {
     pub fn view(&self) -> Mat4 {
         let axis = self.axis();
         // Any up works for a round cone; avoid one parallel to the axis.
-        let up = if axis.y.abs() > 0.99 { Vec3::Z } else { Vec3::Y };
+        let up = if axis.y.abs() > 0.99 {
+            Vec3::Z
+        } else {
+            Vec3::Y
+        };
         view_matrix(self.position, axis, up)
     }
 
@@ -136,7 +140,10 @@ mod tests {
         }
         // Facing away or behind: nothing.
         assert_eq!(l.irradiance(Vec3::ZERO, Vec3::NEG_Y), Vec3::ZERO);
-        assert_eq!(l.irradiance(Vec3::new(0.0, 3.0, 0.0), Vec3::NEG_Y), Vec3::ZERO);
+        assert_eq!(
+            l.irradiance(Vec3::new(0.0, 3.0, 0.0), Vec3::NEG_Y),
+            Vec3::ZERO
+        );
         // At the light itself: finite.
         assert!(l.irradiance(l.position, Vec3::Y).is_finite());
     }
@@ -171,7 +178,10 @@ mod tests {
         let l = light();
         let vp = l.view_proj();
         let r = 45f32.to_radians();
-        for dir in [Vec3::new(r.sin(), -r.cos(), 0.0), Vec3::new(0.0, -r.cos(), r.sin())] {
+        for dir in [
+            Vec3::new(r.sin(), -r.cos(), 0.0),
+            Vec3::new(0.0, -r.cos(), r.sin()),
+        ] {
             let clip = vp * (l.position + dir * 3.0).extend(1.0);
             let ndc = clip.truncate() / clip.w;
             assert!(ndc.x.abs() < 1.0 && ndc.y.abs() < 1.0, "{ndc}");

@@ -6,7 +6,7 @@ use super::error::SceneError;
 use super::mesh::{Aabb, Material, Mesh, Vertex};
 use super::normals::area_weighted_normals;
 use super::texture::{resolve_texture_path, TextureCache};
-use super::validate::{validate_obj, ObjSummary};
+use super::validate::{validate_mtl, validate_obj, ObjSummary};
 use glam::Vec3;
 use std::borrow::Cow;
 use std::cell::RefCell;
@@ -124,17 +124,12 @@ fn parse_with_tobj(
     let mtl_warnings: RefCell<Vec<String>> = RefCell::default();
     let load_mtl = |name: &Path| {
         let full = obj_dir.join(name);
-        match tobj::load_mtl(&full) {
+        match read_mtl(&full) {
             Ok(loaded) => {
                 mtl_log.borrow_mut().push((full, loaded.0.len()));
                 Ok(loaded)
             }
-            Err(e) => {
-                let why = if e == tobj::LoadError::OpenFileFailed {
-                    "cannot open it".to_owned()
-                } else {
-                    format!("cannot parse it ({e})")
-                };
+            Err(why) => {
                 mtl_warnings.borrow_mut().push(format!(
                     "material library {}: {why}; using the default material",
                     full.display()
@@ -167,6 +162,19 @@ fn parse_with_tobj(
         material_dirs,
     })
 }
+
+/// Reads and parses one MTL file; the error says why it is unusable.
+fn read_mtl(path: &Path) -> Result<(Vec<tobj::Material>, MtlIndex), String> {
+    let bytes = std::fs::read(path).map_err(|e| format!("cannot read it ({e})"))?;
+    let text = String::from_utf8_lossy(&bytes);
+    let text = text.strip_prefix('\u{feff}').unwrap_or(&text);
+    validate_mtl(path, text).map_err(|e| e.to_string())?;
+    tobj::load_mtl_buf(&mut Cursor::new(text.as_bytes()))
+        .map_err(|e| format!("cannot parse it ({e})"))
+}
+
+/// The name → index map tobj returns with MTL materials (its own HashMap type).
+type MtlIndex = <tobj::MTLLoadResult as IntoIterator>::Item;
 
 /// Converts tobj materials to ours on first use, so unused materials cost no texture decode.
 struct MaterialTable<'a> {

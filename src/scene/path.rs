@@ -64,16 +64,15 @@ impl CameraPath {
             .extension()
             .and_then(|e| e.to_str())
             .map(str::to_ascii_lowercase);
-        let is_json = match ext.as_deref() {
-            Some("json") => true,
-            Some("toml") => false,
-            _ => {
-                return Err(err(
+        let is_json =
+            match ext.as_deref() {
+                Some("json") => true,
+                Some("toml") => false,
+                _ => return Err(err(
                     "not a camera path: use static, orbit, dolly, or a .json/.toml keyframe file"
                         .into(),
-                ))
-            }
-        };
+                )),
+            };
         let text = std::fs::read_to_string(path).map_err(|e| err(format!("cannot read: {e}")))?;
         let file: KeyframeFile = if is_json {
             serde_json::from_str(&text).map_err(|e| err(format!("invalid JSON: {e}")))?
@@ -107,14 +106,13 @@ impl CameraPath {
                 // Triangle wave 0 → 1 → 0 over the run.
                 let s = 1.0 - (2.0 * u - 1.0).abs();
                 Camera {
-                    position: base.position
-                        + (base.target - base.position) * (DOLLY_FRACTION * s),
+                    position: base.position + (base.target - base.position) * (DOLLY_FRACTION * s),
                     ..*base
                 }
             }
             Self::Keyframes(keys) => {
-                let (position, target) = interpolate(keys, u)
-                    .unwrap_or((base.position, base.target));
+                let (position, target) =
+                    interpolate(keys, u).unwrap_or((base.position, base.target));
                 Camera {
                     position,
                     target,
@@ -157,8 +155,8 @@ fn check_keyframes(keys: &[Keyframe]) -> Result<(), String> {
         return Err("no keyframes (need at least one)".into());
     }
     for (i, k) in keys.iter().enumerate() {
-        let finite = k.time.is_finite()
-            && k.position.iter().chain(&k.target).all(|x| x.is_finite());
+        let finite =
+            k.time.is_finite() && k.position.iter().chain(&k.target).all(|x| x.is_finite());
         if !finite {
             return Err(format!("keyframe {i}: non-finite value"));
         }
@@ -200,7 +198,13 @@ mod tests {
     use super::*;
 
     fn base() -> Camera {
-        Camera::new(Vec3::new(0.0, 1.0, 3.4), Vec3::new(0.0, 1.0, 0.0), 40.0, 0.05, 20.0)
+        Camera::new(
+            Vec3::new(0.0, 1.0, 3.4),
+            Vec3::new(0.0, 1.0, 0.0),
+            40.0,
+            0.05,
+            20.0,
+        )
     }
 
     fn bounds() -> Aabb {
@@ -216,7 +220,9 @@ mod tests {
         let b = base();
         assert_eq!(CameraPath::Static.camera_at(&b, &bounds(), 3, 10), b);
         let mid = CameraPath::Dolly.camera_at(&b, &bounds(), 5, 11);
-        assert!(mid.position.abs_diff_eq(Vec3::new(0.0, 1.0, 3.4 * 0.7), 1e-5));
+        assert!(mid
+            .position
+            .abs_diff_eq(Vec3::new(0.0, 1.0, 3.4 * 0.7), 1e-5));
         assert_eq!(CameraPath::Dolly.camera_at(&b, &bounds(), 10, 11), b);
         assert_eq!(CameraPath::Dolly.camera_at(&b, &bounds(), 0, 1), b);
     }
@@ -226,7 +232,11 @@ mod tests {
         let b = base();
         let q = CameraPath::Orbit.camera_at(&b, &bounds(), 1, 4);
         // A quarter turn from +z goes to +x.
-        assert!(q.position.abs_diff_eq(Vec3::new(3.4, 1.0, 0.0), 1e-4), "{}", q.position);
+        assert!(
+            q.position.abs_diff_eq(Vec3::new(3.4, 1.0, 0.0), 1e-4),
+            "{}",
+            q.position
+        );
         assert!(q.target.abs_diff_eq(Vec3::new(0.0, 1.0, 0.0), 1e-6));
         let first = CameraPath::Orbit.camera_at(&b, &bounds(), 0, 4);
         assert!(first.position.abs_diff_eq(b.position, 1e-5));
@@ -235,9 +245,21 @@ mod tests {
     #[test]
     fn keyframes_interpolate_in_time() {
         let keys = vec![
-            Keyframe { time: 0.0, position: [0.0; 3], target: [0.0, 0.0, -1.0] },
-            Keyframe { time: 1.0, position: [1.0, 0.0, 0.0], target: [1.0, 0.0, -1.0] },
-            Keyframe { time: 3.0, position: [1.0, 2.0, 0.0], target: [1.0, 2.0, -1.0] },
+            Keyframe {
+                time: 0.0,
+                position: [0.0; 3],
+                target: [0.0, 0.0, -1.0],
+            },
+            Keyframe {
+                time: 1.0,
+                position: [1.0, 0.0, 0.0],
+                target: [1.0, 0.0, -1.0],
+            },
+            Keyframe {
+                time: 3.0,
+                position: [1.0, 2.0, 0.0],
+                target: [1.0, 2.0, -1.0],
+            },
         ];
         let p = CameraPath::Keyframes(keys);
         let at = |f, n| p.camera_at(&base(), &bounds(), f, n).position;
@@ -250,7 +272,11 @@ mod tests {
 
     #[test]
     fn bad_keyframes() {
-        let k = |t| Keyframe { time: t, position: [0.0; 3], target: [1.0; 3] };
+        let k = |t| Keyframe {
+            time: t,
+            position: [0.0; 3],
+            target: [1.0; 3],
+        };
         assert!(check_keyframes(&[]).is_err());
         assert!(check_keyframes(&[k(1.0), k(0.0)]).is_err());
         assert!(check_keyframes(&[k(f32::NAN)]).is_err());

@@ -21,7 +21,13 @@ const TALL_BOX: [[f32; 2]; 4] = [[-0.53, 0.09], [0.04, -0.09], [-0.14, -0.67], [
 const TALL_BOX_HEIGHT: f32 = 1.20;
 
 pub fn cornell_camera() -> Camera {
-    Camera::new(Vec3::new(0.0, 1.0, 3.4), Vec3::new(0.0, 1.0, 0.0), 40.0, 0.05, 20.0)
+    Camera::new(
+        Vec3::new(0.0, 1.0, 3.4),
+        Vec3::new(0.0, 1.0, 0.0),
+        40.0,
+        0.05,
+        20.0,
+    )
 }
 
 /// Spot light just under the ceiling where the box's area light is, pointing down, with the
@@ -74,11 +80,31 @@ impl Room {
         let (x1, y1, z1) = (max.x, max.y, max.z);
         let v = Vec3::new;
         let walls = [
-            (white, [v(x0, y0, z0), v(x1, y0, z0), v(x1, y0, z1), v(x0, y0, z1)], Vec3::Y),
-            (white, [v(x0, y1, z0), v(x1, y1, z0), v(x1, y1, z1), v(x0, y1, z1)], Vec3::NEG_Y),
-            (white, [v(x0, y0, z0), v(x1, y0, z0), v(x1, y1, z0), v(x0, y1, z0)], Vec3::Z),
-            (red, [v(x0, y0, z0), v(x0, y1, z0), v(x0, y1, z1), v(x0, y0, z1)], Vec3::X),
-            (green, [v(x1, y0, z0), v(x1, y1, z0), v(x1, y1, z1), v(x1, y0, z1)], Vec3::NEG_X),
+            (
+                white,
+                [v(x0, y0, z0), v(x1, y0, z0), v(x1, y0, z1), v(x0, y0, z1)],
+                Vec3::Y,
+            ),
+            (
+                white,
+                [v(x0, y1, z0), v(x1, y1, z0), v(x1, y1, z1), v(x0, y1, z1)],
+                Vec3::NEG_Y,
+            ),
+            (
+                white,
+                [v(x0, y0, z0), v(x1, y0, z0), v(x1, y1, z0), v(x0, y1, z0)],
+                Vec3::Z,
+            ),
+            (
+                red,
+                [v(x0, y0, z0), v(x0, y1, z0), v(x0, y1, z1), v(x0, y0, z1)],
+                Vec3::X,
+            ),
+            (
+                green,
+                [v(x1, y0, z0), v(x1, y1, z0), v(x1, y1, z1), v(x1, y0, z1)],
+                Vec3::NEG_X,
+            ),
         ];
         for (material, corners, normal) in walls {
             b.add_flat_polygon(material, &corners, normal);
@@ -89,7 +115,10 @@ impl Room {
 
 /// A vertical prism over a convex footprint: top and sides, normals pointing out, no bottom.
 fn add_prism(b: &mut MeshBuilder, material: usize, footprint: &[[f32; 2]], height: f32) {
-    let base: Vec<Vec3> = footprint.iter().map(|&[x, z]| Vec3::new(x, 0.0, z)).collect();
+    let base: Vec<Vec3> = footprint
+        .iter()
+        .map(|&[x, z]| Vec3::new(x, 0.0, z))
+        .collect();
     let top: Vec<Vec3> = base.iter().map(|p| *p + Vec3::Y * height).collect();
     b.add_flat_polygon(material, &top, Vec3::Y);
     let centre = base.iter().sum::<Vec3>() / base.len() as f32;
@@ -222,7 +251,10 @@ mod tests {
             let geometric = (b - a).cross(c - a).normalize();
             let i = mesh.indices[3 * t] as usize;
             let shading = Vec3::from(mesh.vertices[i].normal);
-            assert!(geometric.dot(shading) > 0.999, "triangle {t}: {geometric} vs {shading}");
+            assert!(
+                geometric.dot(shading) > 0.999,
+                "triangle {t}: {geometric} vs {shading}"
+            );
         }
     }
 
@@ -233,8 +265,16 @@ mod tests {
         assert_eq!(s.mesh.triangle_count(), 2 * (5 + 2 * 5));
         assert_eq!(s.mesh.materials.len(), 3);
         assert_eq!(s.mesh.materials[0].diffuse, CORNELL_WHITE);
-        assert!(s.mesh.bounds.min.abs_diff_eq(Vec3::new(-1.01, 0.0, -1.04), 1e-6));
-        assert!(s.mesh.bounds.max.abs_diff_eq(Vec3::new(1.0, 1.99, 0.99), 1e-6));
+        assert!(s
+            .mesh
+            .bounds
+            .min
+            .abs_diff_eq(Vec3::new(-1.01, 0.0, -1.04), 1e-6));
+        assert!(s
+            .mesh
+            .bounds
+            .max
+            .abs_diff_eq(Vec3::new(1.0, 1.99, 0.99), 1e-6));
         assert_closed_winding(&s.mesh);
         // From inside, each wall is hit with its shading normal facing the viewer, and the
         // side walls have their colours.
@@ -265,8 +305,15 @@ mod tests {
     fn cornell_box_boxes_face_out() {
         let s = cornell_box();
         for (fp, h) in [(SHORT_BOX, SHORT_BOX_HEIGHT), (TALL_BOX, TALL_BOX_HEIGHT)] {
-            let c: Vec3 = fp.iter().map(|&[x, z]| Vec3::new(x, h * 0.5, z)).sum::<Vec3>() / 4.0;
-            let hit = s.mesh.raycast(Vec3::new(c.x, h + 0.3, c.z), Vec3::NEG_Y, 10.0).unwrap();
+            let c: Vec3 = fp
+                .iter()
+                .map(|&[x, z]| Vec3::new(x, h * 0.5, z))
+                .sum::<Vec3>()
+                / 4.0;
+            let hit = s
+                .mesh
+                .raycast(Vec3::new(c.x, h + 0.3, c.z), Vec3::NEG_Y, 10.0)
+                .unwrap();
             assert!((hit.position.y - h).abs() < 1e-5);
             assert_eq!(shading_normal(&s.mesh, hit.triangle), Vec3::Y);
             // Sideways from the box centre's height, from outside: the side faces face out.
@@ -286,12 +333,20 @@ mod tests {
             if v.position[1] > 0.0 {
                 let clip = vp * v.pos().extend(1.0);
                 let ndc = clip.truncate() / clip.w;
-                assert!(ndc.x.abs() < 1.0 && ndc.y.abs() < 1.0, "{:?} -> {ndc}", v.position);
+                assert!(
+                    ndc.x.abs() < 1.0 && ndc.y.abs() < 1.0,
+                    "{:?} -> {ndc}",
+                    v.position
+                );
             }
         }
         let e = s.light.irradiance(Vec3::ZERO, Vec3::Y);
         assert!(e.x > 1.0 && e.x < 2.0, "{e}");
-        let pitch = (s.camera.target - s.camera.position).normalize().y.asin().to_degrees();
+        let pitch = (s.camera.target - s.camera.position)
+            .normalize()
+            .y
+            .asin()
+            .to_degrees();
         assert!((pitch + 30.0).abs() < 0.5, "{pitch}");
     }
 

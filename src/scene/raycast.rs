@@ -85,8 +85,7 @@ impl Mesh {
             return false;
         }
         let magnitude = from.abs().max(to.abs()).max_element();
-        let offset =
-            OCCLUSION_RELATIVE_OFFSET * len + OCCLUSION_ULPS * f32::EPSILON * magnitude;
+        let offset = OCCLUSION_RELATIVE_OFFSET * len + OCCLUSION_ULPS * f32::EPSILON * magnitude;
         let eps = offset / len;
         if eps >= 0.5 {
             return false; // Too short to tell apart from the surfaces at its ends.
@@ -118,19 +117,33 @@ mod tests {
     #[test]
     fn hits_and_normal_faces_the_ray() {
         let mesh = unit_square_at_z0();
-        let h = mesh.raycast(Vec3::new(0.2, 0.3, 2.0), Vec3::NEG_Z * 5.0, 10.0).unwrap();
+        let h = mesh
+            .raycast(Vec3::new(0.2, 0.3, 2.0), Vec3::NEG_Z * 5.0, 10.0)
+            .unwrap();
         assert!((h.t - 2.0).abs() < 1e-6);
         assert!(h.position.abs_diff_eq(Vec3::new(0.2, 0.3, 0.0), 1e-6));
         assert_eq!(h.normal, Vec3::Z);
-        let h = mesh.raycast(Vec3::new(0.2, 0.3, -2.0), Vec3::Z, 10.0).unwrap();
+        let h = mesh
+            .raycast(Vec3::new(0.2, 0.3, -2.0), Vec3::Z, 10.0)
+            .unwrap();
         assert_eq!(h.normal, Vec3::NEG_Z);
         // Shared diagonal edge is hit.
-        assert!(mesh.raycast(Vec3::new(0.0, 0.0, 1.0), Vec3::NEG_Z, 10.0).is_some());
+        assert!(mesh
+            .raycast(Vec3::new(0.0, 0.0, 1.0), Vec3::NEG_Z, 10.0)
+            .is_some());
         // Misses: beside it, too short, parallel, zero direction.
-        assert!(mesh.raycast(Vec3::new(1.5, 0.0, 1.0), Vec3::NEG_Z, 10.0).is_none());
-        assert!(mesh.raycast(Vec3::new(0.0, 0.0, 1.0), Vec3::NEG_Z, 0.5).is_none());
-        assert!(mesh.raycast(Vec3::new(0.0, 0.0, 1.0), Vec3::X, 10.0).is_none());
-        assert!(mesh.raycast(Vec3::new(0.0, 0.0, 1.0), Vec3::ZERO, 10.0).is_none());
+        assert!(mesh
+            .raycast(Vec3::new(1.5, 0.0, 1.0), Vec3::NEG_Z, 10.0)
+            .is_none());
+        assert!(mesh
+            .raycast(Vec3::new(0.0, 0.0, 1.0), Vec3::NEG_Z, 0.5)
+            .is_none());
+        assert!(mesh
+            .raycast(Vec3::new(0.0, 0.0, 1.0), Vec3::X, 10.0)
+            .is_none());
+        assert!(mesh
+            .raycast(Vec3::new(0.0, 0.0, 1.0), Vec3::ZERO, 10.0)
+            .is_none());
     }
 
     #[test]

@@ -144,10 +144,7 @@ fn unknown_scene(spec: &str, assets: Option<&Path>) -> SceneError {
                 dir.display()
             )
         }
-        Some(dir) => format!(
-            "the asset directory {} does not exist",
-            dir.display()
-        ),
+        Some(dir) => format!("the asset directory {} does not exist", dir.display()),
         None => "no asset directory is set".to_owned(),
     };
     SceneError::UnknownScene {
@@ -209,7 +206,13 @@ mod tests {
         let e = load_scene("teapot", Some(Path::new("/nonexistent-assets"))).unwrap_err();
         assert!(matches!(e, SceneError::UnknownScene { .. }));
         let msg = e.to_string();
-        for needle in ["teapot", "cornell-box", "pyramids", "/nonexistent-assets", "--assets"] {
+        for needle in [
+            "teapot",
+            "cornell-box",
+            "pyramids",
+            "/nonexistent-assets",
+            "--assets",
+        ] {
             assert!(msg.contains(needle), "{needle} missing in: {msg}");
         }
         assert!(msg.contains(ASSETS_ENV));

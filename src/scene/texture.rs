@@ -17,11 +17,6 @@ impl TextureCache {
         Self::default()
     }
 
-    /// Number of distinct files successfully decoded.
-    pub fn decoded_count(&self) -> usize {
-        self.loaded.values().filter(|r| r.is_ok()).count()
-    }
-
     /// Loads `path`, decoding it only the first time. The error names the path and the cause.
     pub fn load(&mut self, path: &Path) -> Result<Arc<TextureImage>, String> {
         self.loaded
@@ -96,7 +91,10 @@ mod tests {
             resolve_texture_path(dir, "-bm 0.3 tex\\a.png"),
             dir.join("tex/a.png")
         );
-        assert_eq!(resolve_texture_path(dir, " my file.png "), dir.join("my file.png"));
+        assert_eq!(
+            resolve_texture_path(dir, " my file.png "),
+            dir.join("my file.png")
+        );
     }
 
     #[test]
@@ -104,6 +102,10 @@ mod tests {
         let mut cache = TextureCache::new();
         let e = cache.load(Path::new("/nonexistent-dir/x.png")).unwrap_err();
         assert!(e.contains("/nonexistent-dir/x.png"), "{e}");
-        assert_eq!(cache.decoded_count(), 0);
+        // The failure is cached: asking again gives the same answer without a new attempt.
+        assert_eq!(
+            cache.load(Path::new("/nonexistent-dir/x.png")).unwrap_err(),
+            e
+        );
     }
 }

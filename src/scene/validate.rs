@@ -33,6 +33,7 @@ enum Attr {
     Position,
     Texcoord,
     Normal,
+    Colour,
 }
 
 impl Attr {
@@ -41,6 +42,7 @@ impl Attr {
             Attr::Position => "vertex",
             Attr::Texcoord => "texture coordinate",
             Attr::Normal => "normal",
+            Attr::Colour => "colour",
         }
     }
 }
@@ -117,6 +119,7 @@ pub fn validate_obj(path: &Path, text: &str) -> Result<ObjSummary, SceneError> {
             Attr::Position => s.positions,
             Attr::Texcoord => s.texcoords,
             Attr::Normal => s.normals,
+            Attr::Colour => 0, // never a face index
         };
         if r.index as u64 > count as u64 {
             let text = text.lines().nth(r.line - 1).unwrap_or("").trim();
@@ -131,6 +134,24 @@ pub fn validate_obj(path: &Path, text: &str) -> Result<ObjSummary, SceneError> {
         }
     }
     Ok(s)
+}
+
+/// Checks the MTL lines tobj would panic on (it unwraps `Ka/Kd/Ks/Ke` with fewer than three
+/// numbers). Everything else tobj reports as an error itself.
+pub fn validate_mtl(path: &Path, text: &str) -> Result<(), SceneError> {
+    for (i, raw) in text.lines().enumerate() {
+        let line = raw.trim();
+        let mut words = line.split_whitespace();
+        if let Some("Ka" | "Kd" | "Ks" | "Ke") = words.next() {
+            let ctx = LineCtx {
+                path,
+                line: i + 1,
+                text: line,
+            };
+            check_numbers(&ctx, words.take(3), Attr::Colour, 3)?;
+        }
+    }
+    Ok(())
 }
 
 struct LineCtx<'a> {
@@ -318,13 +339,33 @@ mod tests {
     fn forward_references_are_allowed_if_defined_later() {
         assert!(check("f 1 2 3\nv 0 0 0\nv 1 0 0\nv 0 1 0\n").is_ok());
         let e = check("f 1 2 4\nv 0 0 0\nv 1 0 0\nv 0 1 0\n").unwrap_err();
-        assert!(matches!(e, SceneError::IndexOutOfRange { line: 1, index: 4, .. }), "{e}");
+        assert!(
+            matches!(
+                e,
+                SceneError::IndexOutOfRange {
+                    line: 1,
+                    index: 4,
+                    ..
+                }
+            ),
+            "{e}"
+        );
     }
 
     #[test]
     fn index_zero_and_bad_tokens_are_errors() {
         let e = check("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 0 1 2\n").unwrap_err();
-        assert!(matches!(e, SceneError::IndexOutOfRange { line: 4, index: 0, .. }), "{e}");
+        assert!(
+            matches!(
+                e,
+                SceneError::IndexOutOfRange {
+                    line: 4,
+                    index: 0,
+                    ..
+                }
+            ),
+            "{e}"
+        );
         let e = check("v 0 0 0\nf 1/2/3/4 1 1\n").unwrap_err();
         assert!(matches!(e, SceneError::Syntax { line: 2, .. }), "{e}");
         let e = check("v 0 0 0\nf 1 1 1.5\n").unwrap_err();
@@ -335,12 +376,25 @@ mod tests {
     fn texcoord_and_normal_indices_are_checked() {
         let e = check("v 0 0 0\nvn 0 1 0\nf 1//2 1//1 1//1\n").unwrap_err();
         assert!(
-            matches!(e, SceneError::IndexOutOfRange { kind: "normal", line: 3, .. }),
+            matches!(
+                e,
+                SceneError::IndexOutOfRange {
+                    kind: "normal",
+                    line: 3,
+                    ..
+                }
+            ),
             "{e}"
         );
         let e = check("v 0 0 0\nf 1/-1 1 1\n").unwrap_err();
         assert!(
-            matches!(e, SceneError::IndexOutOfRange { kind: "texture coordinate", .. }),
+            matches!(
+                e,
+                SceneError::IndexOutOfRange {
+                    kind: "texture coordinate",
+                    ..
+                }
+            ),
             "{e}"
         );
     }
@@ -348,17 +402,35 @@ mod tests {
     #[test]
     fn vertex_forms() {
         assert!(check("v 1 2 3 0.5\nv 1 2 3 1 0 0\n").is_ok());
-        assert!(matches!(check("v 1 2 3 0\n"), Err(SceneError::Syntax { .. })));
-        assert!(matches!(check("v 1 2\n"), Err(SceneError::BadNumber { .. })));
-        assert!(matches!(check("v 1 2 3 4 5\n"), Err(SceneError::BadNumber { .. })));
+        assert!(matches!(
+            check("v 1 2 3 0\n"),
+            Err(SceneError::Syntax { .. })
+        ));
+        assert!(matches!(
+            check("v 1 2\n"),
+            Err(SceneError::BadNumber { .. })
+        ));
+        assert!(matches!(
+            check("v 1 2 3 4 5\n"),
+            Err(SceneError::BadNumber { .. })
+        ));
         // Division by a tiny w makes a finite coordinate huge.
         assert!(matches!(
             check("v 1 2 3 1e-30\n"),
             Err(SceneError::HugeCoordinate { .. } | SceneError::NonFinite { .. })
         ));
-        assert!(matches!(check("v 1 2 1e39\n"), Err(SceneError::NonFinite { .. })));
-        assert!(matches!(check("vn 0 inf 0\n"), Err(SceneError::NonFinite { .. })));
-        assert!(matches!(check("vt 0.5\n"), Err(SceneError::BadNumber { .. })));
+        assert!(matches!(
+            check("v 1 2 1e39\n"),
+            Err(SceneError::NonFinite { .. })
+        ));
+        assert!(matches!(
+            check("vn 0 inf 0\n"),
+            Err(SceneError::NonFinite { .. })
+        ));
+        assert!(matches!(
+            check("vt 0.5\n"),
+            Err(SceneError::BadNumber { .. })
+        ));
     }
 
     #[test]
@@ -368,7 +440,19 @@ mod tests {
             s.used_materials.into_iter().collect::<Vec<_>>(),
             ["a b", "x"]
         );
-        assert!(matches!(check("usemtl\n"), Err(SceneError::Syntax { line: 1, .. })));
+        assert!(matches!(
+            check("usemtl\n"),
+            Err(SceneError::Syntax { line: 1, .. })
+        ));
+    }
+
+    #[test]
+    fn mtl_colours_need_three_numbers() {
+        let p = Path::new("m.mtl");
+        assert!(validate_mtl(p, "newmtl a\n\tKd 1 0.5 0\nKs 0 0 0 extra\n").is_ok());
+        let e = validate_mtl(p, "newmtl a\nKd 1 0.5\n").unwrap_err();
+        assert!(matches!(e, SceneError::BadNumber { line: 2, .. }), "{e}");
+        assert!(validate_mtl(p, "Ke 1 x 0\n").is_err());
     }
 
     #[test]

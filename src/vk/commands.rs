@@ -30,8 +30,8 @@ impl FrameSlots {
             .queue_family_index(ctx.queue_family)
             .flags(vk::CommandPoolCreateFlags::RESET_COMMAND_BUFFER);
         // SAFETY: valid create info; destroyed in Drop after the fences signalled.
-        let pool = unsafe { ctx.device.create_command_pool(&info, None) }
-            .vk("vkCreateCommandPool")?;
+        let pool =
+            unsafe { ctx.device.create_command_pool(&info, None) }.vk("vkCreateCommandPool")?;
         let mut this = Self {
             ctx: ctx.clone(),
             pool,

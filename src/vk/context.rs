@@ -88,7 +88,11 @@ fn type_rank(t: vk::PhysicalDeviceType) -> u32 {
 
 impl Context {
     pub fn new(options: &ContextOptions) -> Result<Arc<Self>> {
-        let ext_ptrs: Vec<_> = options.instance_extensions.iter().map(|e| e.as_ptr()).collect();
+        let ext_ptrs: Vec<_> = options
+            .instance_extensions
+            .iter()
+            .map(|e| e.as_ptr())
+            .collect();
         let instance = Instance::new(options.validation, &ext_ptrs)?;
         let (physical, queue_family, info) = pick_device(&instance, options)?;
         if options.verbose {
@@ -105,7 +109,11 @@ impl Context {
             .dynamic_rendering(true)
             .synchronization2(true);
         let mut f12 = vk::PhysicalDeviceVulkan12Features::default().host_query_reset(true);
-        let ext_ptrs: Vec<_> = options.device_extensions.iter().map(|e| e.as_ptr()).collect();
+        let ext_ptrs: Vec<_> = options
+            .device_extensions
+            .iter()
+            .map(|e| e.as_ptr())
+            .collect();
         let device_info = vk::DeviceCreateInfo::default()
             .queue_create_infos(&queue_info)
             .enabled_extension_names(&ext_ptrs)
@@ -246,8 +254,8 @@ fn pick_device(
     options: &ContextOptions,
 ) -> Result<(vk::PhysicalDevice, u32, DeviceInfo)> {
     // SAFETY: enumeration on a live instance.
-    let devices = unsafe { instance.raw.enumerate_physical_devices() }
-        .vk("vkEnumeratePhysicalDevices")?;
+    let devices =
+        unsafe { instance.raw.enumerate_physical_devices() }.vk("vkEnumeratePhysicalDevices")?;
     let mut candidates = Vec::new();
     let mut rejected = Vec::new();
     for pd in devices {
@@ -260,7 +268,9 @@ fn pick_device(
             .push_next(&mut f12);
         // SAFETY: queries on a device enumerated from this instance; the chains are local.
         let families = unsafe {
-            instance.raw.get_physical_device_properties2(pd, &mut props2);
+            instance
+                .raw
+                .get_physical_device_properties2(pd, &mut props2);
             instance.raw.get_physical_device_features2(pd, &mut feats);
             instance.raw.get_physical_device_queue_family_properties(pd)
         };
@@ -291,9 +301,7 @@ fn pick_device(
             .iter()
             .position(|f| f.queue_flags.contains(need) && f.timestamp_valid_bits > 0)
         else {
-            rejected.push(format!(
-                "{name}: no graphics+compute queue with timestamps"
-            ));
+            rejected.push(format!("{name}: no graphics+compute queue with timestamps"));
             continue;
         };
         let driver_name = driver

@@ -17,11 +17,26 @@ impl DescriptorPool {
     pub fn new(ctx: &Arc<Context>, max_sets: u32) -> Result<Self> {
         let per = max_sets * 8;
         let sizes = [
-            vk::DescriptorPoolSize { ty: vk::DescriptorType::UNIFORM_BUFFER, descriptor_count: per },
-            vk::DescriptorPoolSize { ty: vk::DescriptorType::STORAGE_BUFFER, descriptor_count: per },
-            vk::DescriptorPoolSize { ty: vk::DescriptorType::SAMPLED_IMAGE, descriptor_count: per },
-            vk::DescriptorPoolSize { ty: vk::DescriptorType::STORAGE_IMAGE, descriptor_count: per },
-            vk::DescriptorPoolSize { ty: vk::DescriptorType::SAMPLER, descriptor_count: per },
+            vk::DescriptorPoolSize {
+                ty: vk::DescriptorType::UNIFORM_BUFFER,
+                descriptor_count: per,
+            },
+            vk::DescriptorPoolSize {
+                ty: vk::DescriptorType::STORAGE_BUFFER,
+                descriptor_count: per,
+            },
+            vk::DescriptorPoolSize {
+                ty: vk::DescriptorType::SAMPLED_IMAGE,
+                descriptor_count: per,
+            },
+            vk::DescriptorPoolSize {
+                ty: vk::DescriptorType::STORAGE_IMAGE,
+                descriptor_count: per,
+            },
+            vk::DescriptorPoolSize {
+                ty: vk::DescriptorType::SAMPLER,
+                descriptor_count: per,
+            },
         ];
         let info = vk::DescriptorPoolCreateInfo::default()
             .max_sets(max_sets)
@@ -29,7 +44,10 @@ impl DescriptorPool {
         // SAFETY: valid create info; destroyed through the deletion queue.
         let raw = unsafe { ctx.device.create_descriptor_pool(&info, None) }
             .vk("vkCreateDescriptorPool")?;
-        Ok(Self { ctx: ctx.clone(), raw })
+        Ok(Self {
+            ctx: ctx.clone(),
+            raw,
+        })
     }
 
     pub fn allocate(&self, layout: vk::DescriptorSetLayout) -> Result<vk::DescriptorSet> {

@@ -55,7 +55,9 @@ unsafe extern "system" fn debug_callback(
         let text = if data.is_null() || (*data).p_message.is_null() {
             "<no message>".to_string()
         } else {
-            CStr::from_ptr((*data).p_message).to_string_lossy().into_owned()
+            CStr::from_ptr((*data).p_message)
+                .to_string_lossy()
+                .into_owned()
         };
         (text, &*(user as *const ValidationLog))
     };

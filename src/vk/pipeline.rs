@@ -27,7 +27,10 @@ pub fn descriptor_type(kind: DescriptorKind) -> vk::DescriptorType {
 
 /// The union of the modules' reflected bindings, sorted.
 pub fn reflected_union(modules: &[&ShaderModuleInfo]) -> Vec<ReflectedBinding> {
-    let mut all: Vec<ReflectedBinding> = modules.iter().flat_map(|m| m.bindings.iter().copied()).collect();
+    let mut all: Vec<ReflectedBinding> = modules
+        .iter()
+        .flat_map(|m| m.bindings.iter().copied())
+        .collect();
     all.sort();
     all.dedup();
     all
@@ -123,9 +126,17 @@ fn layout_for(
     name: &'static str,
     modules: &[&ShaderModuleInfo],
     declared: &[ReflectedBinding],
-) -> Result<(Vec<vk::DescriptorSetLayout>, vk::PipelineLayout, vk::ShaderStageFlags)> {
+) -> Result<(
+    Vec<vk::DescriptorSetLayout>,
+    vk::PipelineLayout,
+    vk::ShaderStageFlags,
+)> {
     check_bindings(name, modules, declared)?;
-    let push_bytes = modules.iter().map(|m| m.push_constant_bytes).max().unwrap_or(0);
+    let push_bytes = modules
+        .iter()
+        .map(|m| m.push_constant_bytes)
+        .max()
+        .unwrap_or(0);
     if push_bytes > ctx.info.max_push_constants_size {
         return Err(Error::MissingFeature(format!(
             "{push_bytes} bytes of push constants for '{name}' (limit {})",
@@ -199,9 +210,7 @@ impl Pipeline {
             ctx.device.destroy_shader_module(sm, None);
             r
         };
-        pipeline.raw = result
-            .map_err(|(_, e)| e)
-            .vk("vkCreateComputePipelines")?[0];
+        pipeline.raw = result.map_err(|(_, e)| e).vk("vkCreateComputePipelines")?[0];
         Ok(pipeline)
     }
 
@@ -298,9 +307,7 @@ impl Pipeline {
             ctx.device.destroy_shader_module(fs, None);
             r
         };
-        pipeline.raw = result
-            .map_err(|(_, e)| e)
-            .vk("vkCreateGraphicsPipelines")?[0];
+        pipeline.raw = result.map_err(|(_, e)| e).vk("vkCreateGraphicsPipelines")?[0];
         Ok(pipeline)
     }
 }

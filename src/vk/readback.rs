@@ -63,7 +63,12 @@ impl ImageData {
                 [h(0), h(2), h(4), h(6)]
             }
             vk::Format::D32_SFLOAT | vk::Format::R32_SFLOAT => [f32_at(0), 0.0, 0.0, 1.0],
-            vk::Format::R32_UINT => [u32::from_le_bytes([b[0], b[1], b[2], b[3]]) as f32, 0.0, 0.0, 1.0],
+            vk::Format::R32_UINT => [
+                u32::from_le_bytes([b[0], b[1], b[2], b[3]]) as f32,
+                0.0,
+                0.0,
+                1.0,
+            ],
             vk::Format::B8G8R8A8_UNORM | vk::Format::B8G8R8A8_SRGB => [
                 b[2] as f32 / 255.0,
                 b[1] as f32 / 255.0,
@@ -143,7 +148,8 @@ pub fn read_image(ctx: &Arc<Context>, tracker: &mut Tracker, image: &Image) -> R
     })?;
     let bytes = staging
         .mapped()
-        .ok_or_else(|| Error::Config("readback buffer is not host-visible".into()))?[..size as usize]
+        .ok_or_else(|| Error::Config("readback buffer is not host-visible".into()))?
+        [..size as usize]
         .to_vec();
     Ok(ImageData {
         width: image.desc.width,

@@ -23,7 +23,10 @@ impl Sampler {
             .max_lod(0.0);
         // SAFETY: valid create info; destroyed through the deletion queue.
         let raw = unsafe { ctx.device.create_sampler(&info, None) }.vk("vkCreateSampler")?;
-        Ok(Self { ctx: ctx.clone(), raw })
+        Ok(Self {
+            ctx: ctx.clone(),
+            raw,
+        })
     }
 }
 

@@ -196,8 +196,16 @@ pub fn transition(state: &mut ResourceState, next: Access, is_image: bool) -> Op
         src_access: state.write_access,
         dst_stage: n.stage,
         dst_access: n.access,
-        old_layout: if is_image { state.layout } else { vk::ImageLayout::UNDEFINED },
-        new_layout: if is_image { n.layout } else { vk::ImageLayout::UNDEFINED },
+        old_layout: if is_image {
+            state.layout
+        } else {
+            vk::ImageLayout::UNDEFINED
+        },
+        new_layout: if is_image {
+            n.layout
+        } else {
+            vk::ImageLayout::UNDEFINED
+        },
     };
     let was_untouched = state.write_stage == vk::PipelineStageFlags2::NONE
         && state.read_stage == vk::PipelineStageFlags2::NONE;

@@ -53,7 +53,11 @@ impl GpuTimer {
             pools,
             slots: (0..slots).map(|_| SlotState::default()).collect(),
             capacity,
-            mask: if bits >= 64 { u64::MAX } else { (1u64 << bits) - 1 },
+            mask: if bits >= 64 {
+                u64::MAX
+            } else {
+                (1u64 << bits) - 1
+            },
             period_ns: ctx.info.timestamp_period as f64,
         })
     }
@@ -81,20 +85,19 @@ impl GpuTimer {
         let frame = state.frame.take()?;
         let n = state.passes.len() * 2;
         let mut raw = vec![0u64; n];
-        let ok = n == 0
-            || {
-                // SAFETY: queries 0..n were written by the completed submission; no WAIT flag,
-                // so this never blocks.
-                unsafe {
-                    self.ctx.device.get_query_pool_results(
-                        self.pools[slot],
-                        0,
-                        &mut raw,
-                        vk::QueryResultFlags::TYPE_64,
-                    )
-                }
+        let ok = n == 0 || {
+            // SAFETY: queries 0..n were written by the completed submission; no WAIT flag,
+            // so this never blocks.
+            unsafe {
+                self.ctx.device.get_query_pool_results(
+                    self.pools[slot],
+                    0,
+                    &mut raw,
+                    vk::QueryResultFlags::TYPE_64,
+                )
             }
-            .is_ok();
+        }
+        .is_ok();
         let passes = state
             .passes
             .iter()

@@ -1,0 +1,157 @@
+//! The `ssgi` binary: the bench JSON report of a 16-frame run, and clear errors for bad input.
+
+use std::process::Command;
+
+fn ssgi() -> Command {
+    Command::new(env!("CARGO_BIN_EXE_ssgi"))
+}
+
+fn tmp(name: &str) -> std::path::PathBuf {
+    let dir = std::env::temp_dir().join(format!("ssgi-cli-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    dir.join(name)
+}
+
+#[test]
+fn bench_json_has_every_pass_and_skips_the_static_light_view() {
+    let json = tmp("bench.json");
+    let png = tmp("bench.png");
+    let out = ssgi()
+        .args([
+            "--validation",
+            "bench",
+            "--scene",
+            "cornell-box",
+            "--size",
+            "64x64",
+        ])
+        .args([
+            "--frames",
+            "16",
+            "--warmup",
+            "0",
+            "--rsm-size",
+            "128",
+            "--json",
+        ])
+        .arg(&json)
+        .arg("--out")
+        .arg(&png)
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(out.status.success(), "bench failed:\n{stderr}");
+    assert!(
+        !stderr.contains("vulkan: ["),
+        "validation messages:\n{stderr}"
+    );
+    for pass in ["light_view", "gbuffer", "direct", "composite", "total"] {
+        assert!(stdout.contains(pass), "table lacks {pass}:\n{stdout}");
+    }
+    let report: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+    assert_eq!(report["version"], 1);
+    assert_eq!(report["width"], 64);
+    assert_eq!(report["height"], 64);
+    assert!(report["device"].as_str().is_some_and(|d| !d.is_empty()));
+    assert!(report["driver"].is_string());
+    assert_eq!(report["config"]["frames"], 16);
+    let frames = report["frames"].as_array().unwrap();
+    assert_eq!(frames.len(), 16);
+    for (i, f) in frames.iter().enumerate() {
+        assert_eq!(f["index"], i as u64);
+        assert!(f["counters"].is_object());
+    }
+    let passes = report["passes"].as_array().unwrap();
+    let names: Vec<&str> = passes.iter().map(|p| p["name"].as_str().unwrap()).collect();
+    assert_eq!(names, ["light_view", "gbuffer", "direct", "composite"]);
+    for p in passes {
+        let name = p["name"].as_str().unwrap();
+        for key in ["median_ms", "mean_ms", "p95_ms"] {
+            let v = p[key]
+                .as_f64()
+                .unwrap_or_else(|| panic!("{name}.{key} missing"));
+            assert!(v > 0.0, "{name}.{key} = {v}");
+        }
+        let (recorded, skipped) = (
+            p["recorded"].as_u64().unwrap(),
+            p["skipped"].as_u64().unwrap(),
+        );
+        if name == "light_view" {
+            assert_eq!(
+                (recorded, skipped),
+                (1, 15),
+                "static light: RSM rendered once"
+            );
+        } else {
+            assert_eq!((recorded, skipped), (16, 0), "{name}");
+        }
+        // Every frame that recorded the pass has its time in the per-frame rows.
+        let in_frames = frames
+            .iter()
+            .filter(|f| f["passes"][name].as_f64().is_some_and(|t| t > 0.0))
+            .count();
+        assert_eq!(in_frames as u64, recorded, "{name}");
+    }
+    assert!(report["total"]["median_ms"].as_f64().unwrap() > 0.0);
+    let png = std::fs::read(&png).unwrap();
+    assert_eq!(&png[1..4], b"PNG");
+}
+
+fn fails_with(args: &[&str], needle: &str) {
+    let out = ssgi().args(args).output().unwrap();
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(!out.status.success(), "{args:?} should fail");
+    assert!(
+        stderr.contains(needle),
+        "{args:?}: expected {needle:?} in:\n{stderr}"
+    );
+    assert!(!stderr.contains("panicked"), "{args:?} panicked:\n{stderr}");
+}
+
+#[test]
+fn bad_flags_get_clear_errors() {
+    fails_with(&["render", "--size", "0x64"], "outside 1..=");
+    fails_with(&["render", "--size", "banana"], "WIDTHxHEIGHT");
+    fails_with(&["render", "--pcf", "50"], "square");
+    fails_with(&["render", "--pcf", "soft"], "--pcf");
+    fails_with(&["bench", "--frames", "0"], "at least 1");
+    fails_with(&["render", "--rsm-size", "0"], "shadow map size");
+    fails_with(&["render", "--path", "/nonexistent/path.json"], "path.json");
+}
+
+#[test]
+fn unknown_scene_explains_where_it_looked() {
+    let out = ssgi()
+        .args([
+            "render",
+            "--scene",
+            "no-such-scene",
+            "--assets",
+            "/nonexistent-assets",
+        ])
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(!out.status.success());
+    assert!(stderr.contains("no-such-scene"), "{stderr}");
+    assert!(stderr.contains("cornell-box"), "lists built-ins: {stderr}");
+    assert!(
+        stderr.contains("SSGI_ASSETS"),
+        "says how to set the asset dir: {stderr}"
+    );
+}
+
+#[test]
+fn malformed_obj_is_reported_with_file_and_line() {
+    let fixture = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/fixtures/nan_vertex.obj");
+    let out = ssgi()
+        .args(["render", "--scene", fixture])
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(!out.status.success());
+    assert!(stderr.contains("nan_vertex.obj:"), "{stderr}");
+    assert!(!stderr.contains("panicked"), "{stderr}");
+}
