@@ -301,6 +301,14 @@ fn missing_mtl_uses_default_material_with_warning() {
 }
 
 #[test]
+fn malformed_mtl_is_a_warning_with_its_line() {
+    let m = load_obj(&fixture("bad_kd.obj")).unwrap();
+    assert_eq!(m.materials[0].diffuse, [0.8; 3]);
+    let w = m.stats.warnings.join("\n");
+    assert!(w.contains("bad_kd.mtl:2:"), "{w}");
+}
+
+#[test]
 fn textures_decode_once_and_uv_v_is_flipped() {
     let dir = TempDir::new("textures");
     // 2×2 PNG: top row red, bottom row blue.
@@ -661,4 +669,95 @@ fn builtin_paths_from_a_scene() {
     }
     assert_eq!(CameraPath::parse("static").unwrap().name(), "static");
     assert_eq!(CameraPath::parse("dolly").unwrap().name(), "dolly");
+}
+
+// ---------------------------------------------------------------- robustness
+
+/// Deterministic mutation fuzzing of the fixtures: every result is either a mesh with finite
+/// data and valid indices or an error; never a panic, and never tobj's line-less error (which
+/// would mean the validation pass missed something tobj rejects).
+#[test]
+fn mutated_fixtures_never_panic() {
+    const ATOMS: [&str; 30] = [
+        "v",
+        "vt",
+        "vn",
+        "f",
+        "l",
+        "o",
+        "g",
+        "usemtl",
+        "mtllib",
+        "#",
+        "1",
+        "-1",
+        "0",
+        "-7",
+        "2/1",
+        "1//1",
+        "1/1/1",
+        "/",
+        "nan",
+        "inf",
+        "1e40",
+        "1e-40",
+        "\n",
+        "\r\n",
+        "x",
+        "é",
+        "1/2/3/4",
+        "99999999999999999999",
+        "\u{feff}",
+        "bad_kd.mtl",
+    ];
+    let dir = TempDir::new("fuzz");
+    dir.write("bad_kd.mtl", "newmtl half\nKd 0.5\n");
+    let seeds: Vec<String> = std::fs::read_dir(fixture(""))
+        .unwrap()
+        .filter_map(Result::ok)
+        .map(|e| e.path())
+        .filter(|p| p.extension().is_some_and(|x| x == "obj"))
+        .map(|p| std::fs::read_to_string(p).unwrap())
+        .collect();
+    let mut state = 0x1234_5678_9abc_def0u64;
+    let mut rand = |n: usize| {
+        state ^= state << 13;
+        state ^= state >> 7;
+        state ^= state << 17;
+        (state % n as u64) as usize
+    };
+    let path = dir.0.join("mutant.obj");
+    for _ in 0..2000 {
+        let mut text: Vec<char> = seeds[rand(seeds.len())].chars().collect();
+        for _ in 0..1 + rand(5) {
+            let at = rand(text.len() + 1);
+            if rand(3) == 0 && at < text.len() {
+                text.remove(at);
+            } else {
+                let atom = format!(" {}", ATOMS[rand(ATOMS.len())]);
+                text.splice(at..at, atom.chars());
+            }
+        }
+        let text: String = text.into_iter().collect();
+        std::fs::write(&path, &text).unwrap();
+        match std::panic::catch_unwind(|| load_obj(&path)) {
+            Ok(Ok(m)) => {
+                let finite = m.vertices.iter().all(|v| {
+                    v.position
+                        .iter()
+                        .chain(&v.normal)
+                        .chain(&v.uv)
+                        .all(|x| x.is_finite())
+                });
+                assert!(finite, "non-finite vertex data from:\n{text}");
+                assert!(m.indices.iter().all(|&i| (i as usize) < m.vertices.len()));
+                assert!(m.triangle_count() > 0);
+            }
+            Ok(Err(SceneError::Obj { message, .. })) => {
+                panic!("validation missed '{message}' in:\n{text}")
+            }
+            Ok(Err(_)) => {}
+            Err(_) => panic!("panicked on:\n{text}"),
+        }
+    }
 }

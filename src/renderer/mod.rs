@@ -14,7 +14,7 @@ use crate::scene::{Camera, Scene, SpotLight};
 use crate::vk::cmd::Recorder;
 use crate::vk::{
     read_image, Buffer, Context, DescriptorPool, FrameSlots, FrameTiming, GpuTimer, ImageData,
-    SetWriter, Tracker,
+    SetWriter, SubmitSync, Tracker,
 };
 use ash::vk;
 use frame::{FrameUniforms, Pcf};
@@ -22,6 +22,12 @@ use gpu_allocator::MemoryLocation;
 use scene_gpu::SceneGpu;
 use std::sync::Arc;
 use targets::{Target, Targets};
+
+/// Extra recording at the end of a frame plus the frame's submit semaphores.
+pub struct FrameHook<'a> {
+    pub record: &'a mut dyn FnMut(&Recorder<'_>, &mut Tracker, &crate::vk::Image),
+    pub sync: SubmitSync,
+}
 
 /// Frames the CPU may record ahead of the GPU.
 pub const FRAMES_IN_FLIGHT: usize = 2;
@@ -162,6 +168,16 @@ impl Renderer {
     /// Record and submit one frame seen from `camera`. Returns the GPU timing of the frame that
     /// last used this slot (`FRAMES_IN_FLIGHT` frames ago), if any.
     pub fn render_frame(&mut self, camera: &Camera) -> Result<Option<FrameTiming>> {
+        self.render_frame_with(camera, None)
+    }
+
+    /// As `render_frame`, with a hook that records after the composite (the window frontend
+    /// copies the output into the swapchain image there) and the submission's semaphores.
+    pub fn render_frame_with(
+        &mut self,
+        camera: &Camera,
+        mut hook: Option<FrameHook<'_>>,
+    ) -> Result<Option<FrameTiming>> {
         let slot = (self.frame_index % FRAMES_IN_FLIGHT as u64) as usize;
         let cmd = self.slots.begin(slot)?;
         let previous = self.timer.begin_frame(slot, self.frame_index);
@@ -230,7 +246,14 @@ impl Renderer {
             self.timer.end_pass(cmd, slot);
         }
 
-        self.slots.submit(slot)?;
+        let sync = match &mut hook {
+            Some(h) => {
+                (h.record)(&rec, &mut self.tracker, &self.targets.output);
+                h.sync.clone()
+            }
+            None => SubmitSync::default(),
+        };
+        self.slots.submit_with(slot, &sync)?;
         self.frame_index += 1;
         Ok(previous)
     }
@@ -243,6 +266,26 @@ impl Renderer {
             .collect();
         out.sort_by_key(|t| t.frame);
         Ok(out)
+    }
+
+    /// Recreate every size-dependent target for a new output size (window resize). Waits for
+    /// the GPU; timings of frames in flight are returned. Histories start over.
+    pub fn resize(&mut self, width: u32, height: u32) -> Result<Vec<FrameTiming>> {
+        let config = RenderConfig {
+            width,
+            height,
+            ..self.config
+        };
+        config.validate()?;
+        let pending = self.finish()?;
+        self.ctx.wait_idle()?;
+        self.targets = Targets::new(&self.ctx, width, height, config.rsm_size)?;
+        self.direct.bind_targets(&self.ctx, &self.targets);
+        self.composite.bind_targets(&self.ctx, &self.targets);
+        self.config = config;
+        // The RSM targets were recreated with the rest: render the light view again.
+        self.rsm_light = None;
+        Ok(pending)
     }
 
     /// Copy a target to the host (waits for the GPU).

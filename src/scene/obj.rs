@@ -164,7 +164,7 @@ fn parse_with_tobj(
 }
 
 /// Reads and parses one MTL file; the error says why it is unusable.
-fn read_mtl(path: &Path) -> Result<(Vec<tobj::Material>, MtlIndex), String> {
+fn read_mtl(path: &Path) -> Result<MtlLoaded, String> {
     let bytes = std::fs::read(path).map_err(|e| format!("cannot read it ({e})"))?;
     let text = String::from_utf8_lossy(&bytes);
     let text = text.strip_prefix('\u{feff}').unwrap_or(&text);
@@ -173,8 +173,8 @@ fn read_mtl(path: &Path) -> Result<(Vec<tobj::Material>, MtlIndex), String> {
         .map_err(|e| format!("cannot parse it ({e})"))
 }
 
-/// The name → index map tobj returns with MTL materials (its own HashMap type).
-type MtlIndex = <tobj::MTLLoadResult as IntoIterator>::Item;
+/// What tobj's MTL parser returns on success: materials and tobj's name → index map.
+type MtlLoaded = <tobj::MTLLoadResult as IntoIterator>::Item;
 
 /// Converts tobj materials to ours on first use, so unused materials cost no texture decode.
 struct MaterialTable<'a> {

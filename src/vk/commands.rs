@@ -1,7 +1,7 @@
 //! Command submission: frames in flight (one command buffer + fence per slot) and one-shot
 //! submissions for uploads and readbacks.
 
-use super::context::Context;
+use super::context::{Context, SubmitSync};
 use crate::error::{Result, VkContext};
 use ash::vk;
 use std::sync::Arc;
@@ -88,10 +88,15 @@ impl FrameSlots {
 
     /// End and submit slot `i`.
     pub fn submit(&mut self, i: usize) -> Result<()> {
+        self.submit_with(i, &SubmitSync::default())
+    }
+
+    /// End and submit slot `i` with semaphores.
+    pub fn submit_with(&mut self, i: usize, sync: &SubmitSync) -> Result<()> {
         let slot = &mut self.slots[i];
         // SAFETY: the command buffer is recording (begun by `begin`).
         unsafe { self.ctx.device.end_command_buffer(slot.cmd) }.vk("vkEndCommandBuffer")?;
-        slot.serial = self.ctx.submit(slot.cmd, slot.fence)?;
+        slot.serial = self.ctx.submit_with(slot.cmd, slot.fence, sync)?;
         Ok(())
     }
 

@@ -52,6 +52,13 @@ pub enum Garbage {
     QueryPool(vk::QueryPool),
 }
 
+/// Semaphores of a submission: waited on before the given stages, signalled at the end.
+#[derive(Clone, Debug, Default)]
+pub struct SubmitSync {
+    pub wait: Vec<(vk::Semaphore, vk::PipelineStageFlags2)>,
+    pub signal: Vec<vk::Semaphore>,
+}
+
 pub struct Context {
     pub device: ash::Device,
     pub physical: vk::PhysicalDevice,
@@ -162,8 +169,39 @@ impl Context {
 
     /// Submit one command buffer; returns the submission's serial for `mark_complete`.
     pub fn submit(&self, cmd: vk::CommandBuffer, fence: vk::Fence) -> Result<u64> {
+        self.submit_with(cmd, fence, &SubmitSync::default())
+    }
+
+    /// Submit with semaphores (swapchain acquire / present).
+    pub fn submit_with(
+        &self,
+        cmd: vk::CommandBuffer,
+        fence: vk::Fence,
+        sync: &SubmitSync,
+    ) -> Result<u64> {
         let cmds = [vk::CommandBufferSubmitInfo::default().command_buffer(cmd)];
-        let submit = [vk::SubmitInfo2::default().command_buffer_infos(&cmds)];
+        let waits: Vec<_> = sync
+            .wait
+            .iter()
+            .map(|(s, stage)| {
+                vk::SemaphoreSubmitInfo::default()
+                    .semaphore(*s)
+                    .stage_mask(*stage)
+            })
+            .collect();
+        let signals: Vec<_> = sync
+            .signal
+            .iter()
+            .map(|s| {
+                vk::SemaphoreSubmitInfo::default()
+                    .semaphore(*s)
+                    .stage_mask(vk::PipelineStageFlags2::ALL_COMMANDS)
+            })
+            .collect();
+        let submit = [vk::SubmitInfo2::default()
+            .command_buffer_infos(&cmds)
+            .wait_semaphore_infos(&waits)
+            .signal_semaphore_infos(&signals)];
         // SAFETY: `cmd` is fully recorded, `fence` unsignalled; access to the queue is
         // single-threaded (the renderer owns the only submitting thread).
         unsafe { self.device.queue_submit2(self.queue, &submit, fence) }.vk("vkQueueSubmit2")?;

@@ -2,7 +2,7 @@
 //! queue once the GPU is done with them, and followed by the sync tracker.
 
 use super::context::{Context, Garbage};
-use super::sync::{ResourceState, Tracked};
+use super::sync::{ResourceState, Tracked, TrackedImage};
 use crate::error::{Error, Result, VkContext};
 use ash::vk;
 use gpu_allocator::vulkan::{Allocation, AllocationCreateDesc, AllocationScheme};
@@ -239,6 +239,16 @@ impl Image {
 impl Tracked for Image {
     fn state(&self) -> &Cell<ResourceState> {
         &self.state
+    }
+}
+
+impl TrackedImage for Image {
+    fn handle(&self) -> vk::Image {
+        self.raw
+    }
+
+    fn range(&self) -> vk::ImageSubresourceRange {
+        self.full_range()
     }
 }
 

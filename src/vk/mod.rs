@@ -13,11 +13,11 @@ pub mod sync;
 pub mod timing;
 
 pub use commands::{one_shot, FrameSlots};
-pub use context::{Context, ContextOptions, DeviceInfo};
+pub use context::{Context, ContextOptions, DeviceInfo, SubmitSync};
 pub use descriptors::{DescriptorPool, SetWriter};
 pub use memory::{Buffer, Image, ImageDesc};
 pub use pipeline::{GraphicsDesc, Pipeline};
 pub use readback::{read_image, ImageData};
 pub use sampler::Sampler;
-pub use sync::{Access, Tracker};
+pub use sync::{Access, Tracked, TrackedImage, Tracker};
 pub use timing::{FrameTiming, GpuTimer};

@@ -233,6 +233,12 @@ pub trait Tracked {
     fn state(&self) -> &Cell<ResourceState>;
 }
 
+/// An image the tracker can follow (owned images and swapchain images alike).
+pub trait TrackedImage: Tracked {
+    fn handle(&self) -> vk::Image;
+    fn range(&self) -> vk::ImageSubresourceRange;
+}
+
 /// Collects barriers for the next `flush` (one `vkCmdPipelineBarrier2` per batch).
 #[derive(Default)]
 pub struct Tracker {
@@ -245,7 +251,7 @@ impl Tracker {
         Self::default()
     }
 
-    pub fn image(&mut self, image: &super::Image, next: Access) {
+    pub fn image(&mut self, image: &impl TrackedImage, next: Access) {
         let mut state = image.state().get();
         if let Some(d) = transition(&mut state, next, true) {
             self.images.push(
@@ -258,8 +264,8 @@ impl Tracker {
                     .new_layout(d.new_layout)
                     .src_queue_family_index(vk::QUEUE_FAMILY_IGNORED)
                     .dst_queue_family_index(vk::QUEUE_FAMILY_IGNORED)
-                    .image(image.raw)
-                    .subresource_range(image.full_range()),
+                    .image(image.handle())
+                    .subresource_range(image.range()),
             );
         }
         image.state().set(state);
