@@ -17,6 +17,11 @@ pub struct Vertex {
 }
 
 const _: () = assert!(std::mem::size_of::<Vertex>() == 32);
+/// Byte offsets of the fields, for the vertex input attribute descriptions.
+pub const VERTEX_NORMAL_OFFSET: u32 = 12;
+pub const VERTEX_UV_OFFSET: u32 = 24;
+const _: () = assert!(std::mem::offset_of!(Vertex, normal) == VERTEX_NORMAL_OFFSET as usize);
+const _: () = assert!(std::mem::offset_of!(Vertex, uv) == VERTEX_UV_OFFSET as usize);
 
 impl Vertex {
     pub fn new(position: Vec3, normal: Vec3, uv: [f32; 2]) -> Self {
@@ -192,8 +197,60 @@ impl Mesh {
             .map(|r| r.material)
     }
 
+    /// Vertices as the bytes the GPU buffer holds (little-endian f32, 32 bytes per vertex),
+    /// built without `unsafe`.
+    pub fn vertex_bytes(&self) -> Vec<u8> {
+        let mut out = Vec::with_capacity(self.vertices.len() * std::mem::size_of::<Vertex>());
+        for v in &self.vertices {
+            for x in v.position.iter().chain(&v.normal).chain(&v.uv) {
+                out.extend_from_slice(&x.to_le_bytes());
+            }
+        }
+        out
+    }
+
+    /// Indices as little-endian u32 bytes (`VK_INDEX_TYPE_UINT32`).
+    pub fn index_bytes(&self) -> Vec<u8> {
+        self.indices.iter().flat_map(|i| i.to_le_bytes()).collect()
+    }
+
     /// Whether any material has a diffuse texture (lets the renderer compile textures out).
     pub fn has_textures(&self) -> bool {
         self.materials.iter().any(|m| m.diffuse_texture.is_some())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn byte_layout_matches_repr_c() {
+        let mesh = Mesh {
+            vertices: vec![Vertex {
+                position: [1.0, 2.0, 3.0],
+                normal: [0.0, 1.0, 0.0],
+                uv: [0.25, 0.75],
+            }],
+            indices: vec![0, 0, 0],
+            ..Default::default()
+        };
+        let bytes = mesh.vertex_bytes();
+        assert_eq!(bytes.len(), 32);
+        let f = |o: usize| f32::from_le_bytes(bytes[o..o + 4].try_into().unwrap());
+        assert_eq!(f(0), 1.0);
+        assert_eq!(f(VERTEX_NORMAL_OFFSET as usize + 4), 1.0);
+        assert_eq!(f(VERTEX_UV_OFFSET as usize + 4), 0.75);
+        assert_eq!(mesh.index_bytes().len(), 12);
+    }
+
+    #[test]
+    fn aabb_helpers() {
+        let b = Aabb::from_points([Vec3::ZERO, Vec3::new(2.0, 4.0, 4.0)]);
+        assert_eq!(b.center(), Vec3::new(1.0, 2.0, 2.0));
+        assert_eq!(b.extent(), Vec3::new(2.0, 4.0, 4.0));
+        assert_eq!(b.diagonal(), 6.0);
+        assert!(Aabb::EMPTY.is_empty());
+        assert_eq!(Aabb::EMPTY.diagonal(), 0.0);
     }
 }

@@ -25,7 +25,10 @@ pub use builder::MeshBuilder;
 pub use camera::{pixel_to_ndc, Camera};
 pub use error::SceneError;
 pub use light::SpotLight;
-pub use mesh::{Aabb, DrawRange, LoadStats, Material, Mesh, TextureImage, Vertex};
+pub use mesh::{
+    Aabb, DrawRange, LoadStats, Material, Mesh, TextureImage, Vertex, VERTEX_NORMAL_OFFSET,
+    VERTEX_UV_OFFSET,
+};
 pub use normals::area_weighted_normals;
 pub use obj::{is_degenerate, load_obj, DEGENERATE_RELATIVE_AREA};
 pub use path::{CameraPath, Keyframe};

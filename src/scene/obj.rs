@@ -16,7 +16,7 @@ use std::path::{Path, PathBuf};
 
 /// Relative area below which a triangle counts as degenerate: `area < 1e-12 × diagonal²`
 /// (diagonal of the whole model's bounding box). Scale-free by construction; 1e-12 is an
-/// edge ratio of ~1e-6, i.e. a few f32 ulps of the model's size, below which the triangle's
+/// edge ratio of ~1e-6, i.e. about 8 f32 ulps of the model's size, below which the triangle's
 /// normal is noise and it covers no pixel at any sensible zoom.
 pub const DEGENERATE_RELATIVE_AREA: f64 = 1e-12;
 

@@ -7,8 +7,9 @@ use super::error::SceneError;
 use std::collections::BTreeSet;
 use std::path::Path;
 
-/// Coordinates beyond this magnitude are rejected: f32 has ~7 significant digits, so at
-/// |x| > 1e7 neighbouring vertices are metres apart and depth/position buffers are useless.
+/// Coordinates beyond this magnitude are rejected: f32 has ~7 significant digits, so beyond
+/// 1e7 representable positions are a whole unit apart and depth/position buffers (and every
+/// relative epsilon downstream) are meaningless.
 pub const HUGE_COORDINATE: f32 = 1e7;
 
 /// What the validation pass learned about a file.
