@@ -1,5 +1,9 @@
 #version 460
-// Composite and tonemap: direct light plus ambient times albedo, Reinhard tonemap, sRGB encode.
+// Composite and tonemap: direct light plus ambient x albedo (x AO visibility), Reinhard
+// tonemap, sRGB encode. Permutations leave out the inputs of disabled effects.
+// @permutation direct: USE_DIRECT
+// @permutation ao: USE_AO
+// @permutation direct_ao: USE_DIRECT USE_AO
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_samplerless_texture_functions : require
 #include "frame.glsl"
@@ -8,8 +12,13 @@ layout(local_size_x = 8, local_size_y = 8) in;
 
 layout(set = 1, binding = 0) uniform texture2D g_position;
 layout(set = 1, binding = 1) uniform texture2D g_albedo;
-layout(set = 1, binding = 2) uniform texture2D direct_light;
-layout(set = 1, binding = 3, rgba8) uniform writeonly image2D out_color;
+layout(set = 1, binding = 2, rgba8) uniform writeonly image2D out_color;
+#ifdef USE_DIRECT
+layout(set = 1, binding = 3) uniform texture2D direct_light;
+#endif
+#ifdef USE_AO
+layout(set = 1, binding = 4) uniform texture2D ambient_visibility; // r = 1 - occlusion
+#endif
 
 vec3 srgb_encode(vec3 linear) {
     vec3 lo = linear * 12.92;
@@ -23,7 +32,14 @@ void main() {
     vec3 color = vec3(0.0);
     if (texelFetch(g_position, pixel, 0).w != 0.0) {
         vec3 albedo = texelFetch(g_albedo, pixel, 0).rgb;
-        color = texelFetch(direct_light, pixel, 0).rgb + frame.ambient.rgb * albedo;
+        float visibility = 1.0;
+#ifdef USE_AO
+        visibility = texelFetch(ambient_visibility, pixel, 0).r;
+#endif
+        color = frame.ambient.rgb * albedo * visibility;
+#ifdef USE_DIRECT
+        color += texelFetch(direct_light, pixel, 0).rgb;
+#endif
     }
     // Non-finite input must not reach the image as garbage: show it as black.
     if (any(isnan(color)) || any(isinf(color))) color = vec3(0.0);

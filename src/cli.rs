@@ -3,11 +3,15 @@
 use crate::bench::Report;
 use crate::error::{Error, Result};
 use crate::frontend::headless;
+use crate::frontend::window::{self, Job, WindowOptions, WindowRun};
 use crate::passes::PassId;
+use crate::renderer::config::{
+    Accumulate, AoConfig, AoEstimator, Effects, Epsilon, TemporalConfig,
+};
 use crate::renderer::frame::Pcf;
 use crate::renderer::{RenderConfig, Renderer, MAX_SIZE};
-use crate::scene::{asset_dir_from_env, load_scene, CameraPath};
-use crate::vk::{Context, ContextOptions};
+use crate::scene::{asset_dir_from_env, load_scene, CameraPath, Scene};
+use crate::vk::{Context, ContextOptions, FrameTiming, PresentPolicy};
 use clap::{Args, Parser, Subcommand};
 use std::path::PathBuf;
 
@@ -38,6 +42,8 @@ pub enum Command {
     Render(RenderArgs),
     /// Run a camera path and report per-pass GPU times (table + JSON).
     Bench(BenchArgs),
+    /// Open a window with a fly camera (press H in the window for the keys).
+    View(ViewArgs),
 }
 
 #[derive(Args, Debug, Clone)]
@@ -58,6 +64,114 @@ pub struct SceneArgs {
     /// Side of the reflective shadow map / shadow map in texels.
     #[arg(long, default_value_t = 512)]
     pub rsm_size: u32,
+    /// Effects to render, comma-separated: direct, ao (or all).
+    #[arg(long, default_value = "all", value_parser = parse_effects)]
+    pub effects: Effects,
+    /// Temporal reuse (reverse reprojection cache): on, or off for the no-reuse baseline
+    /// (fixed pattern every frame + 5x5 Gaussian blur).
+    #[arg(long, default_value = "on", value_parser = parse_on_off, action = clap::ArgAction::Set)]
+    pub reuse: bool,
+    /// SSAO estimator.
+    #[arg(long = "ao", value_enum, default_value = "thesis")]
+    pub ao_estimator: AoEstimator,
+    /// SSAO samples per pattern (thesis: 8 directions x 4 steps for 32).
+    #[arg(long, default_value_t = 32)]
+    pub ao_samples: u32,
+    /// How fresh estimates merge into the history: confidence (eqs 4-5), ema, mean.
+    #[arg(long, value_enum, default_value = "confidence")]
+    pub accumulate: AccumulateMode,
+    /// Bias of eq 4 (confidence mode).
+    #[arg(long, default_value_t = 0.1)]
+    pub bias: f32,
+    /// Weight of the new estimate (ema mode).
+    #[arg(long, default_value_t = 0.1)]
+    pub ema_alpha: f32,
+    /// Most estimates averaged (mean mode; default: the rotation limit).
+    #[arg(long)]
+    pub mean_cap: Option<u32>,
+    /// Patterns per pixel before it counts as converged (thesis: 36 = 360 / 10 degrees).
+    #[arg(long, default_value_t = 36)]
+    pub rotation_limit: u32,
+    /// Disocclusion threshold of eq 3: a number = multiples of the pixel footprint
+    /// (scale-free, default 2), or abs:<world units> for the thesis's absolute epsilon.
+    #[arg(long, default_value = "2", value_parser = parse_epsilon)]
+    pub epsilon: Epsilon,
+    /// Tiled refresh (one 64x64 tile recomputed from scratch per frame).
+    #[arg(long, default_value = "on", value_parser = parse_on_off, action = clap::ArgAction::Set)]
+    pub refresh: bool,
+}
+
+/// `--accumulate` choices.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+pub enum AccumulateMode {
+    Confidence,
+    Ema,
+    Mean,
+}
+
+impl SceneArgs {
+    /// The renderer configuration these flags describe (validated by the renderer).
+    pub fn render_config(&self) -> RenderConfig {
+        let accumulate = match self.accumulate {
+            AccumulateMode::Confidence => Accumulate::Confidence { bias: self.bias },
+            AccumulateMode::Ema => Accumulate::Ema {
+                alpha: self.ema_alpha,
+            },
+            AccumulateMode::Mean => Accumulate::Mean {
+                cap: self.mean_cap.unwrap_or(self.rotation_limit),
+            },
+        };
+        RenderConfig {
+            width: self.size.0,
+            height: self.size.1,
+            rsm_size: self.rsm_size,
+            pcf: self.pcf,
+            effects: self.effects,
+            ao: AoConfig {
+                estimator: self.ao_estimator,
+                samples: self.ao_samples,
+                ..AoConfig::default()
+            },
+            temporal: TemporalConfig {
+                reuse: self.reuse,
+                accumulate,
+                rotation_limit: self.rotation_limit,
+                epsilon: self.epsilon,
+                refresh: self.refresh,
+                ..TemporalConfig::default()
+            },
+        }
+    }
+}
+
+fn parse_effects(s: &str) -> std::result::Result<Effects, String> {
+    Effects::parse(s)
+}
+
+fn parse_on_off(s: &str) -> std::result::Result<bool, String> {
+    match s {
+        "on" | "yes" | "true" => Ok(true),
+        "off" | "no" | "false" => Ok(false),
+        _ => Err(format!("expected on or off, got {s:?}")),
+    }
+}
+
+fn parse_epsilon(s: &str) -> std::result::Result<Epsilon, String> {
+    let (abs, number) = match s.strip_prefix("abs:") {
+        Some(rest) => (true, rest),
+        None => (false, s),
+    };
+    let v: f32 = number
+        .parse()
+        .map_err(|_| format!("--epsilon takes a number or abs:<number>, not {s:?}"))?;
+    if !(v.is_finite() && v > 0.0) {
+        return Err(format!("--epsilon {s}: must be a finite positive number"));
+    }
+    Ok(if abs {
+        Epsilon::Absolute { epsilon: v }
+    } else {
+        Epsilon::Relative { scale: v }
+    })
 }
 
 #[derive(Args, Debug)]
@@ -91,6 +205,25 @@ pub struct BenchArgs {
     /// Write the last frame as PNG here.
     #[arg(long)]
     pub out: Option<PathBuf>,
+    /// Present every frame to a window (present mode immediate, else mailbox, else fifo).
+    #[arg(long)]
+    pub window: bool,
+}
+
+#[derive(Args, Debug)]
+pub struct ViewArgs {
+    /// Scene and renderer options; `--size` is the initial window size, `--path` is unused.
+    #[command(flatten)]
+    pub scene: SceneArgs,
+    /// Exit by itself after this many presented frames.
+    #[arg(long)]
+    pub frames: Option<u64>,
+    /// Test script: FRAME:resize=WxH, FRAME:zero=N, FRAME:key=NAME, comma-separated.
+    #[arg(long, hide = true)]
+    pub script: Option<String>,
+    /// Write the last presented frame, read back from the swapchain, as PNG (needs --frames).
+    #[arg(long, hide = true)]
+    pub capture: Option<PathBuf>,
 }
 
 /// Frame counts above this are almost certainly a typo (a day at 1000 fps is 8.6e7).
@@ -135,7 +268,8 @@ struct Setup {
     path: CameraPath,
 }
 
-fn setup(cli: &Cli, args: &SceneArgs) -> Result<Setup> {
+/// The scene and camera path of a run: everything before the GPU.
+fn load(cli: &Cli, args: &SceneArgs) -> Result<(Scene, CameraPath)> {
     let assets = cli.assets.clone().or_else(asset_dir_from_env);
     let scene = load_scene(&args.scene, assets.as_deref())?;
     for w in &scene.mesh.stats.warnings {
@@ -148,18 +282,22 @@ fn setup(cli: &Cli, args: &SceneArgs) -> Result<Setup> {
         );
     }
     let path = CameraPath::parse(&args.path)?;
-    let ctx = Context::new(&ContextOptions {
+    Ok((scene, path))
+}
+
+fn context_options(cli: &Cli) -> ContextOptions {
+    ContextOptions {
         validation: cli.validation,
         device: cli.device.clone(),
         verbose: true,
         ..Default::default()
-    })?;
-    let config = RenderConfig {
-        width: args.size.0,
-        height: args.size.1,
-        rsm_size: args.rsm_size,
-        pcf: args.pcf,
-    };
+    }
+}
+
+fn setup(cli: &Cli, args: &SceneArgs) -> Result<Setup> {
+    let (scene, path) = load(cli, args)?;
+    let ctx = Context::new(&context_options(cli))?;
+    let config = args.render_config();
     let renderer = Renderer::new(&ctx, scene, config)?;
     Ok(Setup {
         ctx,
@@ -201,14 +339,43 @@ pub fn bench(cli: &Cli, args: &BenchArgs) -> Result<()> {
     if args.frames == 0 {
         return Err(Error::Config("--frames must be at least 1".into()));
     }
-    let Setup {
-        ctx,
-        mut renderer,
-        path,
-    } = setup(cli, &args.scene)?;
     let total = args.frames + args.warmup;
-    let timings = headless::run(&mut renderer, &path, total, true)?;
-    let config = serde_json::json!({
+    let (ctx, mut renderer, path, timings, present_mode) = if args.window {
+        let (scene, path) = load(cli, &args.scene)?;
+        let config = args.scene.render_config();
+        let run = window::run(
+            WindowOptions {
+                title: format!("ssgi bench: {}", scene.name),
+                size: args.scene.size,
+                policy: PresentPolicy::Benchmark,
+                job: Job::Bench {
+                    path: path.clone(),
+                    frames: total,
+                },
+                script: Vec::new(),
+                capture: None,
+            },
+            context_options(cli),
+            move |ctx| Renderer::new(ctx, scene, config),
+        )?;
+        let WindowRun {
+            ctx,
+            renderer,
+            timings,
+            present_mode,
+            ..
+        } = run;
+        (ctx, renderer, path, timings, Some(present_mode))
+    } else {
+        let Setup {
+            ctx,
+            mut renderer,
+            path,
+        } = setup(cli, &args.scene)?;
+        let timings: Vec<FrameTiming> = headless::run(&mut renderer, &path, total, true)?;
+        (ctx, renderer, path, timings, None)
+    };
+    let mut config = serde_json::json!({
         "scene": args.scene.scene,
         "path": path.name(),
         "frames": args.frames,
@@ -216,10 +383,15 @@ pub fn bench(cli: &Cli, args: &BenchArgs) -> Result<()> {
         "rsm_size": args.scene.rsm_size,
         "pcf_samples": args.scene.pcf.samples(),
         "pcf_radius_texels": args.scene.pcf.radius_texels,
+        "render": renderer.config,
         "device_type": ctx.info.device_type,
         "api_version": ctx.info.api_version,
         "triangles": renderer.scene.mesh.indices.len() / 3,
+        "window": present_mode.is_some(),
     });
+    if let Some(mode) = present_mode {
+        config["present_mode"] = mode.into();
+    }
     let names: Vec<&str> = PassId::ALL.iter().map(|p| p.name()).collect();
     let report = Report::new(
         &ctx.info,
@@ -250,6 +422,50 @@ pub fn bench(cli: &Cli, args: &BenchArgs) -> Result<()> {
         headless::write_output(&mut renderer, out)?;
         eprintln!("wrote {}", out.display());
     }
+    drop(renderer);
+    finish(&ctx)
+}
+
+pub fn view(cli: &Cli, args: &ViewArgs) -> Result<()> {
+    if let Some(frames) = args.frames {
+        check_frames(frames.min(u32::MAX as u64 + 1) as u32, "--frames")?;
+    }
+    let script = match &args.script {
+        Some(s) => window::parse_script(s).map_err(Error::Config)?,
+        None => Vec::new(),
+    };
+    let (scene, _path) = load(cli, &args.scene)?;
+    let config = args.scene.render_config();
+    let run = window::run(
+        WindowOptions {
+            title: format!("ssgi view: {}", scene.name),
+            size: args.scene.size,
+            policy: PresentPolicy::Vsync,
+            job: Job::View {
+                frames: args.frames,
+            },
+            script,
+            capture: args.capture.clone(),
+        },
+        context_options(cli),
+        move |ctx| Renderer::new(ctx, scene, config),
+    )?;
+    eprintln!("presented {} frames", run.frames_presented);
+    if let Some(path) = &args.capture {
+        let data = run
+            .captured
+            .as_ref()
+            .ok_or_else(|| Error::Window("no frame was captured".into()))?;
+        let rgba = data.rgba8().ok_or_else(|| {
+            Error::Window(format!(
+                "cannot write a {:?} swapchain image as PNG",
+                data.format
+            ))
+        })?;
+        crate::frontend::png::write_rgba8(path, data.width, data.height, &rgba)?;
+        eprintln!("wrote {}", path.display());
+    }
+    let WindowRun { ctx, renderer, .. } = run;
     drop(renderer);
     finish(&ctx)
 }

@@ -31,6 +31,8 @@ pub enum Error {
     },
     #[error("{path}: could not write image: {message}")]
     ImageWrite { path: PathBuf, message: String },
+    #[error("window: {0}")]
+    Window(String),
     #[error("{count} Vulkan validation message(s); first: {first}")]
     Validation { count: usize, first: String },
 }

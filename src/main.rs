@@ -8,6 +8,7 @@ fn main() -> std::process::ExitCode {
     let result = match &cli.command {
         Command::Render(args) => ssgi::cli::render(&cli, args),
         Command::Bench(args) => ssgi::cli::bench(&cli, args),
+        Command::View(args) => ssgi::cli::view(&cli, args),
     };
     match result {
         Ok(()) => std::process::ExitCode::SUCCESS,

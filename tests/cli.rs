@@ -61,11 +61,30 @@ fn bench_json_has_every_pass_and_skips_the_static_light_view() {
     assert_eq!(frames.len(), 16);
     for (i, f) in frames.iter().enumerate() {
         assert_eq!(f["index"], i as u64);
-        assert!(f["counters"].is_object());
+        let computed = f["counters"]["ssao_computed_pixels"].as_u64().unwrap();
+        let disoccluded = f["counters"]["disoccluded_pixels"].as_u64().unwrap();
+        assert!(computed <= 64 * 64, "frame {i}: {computed} SSAO pixels");
+        if i == 0 {
+            // First frame: no history, every geometry pixel is new and computed.
+            assert_eq!(computed, disoccluded, "frame 0");
+            assert!(computed > 64 * 64 / 2, "frame 0 covers the box: {computed}");
+        } else {
+            assert_eq!(disoccluded, 0, "static camera, frame {i}");
+        }
     }
     let passes = report["passes"].as_array().unwrap();
     let names: Vec<&str> = passes.iter().map(|p| p["name"].as_str().unwrap()).collect();
-    assert_eq!(names, ["light_view", "gbuffer", "direct", "composite"]);
+    assert_eq!(
+        names,
+        [
+            "light_view",
+            "gbuffer",
+            "direct",
+            "reproject",
+            "ssao",
+            "composite"
+        ]
+    );
     for p in passes {
         let name = p["name"].as_str().unwrap();
         for key in ["median_ms", "mean_ms", "p95_ms"] {

@@ -2,8 +2,9 @@
 // src/renderer/frame.rs; std140, every member 16-byte aligned.
 layout(set = 0, binding = 0, std140) uniform Frame {
     mat4 view_proj;        // camera, world -> clip (Vulkan: y down, depth 0..1)
+    mat4 prev_view_proj;   // last frame's camera (eq 1)
     mat4 light_view_proj;  // spot light, world -> clip
-    vec4 camera_pos;       // xyz
+    vec4 camera_pos;       // xyz, w = tan(vertical fov / 2)
     vec4 light_pos;        // xyz, w = cos(outer half-angle)
     vec4 light_dir;        // xyz unit axis, w = cos(inner half-angle)
     vec4 light_intensity;  // rgb radiant intensity on the axis [W/sr], w = light near plane
@@ -11,6 +12,14 @@ layout(set = 0, binding = 0, std140) uniform Frame {
                            // z = shadow map size [texels], w = PCF kernel radius [texels]
     vec4 ambient;          // rgb ambient radiance
     uvec4 size;            // width, height, frame index, PCF samples per side (1 = hard)
+    uvec4 temporal;        // x = history valid, yz = refresh tile origin [px] (~0 = none),
+                           // w = rotation limit (patterns until converged)
+    vec4 temporal_params;  // x = accumulation (0 confidence, 1 EMA, 2 mean), y = its parameter
+                           // (bias / alpha / cap), z = epsilon, w = 0 relative, 1 absolute
+    vec4 ao_params;        // x = world radius, y = a, z = b (eq 7), w = nearest step [px]
+    uvec4 ao_config;       // x = directions, y = steps (thesis) or samples (crytek),
+                           // z = patterns per evaluation, w = 0 thesis, 1 crytek
+    vec4 ao_pattern;       // x = rotation per pattern [rad], y = pattern offset
 } frame;
 
 const float PI = 3.14159265358979;

@@ -77,8 +77,15 @@ impl Report {
         warmup: u64,
     ) -> Self {
         let measured: Vec<&FrameTiming> = timings.iter().filter(|t| t.frame >= warmup).collect();
+        // Rows for the passes this configuration has (ran or was skipped at least once).
+        let present = |name: &&&str| {
+            timings
+                .iter()
+                .any(|t| t.passes.iter().any(|(n, _)| n == *name) || t.skipped.contains(*name))
+        };
         let passes = pass_order
             .iter()
+            .filter(present)
             .map(|name| {
                 let times: Vec<f64> = measured
                     .iter()
@@ -121,7 +128,11 @@ impl Report {
                     .filter_map(|(n, ms)| ms.map(|ms| (n.to_string(), ms)))
                     .collect(),
                 skipped: t.skipped.iter().map(|s| s.to_string()).collect(),
-                counters: BTreeMap::new(),
+                counters: t
+                    .counters
+                    .iter()
+                    .map(|(n, v)| (n.to_string(), *v))
+                    .collect(),
             })
             .collect();
         Report {

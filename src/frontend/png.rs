@@ -82,6 +82,16 @@ pub fn visualize(target: Target, data: &ImageData, bounds: &Aabb) -> Vec<u8> {
                     [v, v, v]
                 }
                 Target::RsmFlux => [t[0] / range, t[1] / range, t[2] / range],
+                Target::Ao => [t[0], t[0], t[0]],
+                // Figure 4.10: red where recomputed from scratch (disoccluded), blue for the
+                // refresh tile, yellow accumulating, grey converged, black background.
+                Target::State => match t[0] as u32 {
+                    0 => [0.25, 0.25, 0.25],
+                    1 => [0.9, 0.8, 0.1],
+                    2 => [0.9, 0.05, 0.05],
+                    3 => [0.1, 0.3, 0.9],
+                    _ => [0.0, 0.0, 0.0],
+                },
                 _ => [
                     t[0] / (1.0 + t[0]),
                     t[1] / (1.0 + t[1]),

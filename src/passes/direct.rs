@@ -1,12 +1,13 @@
 //! Direct light: spot light irradiance with PCF shadows from the light view's depth.
 //! Output: rgb = outgoing diffuse radiance albedo/pi * E * V, a = PCF visibility V.
 
+use super::compute::ComputePass;
 use super::{binding, PassLayout, FRAME_BINDING};
 use crate::error::Result;
 use crate::renderer::targets::Targets;
 use crate::shaders::{self, DescriptorKind, ReflectedBinding};
 use crate::vk::cmd::Recorder;
-use crate::vk::{Access, Context, DescriptorPool, Pipeline, SetWriter, Tracker};
+use crate::vk::{Access, Context, DescriptorPool, SetWriter, Tracker};
 use ash::vk;
 use std::sync::Arc;
 
@@ -28,26 +29,26 @@ pub fn layout() -> PassLayout {
 }
 
 pub struct DirectPass {
-    pipeline: Pipeline,
-    set: vk::DescriptorSet,
+    pass: ComputePass,
 }
 
 impl DirectPass {
     pub fn new(ctx: &Arc<Context>, pool: &DescriptorPool) -> Result<Self> {
-        let pipeline = Pipeline::compute(ctx, "direct", &shaders::DIRECT_COMP, BINDINGS)?;
-        let set = pool.allocate(pipeline.set_layouts[1])?;
-        Ok(Self { pipeline, set })
+        let pass = ComputePass::new(ctx, pool, "direct", &shaders::DIRECT_COMP, BINDINGS)?;
+        Ok(Self { pass })
     }
 
     /// (Re)point the descriptors at the current targets.
     pub fn bind_targets(&self, ctx: &Context, t: &Targets) {
-        SetWriter::new()
-            .sampled(0, &t.gbuffer.position)
-            .sampled(1, &t.gbuffer.normal)
-            .sampled(2, &t.gbuffer.albedo)
-            .sampled(3, &t.rsm.depth)
-            .storage(4, &t.direct)
-            .write(ctx, self.set);
+        for parity in 0..2 {
+            let writer = SetWriter::new()
+                .sampled(0, &t.gbuffer.position[parity])
+                .sampled(1, &t.gbuffer.normal)
+                .sampled(2, &t.gbuffer.albedo)
+                .sampled(3, &t.rsm.depth)
+                .storage(4, &t.direct);
+            self.pass.write(ctx, parity, writer);
+        }
     }
 
     pub fn record(
@@ -55,23 +56,17 @@ impl DirectPass {
         rec: &Recorder<'_>,
         tracker: &mut Tracker,
         frame_set: vk::DescriptorSet,
+        parity: usize,
         t: &Targets,
     ) {
         let g = &t.gbuffer;
-        for input in [&g.position, &g.normal, &g.albedo, &t.rsm.depth] {
+        for input in [&g.position[parity], &g.normal, &g.albedo, &t.rsm.depth] {
             tracker.image(input, Access::ComputeSampledRead);
         }
         tracker.image(&t.direct, Access::Undefined);
         tracker.image(&t.direct, Access::ComputeStorageWrite);
         tracker.flush(rec.device, rec.cmd);
-        rec.bind(&self.pipeline, &[frame_set, self.set]);
-        rec.dispatch_2d(&self.pipeline, t.width, t.height);
-    }
-}
-
-impl DirectPass {
-    /// Set 0 (frame constants) layout, shared by every pipeline.
-    pub fn frame_layout(&self) -> vk::DescriptorSetLayout {
-        self.pipeline.set_layouts[0]
+        self.pass
+            .dispatch(rec, frame_set, parity, t.width, t.height);
     }
 }

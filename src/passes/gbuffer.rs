@@ -57,8 +57,10 @@ impl GBufferPass {
         frame_set: vk::DescriptorSet,
         scene: &SceneGpu,
         g: &GBuffer,
+        parity: usize,
     ) {
-        for target in [&g.position, &g.normal, &g.albedo] {
+        let position = &g.position[parity];
+        for target in [position, &g.normal, &g.albedo] {
             tracker.image(target, Access::Undefined);
             tracker.image(target, Access::ColorAttachmentWrite);
         }
@@ -67,7 +69,7 @@ impl GBufferPass {
         tracker.flush(rec.device, rec.cmd);
         let zero = [0.0; 4];
         rec.begin_rendering(
-            &[(&g.position, zero), (&g.normal, zero), (&g.albedo, zero)],
+            &[(position, zero), (&g.normal, zero), (&g.albedo, zero)],
             &g.depth,
         );
         self.pipelines.draw(rec, frame_set, scene);

@@ -1,10 +1,14 @@
 //! One file per pass. `PassId` names are the rows of the timing report.
 
+pub mod blur;
 pub mod composite;
+pub mod compute;
 pub mod direct;
 pub mod gbuffer;
 pub mod light_view;
 pub mod raster;
+pub mod reproject;
+pub mod ssao;
 
 use crate::shaders::{DescriptorKind, ReflectedBinding, ShaderModuleInfo};
 
@@ -17,15 +21,24 @@ pub enum PassId {
     GBuffer,
     /// Direct spot light with PCF shadows.
     Direct,
+    /// Reverse reprojection: disocclusion test, history resampling, work list.
+    Reproject,
+    /// Screen-space ambient occlusion.
+    Ssao,
+    /// 5x5 Gaussian blur of the AO (no-reuse baseline only).
+    Blur,
     /// Composite + tonemap into the output image.
     Composite,
 }
 
 impl PassId {
-    pub const ALL: [PassId; 4] = [
+    pub const ALL: [PassId; 7] = [
         PassId::LightView,
         PassId::GBuffer,
         PassId::Direct,
+        PassId::Reproject,
+        PassId::Ssao,
+        PassId::Blur,
         PassId::Composite,
     ];
 
@@ -34,6 +47,9 @@ impl PassId {
             PassId::LightView => "light_view",
             PassId::GBuffer => "gbuffer",
             PassId::Direct => "direct",
+            PassId::Reproject => "reproject",
+            PassId::Ssao => "ssao",
+            PassId::Blur => "blur",
             PassId::Composite => "composite",
         }
     }
@@ -69,6 +85,9 @@ pub fn all_layouts() -> Vec<PassLayout> {
     v.extend(light_view::layouts());
     v.extend(gbuffer::layouts());
     v.push(direct::layout());
-    v.push(composite::layout());
+    v.push(reproject::layout());
+    v.extend(ssao::layouts());
+    v.push(blur::layout());
+    v.extend(composite::layouts());
     v
 }

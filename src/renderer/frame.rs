@@ -1,5 +1,6 @@
 //! Per-frame constants (`Frame` in shaders/include/frame.glsl), std140.
 
+use super::config::{AoEstimator, Epsilon, RenderConfig};
 use crate::scene::{Camera, SpotLight};
 use glam::{Mat4, Vec3};
 
@@ -46,54 +47,90 @@ impl Pcf {
     }
 }
 
-/// Bytes of the uniform block, in declaration order.
+/// Everything that changes per frame, besides the configuration.
+pub struct FrameInputs<'a> {
+    pub camera: &'a Camera,
+    /// Last frame's camera view-projection (eq 1); equal to this frame's on the first frame.
+    pub prev_view_proj: Mat4,
+    pub light: &'a SpotLight,
+    pub ambient: Vec3,
+    pub frame: u64,
+    /// False on the first frame and after a resize or camera cut: every pixel is new.
+    pub history_valid: bool,
+    /// Pixel origin of this frame's refresh tile, if any.
+    pub refresh_tile: Option<(u32, u32)>,
+    /// Bounding radius of the scene: the AO radius is relative to it.
+    pub scene_radius: f32,
+}
+
+/// The uniform block's bytes, in declaration order (std140: every member is 16-byte aligned).
 pub struct FrameUniforms {
     words: Vec<u32>,
 }
 
 impl FrameUniforms {
-    pub const SIZE: usize = 2 * 64 + 7 * 16;
+    pub const SIZE: usize = 3 * 64 + 12 * 16;
 
-    #[allow(clippy::too_many_arguments)]
-    pub fn new(
-        camera: &Camera,
-        aspect: f32,
-        light: &SpotLight,
-        ambient: Vec3,
-        width: u32,
-        height: u32,
-        frame: u64,
-        pcf: Pcf,
-        rsm_size: u32,
-    ) -> Self {
-        let mut w = Vec::with_capacity(Self::SIZE / 4);
-        let mat = |m: Mat4, w: &mut Vec<u32>| {
-            w.extend(m.to_cols_array().iter().map(|f| f.to_bits()));
-        };
-        mat(camera.view_proj(aspect), &mut w);
-        mat(light.view_proj(), &mut w);
-        let mut vec4 = |v: [f32; 4]| w.extend(v.iter().map(|f| f.to_bits()));
+    pub fn new(config: &RenderConfig, f: &FrameInputs<'_>) -> Self {
+        let mut w: Vec<u32> = Vec::with_capacity(Self::SIZE / 4);
+        let aspect = config.width as f32 / config.height as f32;
+        let light = f.light;
+        for m in [
+            f.camera.view_proj(aspect),
+            f.prev_view_proj,
+            light.view_proj(),
+        ] {
+            w.extend(m.to_cols_array().iter().map(|x| x.to_bits()));
+        }
+        let vec4 = |v: [f32; 4], w: &mut Vec<u32>| w.extend(v.iter().map(|x| x.to_bits()));
+        let tan_half_fov = (0.5 * f.camera.vfov_deg).to_radians().tan();
+        vec4(f.camera.position.extend(tan_half_fov).to_array(), &mut w);
         let cos_outer = light.outer_deg.to_radians().cos();
         let cos_inner = light.inner_deg.to_radians().cos();
-        let half_fov = (0.5 * light.frustum_fov_deg()).to_radians();
-        vec4(camera.position.extend(1.0).to_array());
-        vec4(light.position.extend(cos_outer).to_array());
+        let axis = light.direction.normalize_or(Vec3::NEG_Y);
+        let light_half_fov = (0.5 * light.frustum_fov_deg()).to_radians();
+        vec4(light.position.extend(cos_outer).to_array(), &mut w);
+        vec4(axis.extend(cos_inner).to_array(), &mut w);
+        vec4(light.intensity.extend(light.near).to_array(), &mut w);
+        let pcf = config.pcf;
+        let rsm = config.rsm_size as f32;
         vec4(
-            light
-                .direction
-                .normalize_or(Vec3::NEG_Y)
-                .extend(cos_inner)
-                .to_array(),
+            [light.far, light_half_fov.tan(), rsm, pcf.radius_texels],
+            &mut w,
         );
-        vec4(light.intensity.extend(light.near).to_array());
-        vec4([
-            light.far,
-            half_fov.tan(),
-            rsm_size as f32,
-            pcf.radius_texels,
-        ]);
-        vec4(ambient.extend(0.0).to_array());
-        w.extend([width, height, frame as u32, pcf.side]);
+        vec4(f.ambient.extend(0.0).to_array(), &mut w);
+        w.extend([config.width, config.height, f.frame as u32, pcf.side]);
+        let t = &config.temporal;
+        let (tile_x, tile_y) = f.refresh_tile.unwrap_or((u32::MAX, u32::MAX));
+        w.extend([f.history_valid as u32, tile_x, tile_y, t.rotation_limit]);
+        let (eps, eps_mode) = match t.epsilon {
+            Epsilon::Relative { scale } => (scale, 0.0),
+            Epsilon::Absolute { epsilon } => (epsilon, 1.0),
+        };
+        vec4(
+            [
+                t.accumulate.code() as f32,
+                t.accumulate.parameter(),
+                eps,
+                eps_mode,
+            ],
+            &mut w,
+        );
+        let ao = &config.ao;
+        let radius = ao.radius * f.scene_radius.max(f32::MIN_POSITIVE);
+        vec4(
+            [radius, ao.attenuation[0], ao.attenuation[1], ao.near_px],
+            &mut w,
+        );
+        let (dirs, steps) = ao.directions_steps();
+        let (count, estimator) = match ao.estimator {
+            AoEstimator::Thesis => (steps, 0),
+            AoEstimator::Crytek => (ao.samples, 1),
+        };
+        w.extend([dirs, count, ao.patterns, estimator]);
+        let offset = if ao.patterns > 1 { 0.5 } else { 0.0 };
+        vec4([t.rotation_deg.to_radians(), offset, 0.0, 0.0], &mut w);
+        debug_assert_eq!(w.len() * 4, Self::SIZE);
         Self { words: w }
     }
 

@@ -18,6 +18,9 @@ pub const RSM_COLOR_FORMATS: [vk::Format; 3] = [
     vk::Format::R16G16B16A16_SFLOAT,
 ];
 pub const DIRECT_FORMAT: vk::Format = vk::Format::R16G16B16A16_SFLOAT;
+/// AO value (r) and number of accumulated estimates (g, exact in fp16 up to 2048).
+pub const AO_FORMAT: vk::Format = vk::Format::R16G16B16A16_SFLOAT;
+pub const STATE_FORMAT: vk::Format = vk::Format::R32_UINT;
 pub const OUTPUT_FORMAT: vk::Format = vk::Format::R8G8B8A8_UNORM;
 
 const ATTACHMENT_READ: vk::ImageUsageFlags = vk::ImageUsageFlags::from_raw(
@@ -56,7 +59,9 @@ fn image(
 }
 
 pub struct GBuffer {
-    pub position: Image,
+    /// Ping-ponged: this frame's is `position[parity]`, last frame's (the world-position
+    /// history of eq 2) is `position[1 - parity]`.
+    pub position: [Image; 2],
     pub normal: Image,
     pub albedo: Image,
     pub depth: Image,
@@ -77,6 +82,13 @@ pub struct Targets {
     pub rsm: Rsm,
     pub direct: Image,
     pub output: Image,
+    /// AO history pair (value, estimates), ping-ponged like the G-buffer position.
+    pub ao_history: [Image; 2],
+    /// Per-pixel reprojection state (temporal.glsl STATE_*).
+    pub state: Image,
+    /// Without reuse: this frame's AO and its 5x5 blur.
+    pub ao_raw: Image,
+    pub ao_blurred: Image,
 }
 
 /// Which target to read back or dump.
@@ -92,10 +104,14 @@ pub enum Target {
     RsmNormal,
     RsmFlux,
     RsmDepth,
+    /// AO visibility as composited (history with reuse, blurred or raw without).
+    Ao,
+    /// Reprojection state per pixel (Figure 4.10's recompute mask).
+    State,
 }
 
 impl Target {
-    pub const ALL: [Target; 10] = [
+    pub const ALL: [Target; 12] = [
         Target::Output,
         Target::Direct,
         Target::GPosition,
@@ -106,6 +122,8 @@ impl Target {
         Target::RsmNormal,
         Target::RsmFlux,
         Target::RsmDepth,
+        Target::Ao,
+        Target::State,
     ];
 
     pub fn name(self) -> &'static str {
@@ -120,6 +138,8 @@ impl Target {
             Target::RsmNormal => "rsm_normal",
             Target::RsmFlux => "rsm_flux",
             Target::RsmDepth => "rsm_depth",
+            Target::Ao => "ao",
+            Target::State => "recompute_mask",
         }
     }
 }
@@ -134,7 +154,10 @@ impl Targets {
             width,
             height,
             gbuffer: GBuffer {
-                position: image(ctx, "gbuffer.position", s, gp, ATTACHMENT_READ)?,
+                position: [
+                    image(ctx, "gbuffer.position.0", s, gp, ATTACHMENT_READ)?,
+                    image(ctx, "gbuffer.position.1", s, gp, ATTACHMENT_READ)?,
+                ],
                 normal: image(ctx, "gbuffer.normal", s, gn, ATTACHMENT_READ)?,
                 albedo: image(ctx, "gbuffer.albedo", s, ga, ATTACHMENT_READ)?,
                 depth: image(ctx, "gbuffer.depth", s, DEPTH_FORMAT, DEPTH_READ)?,
@@ -148,14 +171,23 @@ impl Targets {
             },
             direct: image(ctx, "direct", s, DIRECT_FORMAT, STORAGE_READ)?,
             output: image(ctx, "output", s, OUTPUT_FORMAT, STORAGE_READ)?,
+            ao_history: [
+                image(ctx, "ao.history.0", s, AO_FORMAT, STORAGE_READ)?,
+                image(ctx, "ao.history.1", s, AO_FORMAT, STORAGE_READ)?,
+            ],
+            state: image(ctx, "reprojection.state", s, STATE_FORMAT, STORAGE_READ)?,
+            ao_raw: image(ctx, "ao.raw", s, AO_FORMAT, STORAGE_READ)?,
+            ao_blurred: image(ctx, "ao.blurred", s, AO_FORMAT, STORAGE_READ)?,
         })
     }
 
-    pub fn get(&self, target: Target) -> &Image {
+    /// The image behind `target` for frame parity `parity`; `ao_source` picks which AO image
+    /// the composite reads.
+    pub fn get(&self, target: Target, parity: usize, ao_source: AoSource) -> &Image {
         match target {
             Target::Output => &self.output,
             Target::Direct => &self.direct,
-            Target::GPosition => &self.gbuffer.position,
+            Target::GPosition => &self.gbuffer.position[parity],
             Target::GNormal => &self.gbuffer.normal,
             Target::GAlbedo => &self.gbuffer.albedo,
             Target::GDepth => &self.gbuffer.depth,
@@ -163,6 +195,28 @@ impl Targets {
             Target::RsmNormal => &self.rsm.normal,
             Target::RsmFlux => &self.rsm.flux,
             Target::RsmDepth => &self.rsm.depth,
+            Target::Ao => self.ao(parity, ao_source),
+            Target::State => &self.state,
         }
     }
+
+    /// The AO image the composite reads this frame.
+    pub fn ao(&self, parity: usize, source: AoSource) -> &Image {
+        match source {
+            AoSource::History => &self.ao_history[parity],
+            AoSource::Blurred => &self.ao_blurred,
+            AoSource::Raw => &self.ao_raw,
+        }
+    }
+}
+
+/// Where the composited AO comes from.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum AoSource {
+    /// Temporal reuse: the accumulated history.
+    History,
+    /// No reuse, the thesis's baseline: this frame's AO blurred 5x5.
+    Blurred,
+    /// No reuse, no blur (references).
+    Raw,
 }

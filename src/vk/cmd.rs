@@ -71,6 +71,35 @@ impl Recorder<'_> {
         };
     }
 
+    /// Dispatch with the (x, y, z) workgroup counts stored at the start of `args`.
+    pub fn dispatch_indirect(&self, args: &Buffer) {
+        // SAFETY: recording with a compute pipeline bound; `args` has INDIRECT_BUFFER usage
+        // and holds three u32 at offset 0 (the tracker made the GPU writes visible).
+        unsafe { self.device.cmd_dispatch_indirect(self.cmd, args.raw, 0) };
+    }
+
+    /// Overwrite the start of `buffer` with `data` (at most 65536 bytes, multiple of 4).
+    pub fn update_buffer(&self, buffer: &Buffer, data: &[u8]) {
+        // SAFETY: recording outside rendering; the buffer has TRANSFER_DST usage and the
+        // tracker put it in the transfer-write state.
+        unsafe { self.device.cmd_update_buffer(self.cmd, buffer.raw, 0, data) };
+    }
+
+    /// Copy the first `size` bytes of `src` to `dst`.
+    pub fn copy_buffer(&self, src: &Buffer, dst: &Buffer, size: u64) {
+        let region = [vk::BufferCopy {
+            src_offset: 0,
+            dst_offset: 0,
+            size,
+        }];
+        // SAFETY: recording outside rendering; both buffers are large enough and in the
+        // transfer states (tracker).
+        unsafe {
+            self.device
+                .cmd_copy_buffer(self.cmd, src.raw, dst.raw, &region)
+        };
+    }
+
     /// Begin dynamic rendering into `colors` (cleared to their values) and `depth` (cleared to
     /// 1), with viewport and scissor covering the first attachment.
     pub fn begin_rendering(&self, colors: &[(&Image, [f32; 4])], depth: &Image) {

@@ -100,6 +100,21 @@ impl FrameSlots {
         Ok(())
     }
 
+    /// Wait until slot `i`'s last submission completed, without starting a new one (the
+    /// window frontend waits before reusing the slot's swapchain acquire semaphore).
+    pub fn wait(&mut self, i: usize) -> Result<()> {
+        let slot = &self.slots[i];
+        // SAFETY: the fence belongs to this slot; waiting does not change its state.
+        unsafe {
+            self.ctx
+                .device
+                .wait_for_fences(&[slot.fence], true, FENCE_TIMEOUT_NS)
+        }
+        .vk("vkWaitForFences")?;
+        self.ctx.mark_complete(slot.serial);
+        Ok(())
+    }
+
     /// Wait for every slot (end of a run, before readback or resize).
     pub fn wait_all(&mut self) -> Result<()> {
         for slot in &self.slots {

@@ -84,9 +84,15 @@ impl Access {
                 L::GENERAL,
                 true,
             ),
-            Access::TransferSrc => (S::COPY, A::TRANSFER_READ, L::TRANSFER_SRC_OPTIMAL, false),
+            // Copies and blits (the window frontend blits the output into the swapchain).
+            Access::TransferSrc => (
+                S::COPY | S::BLIT,
+                A::TRANSFER_READ,
+                L::TRANSFER_SRC_OPTIMAL,
+                false,
+            ),
             Access::TransferDst => (
-                S::COPY | S::CLEAR,
+                S::COPY | S::BLIT | S::CLEAR,
                 A::TRANSFER_WRITE,
                 L::TRANSFER_DST_OPTIMAL,
                 true,

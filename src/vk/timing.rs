@@ -13,6 +13,8 @@ pub struct FrameTiming {
     pub frame: u64,
     pub passes: Vec<(&'static str, Option<f64>)>,
     pub skipped: Vec<&'static str>,
+    /// GPU counters of the frame (filled by the renderer, not the timer).
+    pub counters: Vec<(&'static str, u64)>,
 }
 
 #[derive(Default)]
@@ -113,6 +115,7 @@ impl GpuTimer {
             frame,
             passes,
             skipped: std::mem::take(&mut state.skipped),
+            counters: Vec::new(),
         })
     }
 

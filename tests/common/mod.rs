@@ -37,6 +37,7 @@ pub fn render(ctx: &Arc<Context>, scene: Scene, size: u32, pcf: Pcf, frames: u32
         height: size,
         rsm_size: 512,
         pcf,
+        ..Default::default()
     };
     let mut r = Renderer::new(ctx, scene, config).expect("renderer");
     let camera: Camera = r.scene.camera;

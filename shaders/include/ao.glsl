@@ -1,0 +1,101 @@
+// SSAO estimators. Both return occlusion in [0, 1] for one sampling pattern; `pattern` indexes
+// the per-frame rotation (theta per pattern) and range scale. Requires g_position and
+// random_vectors to be declared by the including shader.
+
+// Range scale of pattern j: 1 for pattern 0, then a low-discrepancy spread of +-10%.
+float pattern_scale(float pattern) {
+    return 1.0 + 0.2 * (fract(pattern * 0.6180339887 + 0.5) - 0.5);
+}
+
+// Per-pixel rotation from the 4x4 random-vector texture (unit 2D vectors).
+vec2 pixel_rotation(ivec2 pixel) {
+    return texelFetch(random_vectors, pixel & 3, 0).xy;
+}
+
+vec2 rotate2(vec2 v, vec2 cs) {
+    return vec2(cs.x * v.x - cs.y * v.y, cs.y * v.x + cs.x * v.y);
+}
+
+// Lin 2013 eq 6-8: directions x log-spaced screen-space steps; each sample q contributes
+// max(n . (q - p)/|q - p|, 0) / D(d) with D(d) = 1 + a d + b d^2, d in units of the radius.
+float ao_thesis(ivec2 pixel, vec3 p, vec3 n, float pattern) {
+    uint dirs = frame.ao_config.x;
+    uint steps = frame.ao_config.y;
+    float radius = frame.ao_params.x;
+    float dist = max(distance(p, frame.camera_pos.xyz), 1e-30);
+    // The world radius projected to pixels at this depth; eq 8's far.
+    float px_per_world = float(frame.size.y) / (2.0 * frame.camera_pos.w * dist);
+    float near_px = frame.ao_params.w;
+    float far_px = clamp(radius * px_per_world, near_px * 1.5, 0.25 * float(frame.size.y));
+    float scale = pattern_scale(pattern);
+    float angle = frame.ao_pattern.x * pattern;
+    vec2 rot = rotate2(pixel_rotation(pixel), vec2(cos(angle), sin(angle)));
+    vec2 center = vec2(pixel) + 0.5;
+    float sum = 0.0;
+    for (uint d = 0u; d < dirs; ++d) {
+        float a = 6.28318530718 * float(d) / float(dirs);
+        vec2 dir = rotate2(vec2(cos(a), sin(a)), rot);
+        for (uint i = 1u; i <= steps; ++i) {
+            float s = near_px * pow(far_px / near_px, float(i) / float(steps)) * scale; // eq 8
+            ivec2 q_pixel = ivec2(floor(center + dir * s));
+            if (any(lessThan(q_pixel, ivec2(0))) || any(greaterThanEqual(uvec2(q_pixel), frame.size.xy)))
+                continue;
+            vec4 q = texelFetch(g_position, q_pixel, 0);
+            if (q.w == 0.0) continue;
+            vec3 v = q.xyz - p;
+            float d2 = dot(v, v);
+            // Same-point samples carry no direction: 1e-12 of the squared depth is far below
+            // one pixel's footprint at any depth.
+            if (d2 <= 1e-12 * dist * dist) continue;
+            float len = sqrt(d2);
+            float x = len / radius;
+            sum += max(dot(n, v / len), 0.0) / (1.0 + frame.ao_params.y * x + frame.ao_params.z * x * x);
+        }
+    }
+    return sum / float(dirs * steps);
+}
+
+// Mittring 2007: points in a sphere of the world radius around p; a point is occluded when
+// the visible surface at its screen position is in front of it (within the radius).
+float ao_crytek(ivec2 pixel, vec3 p, float pattern) {
+    uint count = frame.ao_config.y;
+    float radius = frame.ao_params.x * pattern_scale(pattern);
+    vec3 view_dir = safe_normalize(p - frame.camera_pos.xyz, vec3(0.0, 0.0, -1.0));
+    vec3 t = safe_normalize(cross(view_dir, abs(view_dir.y) < 0.99 ? vec3(0, 1, 0) : vec3(1, 0, 0)), vec3(1, 0, 0));
+    vec3 b = cross(view_dir, t);
+    float angle = frame.ao_pattern.x * pattern;
+    vec2 rot = rotate2(pixel_rotation(pixel), vec2(cos(angle), sin(angle)));
+    float occluded = 0.0;
+    for (uint k = 0u; k < count; ++k) {
+        // Fibonacci sphere directions, radii spread so the points fill the ball uniformly.
+        float z = 1.0 - 2.0 * (float(k) + 0.5) / float(count);
+        float r_xy = sqrt(max(1.0 - z * z, 0.0));
+        float phi = 2.39996322973 * float(k);
+        vec2 xy = rotate2(vec2(cos(phi), sin(phi)) * r_xy, rot);
+        float r = radius * pow((float(k) + 0.5) / float(count), 1.0 / 3.0);
+        vec3 s = p + r * (xy.x * t + xy.y * b + z * view_dir);
+        vec4 clip = frame.view_proj * vec4(s, 1.0);
+        if (clip.w <= 0.0) continue;
+        vec2 uv = clip.xy / clip.w * 0.5 + 0.5;
+        ivec2 q_pixel = ivec2(floor(uv * vec2(frame.size.xy)));
+        if (any(lessThan(q_pixel, ivec2(0))) || any(greaterThanEqual(uvec2(q_pixel), frame.size.xy)))
+            continue;
+        vec4 q = texelFetch(g_position, q_pixel, 0);
+        if (q.w == 0.0) continue;
+        float scene_depth = (frame.view_proj * vec4(q.xyz, 1.0)).w;
+        float gap = clip.w - scene_depth;
+        // In front of the sample by more than 1e-4 of its depth (fp32 noise), within the radius.
+        if (gap > 1e-4 * clip.w && gap < radius) occluded += 1.0;
+    }
+    return occluded / float(count);
+}
+
+// Occlusion averaged over `patterns` consecutive patterns starting at `first`.
+float ao_estimate(ivec2 pixel, vec3 p, vec3 n, float first, uint patterns) {
+    float sum = 0.0;
+    for (uint j = 0u; j < patterns; ++j) {
+        float pattern = first + float(j);
+        sum += frame.ao_config.w == 1u ? ao_crytek(pixel, p, pattern) : ao_thesis(pixel, p, n, pattern);
+    }
+    return sum / float(max(patterns, 1u));
+}

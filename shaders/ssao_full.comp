@@ -1,0 +1,38 @@
+#version 460
+// SSAO without reuse: every pixel, every frame, `patterns` patterns starting at the pattern
+// offset (1 fixed pattern for the thesis's no-reuse baseline; many for references).
+#extension GL_GOOGLE_include_directive : require
+#extension GL_EXT_samplerless_texture_functions : require
+#include "frame.glsl"
+#define COUNTERS_BINDING 4
+#include "counters.glsl"
+
+layout(local_size_x = 8, local_size_y = 8) in;
+
+layout(set = 1, binding = 0) uniform texture2D g_position;
+layout(set = 1, binding = 1) uniform texture2D g_normal;
+layout(set = 1, binding = 2) uniform texture2D random_vectors;
+layout(set = 1, binding = 3, rgba16f) uniform writeonly image2D ao_out;
+
+#include "ao.glsl"
+
+shared uint block_computed;
+
+void main() {
+    if (gl_LocalInvocationIndex == 0u) block_computed = 0u;
+    barrier();
+    ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
+    if (all(lessThan(uvec2(pixel), frame.size.xy))) {
+        vec4 position = texelFetch(g_position, pixel, 0);
+        float visibility = 1.0;
+        if (position.w != 0.0) {
+            vec3 n = texelFetch(g_normal, pixel, 0).xyz;
+            visibility = 1.0 - ao_estimate(pixel, position.xyz, n, frame.ao_pattern.y, frame.ao_config.z);
+            atomicAdd(block_computed, 1u);
+        }
+        imageStore(ao_out, pixel, vec4(visibility, float(frame.ao_config.z), 0.0, 0.0));
+    }
+    barrier();
+    if (gl_LocalInvocationIndex == 0u && block_computed > 0u)
+        atomicAdd(counters.ssao_computed_pixels, block_computed);
+}

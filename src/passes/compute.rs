@@ -1,0 +1,61 @@
+//! What every full-screen compute pass shares: one pipeline and a descriptor set per frame
+//! parity (the G-buffer position and the histories are ping-ponged).
+
+use crate::error::Result;
+use crate::shaders::{ReflectedBinding, ShaderModuleInfo};
+use crate::vk::cmd::Recorder;
+use crate::vk::{Buffer, Context, DescriptorPool, Pipeline, SetWriter};
+use ash::vk;
+use std::sync::Arc;
+
+pub struct ComputePass {
+    pub pipeline: Pipeline,
+    pub sets: [vk::DescriptorSet; 2],
+}
+
+impl ComputePass {
+    pub fn new(
+        ctx: &Arc<Context>,
+        pool: &DescriptorPool,
+        name: &'static str,
+        module: &ShaderModuleInfo,
+        bindings: &[ReflectedBinding],
+    ) -> Result<Self> {
+        let pipeline = Pipeline::compute(ctx, name, module, bindings)?;
+        let sets = [
+            pool.allocate(pipeline.set_layouts[1])?,
+            pool.allocate(pipeline.set_layouts[1])?,
+        ];
+        Ok(Self { pipeline, sets })
+    }
+
+    /// Write the set of `parity`.
+    pub fn write(&self, ctx: &Context, parity: usize, writer: SetWriter) {
+        writer.write(ctx, self.sets[parity]);
+    }
+
+    /// Bind for `parity` and dispatch over `width x height` pixels.
+    pub fn dispatch(
+        &self,
+        rec: &Recorder<'_>,
+        frame_set: vk::DescriptorSet,
+        parity: usize,
+        width: u32,
+        height: u32,
+    ) {
+        rec.bind(&self.pipeline, &[frame_set, self.sets[parity]]);
+        rec.dispatch_2d(&self.pipeline, width, height);
+    }
+
+    /// Bind for `parity` and dispatch with the workgroup count read from `args` (offset 0).
+    pub fn dispatch_indirect(
+        &self,
+        rec: &Recorder<'_>,
+        frame_set: vk::DescriptorSet,
+        parity: usize,
+        args: &Buffer,
+    ) {
+        rec.bind(&self.pipeline, &[frame_set, self.sets[parity]]);
+        rec.dispatch_indirect(args);
+    }
+}

@@ -1,0 +1,260 @@
+//! What a run renders: size, effects and their parameters. Parsed from the command line,
+//! validated here (absurd values get a clear error, never a silent clamp).
+
+use super::frame::Pcf;
+use crate::error::{Error, Result};
+use serde::Serialize;
+
+/// Largest accepted image side: well above any real display, small enough that a typo like
+/// `--size 100000x100000` fails with a clear message instead of an allocation error.
+pub const MAX_SIZE: u32 = 16384;
+
+/// Which effects are recorded. Disabled effects cost nothing: their passes are not recorded
+/// and the composite permutation without them is used.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+pub struct Effects {
+    pub direct: bool,
+    pub ao: bool,
+}
+
+impl Effects {
+    pub const ALL: Effects = Effects {
+        direct: true,
+        ao: true,
+    };
+
+    /// Comma-separated list: `direct`, `ao`, or `all`.
+    pub fn parse(s: &str) -> std::result::Result<Effects, String> {
+        let mut e = Effects {
+            direct: false,
+            ao: false,
+        };
+        for part in s.split(',').map(str::trim).filter(|p| !p.is_empty()) {
+            match part {
+                "all" => e = Effects::ALL,
+                "direct" => e.direct = true,
+                "ao" => e.ao = true,
+                other => {
+                    return Err(format!(
+                        "unknown effect {other:?} in --effects (known: direct, ao, all)"
+                    ))
+                }
+            }
+        }
+        if !e.direct && !e.ao {
+            return Err("--effects selects nothing (use e.g. direct,ao)".into());
+        }
+        Ok(e)
+    }
+}
+
+/// The SSAO estimator.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, clap::ValueEnum)]
+#[serde(rename_all = "lowercase")]
+pub enum AoEstimator {
+    /// Lin 2013 eqs 6-8: normal-weighted, attenuated, log-spaced screen-space steps.
+    Thesis,
+    /// Mittring 2007: depth comparisons of points in a sphere (flat surfaces come out grey).
+    Crytek,
+}
+
+/// How a fresh estimate is merged into the reprojected history.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+#[serde(tag = "mode", rename_all = "lowercase")]
+pub enum Accumulate {
+    /// Lin 2013 eqs 4-5: confidence = 1 - saturate(|V_old - V_new|) / (1 + bias).
+    Confidence { bias: f32 },
+    /// Exponential moving average with a fixed weight on the new estimate.
+    Ema { alpha: f32 },
+    /// Cumulative mean over at most `cap` estimates.
+    Mean { cap: u32 },
+}
+
+impl Accumulate {
+    /// Default bias of eq 4. The thesis leaves it to the user; 0.1 keeps confidence <= 0.91 for
+    /// a full-range difference and ~1 for small ones.
+    pub const CONFIDENCE: Accumulate = Accumulate::Confidence { bias: 0.1 };
+
+    pub fn code(&self) -> u32 {
+        match self {
+            Accumulate::Confidence { .. } => 0,
+            Accumulate::Ema { .. } => 1,
+            Accumulate::Mean { .. } => 2,
+        }
+    }
+
+    pub fn parameter(&self) -> f32 {
+        match *self {
+            Accumulate::Confidence { bias } => bias,
+            Accumulate::Ema { alpha } => alpha,
+            Accumulate::Mean { cap } => cap as f32,
+        }
+    }
+}
+
+/// Disocclusion threshold of eq 3.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+#[serde(tag = "mode", rename_all = "lowercase")]
+pub enum Epsilon {
+    /// `scale` pixel footprints at the pixel's distance, divided by |cos| of the view angle:
+    /// the distance between neighbouring texels on that surface, so it is independent of the
+    /// scene's units and of depth.
+    Relative { scale: f32 },
+    /// The thesis's absolute world-space threshold (0.1 and 0.01 in Figure 3.1).
+    Absolute { epsilon: f32 },
+}
+
+impl Epsilon {
+    /// Two texel spacings: the nearest previous texel is at most ~0.71 spacings away for a
+    /// surface that was visible, so 2 leaves margin for interpolation and fp16 noise.
+    pub const DEFAULT: Epsilon = Epsilon::Relative { scale: 2.0 };
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct TemporalConfig {
+    /// Reverse-reprojection reuse; off = recompute every frame with a fixed pattern and blur.
+    pub reuse: bool,
+    pub accumulate: Accumulate,
+    /// Patterns per pixel before it counts as converged: 360 / 10 degrees in the thesis.
+    pub rotation_limit: u32,
+    /// Rotation of the sampling pattern between frames, degrees (the thesis's theta = 10).
+    pub rotation_deg: f32,
+    pub epsilon: Epsilon,
+    /// Nehab et al.'s tiled refresh: one tile per frame recomputed from scratch.
+    pub refresh: bool,
+}
+
+impl Default for TemporalConfig {
+    fn default() -> Self {
+        Self {
+            reuse: true,
+            accumulate: Accumulate::CONFIDENCE,
+            rotation_limit: 36,
+            rotation_deg: 10.0,
+            epsilon: Epsilon::DEFAULT,
+            refresh: true,
+        }
+    }
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct AoConfig {
+    pub estimator: AoEstimator,
+    /// Samples per pattern (thesis: directions x steps; 32 = 8 x 4).
+    pub samples: u32,
+    /// World-space sampling radius as a fraction of the scene's bounding radius (scale-free).
+    pub radius: f32,
+    /// Attenuation D(d) = 1 + a d + b d^2 (eq 7), d in units of the sampling radius.
+    pub attenuation: [f32; 2],
+    /// Nearest sample distance in pixels (eq 8's `near`).
+    pub near_px: f32,
+    /// Patterns evaluated at once (1 in normal runs; references use many).
+    pub patterns: u32,
+}
+
+impl Default for AoConfig {
+    fn default() -> Self {
+        Self {
+            estimator: AoEstimator::Thesis,
+            samples: 32,
+            radius: 0.15,
+            attenuation: [0.5, 2.0],
+            near_px: 1.5,
+            patterns: 1,
+        }
+    }
+}
+
+impl AoConfig {
+    /// Directions and steps per direction of the thesis estimator for `samples`.
+    pub fn directions_steps(&self) -> (u32, u32) {
+        let steps = if self.samples >= 16 { 4 } else { 2 };
+        ((self.samples / steps).max(1), steps)
+    }
+}
+
+#[derive(Clone, Copy, Debug, Serialize)]
+pub struct RenderConfig {
+    pub width: u32,
+    pub height: u32,
+    /// Side of the (square) reflective shadow map / shadow map.
+    pub rsm_size: u32,
+    pub pcf: Pcf,
+    pub effects: Effects,
+    pub ao: AoConfig,
+    pub temporal: TemporalConfig,
+}
+
+impl Default for RenderConfig {
+    fn default() -> Self {
+        Self {
+            width: 512,
+            height: 512,
+            rsm_size: 512,
+            pcf: Pcf::DEFAULT,
+            effects: Effects::ALL,
+            ao: AoConfig::default(),
+            temporal: TemporalConfig::default(),
+        }
+    }
+}
+
+impl RenderConfig {
+    pub fn validate(&self) -> Result<()> {
+        let bad = |m: String| Err(Error::Config(m));
+        for (what, v) in [
+            ("width", self.width),
+            ("height", self.height),
+            ("shadow map size", self.rsm_size),
+        ] {
+            if v == 0 || v > MAX_SIZE {
+                return bad(format!("{what} {v} is outside 1..={MAX_SIZE}"));
+            }
+        }
+        let ao = &self.ao;
+        if !(1..=4096).contains(&ao.samples) {
+            return bad(format!("AO samples {} outside 1..=4096", ao.samples));
+        }
+        if !(1..=1024).contains(&ao.patterns) {
+            return bad(format!("AO patterns {} outside 1..=1024", ao.patterns));
+        }
+        if !(ao.radius.is_finite() && ao.radius > 0.0 && ao.radius <= 10.0) {
+            return bad(format!(
+                "AO radius {} must be in (0, 10] scene radii",
+                ao.radius
+            ));
+        }
+        if ao.attenuation.iter().any(|c| !c.is_finite() || *c < 0.0) {
+            return bad("AO attenuation coefficients must be finite and >= 0".into());
+        }
+        let t = &self.temporal;
+        if !(1..=4096).contains(&t.rotation_limit) {
+            return bad(format!(
+                "rotation limit {} outside 1..=4096",
+                t.rotation_limit
+            ));
+        }
+        if !t.rotation_deg.is_finite() {
+            return bad("rotation angle must be finite".into());
+        }
+        match t.accumulate {
+            Accumulate::Confidence { bias } if !(bias.is_finite() && bias >= 0.0) => {
+                return bad(format!("confidence bias {bias} must be finite and >= 0"))
+            }
+            Accumulate::Ema { alpha } if !(alpha > 0.0 && alpha <= 1.0) => {
+                return bad(format!("EMA alpha {alpha} must be in (0, 1]"))
+            }
+            Accumulate::Mean { cap: 0 } => return bad("mean cap must be at least 1".into()),
+            _ => {}
+        }
+        match t.epsilon {
+            Epsilon::Relative { scale } if !(scale.is_finite() && scale > 0.0) => {
+                bad(format!("relative epsilon {scale} must be finite and > 0"))
+            }
+            Epsilon::Absolute { epsilon } if !(epsilon.is_finite() && epsilon > 0.0) => {
+                bad(format!("absolute epsilon {epsilon} must be finite and > 0"))
+            }
+            _ => Ok(()),
+        }
+    }
+}
