@@ -56,7 +56,10 @@ void main() {
                         vec2 g = f - 0.5;
                         ivec2 base = ivec2(floor(g));
                         vec2 w = g - vec2(base);
-                        bool all_valid = true;
+                        // Sub-1/1000-pixel motion is rounding noise of eq 1 (a static camera):
+                        // reuse the texel itself, or fp16 history would drift by blending.
+                        bool still = all(lessThan(abs(w - round(w)), vec2(1e-3)));
+                        bool all_valid = !still;
                         for (int k = 0; k < 4; ++k)
                             all_valid = all_valid && tap_valid(base + ivec2(k & 1, k >> 1), p, eps);
                         if (all_valid) {

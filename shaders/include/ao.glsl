@@ -84,8 +84,10 @@ float ao_crytek(ivec2 pixel, vec3 p, float pattern) {
         if (q.w == 0.0) continue;
         float scene_depth = (frame.view_proj * vec4(q.xyz, 1.0)).w;
         float gap = clip.w - scene_depth;
-        // In front of the sample by more than 1e-4 of its depth (fp32 noise), within the radius.
-        if (gap > 1e-4 * clip.w && gap < radius) occluded += 1.0;
+        // In front of the sample by more than 1e-4 of its depth (fp32 noise). The range check
+        // allows 4 radii: along a grazing view ray a point just below a surface is several
+        // radii behind it, and a tighter check would wrongly light flat ground.
+        if (gap > 1e-4 * clip.w && gap < 4.0 * radius) occluded += 1.0;
     }
     return occluded / float(count);
 }

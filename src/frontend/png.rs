@@ -62,7 +62,7 @@ pub fn visualize(target: Target, data: &ImageData, bounds: &Aabb) -> Vec<u8> {
         .iter()
         .flat_map(|t| {
             let rgb = match target {
-                Target::GPosition | Target::RsmPosition => {
+                Target::GPosition | Target::GPositionHistory | Target::RsmPosition => {
                     if t[3] == 0.0 {
                         [0.0; 3]
                     } else {

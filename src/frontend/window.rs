@@ -721,6 +721,9 @@ impl App {
             }
         }
         self.run_script(event_loop);
+        if event_loop.exiting() {
+            return Ok(());
+        }
         if self.zero_ticks > 0 {
             self.minimised = true;
             eprintln!("window minimised (zero extent): rendering paused");

@@ -97,6 +97,8 @@ pub enum Target {
     Output,
     Direct,
     GPosition,
+    /// Last frame's G-buffer position: the world-position history of eq 2.
+    GPositionHistory,
     GNormal,
     GAlbedo,
     GDepth,
@@ -111,10 +113,11 @@ pub enum Target {
 }
 
 impl Target {
-    pub const ALL: [Target; 12] = [
+    pub const ALL: [Target; 13] = [
         Target::Output,
         Target::Direct,
         Target::GPosition,
+        Target::GPositionHistory,
         Target::GNormal,
         Target::GAlbedo,
         Target::GDepth,
@@ -131,6 +134,7 @@ impl Target {
             Target::Output => "output",
             Target::Direct => "direct",
             Target::GPosition => "gbuffer_position",
+            Target::GPositionHistory => "gbuffer_position_history",
             Target::GNormal => "gbuffer_normal",
             Target::GAlbedo => "gbuffer_albedo",
             Target::GDepth => "gbuffer_depth",
@@ -188,6 +192,7 @@ impl Targets {
             Target::Output => &self.output,
             Target::Direct => &self.direct,
             Target::GPosition => &self.gbuffer.position[parity],
+            Target::GPositionHistory => &self.gbuffer.position[1 - parity],
             Target::GNormal => &self.gbuffer.normal,
             Target::GAlbedo => &self.gbuffer.albedo,
             Target::GDepth => &self.gbuffer.depth,

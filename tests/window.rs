@@ -1,0 +1,322 @@
+//! The window frontend under X11 (Xvfb) on lavapipe, with validation + synchronization
+//! validation: scripted resizes (down to 1x1), a zero extent, buffer display cycling, quitting
+//! by key; the presented image against the headless render of the same frame; and
+//! `bench --window`'s report.
+//!
+//! The tests use `$DISPLAY` when set (tools/test starts Xvfb); otherwise they start their own
+//! Xvfb on a free display number. Only when there is neither a display nor Xvfb are they
+//! skipped, with a message.
+
+use std::io::{BufRead, BufReader};
+use std::path::PathBuf;
+use std::process::{Child, Command, Output, Stdio};
+
+/// An X display for the test: `$DISPLAY`, or a private Xvfb killed on drop.
+struct Display {
+    name: String,
+    xvfb: Option<Child>,
+}
+
+impl Drop for Display {
+    fn drop(&mut self) {
+        if let Some(child) = &mut self.xvfb {
+            let _ = child.kill();
+            let _ = child.wait();
+        }
+    }
+}
+
+fn display() -> Option<Display> {
+    if let Some(name) = std::env::var("DISPLAY").ok().filter(|d| !d.is_empty()) {
+        return Some(Display { name, xvfb: None });
+    }
+    // -displayfd: Xvfb picks a free display number and writes it to stdout when ready.
+    let spawned = Command::new("Xvfb")
+        .args([
+            "-displayfd",
+            "1",
+            "-screen",
+            "0",
+            "1024x768x24",
+            "-nolisten",
+            "tcp",
+        ])
+        .stdout(Stdio::piped())
+        .stderr(Stdio::null())
+        .spawn();
+    let mut child = match spawned {
+        Ok(c) => c,
+        Err(e) => {
+            eprintln!(
+                "SKIPPED: DISPLAY is not set and Xvfb could not be started ({e}); install xvfb \
+                 (tools/setup-vulkan does) or run tools/test"
+            );
+            return None;
+        }
+    };
+    let mut line = String::new();
+    let stdout = child.stdout.take().expect("piped stdout");
+    BufReader::new(stdout)
+        .read_line(&mut line)
+        .expect("Xvfb display number");
+    let number: u32 = line
+        .trim()
+        .parse()
+        .unwrap_or_else(|_| panic!("Xvfb printed {line:?} instead of a display number"));
+    Some(Display {
+        name: format!(":{number}"),
+        xvfb: Some(child),
+    })
+}
+
+fn ssgi(display: &Display, args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_ssgi"))
+        .args(args)
+        .env("DISPLAY", &display.name)
+        .env_remove("WAYLAND_DISPLAY")
+        .output()
+        .expect("run ssgi")
+}
+
+fn tmp(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("ssgi-window-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    dir.join(name)
+}
+
+/// Success, no validation message (including leaks reported at device destruction, which are
+/// printed after the exit status is decided), no panic.
+fn assert_clean_run(out: &Output, what: &str) -> String {
+    let stderr = String::from_utf8_lossy(&out.stderr).into_owned();
+    assert!(out.status.success(), "{what} failed:\n{stderr}");
+    assert!(
+        !stderr.contains("vulkan: ["),
+        "{what}: validation messages:\n{stderr}"
+    );
+    assert!(!stderr.contains("panicked"), "{what} panicked:\n{stderr}");
+    stderr
+}
+
+#[test]
+fn resize_minimise_cycle_and_close_are_validation_clean() {
+    let Some(display) = display() else { return };
+    let script = [
+        "4:key=cycle", // direct
+        "6:key=cycle", // ao
+        "8:key=cycle", // normal
+        "10:resize=96x72",
+        "12:key=cycle", // albedo
+        "14:key=cycle", // position
+        "16:key=pcf",
+        "18:resize=8x8",
+        "22:zero=15",
+        "26:key=cycle", // final
+        "28:resize=1x1",
+        "32:resize=40x56",
+    ]
+    .join(",");
+    let out = ssgi(
+        &display,
+        &[
+            "--validation",
+            "view",
+            "--size",
+            "64x64",
+            "--rsm-size",
+            "128",
+            "--frames",
+            "40",
+            "--script",
+            &script,
+        ],
+    );
+    let stderr = assert_clean_run(&out, "view");
+    for expected in [
+        "swapchain: 64x64",
+        "swapchain: 96x72",
+        "swapchain: 8x8",
+        "swapchain: 1x1",
+        "swapchain: 40x56",
+        "present mode fifo",
+        "window minimised (zero extent): rendering paused",
+        "window restored: rendering resumed",
+        "display: position",
+        "display: final",
+        "effects: -pcf",
+        "presented 40 frames",
+    ] {
+        assert!(
+            stderr.contains(expected),
+            "expected {expected:?} in:\n{stderr}"
+        );
+    }
+    // Rendering paused for the zero extent and resumed (with a new swapchain) after it.
+    let paused = stderr.find("rendering paused").unwrap();
+    let resumed = stderr.find("rendering resumed").unwrap();
+    assert!(paused < resumed);
+}
+
+#[test]
+fn quit_key_exits_cleanly_without_a_frame_limit() {
+    let Some(display) = display() else { return };
+    let out = ssgi(
+        &display,
+        &[
+            "--validation",
+            "view",
+            "--size",
+            "48x48",
+            "--rsm-size",
+            "128",
+            "--script",
+            "5:key=help,9:key=quit",
+        ],
+    );
+    let stderr = assert_clean_run(&out, "view");
+    assert!(stderr.contains("presented 9 frames"), "{stderr}");
+    assert!(stderr.contains("ssgi view keys"), "help printed:\n{stderr}");
+}
+
+fn load_rgba(path: &PathBuf) -> image::RgbaImage {
+    image::open(path)
+        .unwrap_or_else(|e| panic!("{}: {e}", path.display()))
+        .to_rgba8()
+}
+
+#[test]
+fn presented_frame_matches_the_headless_render() {
+    let Some(display) = display() else { return };
+    let (size, frames) = ("64x48", "6");
+    let shot = tmp("presented.png");
+    let reference = tmp("headless.png");
+    let out = ssgi(
+        &display,
+        &[
+            "--validation",
+            "view",
+            "--size",
+            size,
+            "--rsm-size",
+            "128",
+            "--frames",
+            frames,
+            "--capture",
+            shot.to_str().unwrap(),
+        ],
+    );
+    assert_clean_run(&out, "view --capture");
+    let out = Command::new(env!("CARGO_BIN_EXE_ssgi"))
+        .args([
+            "--validation",
+            "render",
+            "--size",
+            size,
+            "--rsm-size",
+            "128",
+            "--frames",
+            frames,
+            "--out",
+            reference.to_str().unwrap(),
+        ])
+        .output()
+        .unwrap();
+    assert_clean_run(&out, "render");
+    let (a, b) = (load_rgba(&shot), load_rgba(&reference));
+    assert_eq!(a.dimensions(), (64, 48));
+    assert_eq!(a.dimensions(), b.dimensions());
+    // The picture is not trivially flat (a black or cleared swapchain would fail here).
+    let lum: Vec<u32> = b
+        .pixels()
+        .map(|p| p[0] as u32 + p[1] as u32 + p[2] as u32)
+        .collect();
+    let (lo, hi) = (lum.iter().min().unwrap(), lum.iter().max().unwrap());
+    assert!(hi - lo > 100, "reference image is flat ({lo}..{hi})");
+    // Red left wall, green right wall.
+    let sums = |x0: u32, x1: u32| {
+        let mut rgb = [0u64; 3];
+        for (x, _, p) in a.enumerate_pixels() {
+            if (x0..x1).contains(&x) {
+                for c in 0..3 {
+                    rgb[c] += p[c] as u64;
+                }
+            }
+        }
+        rgb
+    };
+    let (left, right) = (sums(0, 21), sums(43, 64));
+    // (A BGRA/RGBA swap would turn the red wall blue.)
+    let dominant = |rgb: [u64; 3], c: usize| (0..3).all(|o| o == c || rgb[c] * 5 > rgb[o] * 6);
+    assert!(
+        dominant(left, 0) && dominant(right, 1),
+        "left third {left:?} should be red, right third {right:?} green"
+    );
+    let total = (a.width() * a.height()) as usize;
+    let bad = a
+        .pixels()
+        .zip(b.pixels())
+        .filter(|(p, q)| (0..4).any(|c| (p[c] as i32 - q[c] as i32).abs() > 2))
+        .count();
+    assert!(
+        bad * 1000 <= total,
+        "{bad} of {total} pixels differ by more than 2/255 from the headless render"
+    );
+}
+
+#[test]
+fn bench_window_reports_the_present_mode() {
+    let Some(display) = display() else { return };
+    let json = tmp("bench-window.json");
+    let out = ssgi(
+        &display,
+        &[
+            "--validation",
+            "bench",
+            "--window",
+            "--size",
+            "48x48",
+            "--rsm-size",
+            "128",
+            "--path",
+            "orbit",
+            "--frames",
+            "5",
+            "--warmup",
+            "1",
+            "--json",
+            json.to_str().unwrap(),
+        ],
+    );
+    let stderr = assert_clean_run(&out, "bench --window");
+    let report: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+    assert_eq!(report["config"]["window"], true);
+    let mode = report["config"]["present_mode"].as_str().unwrap();
+    assert!(
+        ["immediate", "mailbox", "fifo"].contains(&mode),
+        "present mode {mode}"
+    );
+    assert!(
+        stderr.contains(&format!("present mode for benchmarking: {mode}")),
+        "{stderr}"
+    );
+    assert_eq!(report["frames"].as_array().unwrap().len(), 6);
+    assert_eq!(report["measured_frames"], 5);
+    assert!(report["total"]["median_ms"].as_f64().unwrap() > 0.0);
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(stdout.contains("composite"), "{stdout}");
+}
+
+#[test]
+fn view_without_a_display_fails_with_a_clear_error() {
+    let out = Command::new(env!("CARGO_BIN_EXE_ssgi"))
+        .args(["view", "--frames", "1"])
+        .env_remove("DISPLAY")
+        .env_remove("WAYLAND_DISPLAY")
+        .env_remove("WAYLAND_SOCKET")
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(!out.status.success());
+    assert!(stderr.contains("cannot open a window"), "{stderr}");
+    assert!(!stderr.contains("panicked"), "{stderr}");
+}
