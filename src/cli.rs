@@ -1,5 +1,6 @@
 //! Command-line definitions and the `render` / `bench` jobs (the binary only dispatches).
 
+use crate::bench::compare::Comparison;
 use crate::bench::Report;
 use crate::error::{Error, Result};
 use crate::frontend::headless;
@@ -208,6 +209,10 @@ pub struct BenchArgs {
     /// Present every frame to a window (present mode immediate, else mailbox, else fifo).
     #[arg(long)]
     pub window: bool,
+    /// Run the path twice in this process, with reuse on and off, and report both with the
+    /// speed-up ratios (overrides --reuse).
+    #[arg(long, conflicts_with = "window")]
+    pub compare_reuse: bool,
 }
 
 #[derive(Args, Debug)]
@@ -333,11 +338,93 @@ pub fn render(cli: &Cli, args: &RenderArgs) -> Result<()> {
     finish(&ctx)
 }
 
+fn write_json(path: &std::path::Path, value: &impl serde::Serialize) -> Result<()> {
+    if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty()) {
+        std::fs::create_dir_all(dir).map_err(|source| Error::Io {
+            path: dir.to_path_buf(),
+            source,
+        })?;
+    }
+    let text = serde_json::to_string_pretty(value)
+        .map_err(|e| Error::Config(format!("JSON encoding failed: {e}")))?;
+    std::fs::write(path, text).map_err(|source| Error::Io {
+        path: path.to_path_buf(),
+        source,
+    })?;
+    eprintln!("wrote {}", path.display());
+    Ok(())
+}
+
+/// The report's `config` object for a headless or windowed bench run.
+fn bench_config(
+    args: &BenchArgs,
+    ctx: &Context,
+    renderer: &Renderer,
+    path: &CameraPath,
+) -> serde_json::Value {
+    serde_json::json!({
+        "scene": args.scene.scene,
+        "path": path.name(),
+        "frames": args.frames,
+        "warmup": args.warmup,
+        "rsm_size": args.scene.rsm_size,
+        "pcf_samples": args.scene.pcf.samples(),
+        "pcf_radius_texels": args.scene.pcf.radius_texels,
+        "render": renderer.config,
+        "device_type": ctx.info.device_type,
+        "api_version": ctx.info.api_version,
+        "triangles": renderer.scene.mesh.indices.len() / 3,
+        "window": false,
+    })
+}
+
+/// `bench --compare-reuse`: both configurations on one context, one after the other.
+fn bench_compare_reuse(cli: &Cli, args: &BenchArgs) -> Result<()> {
+    let (scene, path) = load(cli, &args.scene)?;
+    let ctx = Context::new(&context_options(cli))?;
+    let names: Vec<&str> = PassId::ALL.iter().map(|p| p.name()).collect();
+    let mut reports = Vec::new();
+    for reuse in [true, false] {
+        let mut config = args.scene.render_config();
+        config.temporal.reuse = reuse;
+        let mut renderer = Renderer::new(&ctx, scene.clone(), config)?;
+        let timings = headless::run(&mut renderer, &path, args.frames + args.warmup, true)?;
+        let report = Report::new(
+            &ctx.info,
+            args.scene.size.0,
+            args.scene.size.1,
+            bench_config(args, &ctx, &renderer, &path),
+            &names,
+            &timings,
+            args.warmup as u64,
+        );
+        println!("reuse {}:", if reuse { "on" } else { "off" });
+        print!("{}", report.table());
+        if let (Some(out), true) = (&args.out, reuse) {
+            headless::write_output(&mut renderer, out)?;
+            eprintln!("wrote {}", out.display());
+        }
+        reports.push(report);
+    }
+    let [on, off]: [Report; 2] = reports
+        .try_into()
+        .map_err(|_| Error::Config("comparison needs two runs".into()))?;
+    let comparison = Comparison::new("reuse", ["reuse on", "reuse off"], [on, off]);
+    print!("{}", comparison.table());
+    if let Some(json) = &args.json {
+        write_json(json, &comparison)?;
+    }
+    finish(&ctx)
+}
+
 pub fn bench(cli: &Cli, args: &BenchArgs) -> Result<()> {
     check_frames(args.frames, "--frames")?;
     check_frames(args.warmup, "--warmup")?;
     if args.frames == 0 {
         return Err(Error::Config("--frames must be at least 1".into()));
+    }
+    if args.compare_reuse {
+        return bench_compare_reuse(cli, args);
     }
     let total = args.frames + args.warmup;
     let (ctx, mut renderer, path, timings, present_mode) = if args.window {
@@ -375,21 +462,9 @@ pub fn bench(cli: &Cli, args: &BenchArgs) -> Result<()> {
         let timings: Vec<FrameTiming> = headless::run(&mut renderer, &path, total, true)?;
         (ctx, renderer, path, timings, None)
     };
-    let mut config = serde_json::json!({
-        "scene": args.scene.scene,
-        "path": path.name(),
-        "frames": args.frames,
-        "warmup": args.warmup,
-        "rsm_size": args.scene.rsm_size,
-        "pcf_samples": args.scene.pcf.samples(),
-        "pcf_radius_texels": args.scene.pcf.radius_texels,
-        "render": renderer.config,
-        "device_type": ctx.info.device_type,
-        "api_version": ctx.info.api_version,
-        "triangles": renderer.scene.mesh.indices.len() / 3,
-        "window": present_mode.is_some(),
-    });
+    let mut config = bench_config(args, &ctx, &renderer, &path);
     if let Some(mode) = present_mode {
+        config["window"] = true.into();
         config["present_mode"] = mode.into();
     }
     let names: Vec<&str> = PassId::ALL.iter().map(|p| p.name()).collect();
@@ -404,19 +479,7 @@ pub fn bench(cli: &Cli, args: &BenchArgs) -> Result<()> {
     );
     print!("{}", report.table());
     if let Some(json) = &args.json {
-        if let Some(dir) = json.parent().filter(|d| !d.as_os_str().is_empty()) {
-            std::fs::create_dir_all(dir).map_err(|source| Error::Io {
-                path: dir.to_path_buf(),
-                source,
-            })?;
-        }
-        let text = serde_json::to_string_pretty(&report)
-            .map_err(|e| Error::Config(format!("JSON encoding failed: {e}")))?;
-        std::fs::write(json, text).map_err(|source| Error::Io {
-            path: json.clone(),
-            source,
-        })?;
-        eprintln!("wrote {}", json.display());
+        write_json(json, &report)?;
     }
     if let Some(out) = &args.out {
         headless::write_output(&mut renderer, out)?;

@@ -1,7 +1,13 @@
 //! The window frontend under X11 (Xvfb) on lavapipe, with validation + synchronization
 //! validation: scripted resizes (down to 1x1), a zero extent, buffer display cycling, quitting
 //! by key; the presented image against the headless render of the same frame; and
-//! `bench --window`'s report.
+//! `bench --window`'s report. The runs use the binary's hidden `--script` and `--capture`
+//! flags.
+//!
+//! X11 never reports a zero extent (a minimised X window keeps its size and a 0x0 window is
+//! invalid; Xvfb has no window manager to minimise with), so the zero-extent step is simulated
+//! by the frontend (`zero=N`: it behaves as if the surface had a zero extent for N event-loop
+//! iterations, then recreates the swapchain).
 //!
 //! The tests use `$DISPLAY` when set (tools/test starts Xvfb); otherwise they start their own
 //! Xvfb on a free display number. Only when there is neither a display nor Xvfb are they

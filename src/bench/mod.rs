@@ -1,5 +1,6 @@
 //! Benchmark runs: timing aggregation and reports.
 
+pub mod compare;
 pub mod report;
 pub mod stats;
 

@@ -1064,6 +1064,24 @@ mod tests {
     }
 
     #[test]
+    fn title_averages_frame_time_and_passes() {
+        let mut stats = Stats::new();
+        assert_eq!(stats.title("x"), None, "nothing measured yet");
+        for ms in [10.0, 30.0] {
+            stats.add_wall(ms);
+            stats.add_gpu(&FrameTiming {
+                frame: 0,
+                passes: vec![("gbuffer", Some(ms / 10.0)), ("direct", None)],
+                ..Default::default()
+            });
+        }
+        stats.since -= Duration::from_secs(1);
+        let title = stats.title("ssgi").unwrap();
+        assert_eq!(title, "ssgi | 20.0 ms (50 fps) | GPU 2.00 ms: gbuffer 2.00");
+        assert_eq!(stats.frames, 0, "averages start over");
+    }
+
+    #[test]
     fn keys_map_to_actions() {
         let none = ModifiersState::empty();
         assert_eq!(

@@ -157,8 +157,8 @@ impl Default for AoConfig {
         Self {
             estimator: AoEstimator::Thesis,
             samples: 32,
-            radius: 0.15,
-            attenuation: [0.5, 2.0],
+            radius: 0.25,
+            attenuation: [0.0, 1.0],
             near_px: 1.5,
             patterns: 1,
         }
