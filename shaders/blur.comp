@@ -16,7 +16,7 @@ const float W[5] = float[5](1.0, 4.0, 6.0, 4.0, 1.0);
 void main() {
     ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
     if (any(greaterThanEqual(uvec2(pixel), frame.size.xy))) return;
-    vec2 sum = vec2(0.0);
+    vec4 sum = vec4(0.0);
     float weight = 0.0;
     for (int j = -2; j <= 2; ++j) {
         for (int i = -2; i <= 2; ++i) {
@@ -24,10 +24,10 @@ void main() {
             if (any(lessThan(q, ivec2(0))) || any(greaterThanEqual(uvec2(q), frame.size.xy))) continue;
             if (texelFetch(g_position, q, 0).w == 0.0) continue;
             float w = W[i + 2] * W[j + 2];
-            sum += w * texelFetch(ao_in, q, 0).rg;
+            sum += w * texelFetch(ao_in, q, 0);
             weight += w;
         }
     }
-    vec2 ao = weight > 0.0 ? sum / weight : texelFetch(ao_in, pixel, 0).rg;
-    imageStore(ao_out, pixel, vec4(ao, 0.0, 0.0));
+    vec4 ao = weight > 0.0 ? sum / weight : texelFetch(ao_in, pixel, 0);
+    imageStore(ao_out, pixel, ao);
 }

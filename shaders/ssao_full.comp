@@ -30,9 +30,9 @@ void main() {
             visibility = 1.0 - ao_estimate(pixel, position.xyz, n, frame.ao_pattern.y, frame.ao_config.z);
             atomicAdd(block_computed, 1u);
         }
-        imageStore(ao_out, pixel, vec4(visibility, float(frame.ao_config.z), 0.0, 0.0));
+        imageStore(ao_out, pixel, vec4(visibility, 0.0, 0.0, float(frame.ao_config.z)));
     }
     barrier();
     if (gl_LocalInvocationIndex == 0u && block_computed > 0u)
-        atomicAdd(counters.ssao_computed_pixels, block_computed);
+        atomicAdd(counters.computed_pixels, block_computed);
 }

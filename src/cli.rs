@@ -45,6 +45,8 @@ pub enum Command {
     Bench(BenchArgs),
     /// Open a window with a fly camera (press H in the window for the keys).
     View(ViewArgs),
+    /// Reproduce a thesis table: report.md, report.json, CSV and PNG plots in --out.
+    Table(crate::bench::cli::TableArgs),
 }
 
 #[derive(Args, Debug, Clone)]
@@ -234,7 +236,7 @@ pub struct ViewArgs {
 /// Frame counts above this are almost certainly a typo (a day at 1000 fps is 8.6e7).
 const MAX_FRAMES: u32 = 10_000_000;
 
-fn parse_size(s: &str) -> std::result::Result<(u32, u32), String> {
+pub(crate) fn parse_size(s: &str) -> std::result::Result<(u32, u32), String> {
     let (w, h) = s
         .split_once(['x', 'X'])
         .ok_or_else(|| format!("expected WIDTHxHEIGHT like 512x512, got {s:?}"))?;

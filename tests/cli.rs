@@ -79,8 +79,9 @@ fn bench_json_has_every_pass_and_skips_the_static_light_view() {
         [
             "light_view",
             "gbuffer",
-            "direct",
             "reproject",
+            "shadow",
+            "direct",
             "ssao",
             "composite"
         ]

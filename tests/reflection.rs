@@ -8,7 +8,7 @@ use ssgi::vk::pipeline::check_bindings;
 #[test]
 fn every_pass_layout_matches_reflection() {
     for layout in all_layouts() {
-        check_bindings(layout.pass, &layout.modules, layout.declared)
+        check_bindings(layout.pass, &layout.modules, &layout.declared)
             .unwrap_or_else(|e| panic!("{e}"));
     }
 }

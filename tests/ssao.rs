@@ -5,7 +5,9 @@
 mod common;
 
 use glam::{Mat4, Vec3, Vec4};
-use ssgi::renderer::config::{Accumulate, AoConfig, AoEstimator, Effects, RenderConfig, TemporalConfig};
+use ssgi::renderer::config::{
+    Accumulate, AoConfig, AoEstimator, Effects, RenderConfig, TemporalConfig,
+};
 use ssgi::renderer::frame::Pcf;
 use ssgi::renderer::targets::Target;
 use ssgi::renderer::Renderer;
@@ -19,14 +21,20 @@ fn config(size: u32, temporal: TemporalConfig, ao: AoConfig) -> RenderConfig {
         height: size,
         rsm_size: 128,
         pcf: Pcf::HARD,
-        effects: Effects { direct: false, ao: true },
+        effects: Effects {
+            direct: false,
+            ao: true,
+        },
         ao,
         temporal,
     }
 }
 
 fn no_refresh() -> TemporalConfig {
-    TemporalConfig { refresh: false, ..Default::default() }
+    TemporalConfig {
+        refresh: false,
+        ..Default::default()
+    }
 }
 
 /// A 400 m square ground plane seen from 3 m up: nothing occludes anything.
@@ -36,14 +44,28 @@ fn open_plane() -> Scene {
     let h = 200.0;
     b.add_flat_polygon(
         m,
-        &[Vec3::new(-h, 0.0, -h), Vec3::new(-h, 0.0, h), Vec3::new(h, 0.0, h), Vec3::new(h, 0.0, -h)],
+        &[
+            Vec3::new(-h, 0.0, -h),
+            Vec3::new(-h, 0.0, h),
+            Vec3::new(h, 0.0, h),
+            Vec3::new(h, 0.0, -h),
+        ],
         Vec3::Y,
     );
     let mut scene = cornell_box();
     scene.name = "open-plane".into();
     scene.mesh = b.build();
-    scene.camera = Camera::new(Vec3::new(0.0, 3.0, 6.0), Vec3::new(0.0, 0.0, 0.0), 40.0, 0.1, 100.0);
-    scene.light = SpotLight { position: Vec3::new(0.0, 10.0, 0.0), ..scene.light };
+    scene.camera = Camera::new(
+        Vec3::new(0.0, 3.0, 6.0),
+        Vec3::new(0.0, 0.0, 0.0),
+        40.0,
+        0.1,
+        100.0,
+    );
+    scene.light = SpotLight {
+        position: Vec3::new(0.0, 10.0, 0.0),
+        ..scene.light
+    };
     scene
 }
 
@@ -77,20 +99,41 @@ fn renderer(ctx: &Arc<ssgi::vk::Context>, scene: Scene, c: RenderConfig) -> Rend
 fn open_plane_is_unoccluded() {
     let ctx = common::context();
     for reuse in [true, false] {
-        let temporal = TemporalConfig { reuse, ..Default::default() };
-        let mut r = renderer(&ctx, open_plane(), config(96, temporal, AoConfig::default()));
+        let temporal = TemporalConfig {
+            reuse,
+            ..Default::default()
+        };
+        let mut r = renderer(
+            &ctx,
+            open_plane(),
+            config(96, temporal, AoConfig::default()),
+        );
         run(&mut r, 4);
         let values = ao_values(&mut r);
         let geometry: Vec<f32> = values.iter().flatten().copied().collect();
-        assert!(geometry.len() > 96 * 96 / 2, "the plane fills most of the view");
-        let worst = geometry.iter().map(|v| (1.0 - v).abs()).fold(0.0f32, f32::max);
+        assert!(
+            geometry.len() > 96 * 96 / 2,
+            "the plane fills most of the view"
+        );
+        let worst = geometry
+            .iter()
+            .map(|v| (1.0 - v).abs())
+            .fold(0.0f32, f32::max);
         assert!(worst < 1e-3, "reuse {reuse}: visibility off 1 by {worst}");
     }
     // Mittring's sphere estimator sees half its samples below a flat surface: grey, 0.5.
     // The AO radius is relative to the scene's bounding radius (283 m here): 0.002 is 0.57 m,
     // so the sphere stays on screen.
-    let ao = AoConfig { estimator: AoEstimator::Crytek, patterns: 16, radius: 0.002, ..Default::default() };
-    let temporal = TemporalConfig { reuse: false, ..Default::default() };
+    let ao = AoConfig {
+        estimator: AoEstimator::Crytek,
+        patterns: 16,
+        radius: 0.002,
+        ..Default::default()
+    };
+    let temporal = TemporalConfig {
+        reuse: false,
+        ..Default::default()
+    };
     let mut r = renderer(&ctx, open_plane(), config(96, temporal, ao));
     run(&mut r, 1);
     let values = ao_values(&mut r);
@@ -100,7 +143,10 @@ fn open_plane_is_unoccluded() {
         .collect();
     centre.sort_by(f32::total_cmp);
     let median = centre[centre.len() / 2];
-    assert!((median - 0.5).abs() < 0.05, "Crytek flat-surface visibility {median}");
+    assert!(
+        (median - 0.5).abs() < 0.05,
+        "Crytek flat-surface visibility {median}"
+    );
     drop(r);
     common::assert_clean(&ctx);
 }
@@ -108,14 +154,21 @@ fn open_plane_is_unoccluded() {
 fn project(view_proj: Mat4, p: Vec3, size: u32) -> (u32, u32) {
     let c = view_proj * Vec4::new(p.x, p.y, p.z, 1.0);
     let ndc = c.truncate() / c.w;
-    (((ndc.x * 0.5 + 0.5) * size as f32) as u32, ((ndc.y * 0.5 + 0.5) * size as f32) as u32)
+    (
+        ((ndc.x * 0.5 + 0.5) * size as f32) as u32,
+        ((ndc.y * 0.5 + 0.5) * size as f32) as u32,
+    )
 }
 
 #[test]
 fn cornell_inner_corner_is_darker_than_a_wall() {
     let ctx = common::context();
     let size = 128;
-    let mut r = renderer(&ctx, cornell_box(), config(size, TemporalConfig::default(), AoConfig::default()));
+    let mut r = renderer(
+        &ctx,
+        cornell_box(),
+        config(size, TemporalConfig::default(), AoConfig::default()),
+    );
     run(&mut r, 40);
     let ao = r.read(Target::Ao).unwrap();
     let vp = r.scene.camera.view_proj(1.0);
@@ -132,12 +185,20 @@ fn cornell_inner_corner_is_darker_than_a_wall() {
 }
 
 fn rmse(a: &[Option<f32>], b: &[Option<f32>]) -> f32 {
-    let d: Vec<f32> = a.iter().zip(b).filter_map(|(x, y)| Some(x.as_ref()? - y.as_ref()?)).collect();
+    let d: Vec<f32> = a
+        .iter()
+        .zip(b)
+        .filter_map(|(x, y)| Some(x.as_ref()? - y.as_ref()?))
+        .collect();
     (d.iter().map(|x| x * x).sum::<f32>() / d.len().max(1) as f32).sqrt()
 }
 
 fn mean_abs_change(a: &[Option<f32>], b: &[Option<f32>]) -> f32 {
-    let d: Vec<f32> = a.iter().zip(b).filter_map(|(x, y)| Some((x.as_ref()? - y.as_ref()?).abs())).collect();
+    let d: Vec<f32> = a
+        .iter()
+        .zip(b)
+        .filter_map(|(x, y)| Some((x.as_ref()? - y.as_ref()?).abs()))
+        .collect();
     d.iter().sum::<f32>() / d.len().max(1) as f32
 }
 
@@ -147,14 +208,34 @@ fn static_camera_converges_to_the_many_sample_reference() {
     let size = 128;
     // Reference: the same estimator with 32 patterns x 32 samples = 1024 samples, one frame,
     // patterns offset by half a step so they are not the ones the accumulation uses.
-    let reference_ao = AoConfig { patterns: 32, ..Default::default() };
-    let no_reuse = TemporalConfig { reuse: false, ..Default::default() };
+    let reference_ao = AoConfig {
+        patterns: 32,
+        ..Default::default()
+    };
+    let no_reuse = TemporalConfig {
+        reuse: false,
+        ..Default::default()
+    };
     let mut reference = renderer(&ctx, cornell_box(), config(size, no_reuse, reference_ao));
     run(&mut reference, 1);
     let reference = ao_values(&mut reference);
     // One pattern, no accumulation and no blur: what the accumulation must improve on.
-    let single_ao = AoConfig { patterns: 1, ..Default::default() };
-    let mut single = renderer(&ctx, cornell_box(), config(size, TemporalConfig { reuse: false, ..Default::default() }, single_ao));
+    let single_ao = AoConfig {
+        patterns: 1,
+        ..Default::default()
+    };
+    let mut single = renderer(
+        &ctx,
+        cornell_box(),
+        config(
+            size,
+            TemporalConfig {
+                reuse: false,
+                ..Default::default()
+            },
+            single_ao,
+        ),
+    );
     // patterns == 1 without reuse blurs; read the raw estimate through a 1-pattern reference.
     run(&mut single, 1);
     let single = ao_values(&mut single);
@@ -163,11 +244,27 @@ fn static_camera_converges_to_the_many_sample_reference() {
 
     for (name, temporal) in [
         ("confidence", TemporalConfig::default()),
-        ("mean", TemporalConfig { accumulate: Accumulate::Mean { cap: 36 }, ..Default::default() }),
-        ("mean, no refresh", TemporalConfig { accumulate: Accumulate::Mean { cap: 36 }, ..no_refresh() }),
+        (
+            "mean",
+            TemporalConfig {
+                accumulate: Accumulate::Mean { cap: 36 },
+                ..Default::default()
+            },
+        ),
+        (
+            "mean, no refresh",
+            TemporalConfig {
+                accumulate: Accumulate::Mean { cap: 36 },
+                ..no_refresh()
+            },
+        ),
         ("confidence, no refresh", no_refresh()),
     ] {
-        let mut r = renderer(&ctx, cornell_box(), config(size, temporal, AoConfig::default()));
+        let mut r = renderer(
+            &ctx,
+            cornell_box(),
+            config(size, temporal, AoConfig::default()),
+        );
         // The rotation limit (36 patterns) plus one refresh cycle (4 tiles at 128x128).
         let frames = 36 + 4;
         run(&mut r, frames);
@@ -179,7 +276,10 @@ fn static_camera_converges_to_the_many_sample_reference() {
         eprintln!("{name}: frame-to-frame {change:e}, RMSE vs 1024-sample reference {error}");
         assert!(change < 1e-4, "{name}: mean frame-to-frame change {change}");
         assert!(error < 0.02, "{name}: RMSE {error} vs the reference");
-        assert!(error < 0.5 * single_error, "{name}: RMSE {error}, one blurred pattern {single_error}");
+        assert!(
+            error < 0.5 * single_error,
+            "{name}: RMSE {error}, one blurred pattern {single_error}"
+        );
     }
     common::assert_clean(&ctx);
 }
@@ -190,10 +290,18 @@ fn static_camera_converges_to_the_many_sample_reference() {
 fn translation_recompute_mask_matches_cpu_reprojection() {
     let ctx = common::context();
     let size = 128u32;
-    let mut r = renderer(&ctx, cornell_box(), config(size, no_refresh(), AoConfig::default()));
+    let mut r = renderer(
+        &ctx,
+        cornell_box(),
+        config(size, no_refresh(), AoConfig::default()),
+    );
     let c0 = r.scene.camera;
     let shift = Vec3::new(0.12, 0.03, -0.05);
-    let c1 = Camera { position: c0.position + shift, target: c0.target + shift, ..c0 };
+    let c1 = Camera {
+        position: c0.position + shift,
+        target: c0.target + shift,
+        ..c0
+    };
     r.render_frame(&c0).unwrap();
     r.render_frame(&c1).unwrap();
     r.finish().unwrap();
@@ -204,7 +312,8 @@ fn translation_recompute_mask_matches_cpu_reprojection() {
     let vp0 = c0.view_proj(1.0);
     let tan_half = (0.5 * c1.vfov_deg).to_radians().tan();
     let texel = |img: &ImageData, x: i64, y: i64| {
-        (x >= 0 && y >= 0 && x < size as i64 && y < size as i64).then(|| img.texel(x as u32, y as u32))
+        (x >= 0 && y >= 0 && x < size as i64 && y < size as i64)
+            .then(|| img.texel(x as u32, y as u32))
     };
     let (mut agree, mut total, mut cpu_new) = (0, 0, 0);
     for y in 0..size {
@@ -222,20 +331,34 @@ fn translation_recompute_mask_matches_cpu_reprojection() {
             let eps = 2.0 * footprint / n.dot(to_eye / dist).abs().max(0.1);
             let clip = vp0 * Vec4::new(w.x, w.y, w.z, 1.0);
             let valid = clip.w > 0.0 && {
-                let uv = Vec3::new(clip.x / clip.w * 0.5 + 0.5, clip.y / clip.w * 0.5 + 0.5, 0.0);
-                let (tx, ty) = ((uv.x * size as f32).floor() as i64, (uv.y * size as f32).floor() as i64);
-                texel(&pos0, tx, ty).is_some_and(|h| h[3] != 0.0 && Vec3::new(h[0], h[1], h[2]).distance(w) <= eps)
+                let uv = Vec3::new(
+                    clip.x / clip.w * 0.5 + 0.5,
+                    clip.y / clip.w * 0.5 + 0.5,
+                    0.0,
+                );
+                let (tx, ty) = (
+                    (uv.x * size as f32).floor() as i64,
+                    (uv.y * size as f32).floor() as i64,
+                );
+                texel(&pos0, tx, ty)
+                    .is_some_and(|h| h[3] != 0.0 && Vec3::new(h[0], h[1], h[2]).distance(w) <= eps)
             };
             let gpu_new = state.texel(x, y)[0] as u32 == 2;
             cpu_new += (!valid) as u32;
-            agree += (gpu_new == !valid) as u32;
+            agree += (gpu_new != valid) as u32;
             total += 1;
         }
     }
     let fraction = agree as f64 / total as f64;
     eprintln!("mask agreement {fraction:.5} over {total} pixels, CPU disoccluded {cpu_new}");
-    assert!(cpu_new as f64 > 0.01 * total as f64, "the move disoccludes too little to test: {cpu_new}");
-    assert!(cpu_new < total / 2, "the move disoccludes nearly everything: {cpu_new}");
+    assert!(
+        cpu_new as f64 > 0.01 * total as f64,
+        "the move disoccludes too little to test: {cpu_new}"
+    );
+    assert!(
+        cpu_new < total / 2,
+        "the move disoccludes nearly everything: {cpu_new}"
+    );
     assert!(fraction >= 0.995, "recompute mask agrees on {fraction}");
     drop(r);
     common::assert_clean(&ctx);
@@ -248,14 +371,28 @@ fn converged_static_view_computes_at_most_one_refresh_tile() {
     let ctx = common::context();
     let size = 256;
     for refresh in [true, false] {
-        let temporal = TemporalConfig { refresh, ..Default::default() };
-        let mut r = renderer(&ctx, cornell_box(), config(size, temporal, AoConfig::default()));
+        let temporal = TemporalConfig {
+            refresh,
+            ..Default::default()
+        };
+        let mut r = renderer(
+            &ctx,
+            cornell_box(),
+            config(size, temporal, AoConfig::default()),
+        );
         let timings = run(&mut r, 45);
         let computed = |t: &FrameTiming| {
-            t.counters.iter().find(|(n, _)| *n == "ssao_computed_pixels").map(|c| c.1).unwrap()
+            t.counters
+                .iter()
+                .find(|(n, _)| *n == "ssao_computed_pixels")
+                .map(|c| c.1)
+                .unwrap()
         };
         assert_eq!(timings.len(), 45);
-        assert!(computed(&timings[0]) > (size * size / 2) as u64, "first frame computes the view");
+        assert!(
+            computed(&timings[0]) > (size * size / 2) as u64,
+            "first frame computes the view"
+        );
         for t in &timings[38..] {
             let c = computed(t);
             if refresh {
@@ -264,7 +401,12 @@ fn converged_static_view_computes_at_most_one_refresh_tile() {
             } else {
                 assert_eq!(c, 0, "frame {}", t.frame);
             }
-            let disoccluded = t.counters.iter().find(|(n, _)| *n == "disoccluded_pixels").unwrap().1;
+            let disoccluded = t
+                .counters
+                .iter()
+                .find(|(n, _)| *n == "disoccluded_pixels")
+                .unwrap()
+                .1;
             assert_eq!(disoccluded, 0);
         }
     }
@@ -276,7 +418,11 @@ fn converged_static_view_computes_at_most_one_refresh_tile() {
 #[test]
 fn jittering_camera_keeps_history_finite() {
     let ctx = common::context();
-    let mut r = renderer(&ctx, cornell_box(), config(32, TemporalConfig::default(), AoConfig::default()));
+    let mut r = renderer(
+        &ctx,
+        cornell_box(),
+        config(32, TemporalConfig::default(), AoConfig::default()),
+    );
     let base = r.scene.camera;
     let mut seed = 0x1234_5678_u64;
     let mut rand = move || {
@@ -288,7 +434,11 @@ fn jittering_camera_keeps_history_finite() {
     for i in 0..10_000u32 {
         let jitter = Vec3::new(rand(), rand(), rand()) * 0.02;
         let look = Vec3::new(rand(), rand(), 0.0) * 0.05;
-        let camera = Camera { position: base.position + jitter, target: base.target + jitter + look, ..base };
+        let camera = Camera {
+            position: base.position + jitter,
+            target: base.target + jitter + look,
+            ..base
+        };
         r.render_frame(&camera).unwrap();
         if i % 1000 == 999 {
             r.reset_history();
@@ -299,8 +449,14 @@ fn jittering_camera_keeps_history_finite() {
     for y in 0..32 {
         for x in 0..32 {
             let t = ao.texel(x, y);
-            assert!(t[0].is_finite() && (0.0..=1.0).contains(&t[0]), "({x},{y}) = {t:?}");
-            assert!(t[1].is_finite() && (0.0..=36.0).contains(&t[1]), "({x},{y}) count {t:?}");
+            assert!(
+                t[0].is_finite() && (0.0..=1.0).contains(&t[0]),
+                "({x},{y}) = {t:?}"
+            );
+            assert!(
+                t[1].is_finite() && (0.0..=36.0).contains(&t[1]),
+                "({x},{y}) count {t:?}"
+            );
         }
     }
     drop(r);

@@ -108,6 +108,7 @@ fn resize_minimise_cycle_and_close_are_validation_clean() {
     let Some(display) = display() else { return };
     let script = [
         "4:key=cycle", // direct
+        "5:key=cycle", // shadow
         "6:key=cycle", // ao
         "8:key=cycle", // normal
         "10:resize=96x72",
@@ -117,6 +118,7 @@ fn resize_minimise_cycle_and_close_are_validation_clean() {
         "18:resize=8x8",
         "22:zero=15",
         "26:key=cycle", // final
+        "27:display=ao",
         "28:resize=1x1",
         "32:resize=40x56",
     ]
@@ -146,8 +148,10 @@ fn resize_minimise_cycle_and_close_are_validation_clean() {
         "present mode fifo",
         "window minimised (zero extent): rendering paused",
         "window restored: rendering resumed",
+        "display: shadow",
         "display: position",
         "display: final",
+        "display: ao",
         "effects: -pcf",
         "presented 40 frames",
     ] {
@@ -187,6 +191,51 @@ fn load_rgba(path: &PathBuf) -> image::RgbaImage {
     image::open(path)
         .unwrap_or_else(|e| panic!("{}: {e}", path.display()))
         .to_rgba8()
+}
+
+/// Pixels whose channels differ by more than 2/255 (images of equal size).
+fn differing_pixels(a: &image::RgbaImage, b: &image::RgbaImage) -> usize {
+    a.pixels()
+        .zip(b.pixels())
+        .filter(|(p, q)| (0..4).any(|c| (p[c] as i32 - q[c] as i32).abs() > 2))
+        .count()
+}
+
+#[test]
+fn displayed_buffer_is_the_headless_g_buffer() {
+    let Some(display) = display() else { return };
+    let shot = tmp("albedo-presented.png");
+    let dump = tmp("albedo-dump");
+    let common = ["--size", "64x48", "--rsm-size", "128", "--frames", "3"];
+    let mut args = vec!["--validation", "view"];
+    args.extend(common);
+    args.extend(["--script", "0:display=albedo", "--capture"]);
+    args.push(shot.to_str().unwrap());
+    let out = ssgi(&display, &args);
+    let stderr = assert_clean_run(&out, "view --capture");
+    assert!(stderr.contains("display: albedo\n"), "{stderr}");
+    let final_png = dump.join("final.png");
+    let mut args = vec!["--validation", "render"];
+    args.extend(common);
+    args.extend(["--out", final_png.to_str().unwrap(), "--dump-gbuffer"]);
+    args.push(dump.to_str().unwrap());
+    let out = Command::new(env!("CARGO_BIN_EXE_ssgi"))
+        .args(&args)
+        .output()
+        .unwrap();
+    assert_clean_run(&out, "render --dump-gbuffer");
+    let shot = load_rgba(&shot);
+    let albedo = load_rgba(&dump.join("gbuffer_albedo.png"));
+    let lit = load_rgba(&final_png);
+    assert_eq!(shot.dimensions(), albedo.dimensions());
+    let total = (shot.width() * shot.height()) as usize;
+    let bad = differing_pixels(&shot, &albedo);
+    assert!(
+        bad * 1000 <= total,
+        "{bad} of {total} pixels of the displayed albedo differ from the dumped G-buffer albedo"
+    );
+    // And it is not the final image (the buffer choice reached the renderer).
+    assert!(differing_pixels(&shot, &lit) * 4 > total);
 }
 
 #[test]
@@ -257,11 +306,7 @@ fn presented_frame_matches_the_headless_render() {
         "left third {left:?} should be red, right third {right:?} green"
     );
     let total = (a.width() * a.height()) as usize;
-    let bad = a
-        .pixels()
-        .zip(b.pixels())
-        .filter(|(p, q)| (0..4).any(|c| (p[c] as i32 - q[c] as i32).abs() > 2))
-        .count();
+    let bad = differing_pixels(&a, &b);
     assert!(
         bad * 1000 <= total,
         "{bad} of {total} pixels differ by more than 2/255 from the headless render"

@@ -1,13 +1,21 @@
-// GPU counters and the work list of 8x8 pixel blocks (indirect dispatch arguments first).
-// Mirrors `Counters` in src/renderer/counters.rs.
+// Per-effect GPU counters and work lists (indirect dispatch arguments first). Mirrors
+// src/renderer/counters.rs; the CPU resets the header every frame.
 layout(set = 1, binding = COUNTERS_BINDING, std430) buffer Counters {
-    uint dispatch_x;          // blocks that need work (indirect dispatch x)
-    uint dispatch_y;          // 1
-    uint dispatch_z;          // 1
-    uint disoccluded_pixels;  // pixels that failed eq 3 (or had no history)
-    uint ssao_computed_pixels;// pixels the SSAO pass evaluated
+    uint dispatch_x;         // work blocks listed (indirect dispatch x), y = z = 1
+    uint dispatch_y;
+    uint dispatch_z;
+    uint disoccluded_pixels; // pixels that failed eq 3 (or had no history)
+    uint computed_pixels;    // pixels the effect evaluated (low-resolution ones for half res)
+    uint fixup_pixels;       // full-resolution fix-ups (half-resolution indirect light)
+    uint max_blocks;         // size of the block list; the fix-up list follows it in `data`
     uint reserved0;
+    uint fixup_dispatch_x;   // ceil(fixup_pixels / 64), y = z = 1
+    uint fixup_dispatch_y;
+    uint fixup_dispatch_z;
     uint reserved1;
     uint reserved2;
-    uint blocks[];            // packed block coordinates: x | y << 16
+    uint reserved3;
+    uint reserved4;
+    uint reserved5;
+    uint data[];             // blocks (x | y << 16), then fix-up pixels (x | y << 16)
 } counters;

@@ -11,15 +11,16 @@ layout(set = 0, binding = 0, std140) uniform Frame {
     vec4 light_params;     // x = light far plane, y = tan(half fov of the shadow frustum),
                            // z = shadow map size [texels], w = PCF kernel radius [texels]
     vec4 ambient;          // rgb ambient radiance
-    uvec4 size;            // width, height, frame index, PCF samples per side (1 = hard)
-    uvec4 temporal;        // x = history valid, yz = refresh tile origin [px] (~0 = none),
+    uvec4 size;            // width, height, frame index, PCF grid side or disc samples
+    uvec4 temporal;        // x = history valid (camera), yz unused,
                            // w = rotation limit (patterns until converged)
     vec4 temporal_params;  // x = accumulation (0 confidence, 1 EMA, 2 mean), y = its parameter
                            // (bias / alpha / cap), z = epsilon, w = 0 relative, 1 absolute
     vec4 ao_params;        // x = world radius, y = a, z = b (eq 7), w = nearest step [px]
     uvec4 ao_config;       // x = directions, y = steps (thesis) or samples (crytek),
                            // z = patterns per evaluation, w = 0 thesis, 1 crytek
-    vec4 ao_pattern;       // x = rotation per pattern [rad], y = pattern offset
+    vec4 ao_pattern;       // x = rotation per pattern [rad], y = pattern offset,
+                           // z = PCF kernel (0 grid, 1 disc)
 } frame;
 
 const float PI = 3.14159265358979;

@@ -1,7 +1,23 @@
-//! Benchmark runs: timing aggregation and reports.
+//! Benchmark runs: timing aggregation and reports, and the thesis's tables (`ssgi table`):
+//! measured rows, error against converged references, Markdown/JSON/CSV reports, PNG plots.
 
+pub mod cli;
 pub mod compare;
+pub mod csv;
+pub mod decimate;
+pub mod markdown;
+pub mod measure;
+pub mod metrics;
+pub mod options;
+pub mod output;
+pub mod plot;
 pub mod report;
+pub mod rows;
 pub mod stats;
+pub mod table41;
+pub mod table_report;
+pub mod thesis;
+pub mod walkthrough;
 
+pub use options::TableOptions;
 pub use report::Report;

@@ -44,8 +44,9 @@ ssgi view keys:
   W A S D                        move forward / left / back / right
   Q E                            move down / up
   Shift / Ctrl (held)            move 4x faster / 4x slower
-  Tab / Shift+Tab                cycle the displayed buffer (final, direct, AO, G-buffer
-                                 normal / albedo / position; raw values clamped to 0..1)
+  Tab / Shift+Tab                cycle the displayed buffer (final, direct, shadow, AO,
+                                 G-buffer normal / albedo / position; raw values clamped
+                                 to 0..1)
   P                              soft (PCF) / hard shadows
   1 2 3 4                        toggle AO / indirect / SSDO / spatial filter (not yet in the
                                  renderer: the state is kept and reported)
@@ -56,9 +57,10 @@ ssgi view keys:
 
 /// Buffers the viewer can show, in cycling order. Depth targets cannot be blitted to a colour
 /// image and are left out; a target whose format lacks BLIT_SRC support is skipped.
-pub const DISPLAY_CYCLE: [(Target, &str); 6] = [
+pub const DISPLAY_CYCLE: [(Target, &str); 7] = [
     (Target::Output, "final"),
     (Target::Direct, "direct"),
+    (Target::Shadow, "shadow"),
     (Target::Ao, "ao"),
     (Target::GNormal, "normal"),
     (Target::GAlbedo, "albedo"),
@@ -212,14 +214,17 @@ pub enum ScriptOp {
     /// A viewer key action by name (cycle, pcf, ao, indirect, ssdo, filter, reuse, camera, help,
     /// quit).
     Key(String),
+    /// Show this buffer of [`DISPLAY_CYCLE`] by name.
+    Display(String),
 }
 
-/// Parse `FRAME:OP[,FRAME:OP...]` with OP one of `resize=WxH`, `zero=N`, `key=NAME`.
+/// Parse `FRAME:OP[,FRAME:OP...]` with OP one of `resize=WxH`, `zero=N`, `key=NAME`,
+/// `display=NAME`.
 pub fn parse_script(s: &str) -> std::result::Result<Vec<ScriptStep>, String> {
     let mut steps = Vec::new();
     for part in s.split(',').map(str::trim).filter(|p| !p.is_empty()) {
         let bad = || {
-            format!("bad script step {part:?}: expected FRAME:resize=WxH, FRAME:zero=N or FRAME:key=NAME")
+            format!("bad script step {part:?}: expected FRAME:resize=WxH, FRAME:zero=N, FRAME:key=NAME or FRAME:display=NAME")
         };
         let (frame, op) = part.split_once(':').ok_or_else(bad)?;
         let frame: u64 = frame.trim().parse().map_err(|_| bad())?;
@@ -241,6 +246,13 @@ pub fn parse_script(s: &str) -> std::result::Result<Vec<ScriptStep>, String> {
                     return Err(format!("{part:?}: unknown key action {key:?}"));
                 }
                 ScriptOp::Key(key.to_string())
+            }
+            "display" => {
+                let name = value.trim();
+                if !DISPLAY_CYCLE.iter().any(|(_, n)| *n == name) {
+                    return Err(format!("{part:?}: unknown buffer {name:?}"));
+                }
+                ScriptOp::Display(name.to_string())
             }
             _ => return Err(bad()),
         };
@@ -658,6 +670,17 @@ impl App {
                         self.act(event_loop, a);
                     }
                 }
+                ScriptOp::Display(name) => {
+                    let index = DISPLAY_CYCLE.iter().position(|(_, n)| *n == name);
+                    let shown = self.live.as_ref().map(|l| l.displayable.clone());
+                    match (index, self.view.as_mut(), shown) {
+                        (Some(i), Some(view), Some(shown)) if shown[i] => {
+                            view.display = i;
+                            eprintln!("display: {name}");
+                        }
+                        _ => eprintln!("display: {name} is not available in this run"),
+                    }
+                }
             }
         }
     }
@@ -893,7 +916,7 @@ fn renderer_size(r: Option<&Renderer>) -> (u32, u32) {
 fn displayable(renderer: &Renderer, swapchain: &Swapchain, target: Target) -> bool {
     let effects = renderer.config.effects;
     let enabled = match target {
-        Target::Direct => effects.direct,
+        Target::Direct | Target::Shadow => effects.direct,
         Target::Ao => effects.ao,
         _ => true,
     };

@@ -21,7 +21,7 @@ pub fn layout() -> PassLayout {
     PassLayout {
         pass: "blur",
         modules: vec![&shaders::BLUR_COMP],
-        declared: BINDINGS,
+        declared: BINDINGS.to_vec(),
     }
 }
 

@@ -5,10 +5,10 @@ use super::compute::ComputePass;
 use super::{binding, PassLayout, FRAME_BINDING};
 use crate::error::Result;
 use crate::renderer::config::Effects;
-use crate::renderer::targets::{AoSource, Targets};
+use crate::renderer::targets::Targets;
 use crate::shaders::{self, DescriptorKind, ReflectedBinding, ShaderModuleInfo};
 use crate::vk::cmd::Recorder;
-use crate::vk::{Access, Context, DescriptorPool, SetWriter, Tracker};
+use crate::vk::{Access, Context, DescriptorPool, Image, SetWriter, Tracker};
 use ash::vk;
 use std::sync::Arc;
 
@@ -38,7 +38,7 @@ pub fn layouts() -> Vec<PassLayout> {
             PassLayout {
                 pass: "composite",
                 modules: vec![module],
-                declared,
+                declared: declared.to_vec(),
             }
         })
         .collect()
@@ -56,7 +56,8 @@ impl CompositePass {
         Ok(Self { pass, effects })
     }
 
-    pub fn bind_targets(&self, ctx: &Context, t: &Targets, ao: AoSource) {
+    /// `ao[parity]`: the AO visibility the composite of that parity reads.
+    pub fn bind_targets(&self, ctx: &Context, t: &Targets, ao: Option<[&Image; 2]>) {
         for parity in 0..2 {
             let mut w = SetWriter::new()
                 .sampled(0, &t.gbuffer.position[parity])
@@ -65,8 +66,8 @@ impl CompositePass {
             if self.effects.direct {
                 w = w.sampled(3, &t.direct);
             }
-            if self.effects.ao {
-                w = w.sampled(4, t.ao(parity, ao));
+            if let Some(ao) = ao {
+                w = w.sampled(4, ao[parity]);
             }
             self.pass.write(ctx, parity, w);
         }
@@ -79,15 +80,15 @@ impl CompositePass {
         frame_set: vk::DescriptorSet,
         parity: usize,
         t: &Targets,
-        ao: AoSource,
+        ao: Option<&Image>,
     ) {
         tracker.image(&t.gbuffer.position[parity], Access::ComputeSampledRead);
         tracker.image(&t.gbuffer.albedo, Access::ComputeSampledRead);
         if self.effects.direct {
             tracker.image(&t.direct, Access::ComputeSampledRead);
         }
-        if self.effects.ao {
-            tracker.image(t.ao(parity, ao), Access::ComputeSampledRead);
+        if let Some(ao) = ao {
+            tracker.image(ao, Access::ComputeSampledRead);
         }
         tracker.image(&t.output, Access::Undefined);
         tracker.image(&t.output, Access::ComputeStorageWrite);

@@ -29,6 +29,14 @@ impl ComputePass {
         Ok(Self { pipeline, sets })
     }
 
+    /// Two more sets with this pipeline's set-1 layout (for per-effect bindings).
+    pub fn allocate_sets(&self, pool: &DescriptorPool) -> Result<[vk::DescriptorSet; 2]> {
+        Ok([
+            pool.allocate(self.pipeline.set_layouts[1])?,
+            pool.allocate(self.pipeline.set_layouts[1])?,
+        ])
+    }
+
     /// Write the set of `parity`.
     pub fn write(&self, ctx: &Context, parity: usize, writer: SetWriter) {
         writer.write(ctx, self.sets[parity]);
@@ -47,15 +55,21 @@ impl ComputePass {
         rec.dispatch_2d(&self.pipeline, width, height);
     }
 
-    /// Bind for `parity` and dispatch with the workgroup count read from `args` (offset 0).
+    /// Bind for `parity`, push `push` (if any) and dispatch with the workgroup counts stored in
+    /// `args` at byte `offset`.
     pub fn dispatch_indirect(
         &self,
         rec: &Recorder<'_>,
         frame_set: vk::DescriptorSet,
         parity: usize,
         args: &Buffer,
+        offset: u64,
+        push: &[u8],
     ) {
         rec.bind(&self.pipeline, &[frame_set, self.sets[parity]]);
-        rec.dispatch_indirect(args);
+        if !push.is_empty() {
+            rec.push(&self.pipeline, push);
+        }
+        rec.dispatch_indirect(args, offset);
     }
 }

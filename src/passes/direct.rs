@@ -7,7 +7,7 @@ use crate::error::Result;
 use crate::renderer::targets::Targets;
 use crate::shaders::{self, DescriptorKind, ReflectedBinding};
 use crate::vk::cmd::Recorder;
-use crate::vk::{Access, Context, DescriptorPool, SetWriter, Tracker};
+use crate::vk::{Access, Context, DescriptorPool, Image, SetWriter, Tracker};
 use ash::vk;
 use std::sync::Arc;
 
@@ -16,7 +16,7 @@ const BINDINGS: &[ReflectedBinding] = &[
     binding(1, 0, DescriptorKind::SampledImage), // g_position
     binding(1, 1, DescriptorKind::SampledImage), // g_normal
     binding(1, 2, DescriptorKind::SampledImage), // g_albedo
-    binding(1, 3, DescriptorKind::SampledImage), // shadow_depth
+    binding(1, 3, DescriptorKind::SampledImage), // shadow_visibility
     binding(1, 4, DescriptorKind::StorageImage), // direct_out
 ];
 
@@ -24,30 +24,39 @@ pub fn layout() -> PassLayout {
     PassLayout {
         pass: "direct",
         modules: vec![&shaders::DIRECT_COMP],
-        declared: BINDINGS,
+        declared: BINDINGS.to_vec(),
     }
 }
 
 pub struct DirectPass {
     pass: ComputePass,
+    /// Sets reading the accumulated shadow history instead of the every-frame visibility.
+    history_sets: [vk::DescriptorSet; 2],
 }
 
 impl DirectPass {
     pub fn new(ctx: &Arc<Context>, pool: &DescriptorPool) -> Result<Self> {
         let pass = ComputePass::new(ctx, pool, "direct", &shaders::DIRECT_COMP, BINDINGS)?;
-        Ok(Self { pass })
+        let history_sets = pass.allocate_sets(pool)?;
+        Ok(Self { pass, history_sets })
     }
 
-    /// (Re)point the descriptors at the current targets.
-    pub fn bind_targets(&self, ctx: &Context, t: &Targets) {
+    /// (Re)point the descriptors at the current targets: the every-frame shadow visibility,
+    /// and (with shadow reuse) the shadow history of each parity.
+    pub fn bind_targets(&self, ctx: &Context, t: &Targets, history: Option<[&Image; 2]>) {
         for parity in 0..2 {
-            let writer = SetWriter::new()
-                .sampled(0, &t.gbuffer.position[parity])
-                .sampled(1, &t.gbuffer.normal)
-                .sampled(2, &t.gbuffer.albedo)
-                .sampled(3, &t.rsm.depth)
-                .storage(4, &t.direct);
-            self.pass.write(ctx, parity, writer);
+            let writer = |shadow: &Image| {
+                SetWriter::new()
+                    .sampled(0, &t.gbuffer.position[parity])
+                    .sampled(1, &t.gbuffer.normal)
+                    .sampled(2, &t.gbuffer.albedo)
+                    .sampled(3, shadow)
+                    .storage(4, &t.direct)
+            };
+            self.pass.write(ctx, parity, writer(&t.shadow));
+            if let Some(h) = history {
+                writer(h[parity]).write(ctx, self.history_sets[parity]);
+            }
         }
     }
 
@@ -58,15 +67,21 @@ impl DirectPass {
         frame_set: vk::DescriptorSet,
         parity: usize,
         t: &Targets,
+        shadow: &Image,
     ) {
         let g = &t.gbuffer;
-        for input in [&g.position[parity], &g.normal, &g.albedo, &t.rsm.depth] {
+        for input in [&g.position[parity], &g.normal, &g.albedo, shadow] {
             tracker.image(input, Access::ComputeSampledRead);
         }
         tracker.image(&t.direct, Access::Undefined);
         tracker.image(&t.direct, Access::ComputeStorageWrite);
         tracker.flush(rec.device, rec.cmd);
-        self.pass
-            .dispatch(rec, frame_set, parity, t.width, t.height);
+        if std::ptr::eq(shadow, &t.shadow) {
+            self.pass
+                .dispatch(rec, frame_set, parity, t.width, t.height);
+        } else {
+            rec.bind(&self.pass.pipeline, &[frame_set, self.history_sets[parity]]);
+            rec.dispatch_2d(&self.pass.pipeline, t.width, t.height);
+        }
     }
 }

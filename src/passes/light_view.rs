@@ -23,12 +23,12 @@ pub fn layouts() -> Vec<PassLayout> {
         PassLayout {
             pass: "light_view",
             modules: vec![MODULES.vertex, MODULES.flat],
-            declared: FLAT_BINDINGS,
+            declared: FLAT_BINDINGS.to_vec(),
         },
         PassLayout {
             pass: "light_view",
             modules: vec![MODULES.vertex, MODULES.textured],
-            declared: TEXTURED_BINDINGS,
+            declared: TEXTURED_BINDINGS.to_vec(),
         },
     ]
 }

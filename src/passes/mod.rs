@@ -8,6 +8,7 @@ pub mod gbuffer;
 pub mod light_view;
 pub mod raster;
 pub mod reproject;
+pub mod shadow;
 pub mod ssao;
 
 use crate::shaders::{DescriptorKind, ReflectedBinding, ShaderModuleInfo};
@@ -19,7 +20,9 @@ pub enum PassId {
     LightView,
     /// Camera G-buffer MRT.
     GBuffer,
-    /// Direct spot light with PCF shadows.
+    /// PCF shadow visibility (every frame, or accumulated with the cache).
+    Shadow,
+    /// Direct spot light times the shadow visibility.
     Direct,
     /// Reverse reprojection: disocclusion test, history resampling, work list.
     Reproject,
@@ -32,11 +35,12 @@ pub enum PassId {
 }
 
 impl PassId {
-    pub const ALL: [PassId; 7] = [
+    pub const ALL: [PassId; 8] = [
         PassId::LightView,
         PassId::GBuffer,
-        PassId::Direct,
         PassId::Reproject,
+        PassId::Shadow,
+        PassId::Direct,
         PassId::Ssao,
         PassId::Blur,
         PassId::Composite,
@@ -46,6 +50,7 @@ impl PassId {
         match self {
             PassId::LightView => "light_view",
             PassId::GBuffer => "gbuffer",
+            PassId::Shadow => "shadow",
             PassId::Direct => "direct",
             PassId::Reproject => "reproject",
             PassId::Ssao => "ssao",
@@ -76,7 +81,7 @@ pub(crate) const fn binding(set: u32, binding: u32, kind: DescriptorKind) -> Ref
 pub struct PassLayout {
     pub pass: &'static str,
     pub modules: Vec<&'static ShaderModuleInfo>,
-    pub declared: &'static [ReflectedBinding],
+    pub declared: Vec<ReflectedBinding>,
 }
 
 /// Every pipeline of every pass, for the reflection check (also done at pipeline creation).
@@ -84,6 +89,7 @@ pub fn all_layouts() -> Vec<PassLayout> {
     let mut v = Vec::new();
     v.extend(light_view::layouts());
     v.extend(gbuffer::layouts());
+    v.extend(shadow::layouts());
     v.push(direct::layout());
     v.push(reproject::layout());
     v.extend(ssao::layouts());

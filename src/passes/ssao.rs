@@ -1,14 +1,15 @@
 //! SSAO. With reuse: an indirect dispatch over the blocks the reprojection listed, one rotated
-//! pattern per pixel merged into the history (eqs 4-5), refresh tiles recomputed in full.
+//! pattern per pixel merged into the AO history (eqs 4-5), refresh tiles recomputed in full.
 //! Without reuse: every pixel with a fixed pattern (or many patterns, for references).
 
 use super::compute::ComputePass;
 use super::{binding, PassLayout, FRAME_BINDING};
 use crate::error::Result;
+use crate::renderer::effect::TemporalEffect;
 use crate::renderer::targets::Targets;
 use crate::shaders::{self, DescriptorKind, ReflectedBinding};
 use crate::vk::cmd::Recorder;
-use crate::vk::{Access, Buffer, Context, DescriptorPool, Image, SetWriter, Tracker};
+use crate::vk::{Access, Context, DescriptorPool, Image, SetWriter, Tracker};
 use ash::vk;
 use std::sync::Arc;
 
@@ -18,7 +19,7 @@ const ACCUMULATE: &[ReflectedBinding] = &[
     binding(1, 1, DescriptorKind::SampledImage), // g_normal
     binding(1, 2, DescriptorKind::SampledImage), // random_vectors
     binding(1, 3, DescriptorKind::StorageImage), // state_in
-    binding(1, 4, DescriptorKind::StorageImage), // ao_cur
+    binding(1, 4, DescriptorKind::StorageImage), // history
     binding(1, 5, DescriptorKind::StorageBuffer), // counters
 ];
 
@@ -36,12 +37,12 @@ pub fn layouts() -> Vec<PassLayout> {
         PassLayout {
             pass: "ssao",
             modules: vec![&shaders::SSAO_ACCUMULATE_COMP],
-            declared: ACCUMULATE,
+            declared: ACCUMULATE.to_vec(),
         },
         PassLayout {
             pass: "ssao",
             modules: vec![&shaders::SSAO_FULL_COMP],
-            declared: FULL,
+            declared: FULL.to_vec(),
         },
     ]
 }
@@ -67,18 +68,24 @@ impl SsaoPass {
         Ok(Self { pass, reuse })
     }
 
-    pub fn bind_targets(&self, ctx: &Context, t: &Targets, random: &Image, counters: &Buffer) {
+    pub fn bind_targets(
+        &self,
+        ctx: &Context,
+        t: &Targets,
+        random: &Image,
+        effect: &TemporalEffect,
+    ) {
         for parity in 0..2 {
             let w = SetWriter::new()
                 .sampled(0, &t.gbuffer.position[parity])
                 .sampled(1, &t.gbuffer.normal)
                 .sampled(2, random);
             let w = if self.reuse {
-                w.storage(3, &t.state)
-                    .storage(4, &t.ao_history[parity])
-                    .storage_buffer(5, counters)
+                w.storage(3, &effect.state)
+                    .storage(4, &effect.history[parity])
+                    .storage_buffer(5, &effect.counters)
             } else {
-                w.storage(3, &t.ao_raw).storage_buffer(4, counters)
+                w.storage(3, &t.ao_raw).storage_buffer(4, &effect.counters)
             };
             self.pass.write(ctx, parity, w);
         }
@@ -93,23 +100,24 @@ impl SsaoPass {
         parity: usize,
         t: &Targets,
         random: &Image,
-        counters: &Buffer,
+        effect: &TemporalEffect,
+        push: &[u8],
     ) {
         tracker.image(&t.gbuffer.position[parity], Access::ComputeSampledRead);
         tracker.image(&t.gbuffer.normal, Access::ComputeSampledRead);
         tracker.image(random, Access::ComputeSampledRead);
         if self.reuse {
-            tracker.image(&t.state, Access::ComputeStorageRead);
-            tracker.image(&t.ao_history[parity], Access::ComputeStorageReadWrite);
-            tracker.buffer(counters, Access::IndirectCommandRead);
-            tracker.buffer(counters, Access::ComputeStorageReadWrite);
+            tracker.image(&effect.state, Access::ComputeStorageRead);
+            tracker.image(&effect.history[parity], Access::ComputeStorageReadWrite);
+            tracker.buffer(&effect.counters, Access::IndirectCommandRead);
+            tracker.buffer(&effect.counters, Access::ComputeStorageReadWrite);
             tracker.flush(rec.device, rec.cmd);
             self.pass
-                .dispatch_indirect(rec, frame_set, parity, counters);
+                .dispatch_indirect(rec, frame_set, parity, &effect.counters, 0, push);
         } else {
             tracker.image(&t.ao_raw, Access::Undefined);
             tracker.image(&t.ao_raw, Access::ComputeStorageWrite);
-            tracker.buffer(counters, Access::ComputeStorageReadWrite);
+            tracker.buffer(&effect.counters, Access::ComputeStorageReadWrite);
             tracker.flush(rec.device, rec.cmd);
             self.pass
                 .dispatch(rec, frame_set, parity, t.width, t.height);

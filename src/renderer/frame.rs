@@ -4,46 +4,88 @@ use super::config::{AoEstimator, Epsilon, RenderConfig};
 use crate::scene::{Camera, SpotLight};
 use glam::{Mat4, Vec3};
 
-/// PCF configuration: `side` x `side` depth comparisons spread over +-`radius` shadow texels.
+/// The PCF kernel: a regular grid (the thesis's 49-sample baseline, or hard shadows), or a disc
+/// of Vogel-spiral samples that is rotated and scaled every frame and accumulated (the thesis's
+/// 9-sample PCF with the cache; many samples without reuse for references).
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
+#[serde(tag = "kernel", rename_all = "lowercase")]
+pub enum PcfKernel {
+    Grid { side: u32 },
+    Disc { samples: u32 },
+}
+
+/// PCF configuration: the kernel spread over +-`radius_texels` shadow-map texels.
 #[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
 pub struct Pcf {
-    pub side: u32,
+    pub kernel: PcfKernel,
     pub radius_texels: f32,
 }
 
 impl Pcf {
-    /// The thesis's baseline soft shadow: 49 samples.
+    /// The thesis's baseline soft shadow: 49 samples on a 7x7 grid.
     pub const DEFAULT: Pcf = Pcf {
-        side: 7,
+        kernel: PcfKernel::Grid { side: 7 },
         radius_texels: 3.0,
     };
     pub const HARD: Pcf = Pcf {
-        side: 1,
+        kernel: PcfKernel::Grid { side: 1 },
         radius_texels: 0.0,
     };
+    /// The thesis's 9-sample PCF, rotated and scaled per frame and accumulated.
+    pub const NINE: Pcf = Pcf {
+        kernel: PcfKernel::Disc { samples: 9 },
+        radius_texels: 3.0,
+    };
 
-    /// `hard` or a square sample count (9, 25, 49, ...).
+    /// `hard`, `9` (the accumulated disc), another square count for a grid (25, 49, ...), or
+    /// `disc:N` for an N-sample disc.
     pub fn parse(s: &str) -> Result<Pcf, String> {
         if s == "hard" || s == "1" {
             return Ok(Pcf::HARD);
         }
+        if let Some(n) = s.strip_prefix("disc:") {
+            let samples: u32 = n
+                .parse()
+                .map_err(|_| format!("--pcf disc:N takes a sample count, not {s:?}"))?;
+            if !(1..=4096).contains(&samples) {
+                return Err(format!("--pcf {s}: disc samples must be in 1..=4096"));
+            }
+            return Ok(Pcf {
+                kernel: PcfKernel::Disc { samples },
+                ..Pcf::NINE
+            });
+        }
         let n: u32 = s.parse().map_err(|_| {
-            format!("--pcf takes 'hard' or a square sample count like 9 or 49, not {s:?}")
+            format!("--pcf takes 'hard', 9, a square sample count like 49, or disc:N, not {s:?}")
         })?;
+        if n == 9 {
+            return Ok(Pcf::NINE);
+        }
         let side = (n as f64).sqrt().round() as u32;
-        if side * side != n || !(2..=15).contains(&side) {
+        if side * side != n || !(2..=32).contains(&side) {
             return Err(format!(
-                "--pcf {n}: the sample count must be a square between 4 and 225 (9, 25, 49, ...)"
+                "--pcf {n}: the sample count must be 9 or a square between 4 and 1024 (25, 49, ...)"
             ));
         }
         Ok(Pcf {
-            side,
+            kernel: PcfKernel::Grid { side },
             radius_texels: Pcf::DEFAULT.radius_texels,
         })
     }
 
     pub fn samples(&self) -> u32 {
-        self.side * self.side
+        match self.kernel {
+            PcfKernel::Grid { side } => side * side,
+            PcfKernel::Disc { samples } => samples,
+        }
+    }
+
+    /// (kernel code for the shader: 0 grid, 1 disc; grid side or disc samples).
+    pub fn shader_params(&self) -> (u32, u32) {
+        match self.kernel {
+            PcfKernel::Grid { side } => (0, side),
+            PcfKernel::Disc { samples } => (1, samples),
+        }
     }
 }
 
@@ -57,8 +99,6 @@ pub struct FrameInputs<'a> {
     pub frame: u64,
     /// False on the first frame and after a resize or camera cut: every pixel is new.
     pub history_valid: bool,
-    /// Pixel origin of this frame's refresh tile, if any.
-    pub refresh_tile: Option<(u32, u32)>,
     /// Bounding radius of the scene: the AO radius is relative to it.
     pub scene_radius: f32,
 }
@@ -99,10 +139,10 @@ impl FrameUniforms {
             &mut w,
         );
         vec4(f.ambient.extend(0.0).to_array(), &mut w);
-        w.extend([config.width, config.height, f.frame as u32, pcf.side]);
+        let (pcf_kernel, pcf_count) = pcf.shader_params();
+        w.extend([config.width, config.height, f.frame as u32, pcf_count]);
         let t = &config.temporal;
-        let (tile_x, tile_y) = f.refresh_tile.unwrap_or((u32::MAX, u32::MAX));
-        w.extend([f.history_valid as u32, tile_x, tile_y, t.rotation_limit]);
+        w.extend([f.history_valid as u32, 0, 0, t.rotation_limit]);
         let (eps, eps_mode) = match t.epsilon {
             Epsilon::Relative { scale } => (scale, 0.0),
             Epsilon::Absolute { epsilon } => (epsilon, 1.0),
@@ -129,7 +169,10 @@ impl FrameUniforms {
         };
         w.extend([dirs, count, ao.patterns, estimator]);
         let offset = if ao.patterns > 1 { 0.5 } else { 0.0 };
-        vec4([t.rotation_deg.to_radians(), offset, 0.0, 0.0], &mut w);
+        vec4(
+            [t.rotation_deg.to_radians(), offset, pcf_kernel as f32, 0.0],
+            &mut w,
+        );
         debug_assert_eq!(w.len() * 4, Self::SIZE);
         Self { words: w }
     }

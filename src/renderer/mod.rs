@@ -6,18 +6,20 @@
 
 pub mod config;
 pub mod counters;
+pub mod effect;
 pub mod frame;
 pub mod scene_gpu;
 pub mod targets;
 pub mod temporal;
 
-use crate::error::Result;
+use crate::error::{Error, Result};
 use crate::passes::blur::BlurPass;
 use crate::passes::composite::CompositePass;
 use crate::passes::direct::DirectPass;
 use crate::passes::gbuffer::GBufferPass;
 use crate::passes::light_view::LightViewPass;
 use crate::passes::reproject::ReprojectPass;
+use crate::passes::shadow::ShadowPass;
 use crate::passes::ssao::SsaoPass;
 use crate::passes::PassId;
 use crate::scene::{Camera, Scene, SpotLight};
@@ -28,14 +30,13 @@ use crate::vk::{
 };
 use ash::vk;
 pub use config::{RenderConfig, MAX_SIZE};
-use counters::{CounterReadback, DISOCCLUDED_PIXELS, SSAO_COMPUTED_PIXELS};
-use frame::{FrameInputs, FrameUniforms};
+use effect::TemporalEffect;
+use frame::{FrameInputs, FrameUniforms, PcfKernel};
 use glam::Mat4;
 use gpu_allocator::MemoryLocation;
 use scene_gpu::SceneGpu;
 use std::sync::Arc;
-use targets::{AoSource, Target, Targets};
-use temporal::RefreshSchedule;
+use targets::{Target, Targets};
 
 /// Extra recording at the end of a frame plus the frame's submit semaphores.
 pub struct FrameHook<'a> {
@@ -58,17 +59,22 @@ struct FrameResources {
 
 /// AO passes, present only when the AO effect is on.
 struct AoPasses {
-    reproject: Option<ReprojectPass>,
     ssao: SsaoPass,
     blur: Option<BlurPass>,
     random: Image,
 }
 
-/// Size-dependent state: targets, the counters buffer, the refresh schedule.
+/// Size-dependent state: targets and the temporal effects' histories and work lists.
 struct Sized {
     targets: Targets,
-    counters: Buffer,
-    refresh: RefreshSchedule,
+    ao: Option<TemporalEffect>,
+    shadow: Option<TemporalEffect>,
+}
+
+/// Reprojection descriptor sets of each effect, allocated once and rewritten on resize.
+struct EffectSets {
+    ao: [vk::DescriptorSet; 2],
+    shadow: [vk::DescriptorSet; 2],
 }
 
 pub struct Renderer {
@@ -77,15 +83,18 @@ pub struct Renderer {
     pub scene: Scene,
     light_view: LightViewPass,
     gbuffer: GBufferPass,
+    reproject: ReprojectPass,
+    shadow_full: Option<ShadowPass>,
+    shadow_accumulate: Option<ShadowPass>,
     direct: Option<DirectPass>,
     ao: Option<AoPasses>,
     composite: CompositePass,
     scene_gpu: SceneGpu,
     sized: Sized,
+    effect_sets: EffectSets,
     frames: Vec<FrameResources>,
     slots: FrameSlots,
     timer: GpuTimer,
-    counter_readback: CounterReadback,
     tracker: Tracker,
     frame_index: u64,
     /// The light the RSM currently holds; `None` forces a re-render.
@@ -99,13 +108,23 @@ impl Renderer {
     pub fn new(ctx: &Arc<Context>, scene: Scene, config: RenderConfig) -> Result<Self> {
         config.validate()?;
         let textured = scene.mesh.has_textures();
-        let pool = DescriptorPool::new(ctx, 32 + scene.mesh.materials.len() as u32)?;
+        let pool = DescriptorPool::new(ctx, 48 + scene.mesh.materials.len() as u32)?;
         let light_view = LightViewPass::new(ctx, textured)?;
         let gbuffer = GBufferPass::new(ctx, textured)?;
-        let direct = if config.effects.direct {
-            Some(DirectPass::new(ctx, &pool)?)
+        let reproject = ReprojectPass::new(ctx, &pool)?;
+        let direct_on = config.effects.direct;
+        let (direct, shadow_full, shadow_accumulate) = if direct_on {
+            (
+                Some(DirectPass::new(ctx, &pool)?),
+                Some(ShadowPass::new(ctx, &pool, false)?),
+                if config.temporal.reuse {
+                    Some(ShadowPass::new(ctx, &pool, true)?)
+                } else {
+                    None
+                },
+            )
         } else {
-            None
+            (None, None, None)
         };
         let composite = CompositePass::new(ctx, &pool, config.effects)?;
         let mut tracker = Tracker::new();
@@ -136,11 +155,6 @@ impl Renderer {
                 Access::ComputeSampledRead,
             )?;
             Some(AoPasses {
-                reproject: if reuse {
-                    Some(ReprojectPass::new(ctx, &pool)?)
-                } else {
-                    None
-                },
                 ssao: SsaoPass::new(ctx, &pool, reuse)?,
                 blur: if !reuse && config.ao.patterns == 1 {
                     Some(BlurPass::new(ctx, &pool)?)
@@ -167,22 +181,29 @@ impl Renderer {
             SetWriter::new().uniform(0, &uniforms).write(ctx, set);
             frames.push(FrameResources { uniforms, set });
         }
-        let sized = Self::create_sized(ctx, &config)?;
+        let effect_sets = EffectSets {
+            ao: reproject.allocate_sets(&pool)?,
+            shadow: reproject.allocate_sets(&pool)?,
+        };
+        let sized = Self::create_sized(ctx, &config, &effect_sets)?;
         let renderer = Self {
             ctx: ctx.clone(),
             config,
             scene,
             light_view,
             gbuffer,
+            reproject,
+            shadow_full,
+            shadow_accumulate,
             direct,
             ao,
             composite,
             scene_gpu,
             sized,
+            effect_sets,
             frames,
             slots: FrameSlots::new(ctx, FRAMES_IN_FLIGHT)?,
-            timer: GpuTimer::new(ctx, FRAMES_IN_FLIGHT, PassId::ALL.len() as u32)?,
-            counter_readback: CounterReadback::new(ctx, FRAMES_IN_FLIGHT)?,
+            timer: GpuTimer::new(ctx, FRAMES_IN_FLIGHT, PassId::ALL.len() as u32 + 2)?,
             tracker,
             frame_index: 0,
             rsm_light: None,
@@ -193,39 +214,131 @@ impl Renderer {
         Ok(renderer)
     }
 
-    fn create_sized(ctx: &Arc<Context>, c: &RenderConfig) -> Result<Sized> {
+    fn create_sized(ctx: &Arc<Context>, c: &RenderConfig, sets: &EffectSets) -> Result<Sized> {
+        let (w, h) = (c.width, c.height);
+        let effect = |on: bool, kind, sets| -> Result<Option<TemporalEffect>> {
+            if !on {
+                return Ok(None);
+            }
+            Ok(Some(TemporalEffect::new(
+                ctx,
+                kind,
+                w,
+                h,
+                FRAMES_IN_FLIGHT,
+                sets,
+            )?))
+        };
         Ok(Sized {
-            targets: Targets::new(ctx, c.width, c.height, c.rsm_size)?,
-            counters: counters::create_gpu_buffer(ctx, c.width, c.height)?,
-            refresh: RefreshSchedule::new(c.width, c.height),
+            targets: Targets::new(ctx, w, h, c.rsm_size)?,
+            ao: effect(c.effects.ao, effect::AO, sets.ao)?,
+            shadow: effect(
+                c.effects.direct && c.temporal.reuse,
+                effect::SHADOW,
+                sets.shadow,
+            )?,
         })
     }
 
-    /// Where the composite's AO comes from in this configuration.
-    pub fn ao_source(&self) -> AoSource {
-        match (&self.ao, self.config.temporal.reuse) {
-            (Some(ao), false) if ao.blur.is_none() => AoSource::Raw,
-            (_, false) => AoSource::Blurred,
-            _ => AoSource::History,
+    /// Whether this frame's shadows come from the accumulated history: reuse on and a disc
+    /// kernel (the thesis's rotated and scaled 9-sample PCF). Grids run every frame.
+    fn shadow_reuse(&self) -> bool {
+        self.config.temporal.reuse
+            && matches!(self.config.pcf.kernel, PcfKernel::Disc { .. })
+            && self.sized.shadow.is_some()
+    }
+
+    /// The AO image the composite reads for `parity`.
+    fn ao_image(&self, parity: usize) -> Option<&Image> {
+        Self::ao_source(&self.sized, self.ao.as_ref(), &self.config, parity)
+    }
+
+    fn ao_source<'a>(
+        sized: &'a Sized,
+        ao: Option<&AoPasses>,
+        config: &RenderConfig,
+        parity: usize,
+    ) -> Option<&'a Image> {
+        let ao = ao?;
+        Some(if config.temporal.reuse {
+            &sized.ao.as_ref()?.history[parity]
+        } else if ao.blur.is_some() {
+            &sized.targets.ao_blurred
+        } else {
+            &sized.targets.ao_raw
+        })
+    }
+
+    /// The shadow visibility the direct pass reads for `parity`.
+    fn shadow_image(&self, parity: usize) -> &Image {
+        Self::shadow_source(&self.sized, self.shadow_reuse(), parity)
+    }
+
+    fn shadow_source(sized: &Sized, reuse: bool, parity: usize) -> &Image {
+        match (&sized.shadow, reuse) {
+            (Some(e), true) => &e.history[parity],
+            _ => &sized.targets.shadow,
         }
+    }
+
+    /// Slot the next frame will record into.
+    pub fn next_slot(&self) -> usize {
+        (self.frame_index % FRAMES_IN_FLIGHT as u64) as usize
+    }
+
+    /// Wait until the next frame's slot is free (its previous submission finished), so that
+    /// per-slot objects of a frontend (swapchain semaphores) can be reused.
+    pub fn wait_for_next_slot(&mut self) -> Result<()> {
+        let slot = self.next_slot();
+        self.slots.wait(slot)
+    }
+
+    /// Format of a target's image (the window frontend checks blit support with it).
+    pub fn target_format(&self, target: Target) -> vk::Format {
+        let parity = (self.frame_index.wrapping_sub(1) % 2) as usize;
+        match target {
+            Target::Ao => self.ao_image(parity).map(|i| i.desc.format),
+            Target::Shadow => Some(self.shadow_image(parity).desc.format),
+            Target::State => Some(targets::STATE_FORMAT),
+            other => self.sized.targets.get(other, parity).map(|i| i.desc.format),
+        }
+        .unwrap_or(vk::Format::UNDEFINED)
     }
 
     fn bind_targets(&self) {
         let t = &self.sized.targets;
+        let ctx = &self.ctx;
+        if let Some(e) = &self.sized.ao {
+            self.reproject.bind_targets(ctx, t, e);
+        }
+        if let Some(e) = &self.sized.shadow {
+            self.reproject.bind_targets(ctx, t, e);
+        }
+        if let Some(s) = &self.shadow_full {
+            s.bind_targets(ctx, t, None);
+        }
+        if let Some(s) = &self.shadow_accumulate {
+            s.bind_targets(ctx, t, self.sized.shadow.as_ref());
+        }
         if let Some(direct) = &self.direct {
-            direct.bind_targets(&self.ctx, t);
+            let history = self
+                .sized
+                .shadow
+                .as_ref()
+                .map(|e| [&e.history[0], &e.history[1]]);
+            direct.bind_targets(ctx, t, history);
         }
-        if let Some(ao) = &self.ao {
-            if let Some(r) = &ao.reproject {
-                r.bind_targets(&self.ctx, t, &self.sized.counters);
-            }
-            ao.ssao
-                .bind_targets(&self.ctx, t, &ao.random, &self.sized.counters);
+        if let (Some(ao), Some(e)) = (&self.ao, &self.sized.ao) {
+            ao.ssao.bind_targets(ctx, t, &ao.random, e);
             if let Some(b) = &ao.blur {
-                b.bind_targets(&self.ctx, t);
+                b.bind_targets(ctx, t);
             }
         }
-        self.composite.bind_targets(&self.ctx, t, self.ao_source());
+        let ao_images = match (self.ao_image(0), self.ao_image(1)) {
+            (Some(a), Some(b)) => Some([a, b]),
+            _ => None,
+        };
+        self.composite.bind_targets(ctx, t, ao_images);
     }
 
     pub fn context(&self) -> &Arc<Context> {
@@ -263,16 +376,19 @@ impl Renderer {
         let parity = (self.frame_index % 2) as usize;
         let cmd = self.slots.begin(slot)?;
         let mut previous = self.timer.begin_frame(slot, self.frame_index);
-        let counters = self.counter_readback.collect(slot);
+        let mut counters = Vec::new();
+        for e in [&mut self.sized.ao, &mut self.sized.shadow]
+            .into_iter()
+            .flatten()
+        {
+            counters.extend(e.readback.collect(slot));
+        }
         if let Some(p) = &mut previous {
             p.counters = counters;
         }
         let c = self.config;
         let aspect = c.width as f32 / c.height as f32;
         let view_proj = camera.view_proj(aspect);
-        let reuse = c.temporal.reuse && self.ao.is_some();
-        let refresh_tile = (reuse && c.temporal.refresh && self.history.is_some())
-            .then(|| self.sized.refresh.next_tile());
         let uniforms = FrameUniforms::new(
             &c,
             &FrameInputs {
@@ -282,7 +398,6 @@ impl Renderer {
                 ambient: self.scene.ambient,
                 frame: self.frame_index,
                 history_valid: self.history.is_some(),
-                refresh_tile,
                 scene_radius: self.scene.mesh.bounds.radius(),
             },
         );
@@ -293,7 +408,24 @@ impl Renderer {
             device: &self.ctx.device,
             cmd,
         };
-        let ao_source = self.ao_source();
+        let reuse = c.temporal.reuse;
+        let history_valid = reuse && self.history.is_some();
+        let shadow_reuse = self.shadow_reuse();
+        // Per-effect push constants: refresh tile (drawn only with a valid history) and flags.
+        let effect_push = |e: &mut Option<TemporalEffect>| {
+            e.as_mut().map(|e| {
+                let tile = (history_valid && c.temporal.refresh).then(|| e.schedule.next_tile());
+                e.push_constants(tile, history_valid, 0)
+            })
+        };
+        let ao_push = effect_push(&mut self.sized.ao);
+        let shadow_push = if shadow_reuse {
+            effect_push(&mut self.sized.shadow)
+        } else {
+            None
+        };
+        let ao_image = Self::ao_source(&self.sized, self.ao.as_ref(), &c, parity);
+        let shadow_image = Self::shadow_source(&self.sized, shadow_reuse, parity);
         let t = &self.sized.targets;
         let tracker = &mut self.tracker;
         let timer = &mut self.timer;
@@ -319,32 +451,55 @@ impl Renderer {
             self.gbuffer
                 .record(&rec, tr, frame_set, &self.scene_gpu, &t.gbuffer, parity)
         });
-        if let Some(direct) = &self.direct {
-            timed(PassId::Direct, tracker, &mut |tr| {
-                direct.record(&rec, tr, frame_set, parity, t)
+        // Reprojection of every temporal effect that reuses its history this frame.
+        let reprojected: Vec<(&TemporalEffect, &[u8; 32])> = [
+            (self.sized.ao.as_ref(), ao_push.as_ref().filter(|_| reuse)),
+            (self.sized.shadow.as_ref(), shadow_push.as_ref()),
+        ]
+        .into_iter()
+        .filter_map(|(e, p)| Some((e?, p?)))
+        .collect();
+        for e in [&self.sized.ao, &self.sized.shadow].into_iter().flatten() {
+            e.reset_counters(&rec, tracker);
+        }
+        if !reprojected.is_empty() {
+            timed(PassId::Reproject, tracker, &mut |tr| {
+                for (e, push) in &reprojected {
+                    self.reproject
+                        .record(&rec, tr, frame_set, parity, t, e, &push[..]);
+                }
             });
         }
-        let mut active_counters = Vec::new();
-        if let Some(ao) = &self.ao {
-            counters::record_reset(&rec, tracker, &self.sized.counters);
-            if let Some(reproject) = &ao.reproject {
-                timed(PassId::Reproject, tracker, &mut |tr| {
-                    reproject.record(&rec, tr, frame_set, parity, t, &self.sized.counters)
+        if let Some(direct) = &self.direct {
+            let shadow_pass = if shadow_reuse {
+                self.shadow_accumulate.as_ref()
+            } else {
+                self.shadow_full.as_ref()
+            };
+            if let Some(pass) = shadow_pass {
+                let push = shadow_push.unwrap_or([0; 32]);
+                timed(PassId::Shadow, tracker, &mut |tr| {
+                    pass.record(
+                        &rec,
+                        tr,
+                        frame_set,
+                        parity,
+                        t,
+                        self.sized.shadow.as_ref(),
+                        &push,
+                    )
                 });
-                active_counters.push(DISOCCLUDED_PIXELS);
             }
-            timed(PassId::Ssao, tracker, &mut |tr| {
-                ao.ssao.record(
-                    &rec,
-                    tr,
-                    frame_set,
-                    parity,
-                    t,
-                    &ao.random,
-                    &self.sized.counters,
-                )
+            timed(PassId::Direct, tracker, &mut |tr| {
+                direct.record(&rec, tr, frame_set, parity, t, shadow_image)
             });
-            active_counters.push(SSAO_COMPUTED_PIXELS);
+        }
+        if let (Some(ao), Some(effect)) = (&self.ao, &self.sized.ao) {
+            let push = ao_push.unwrap_or([0; 32]);
+            timed(PassId::Ssao, tracker, &mut |tr| {
+                ao.ssao
+                    .record(&rec, tr, frame_set, parity, t, &ao.random, effect, &push)
+            });
             if let Some(blur) = &ao.blur {
                 timed(PassId::Blur, tracker, &mut |tr| {
                     blur.record(&rec, tr, frame_set, parity, t)
@@ -353,16 +508,13 @@ impl Renderer {
         }
         timed(PassId::Composite, tracker, &mut |tr| {
             self.composite
-                .record(&rec, tr, frame_set, parity, t, ao_source)
+                .record(&rec, tr, frame_set, parity, t, ao_image)
         });
-        if !active_counters.is_empty() {
-            self.counter_readback.record_copy(
-                &rec,
-                tracker,
-                &self.sized.counters,
-                slot,
-                active_counters,
-            );
+        if let Some(e) = &mut self.sized.ao {
+            e.copy_counters(&rec, &mut self.tracker, slot);
+        }
+        if let (Some(e), true) = (&mut self.sized.shadow, shadow_reuse) {
+            e.copy_counters(&rec, &mut self.tracker, slot);
         }
         if !light_changed {
             self.timer.skip(slot, PassId::LightView.name());
@@ -370,8 +522,17 @@ impl Renderer {
 
         let sync = match &mut hook {
             Some(h) => {
-                let source = t.get(h.source, parity, ao_source);
-                (h.record)(&rec, &mut self.tracker, source);
+                // The hook gets the target it asked for (the viewer's buffer display), this
+                // frame's image of it; the output when the target does not exist in this run.
+                let t = &self.sized.targets;
+                let source = match h.source {
+                    Target::Ao => {
+                        Self::ao_source(&self.sized, self.ao.as_ref(), &self.config, parity)
+                    }
+                    Target::Shadow => Some(Self::shadow_source(&self.sized, shadow_reuse, parity)),
+                    other => t.get(other, parity),
+                };
+                (h.record)(&rec, &mut self.tracker, source.unwrap_or(&t.output));
                 h.sync.clone()
             }
             None => SubmitSync::default(),
@@ -382,35 +543,20 @@ impl Renderer {
         Ok(previous)
     }
 
-    /// The frame slot the next `render_frame` uses.
-    pub fn next_slot(&self) -> usize {
-        (self.frame_index % FRAMES_IN_FLIGHT as u64) as usize
-    }
-
-    /// Wait until the next frame's slot is free (its previous submission completed), without
-    /// starting the frame: the window frontend calls this before reusing the slot's swapchain
-    /// acquire semaphore.
-    pub fn wait_for_next_slot(&mut self) -> Result<()> {
-        let slot = self.next_slot();
-        self.slots.wait(slot)
-    }
-
-    /// The format of `target` (the window frontend checks it can be blitted).
-    pub fn target_format(&self, target: Target) -> vk::Format {
-        self.sized
-            .targets
-            .get(target, 0, self.ao_source())
-            .desc
-            .format
-    }
-
     /// Wait for the GPU and return the timings not yet returned, oldest first.
     pub fn finish(&mut self) -> Result<Vec<FrameTiming>> {
         self.slots.wait_all()?;
         let mut out = Vec::new();
         for slot in 0..FRAMES_IN_FLIGHT {
+            let mut counters = Vec::new();
+            for e in [&mut self.sized.ao, &mut self.sized.shadow]
+                .into_iter()
+                .flatten()
+            {
+                counters.extend(e.readback.collect(slot));
+            }
             if let Some(mut t) = self.timer.collect(slot) {
-                t.counters = self.counter_readback.collect(slot);
+                t.counters = counters;
                 out.push(t);
             }
         }
@@ -429,7 +575,7 @@ impl Renderer {
         config.validate()?;
         let pending = self.finish()?;
         self.ctx.wait_idle()?;
-        self.sized = Self::create_sized(&self.ctx, &config)?;
+        self.sized = Self::create_sized(&self.ctx, &config, &self.effect_sets)?;
         self.config = config;
         self.bind_targets();
         // The RSM targets were recreated with the rest: render the light view again.
@@ -441,7 +587,23 @@ impl Renderer {
     /// Copy a target of the last rendered frame to the host (waits for the GPU).
     pub fn read(&mut self, target: Target) -> Result<ImageData> {
         let parity = (self.frame_index.wrapping_sub(1) % 2) as usize;
-        let image = self.sized.targets.get(target, parity, self.ao_source());
+        let shadow_reuse = self.shadow_reuse();
+        let image = match target {
+            Target::Ao => Self::ao_source(&self.sized, self.ao.as_ref(), &self.config, parity)
+                .ok_or_else(|| Error::Config("the AO effect is off".into()))?,
+            Target::Shadow => Self::shadow_source(&self.sized, shadow_reuse, parity),
+            Target::State => {
+                let effect = self.sized.ao.as_ref().or(self.sized.shadow.as_ref());
+                &effect
+                    .ok_or_else(|| Error::Config("no temporal effect is on".into()))?
+                    .state
+            }
+            other => self
+                .sized
+                .targets
+                .get(other, parity)
+                .ok_or_else(|| Error::Config(format!("{other:?} is not a plain target")))?,
+        };
         read_image(&self.ctx, &mut self.tracker, image)
     }
 }

@@ -82,10 +82,8 @@ pub struct Targets {
     pub rsm: Rsm,
     pub direct: Image,
     pub output: Image,
-    /// AO history pair (value, estimates), ping-ponged like the G-buffer position.
-    pub ao_history: [Image; 2],
-    /// Per-pixel reprojection state (temporal.glsl STATE_*).
-    pub state: Image,
+    /// Shadow visibility computed every frame (grid PCF, or a disc without reuse).
+    pub shadow: Image,
     /// Without reuse: this frame's AO and its 5x5 blur.
     pub ao_raw: Image,
     pub ao_blurred: Image,
@@ -108,12 +106,14 @@ pub enum Target {
     RsmDepth,
     /// AO visibility as composited (history with reuse, blurred or raw without).
     Ao,
+    /// Shadow visibility as the direct pass reads it.
+    Shadow,
     /// Reprojection state per pixel (Figure 4.10's recompute mask).
     State,
 }
 
 impl Target {
-    pub const ALL: [Target; 13] = [
+    pub const ALL: [Target; 14] = [
         Target::Output,
         Target::Direct,
         Target::GPosition,
@@ -126,6 +126,7 @@ impl Target {
         Target::RsmFlux,
         Target::RsmDepth,
         Target::Ao,
+        Target::Shadow,
         Target::State,
     ];
 
@@ -143,6 +144,7 @@ impl Target {
             Target::RsmFlux => "rsm_flux",
             Target::RsmDepth => "rsm_depth",
             Target::Ao => "ao",
+            Target::Shadow => "shadow",
             Target::State => "recompute_mask",
         }
     }
@@ -175,20 +177,16 @@ impl Targets {
             },
             direct: image(ctx, "direct", s, DIRECT_FORMAT, STORAGE_READ)?,
             output: image(ctx, "output", s, OUTPUT_FORMAT, STORAGE_READ)?,
-            ao_history: [
-                image(ctx, "ao.history.0", s, AO_FORMAT, STORAGE_READ)?,
-                image(ctx, "ao.history.1", s, AO_FORMAT, STORAGE_READ)?,
-            ],
-            state: image(ctx, "reprojection.state", s, STATE_FORMAT, STORAGE_READ)?,
+            shadow: image(ctx, "shadow", s, AO_FORMAT, STORAGE_READ)?,
             ao_raw: image(ctx, "ao.raw", s, AO_FORMAT, STORAGE_READ)?,
             ao_blurred: image(ctx, "ao.blurred", s, AO_FORMAT, STORAGE_READ)?,
         })
     }
 
-    /// The image behind `target` for frame parity `parity`; `ao_source` picks which AO image
-    /// the composite reads.
-    pub fn get(&self, target: Target, parity: usize, ao_source: AoSource) -> &Image {
-        match target {
+    /// The image behind a size-dependent target for frame parity `parity` (`None` for the
+    /// targets owned by temporal effects: AO, shadow, state).
+    pub fn get(&self, target: Target, parity: usize) -> Option<&Image> {
+        Some(match target {
             Target::Output => &self.output,
             Target::Direct => &self.direct,
             Target::GPosition => &self.gbuffer.position[parity],
@@ -200,18 +198,8 @@ impl Targets {
             Target::RsmNormal => &self.rsm.normal,
             Target::RsmFlux => &self.rsm.flux,
             Target::RsmDepth => &self.rsm.depth,
-            Target::Ao => self.ao(parity, ao_source),
-            Target::State => &self.state,
-        }
-    }
-
-    /// The AO image the composite reads this frame.
-    pub fn ao(&self, parity: usize, source: AoSource) -> &Image {
-        match source {
-            AoSource::History => &self.ao_history[parity],
-            AoSource::Blurred => &self.ao_blurred,
-            AoSource::Raw => &self.ao_raw,
-        }
+            Target::Ao | Target::Shadow | Target::State => return None,
+        })
     }
 }
 

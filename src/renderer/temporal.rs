@@ -34,6 +34,7 @@ impl Rng {
 /// permutation starts when every tile has been refreshed.
 #[derive(Clone, Debug)]
 pub struct RefreshSchedule {
+    tile: u32,
     tiles_x: u32,
     tiles_y: u32,
     order: Vec<u32>,
@@ -43,9 +44,15 @@ pub struct RefreshSchedule {
 
 impl RefreshSchedule {
     pub fn new(width: u32, height: u32) -> Self {
+        Self::with_tile(width, height, REFRESH_TILE)
+    }
+
+    /// Tiles of `tile` x `tile` pixels.
+    pub fn with_tile(width: u32, height: u32, tile: u32) -> Self {
         Self {
-            tiles_x: width.div_ceil(REFRESH_TILE),
-            tiles_y: height.div_ceil(REFRESH_TILE),
+            tile,
+            tiles_x: width.div_ceil(tile),
+            tiles_y: height.div_ceil(tile),
             order: Vec::new(),
             next: 0,
             rng: Rng::new(0x005e_ed0f_7e11),
@@ -69,8 +76,8 @@ impl RefreshSchedule {
         let t = self.order[self.next];
         self.next += 1;
         (
-            (t % self.tiles_x) * REFRESH_TILE,
-            (t / self.tiles_x) * REFRESH_TILE,
+            (t % self.tiles_x) * self.tile,
+            (t / self.tiles_x) * self.tile,
         )
     }
 }

@@ -71,11 +71,14 @@ impl Recorder<'_> {
         };
     }
 
-    /// Dispatch with the (x, y, z) workgroup counts stored at the start of `args`.
-    pub fn dispatch_indirect(&self, args: &Buffer) {
+    /// Dispatch with the (x, y, z) workgroup counts stored in `args` at byte `offset`.
+    pub fn dispatch_indirect(&self, args: &Buffer, offset: u64) {
         // SAFETY: recording with a compute pipeline bound; `args` has INDIRECT_BUFFER usage
-        // and holds three u32 at offset 0 (the tracker made the GPU writes visible).
-        unsafe { self.device.cmd_dispatch_indirect(self.cmd, args.raw, 0) };
+        // and holds three u32 at `offset` (the tracker made the GPU writes visible).
+        unsafe {
+            self.device
+                .cmd_dispatch_indirect(self.cmd, args.raw, offset)
+        };
     }
 
     /// Overwrite the start of `buffer` with `data` (at most 65536 bytes, multiple of 4).

@@ -1,0 +1,53 @@
+#version 460
+// PCF soft shadows with temporal reuse (Lin 2013 section 3.4): over the 8x8 blocks the
+// reprojection listed, one rotated and scaled disc pattern per pixel that is new or
+// accumulating, merged with eqs 4-5 (or EMA / mean); the refresh tile is recomputed with every
+// pattern up to the rotation limit.
+#extension GL_GOOGLE_include_directive : require
+#extension GL_EXT_samplerless_texture_functions : require
+#include "frame.glsl"
+#include "temporal.glsl"
+#define COUNTERS_BINDING 5
+#include "counters.glsl"
+#include "effect.glsl"
+
+layout(local_size_x = 8, local_size_y = 8) in;
+
+layout(set = 1, binding = 0) uniform texture2D g_position;
+layout(set = 1, binding = 1) uniform texture2D g_normal;
+layout(set = 1, binding = 2) uniform texture2D shadow_depth;
+layout(set = 1, binding = 3, r32ui) uniform readonly uimage2D state_in;
+layout(set = 1, binding = 4, rgba16f) uniform image2D history;
+
+#include "shadow.glsl"
+
+shared uint group_computed;
+
+void main() {
+    if (gl_LocalInvocationIndex == 0u) group_computed = 0u;
+    barrier();
+    ivec2 pixel = block_pixel(gl_WorkGroupID.x, gl_LocalInvocationID.xy);
+    if (all(lessThan(uvec2(pixel), frame.size.xy))) {
+        uint state = imageLoad(state_in, pixel).r;
+        if (state == STATE_NEW || state == STATE_ACCUMULATING || state == STATE_REFRESH) {
+            vec3 p = texelFetch(g_position, pixel, 0).xyz;
+            vec3 n = texelFetch(g_normal, pixel, 0).xyz;
+            vec4 h = imageLoad(history, pixel);
+            uint limit = frame.temporal.w;
+            vec2 result;
+            if (state == STATE_REFRESH) {
+                float sum = 0.0;
+                for (uint j = 0u; j < limit; ++j) sum += shadow_visibility(p, n, float(j));
+                result = vec2(sum / float(limit), float(limit));
+            } else {
+                float fresh = shadow_visibility(p, n, h.a);
+                result = vec2(accumulate(h.r, fresh, h.a), h.a + 1.0);
+            }
+            imageStore(history, pixel, vec4(clamp(result.x, 0.0, 1.0), 0.0, 0.0, result.y));
+            atomicAdd(group_computed, 1u);
+        }
+    }
+    barrier();
+    if (gl_LocalInvocationIndex == 0u && group_computed > 0u)
+        atomicAdd(counters.computed_pixels, group_computed);
+}

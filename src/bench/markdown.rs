@@ -1,0 +1,221 @@
+//! `report.md`: a table report as Markdown — run facts and exact configuration, the timing
+//! table with the thesis's numbers beside ours, the speed-up ratios, the error table, notes.
+
+use super::measure::Buffer;
+use super::rows::{RowKind, COLUMNS};
+use super::table_report::{SceneResult, TableReport};
+
+fn num(v: Option<f64>, decimals: usize) -> String {
+    v.map_or_else(|| "-".to_string(), |v| format!("{v:.decimals$}"))
+}
+
+fn ratio(v: Option<f64>) -> String {
+    v.map_or_else(|| "-".to_string(), |v| format!("{v:.2}x"))
+}
+
+/// Column heading of a timing group.
+fn heading(group: &str) -> &str {
+    match group {
+        "ao" => "SSAO",
+        "total" => "Total",
+        other => other,
+    }
+}
+
+pub fn render(r: &TableReport, title: &str) -> String {
+    let mut md = format!("# {title}\n\n");
+    md += &header(r);
+    md += &timing_table(r);
+    md += &speedup_table(r);
+    md += &error_table(r);
+    md += &files_section(r);
+    md += "## Notes\n\n";
+    for note in r
+        .notes
+        .iter()
+        .chain(r.scenes.iter().filter_map(|s| s.note.as_ref()))
+    {
+        md += &format!("- {note}\n");
+    }
+    md += "\n";
+    md
+}
+
+fn header(r: &TableReport) -> String {
+    let config = serde_json::to_string_pretty(&r.base_config).unwrap_or_default();
+    let mut md = format!(
+        "Produced by `{}` (ssgi {}).\n\n\
+         | | |\n|---|---|\n\
+         | device | {} ({}) |\n| driver | {} |\n| Vulkan | {} |\n| resolution | {}x{} |\n\
+         | frames | {} measured per row, after {} warmup frames at the path's first camera |\n\
+         | timing | median per-frame GPU time from timestamp queries, ms; fps = 1000 / ms |\n\
+         | thesis | {} |\n\n",
+        r.command,
+        r.ssgi_version,
+        r.device,
+        r.device_type,
+        r.driver,
+        r.api_version,
+        r.width,
+        r.height,
+        r.frames,
+        r.warmup,
+        r.thesis_setup,
+    );
+    md += &format!(
+        "Rows: **{}** (reverse reprojection cache), **{}** (one fixed pattern per frame), \
+         **{}** ({} frames held at the last camera, timed to show what convergence costs).\n\n",
+        RowKind::Reuse.label(),
+        RowKind::NoReuse.label(),
+        RowKind::Reference.label(),
+        super::rows::REFERENCE_FRAMES,
+    );
+    md += &format!("Error reference: {}.\n\n", r.reference);
+    md += &format!(
+        "Base configuration (rows change only `temporal.reuse`, `ao.patterns` and `pcf`, as \
+         in each row's `config` in report.json):\n\n```json\n{config}\n```\n\n"
+    );
+    md
+}
+
+fn timing_table(r: &TableReport) -> String {
+    let thesis = r.scenes.iter().any(|s| s.thesis.is_some());
+    let mut md = "## Timing\n\n| Scene | Row |".to_string();
+    for g in COLUMNS {
+        md += &format!(" {} ms | {} fps |", heading(g), heading(g));
+    }
+    md += " SSAO pixels / frame | recomputed |";
+    if thesis {
+        md += " thesis SSAO fps | thesis indirect fps | thesis total fps |";
+    }
+    md += "\n|---|---|";
+    let columns = COLUMNS.len() * 2 + 2 + if thesis { 3 } else { 0 };
+    md += &"---:|".repeat(columns);
+    md += "\n";
+    for s in &r.scenes {
+        for row in &s.rows {
+            md += &format!("| {} | {} |", scene_cell(s), row.label);
+            for g in COLUMNS {
+                let ms = row.ms.get(g).copied().flatten();
+                md += &format!(" {} | {} |", num(ms, 3), num(ms.map(|m| 1000.0 / m), 1));
+            }
+            md += &format!(
+                " {} | {} |",
+                num(row.ssao_pixels_per_frame, 0),
+                row.recomputed_fraction
+                    .map_or("-".into(), |f| format!("{:.1}%", 100.0 * f))
+            );
+            if thesis {
+                let fps = s.thesis.and_then(|t| match row.kind {
+                    RowKind::Reuse => Some(t.reuse),
+                    RowKind::NoReuse => Some(t.no_reuse),
+                    RowKind::Reference => None,
+                });
+                match fps {
+                    Some(f) => md += &format!(" {} | {} | {} |", f.ssao, f.indirect, f.total),
+                    None => md += " | | |",
+                }
+            }
+            md += "\n";
+        }
+    }
+    md += "\n";
+    md
+}
+
+fn scene_cell(s: &SceneResult) -> String {
+    format!("{} ({} tris)", s.name, s.triangles)
+}
+
+fn speedup_table(r: &TableReport) -> String {
+    let mut md = "## Speed-up of reuse over no reuse\n\nOurs: no-reuse ms / reuse ms, \
+                  measured in one process on one device. Thesis: reuse fps / no-reuse fps.\n\n\
+                  | Scene |"
+        .to_string();
+    for g in COLUMNS {
+        md += &format!(" ours {} |", heading(g));
+    }
+    md += " thesis SSAO | thesis indirect | thesis total |\n|---|";
+    md += &"---:|".repeat(COLUMNS.len() + 3);
+    md += "\n";
+    for s in &r.scenes {
+        md += &format!("| {} |", s.name);
+        for g in COLUMNS {
+            md += &format!(" {} |", ratio(s.speedups.get(g).copied().flatten()));
+        }
+        match &s.thesis_speedups {
+            Some(t) => {
+                md += &format!(
+                    " {} | {} | {} |",
+                    ratio(Some(t.ssao)),
+                    ratio(Some(t.indirect)),
+                    ratio(Some(t.total))
+                )
+            }
+            None => md += " - | - | - |",
+        }
+        md += "\n";
+    }
+    md += "\n";
+    md
+}
+
+fn error_table(r: &TableReport) -> String {
+    let mut md = "## Error against the converged reference\n\nLast frame of each row vs the \
+                  reference from the same camera, over geometry pixels.\n\n| Scene | Row |"
+        .to_string();
+    // indirect: Buffer::ALL gains Indirect, and with it two columns here.
+    for b in Buffer::ALL {
+        md += &format!(" {} RMSE | {} max |", b.name(), b.name());
+    }
+    md += " pixels |\n|---|---|";
+    md += &"---:|".repeat(Buffer::ALL.len() * 2 + 1);
+    md += "\n";
+    for s in &r.scenes {
+        for row in &s.rows {
+            md += &format!("| {} | {} |", s.name, row.label);
+            let mut pixels = None;
+            for b in Buffer::ALL {
+                match row.error.get(b.name()) {
+                    Some(e) => {
+                        pixels = Some(e.pixels);
+                        md += &format!(" {} | {} |", num(e.rmse, 5), num(e.max_abs, 4));
+                        if e.non_finite > 0 {
+                            md += &format!(" ({} non-finite) ", e.non_finite);
+                        }
+                    }
+                    None => md += " - | - |",
+                }
+            }
+            md += &format!(" {} |\n", pixels.map_or("-".into(), |p| p.to_string()));
+        }
+    }
+    md += "\n";
+    md
+}
+
+/// Per scene: its camera path and files (CSV linked, PNG shown).
+fn files_section(r: &TableReport) -> String {
+    let mut md = "## Per scene\n\n".to_string();
+    for s in &r.scenes {
+        md += &format!("### {}\n\nCamera path: `{}`.\n\n", s.name, s.path);
+        for f in s.files.iter().filter(|f| !f.ends_with(".png")) {
+            md += &format!("- [{f}]({f})\n");
+        }
+        md += "\n";
+        for f in s.files.iter().filter(|f| f.ends_with(".png")) {
+            md += &format!("![{f}]({f})\n");
+        }
+        md += "\n";
+    }
+    md += "Images `<scene>-<row>.png` are the last frame of each row (the reference's is the \
+           image the errors are measured against).\n\n";
+    md
+}
+
+/// Legend of the walkthrough plots.
+pub const WALKTHROUGH_LEGEND: &str =
+    "Plots: `-time` shows the per-frame GPU time of the whole frame (total) and of the AO \
+     passes (reproject + SSAO + blur) with reuse and without; `-recomputed` shows the SSAO \
+     pixels computed in each frame over width x height (without reuse that is every geometry \
+     pixel). The CSV holds the same series, one row per frame.\n\n";

@@ -1,0 +1,175 @@
+//! One configuration of one scene along a camera path: `warmup` frames at the path's first
+//! camera (GPU clocks, caches and the light view settle; left out of the statistics), then
+//! `frames` frames along the path. Returns the per-frame timings as a [`Report`] and the last
+//! frame's buffers for the error columns.
+
+use super::metrics::Channels;
+use super::Report;
+use crate::error::Result;
+use crate::frontend::progress::Progress;
+use crate::passes::PassId;
+use crate::renderer::config::Effects;
+use crate::renderer::targets::Target;
+use crate::renderer::{RenderConfig, Renderer};
+use crate::scene::{Camera, CameraPath, Keyframe, Scene};
+use crate::vk::{Context, ImageData};
+use serde::Serialize;
+use std::sync::Arc;
+
+/// A buffer whose error against the reference is reported.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Buffer {
+    /// The tonemapped output image (RGBA8, compared as RGB in 0..1).
+    Final,
+    /// AO visibility as composited (red channel).
+    Ao,
+    /// Direct light with PCF shadows (linear RGB radiance).
+    Direct,
+    // indirect: `Indirect` (Target::Indirect, Channels::Rgb, effects.indirect) once issue 5
+    // adds the buffer.
+}
+
+impl Buffer {
+    pub const ALL: [Buffer; 3] = [Buffer::Final, Buffer::Ao, Buffer::Direct];
+
+    pub fn name(self) -> &'static str {
+        match self {
+            Buffer::Final => "final",
+            Buffer::Ao => "ao",
+            Buffer::Direct => "direct",
+        }
+    }
+
+    pub fn target(self) -> Target {
+        match self {
+            Buffer::Final => Target::Output,
+            Buffer::Ao => Target::Ao,
+            Buffer::Direct => Target::Direct,
+        }
+    }
+
+    pub fn channels(self) -> Channels {
+        match self {
+            Buffer::Ao => Channels::Red,
+            Buffer::Final | Buffer::Direct => Channels::Rgb,
+        }
+    }
+
+    /// Whether a configuration with `effects` produces this buffer.
+    pub fn present(self, effects: &Effects) -> bool {
+        match self {
+            Buffer::Final => true,
+            Buffer::Ao => effects.ao,
+            Buffer::Direct => effects.direct,
+        }
+    }
+}
+
+/// What to run.
+pub struct RunSpec<'a> {
+    /// Shown on the progress bar.
+    pub label: &'a str,
+    pub config: RenderConfig,
+    pub path: &'a CameraPath,
+    pub frames: u32,
+    pub warmup: u32,
+    pub progress: bool,
+}
+
+/// The last frame of a run.
+pub struct LastFrame {
+    pub camera: Camera,
+    pub buffers: Vec<(Buffer, ImageData)>,
+    /// Geometry pixels (G-buffer position alpha != 0), row order.
+    pub geometry: Vec<bool>,
+}
+
+impl LastFrame {
+    pub fn buffer(&self, which: Buffer) -> Option<&ImageData> {
+        self.buffers
+            .iter()
+            .find(|(b, _)| *b == which)
+            .map(|(_, d)| d)
+    }
+}
+
+pub struct Measured {
+    pub report: Report,
+    pub last: LastFrame,
+}
+
+/// The camera of the last frame of a `frames`-frame run along `path`.
+pub fn last_camera(scene: &Scene, path: &CameraPath, frames: u32) -> Camera {
+    let frames = frames.max(1);
+    path.camera_at(&scene.camera, &scene.mesh.bounds, frames - 1, frames)
+}
+
+/// A path that holds `camera` on every frame (lens and up come from the scene's camera, as for
+/// any path, so `camera` must share them: use [`last_camera`]).
+pub fn held_at(camera: &Camera) -> CameraPath {
+    CameraPath::Keyframes(vec![Keyframe {
+        time: 0.0,
+        position: camera.position.to_array(),
+        target: camera.target.to_array(),
+    }])
+}
+
+/// Render `spec` on a fresh renderer for `scene`.
+pub fn measure(ctx: &Arc<Context>, scene: &Scene, spec: &RunSpec<'_>) -> Result<Measured> {
+    let frames = spec.frames.max(1);
+    let mut renderer = Renderer::new(ctx, scene.clone(), spec.config)?;
+    let base = renderer.scene.camera;
+    let bounds = renderer.scene.mesh.bounds;
+    let mut bar = Progress::new((spec.warmup + frames) as u64, spec.label, spec.progress);
+    let mut timings = Vec::with_capacity((spec.warmup + frames) as usize);
+    let first = spec.path.camera_at(&base, &bounds, 0, frames);
+    for _ in 0..spec.warmup {
+        timings.extend(renderer.render_frame(&first)?);
+        bar.inc();
+    }
+    let mut camera = first;
+    for i in 0..frames {
+        camera = spec.path.camera_at(&base, &bounds, i, frames);
+        timings.extend(renderer.render_frame(&camera)?);
+        bar.inc();
+    }
+    timings.extend(renderer.finish()?);
+    bar.finish();
+
+    let mut buffers = Vec::new();
+    for b in Buffer::ALL {
+        if b.present(&spec.config.effects) {
+            buffers.push((b, renderer.read(b.target())?));
+        }
+    }
+    let geometry = super::metrics::geometry_mask(&renderer.read(Target::GPosition)?);
+    let config = serde_json::json!({
+        "scene": renderer.scene.name,
+        "path": spec.path.name(),
+        "frames": frames,
+        "warmup": spec.warmup,
+        "render": spec.config,
+        "triangles": renderer.scene.mesh.triangle_count(),
+        "device_type": ctx.info.device_type,
+        "api_version": ctx.info.api_version,
+    });
+    let names: Vec<&str> = PassId::ALL.iter().map(|p| p.name()).collect();
+    let report = Report::new(
+        &ctx.info,
+        spec.config.width,
+        spec.config.height,
+        config,
+        &names,
+        &timings,
+        spec.warmup as u64,
+    );
+    Ok(Measured {
+        report,
+        last: LastFrame {
+            camera,
+            buffers,
+            geometry,
+        },
+    })
+}

@@ -1,0 +1,20 @@
+//! What a table run was asked for, independent of the command line.
+
+use std::path::PathBuf;
+
+#[derive(Clone, Debug)]
+pub struct TableOptions {
+    /// Render size (width, height).
+    pub size: (u32, u32),
+    /// Frames measured per row along the path, after `warmup` frames at its first camera.
+    pub frames: u32,
+    pub warmup: u32,
+    /// Camera path override (table-specific meaning; `None`: the table's default).
+    pub path: Option<String>,
+    /// Asset directory (`None`: `$SSGI_ASSETS`).
+    pub assets: Option<PathBuf>,
+    /// Show progress bars on stderr.
+    pub progress: bool,
+    /// The command line, recorded in the report.
+    pub command: String,
+}

@@ -1,0 +1,282 @@
+//! The rows every table has for a scene: reuse, no reuse + 5x5 blur, and the converged
+//! reference, each measured on one context along the same camera path, with the error of its
+//! last frame against the reference rendered from the same camera.
+
+use super::compare::{group_median, GROUPS};
+use super::measure::{held_at, last_camera, measure, Buffer, Measured, RunSpec};
+use super::metrics::{image_error, ImageError};
+use super::report::FrameRow;
+use super::Report;
+use crate::error::{Error, Result};
+use crate::renderer::frame::{Pcf, PcfKernel};
+use crate::renderer::RenderConfig;
+use crate::scene::{CameraPath, Scene};
+use crate::vk::{Context, ImageData};
+use serde::Serialize;
+use std::collections::BTreeMap;
+use std::sync::Arc;
+
+/// Timing groups (of `compare::GROUPS`) shown as table columns, in order.
+// indirect: add "indirect" between "ao" and "total" once compare::GROUPS has it (issue 5).
+pub const COLUMNS: [&str; 2] = ["ao", "total"];
+
+/// AO patterns of the reference: 32 x 32 samples = 1024 per pixel, no blur.
+pub const REFERENCE_AO_PATTERNS: u32 = 32;
+/// PCF of the reference: a 32 x 32 grid = 1024 depth comparisons over the footprint of the
+/// rows' 49-sample grid.
+// shadow reuse: match the kernel shape of the rows' PCF once issue 5 gives them a disc.
+pub const REFERENCE_PCF: Pcf = Pcf {
+    kernel: PcfKernel::Grid { side: 32 },
+    radius_texels: Pcf::DEFAULT.radius_texels,
+};
+
+/// Report names of the GPU counters read here (see the renderer's effect kinds).
+pub const SSAO_COMPUTED_PIXELS: &str = "ssao_computed_pixels";
+pub const DISOCCLUDED_PIXELS: &str = "disoccluded_pixels";
+/// Frames of the reference row (held at the last camera, after one warmup frame): it is
+/// timed only to show what convergence costs, so a few frames are enough.
+pub const REFERENCE_FRAMES: u32 = 8;
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum RowKind {
+    Reuse,
+    NoReuse,
+    Reference,
+}
+
+impl RowKind {
+    pub const ALL: [RowKind; 3] = [RowKind::Reuse, RowKind::NoReuse, RowKind::Reference];
+
+    pub fn label(self) -> &'static str {
+        match self {
+            RowKind::Reuse => "reuse: yes, blur: no",
+            RowKind::NoReuse => "reuse: no, blur: 5x5 Gaussian",
+            RowKind::Reference => "reference: no reuse, 1024 AO samples, 1024-sample PCF, no blur",
+        }
+    }
+
+    pub fn short(self) -> &'static str {
+        match self {
+            RowKind::Reuse => "reuse",
+            RowKind::NoReuse => "no_reuse",
+            RowKind::Reference => "reference",
+        }
+    }
+
+    /// This row's configuration derived from the table's base configuration.
+    pub fn config(self, base: &RenderConfig) -> RenderConfig {
+        let mut c = *base;
+        match self {
+            RowKind::Reuse => c.temporal.reuse = true,
+            // One fixed pattern per frame; the renderer adds the 5x5 blur.
+            RowKind::NoReuse => {
+                c.temporal.reuse = false;
+                c.ao.patterns = 1;
+            }
+            RowKind::Reference => {
+                c.temporal.reuse = false;
+                c.ao.patterns = REFERENCE_AO_PATTERNS;
+                c.pcf = REFERENCE_PCF;
+                // indirect: every RSM texel as a VPL once issue 5 adds the VPL count.
+            }
+        }
+        c
+    }
+}
+
+/// The thesis's configuration at `width` x `height`: SSAO 32 samples (8 directions x 4
+/// steps), 49-sample PCF, 512x512 shadow map, every effect on.
+pub fn base_config(width: u32, height: u32) -> RenderConfig {
+    // indirect: 512 VPLs at half resolution once issue 5 adds them to RenderConfig.
+    RenderConfig {
+        width,
+        height,
+        ..RenderConfig::default()
+    }
+}
+
+/// One measured row.
+#[derive(Clone, Debug, Serialize)]
+pub struct RowResult {
+    pub kind: RowKind,
+    pub label: String,
+    pub config: RenderConfig,
+    pub path: String,
+    /// Frames measured (after warmup) and warmup frames of this row's run.
+    pub measured_frames: usize,
+    pub warmup: u32,
+    /// Median per-frame GPU milliseconds of each group of `compare::GROUPS` over the measured
+    /// frames (`None`: the group never ran).
+    pub ms: BTreeMap<String, Option<f64>>,
+    /// 1000 / ms.
+    pub fps: BTreeMap<String, Option<f64>>,
+    /// Mean SSAO pixels computed per measured frame, and that over width x height.
+    pub ssao_pixels_per_frame: Option<f64>,
+    pub recomputed_fraction: Option<f64>,
+    /// Error of the last frame against the reference, per buffer.
+    pub error: BTreeMap<String, ImageError>,
+    pub report: Report,
+    /// The last frame's output image (written as PNG beside the report, not into JSON).
+    #[serde(skip)]
+    pub image: Option<ImageData>,
+}
+
+/// One frame of a row's run along the path (warmup frames excluded).
+#[derive(Clone, Debug, Serialize)]
+pub struct FrameSample {
+    /// Frame number along the path, from 0.
+    pub frame: u64,
+    /// GPU milliseconds of each group of `compare::GROUPS`.
+    pub ms: BTreeMap<String, f64>,
+    pub ssao_computed_pixels: Option<u64>,
+    pub disoccluded_pixels: Option<u64>,
+}
+
+impl RowResult {
+    /// The measured frames, in path order.
+    pub fn samples(&self) -> Vec<FrameSample> {
+        let warmup = self.warmup as u64;
+        self.report
+            .frames
+            .iter()
+            .filter(|f| f.index >= warmup)
+            .map(|f| FrameSample {
+                frame: f.index - warmup,
+                ms: GROUPS
+                    .iter()
+                    .map(|(name, passes)| (name.to_string(), group_ms(f, passes)))
+                    .collect(),
+                ssao_computed_pixels: f.counters.get(SSAO_COMPUTED_PIXELS).copied(),
+                disoccluded_pixels: f.counters.get(DISOCCLUDED_PIXELS).copied(),
+            })
+            .collect()
+    }
+}
+
+/// Sum of `passes` in one frame (every pass when empty), as `compare::group_median` sums.
+pub fn group_ms(frame: &FrameRow, passes: &[&str]) -> f64 {
+    frame
+        .passes
+        .iter()
+        .filter(|(n, _)| passes.is_empty() || passes.contains(&n.as_str()))
+        .map(|(_, ms)| ms)
+        .sum()
+}
+
+/// How a scene is measured.
+pub struct SceneRun<'a> {
+    pub base: RenderConfig,
+    pub path: &'a CameraPath,
+    pub frames: u32,
+    pub warmup: u32,
+    pub progress: bool,
+}
+
+/// Measure every row of `scene`. The reference is rendered first, on its own renderer, from
+/// the camera of the path's last frame; each row's last frame (same camera) is compared to
+/// it. The reference row is a second, separate run of the reference configuration held at
+/// that camera, so its error is that of the reference against itself: 0 unless rendering is
+/// not deterministic.
+pub fn measure_rows(
+    ctx: &Arc<Context>,
+    scene: &Scene,
+    run: &SceneRun<'_>,
+) -> Result<Vec<RowResult>> {
+    let frames = run.frames.max(1);
+    let camera = last_camera(scene, run.path, frames);
+    let held = held_at(&camera);
+    let reference_config = RowKind::Reference.config(&run.base);
+    let label = format!("{} reference image", scene.name);
+    let reference = measure(
+        ctx,
+        scene,
+        &RunSpec {
+            label: &label,
+            config: reference_config,
+            path: &held,
+            frames: 1,
+            warmup: 0,
+            progress: run.progress,
+        },
+    )?;
+    let mut rows = Vec::new();
+    for kind in RowKind::ALL {
+        let (path, frames, warmup) = match kind {
+            RowKind::Reference => (&held, REFERENCE_FRAMES.min(frames), 1),
+            _ => (run.path, frames, run.warmup),
+        };
+        let label = format!("{} {}", scene.name, kind.short());
+        let config = kind.config(&run.base);
+        let measured = measure(
+            ctx,
+            scene,
+            &RunSpec {
+                label: &label,
+                config,
+                path,
+                frames,
+                warmup,
+                progress: run.progress,
+            },
+        )?;
+        rows.push(summarize(kind, config, measured, &reference, path, warmup)?);
+    }
+    Ok(rows)
+}
+
+fn summarize(
+    kind: RowKind,
+    config: RenderConfig,
+    measured: Measured,
+    reference: &Measured,
+    path: &CameraPath,
+    warmup: u32,
+) -> Result<RowResult> {
+    let Measured { report, last } = measured;
+    let ms: BTreeMap<String, Option<f64>> = GROUPS
+        .iter()
+        .map(|(name, passes)| (name.to_string(), group_median(&report, passes)))
+        .collect();
+    let fps = ms
+        .iter()
+        .map(|(k, v)| (k.clone(), v.map(|ms| 1000.0 / ms)))
+        .collect();
+    let counts: Vec<u64> = report
+        .frames
+        .iter()
+        .filter(|f| f.index >= warmup as u64)
+        .filter_map(|f| f.counters.get(SSAO_COMPUTED_PIXELS).copied())
+        .collect();
+    let ssao_pixels_per_frame =
+        (!counts.is_empty()).then(|| counts.iter().sum::<u64>() as f64 / counts.len() as f64);
+    let area = report.width as f64 * report.height as f64;
+    let mut error = BTreeMap::new();
+    for (buffer, image) in &last.buffers {
+        let reference_image = reference.last.buffer(*buffer).ok_or_else(|| {
+            Error::Config(format!("the reference has no {} buffer", buffer.name()))
+        })?;
+        let e = image_error(
+            image,
+            reference_image,
+            buffer.channels(),
+            Some(&reference.last.geometry),
+        )?;
+        error.insert(buffer.name().to_string(), e);
+    }
+    Ok(RowResult {
+        kind,
+        label: kind.label().to_string(),
+        config,
+        path: path.name(),
+        measured_frames: report.measured_frames,
+        warmup,
+        ms,
+        fps,
+        recomputed_fraction: ssao_pixels_per_frame.map(|p| p / area),
+        ssao_pixels_per_frame,
+        error,
+        report,
+        image: last.buffer(Buffer::Final).cloned(),
+    })
+}

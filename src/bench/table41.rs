@@ -1,0 +1,118 @@
+//! `ssgi table thesis-4.1`: Venus, Dragon, Bunny and Buddha, each in a box, on one camera
+//! path; reuse vs no reuse + 5x5 blur vs the converged reference, with the thesis's Table 4.1
+//! beside ours.
+
+use super::decimate::decimate;
+use super::rows::{measure_rows, SceneRun};
+use super::table_report::{Header, SceneResult, TableReport, PENDING_ISSUE_5};
+use super::thesis::{table_4_1, SETUP};
+use super::TableOptions;
+use crate::error::Result;
+use crate::scene::{box_room, load_scene, CameraPath, Scene};
+use crate::vk::Context;
+use std::path::Path;
+use std::sync::Arc;
+
+/// A model of Table 4.1, put in the box room.
+pub struct BoxScene {
+    /// Asset folder of the model.
+    pub asset: &'static str,
+    /// Name in the thesis's table.
+    pub thesis: &'static str,
+    /// Decimate to this many triangles first (the thesis's face count, where our file has more).
+    pub decimate_to: Option<usize>,
+}
+
+pub const SCENES: [BoxScene; 4] = [
+    BoxScene {
+        asset: "venus",
+        thesis: "Venus",
+        decimate_to: None,
+    },
+    BoxScene {
+        asset: "dragon",
+        thesis: "Dragon",
+        decimate_to: Some(6_514),
+    },
+    BoxScene {
+        asset: "bunny",
+        thesis: "Bunny",
+        decimate_to: None,
+    },
+    BoxScene {
+        asset: "buddha",
+        thesis: "Buddha",
+        decimate_to: None,
+    },
+];
+
+/// The default camera path: one turn around the box (the thesis used one path for all four).
+pub const DEFAULT_PATH: &str = "orbit";
+
+/// Load `s` in its box; the note says how the scene differs from the thesis's, if it does.
+pub fn load(s: &BoxScene, assets: Option<&Path>) -> Result<(Scene, Option<String>)> {
+    let Some(target) = s.decimate_to else {
+        return Ok((load_scene(&format!("box:{}", s.asset), assets)?, None));
+    };
+    // The model alone (same file lookup and errors as box:<asset>), decimated, then boxed.
+    let model = load_scene(s.asset, assets)?;
+    let d = decimate(&model.mesh, target)?;
+    let note = format!(
+        "{}: the thesis's {target}-face mesh is not available. This is the {}-triangle \
+         Stanford dragon from the asset directory, decimated with meshoptimizer's edge-collapse \
+         simplifier (meshopt crate) to {} triangles (resulting error {:.2}% of the mesh extent).",
+        s.thesis,
+        d.from_triangles,
+        d.to_triangles,
+        100.0 * d.relative_error
+    );
+    Ok((box_room(&d.mesh, &model.name), Some(note)))
+}
+
+pub fn run(ctx: &Arc<Context>, opts: &TableOptions) -> Result<TableReport> {
+    let path_spec = opts.path.as_deref().unwrap_or(DEFAULT_PATH);
+    let path = CameraPath::parse(path_spec)?;
+    // Load every scene before rendering anything: a missing file fails in seconds.
+    let mut loaded = Vec::new();
+    for s in &SCENES {
+        loaded.push((s, load(s, opts.assets.as_deref())?));
+    }
+    let base = super::rows::base_config(opts.size.0, opts.size.1);
+    let mut report = TableReport::new(
+        Header {
+            table: "thesis-4.1",
+            command: opts.command.clone(),
+            device: &ctx.info,
+            base_config: base,
+            frames: opts.frames,
+            warmup: opts.warmup,
+        },
+        SETUP,
+        vec![PENDING_ISSUE_5.to_string()],
+    );
+    for (s, (scene, note)) in loaded {
+        let rows = measure_rows(
+            ctx,
+            &scene,
+            &SceneRun {
+                base,
+                path: &path,
+                frames: opts.frames,
+                warmup: opts.warmup,
+                progress: opts.progress,
+            },
+        )?;
+        let mut result = SceneResult::new(
+            scene.name.clone(),
+            s.thesis.to_string(),
+            path_spec.to_string(),
+            scene.mesh.triangle_count(),
+            table_4_1(s.thesis),
+            rows,
+        );
+        result.note = note;
+        eprintln!("{}", result.summary_line());
+        report.scenes.push(result);
+    }
+    Ok(report)
+}

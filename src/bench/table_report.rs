@@ -1,0 +1,191 @@
+//! The result of a table run: every scene's rows with the run's device, resolution and exact
+//! configuration. Serialised as `report.json` and rendered as `report.md` and CSV.
+//!
+//! JSON, version 1 (later versions only add fields):
+//! ```text
+//! { "version", "table", "command", "ssgi_version", "device", "driver", "device_type",
+//!   "api_version", "width", "height", "frames", "warmup", "base_config", "reference",
+//!   "thesis_setup", "notes": [str],
+//!   "scenes": [ { "spec", "name", "path", "triangles", "note", "thesis", "thesis_speedups",
+//!                 "speedups": { group: no-reuse ms / reuse ms }, "files": [str],
+//!                 "rows": [ { "kind", "label", "config", "path", "measured_frames", "warmup",
+//!                             "ms": { group: ms }, "fps": { group: fps },
+//!                             "ssao_pixels_per_frame", "recomputed_fraction",
+//!                             "error": { buffer: { "rmse", "max_abs", "pixels", "non_finite" } },
+//!                             "report": <bench report, see report.rs> } ] } ] }
+//! ```
+
+use super::compare::GROUPS;
+use super::rows::{RowKind, RowResult};
+use super::thesis::{Fps, Scene41};
+use crate::renderer::RenderConfig;
+use crate::vk::DeviceInfo;
+use serde::Serialize;
+use std::collections::BTreeMap;
+
+pub const TABLE_REPORT_VERSION: u32 = 1;
+
+#[derive(Clone, Debug, Serialize)]
+pub struct SceneResult {
+    /// The scene as given to the loader (e.g. `box:venus`, `sponza`).
+    pub spec: String,
+    /// Display name (the thesis's, where it has one).
+    pub name: String,
+    /// The camera path: `orbit`, or the keyframe file.
+    pub path: String,
+    pub triangles: usize,
+    /// How this scene differs from the thesis's (e.g. a decimated mesh).
+    pub note: Option<String>,
+    pub thesis: Option<Scene41>,
+    pub thesis_speedups: Option<Fps>,
+    /// Per group: no-reuse median ms / reuse median ms (how many times faster reuse is).
+    pub speedups: BTreeMap<String, Option<f64>>,
+    /// Extra files written for this scene (CSV, PNG), relative to the output directory.
+    pub files: Vec<String>,
+    pub rows: Vec<RowResult>,
+}
+
+impl SceneResult {
+    pub fn new(
+        spec: String,
+        name: String,
+        path: String,
+        triangles: usize,
+        thesis: Option<&Scene41>,
+        rows: Vec<RowResult>,
+    ) -> Self {
+        let ms = |kind: RowKind, group: &str| {
+            rows.iter()
+                .find(|r| r.kind == kind)
+                .and_then(|r| r.ms.get(group).copied().flatten())
+        };
+        let speedups = GROUPS
+            .iter()
+            .map(|(group, _)| {
+                let ratio = match (ms(RowKind::Reuse, group), ms(RowKind::NoReuse, group)) {
+                    (Some(reuse), Some(no_reuse)) => Some(no_reuse / reuse),
+                    _ => None,
+                };
+                (group.to_string(), ratio)
+            })
+            .collect();
+        Self {
+            spec,
+            name,
+            path,
+            triangles,
+            note: None,
+            thesis: thesis.copied(),
+            thesis_speedups: thesis.map(Scene41::speedups),
+            speedups,
+            files: Vec::new(),
+            rows,
+        }
+    }
+
+    pub fn row(&self, kind: RowKind) -> Option<&RowResult> {
+        self.rows.iter().find(|r| r.kind == kind)
+    }
+
+    /// One line for the terminal once the scene is done.
+    pub fn summary_line(&self) -> String {
+        let ms = |kind, group: &str| {
+            self.row(kind)
+                .and_then(|r| r.ms.get(group).copied().flatten())
+                .map_or("-".to_string(), |v| format!("{v:.3} ms"))
+        };
+        let speedup = |group: &str| {
+            self.speedups
+                .get(group)
+                .copied()
+                .flatten()
+                .map_or("-".to_string(), |v| format!("{v:.2}x"))
+        };
+        format!(
+            "{}: AO {} (reuse) vs {} (no reuse), {}; total {} vs {}, {}",
+            self.name,
+            ms(RowKind::Reuse, "ao"),
+            ms(RowKind::NoReuse, "ao"),
+            speedup("ao"),
+            ms(RowKind::Reuse, "total"),
+            ms(RowKind::NoReuse, "total"),
+            speedup("total"),
+        )
+    }
+}
+
+#[derive(Clone, Debug, Serialize)]
+pub struct TableReport {
+    pub version: u32,
+    /// `thesis-4.1` or `thesis-walkthroughs`.
+    pub table: String,
+    /// The command line that produced this report.
+    pub command: String,
+    pub ssgi_version: String,
+    pub device: String,
+    pub driver: String,
+    pub device_type: String,
+    pub api_version: String,
+    pub width: u32,
+    pub height: u32,
+    pub frames: u32,
+    pub warmup: u32,
+    /// The configuration every row starts from (rows change reuse, patterns, PCF).
+    pub base_config: RenderConfig,
+    /// What the error columns compare against.
+    pub reference: String,
+    pub thesis_setup: String,
+    /// What is missing or differs from the thesis (pending effects, absent numbers).
+    pub notes: Vec<String>,
+    pub scenes: Vec<SceneResult>,
+}
+
+/// Run-level facts of a table report.
+pub struct Header<'a> {
+    pub table: &'a str,
+    pub command: String,
+    pub device: &'a DeviceInfo,
+    pub base_config: RenderConfig,
+    pub frames: u32,
+    pub warmup: u32,
+}
+
+/// How the error columns are made.
+pub const REFERENCE: &str =
+    "the same scene rendered from the camera of the last frame without temporal reuse, with \
+     32 AO patterns (1024 samples per pixel, no blur) and 1024-sample PCF over the same \
+     footprint; errors are over the pixels covered by geometry (final image: RGB in 0..1 \
+     after tonemapping; AO: visibility; direct: linear radiance)";
+
+/// Said in every report until issue 5 lands.
+// indirect: drop this note once the indirect and shadow-reuse columns exist.
+pub const PENDING_ISSUE_5: &str =
+    "Indirect column pending issue 5: the renderer has no RSM one-bounce indirect light and no \
+     PCF shadow reuse yet, so there is no indirect fps/ms or indirect error column, and our \
+     total is G-buffer + direct (PCF 49) + SSAO + composite, without indirect light. The \
+     thesis's total includes 512-VPL indirect light, so compare the SSAO speed-up ratios; the \
+     total ratios are not comparable yet.";
+
+impl TableReport {
+    pub fn new(h: Header<'_>, thesis_setup: &str, notes: Vec<String>) -> Self {
+        Self {
+            version: TABLE_REPORT_VERSION,
+            table: h.table.to_string(),
+            command: h.command,
+            ssgi_version: env!("CARGO_PKG_VERSION").to_string(),
+            device: h.device.name.clone(),
+            driver: h.device.driver.clone(),
+            device_type: h.device.device_type.clone(),
+            api_version: h.device.api_version.clone(),
+            width: h.base_config.width,
+            height: h.base_config.height,
+            frames: h.frames,
+            warmup: h.warmup,
+            base_config: h.base_config,
+            reference: REFERENCE.to_string(),
+            thesis_setup: thesis_setup.to_string(),
+            notes,
+            scenes: Vec::new(),
+        }
+    }
+}

@@ -1,0 +1,157 @@
+//! One temporal effect (AO, shadow, indirect light): its history pair, per-pixel state, work
+//! lists and counters, refresh schedule and the push constants its passes share. The
+//! reprojection pass and the accumulation rules are the same for every effect.
+
+use super::counters::{self, CounterReadback};
+use super::targets::{AO_FORMAT, STATE_FORMAT};
+use super::temporal::RefreshSchedule;
+use crate::error::Result;
+use crate::vk::cmd::Recorder;
+use crate::vk::{Buffer, Context, Image, ImageDesc, Tracker};
+use ash::vk;
+use std::sync::Arc;
+
+/// What differs between effects.
+#[derive(Clone, Copy, Debug)]
+pub struct EffectKind {
+    pub name: &'static str,
+    /// log2 of the work-block side: 3 (8x8) or 4 (16x16).
+    pub block_shift: u32,
+    /// Side of the refresh tile (the thesis: 64 for SSAO and shadows, 16 for indirect light).
+    pub refresh_tile: u32,
+    /// Report names of the header words (see counters.rs) this effect fills.
+    pub counters: &'static [(&'static str, usize)],
+    /// Whether the effect has a full-resolution fix-up list.
+    pub fixups: bool,
+}
+
+pub const AO: EffectKind = EffectKind {
+    name: "ao",
+    block_shift: 3,
+    refresh_tile: 64,
+    counters: &[
+        ("disoccluded_pixels", counters::DISOCCLUDED),
+        ("ssao_computed_pixels", counters::COMPUTED),
+    ],
+    fixups: false,
+};
+
+pub const SHADOW: EffectKind = EffectKind {
+    name: "shadow",
+    block_shift: 3,
+    refresh_tile: 64,
+    counters: &[("shadow_computed_pixels", counters::COMPUTED)],
+    fixups: false,
+};
+
+pub const INDIRECT: EffectKind = EffectKind {
+    name: "indirect",
+    block_shift: 4,
+    refresh_tile: 16,
+    counters: &[
+        ("indirect_computed_pixels", counters::COMPUTED),
+        ("indirect_fixup_pixels", counters::FIXUP),
+    ],
+    fixups: true,
+};
+
+const STORAGE_READ: vk::ImageUsageFlags = vk::ImageUsageFlags::from_raw(
+    vk::ImageUsageFlags::STORAGE.as_raw()
+        | vk::ImageUsageFlags::SAMPLED.as_raw()
+        | vk::ImageUsageFlags::TRANSFER_SRC.as_raw(),
+);
+
+pub struct TemporalEffect {
+    pub kind: EffectKind,
+    /// rgb = value, a = estimates accumulated; `history[parity]` is this frame's.
+    pub history: [Image; 2],
+    pub state: Image,
+    pub counters: Buffer,
+    pub max_blocks: u32,
+    pub schedule: RefreshSchedule,
+    pub readback: CounterReadback,
+    /// Descriptor sets of the reprojection pass for this effect, per parity.
+    pub reproject_sets: [vk::DescriptorSet; 2],
+}
+
+impl TemporalEffect {
+    pub fn new(
+        ctx: &Arc<Context>,
+        kind: EffectKind,
+        width: u32,
+        height: u32,
+        slots: usize,
+        reproject_sets: [vk::DescriptorSet; 2],
+    ) -> Result<Self> {
+        let image = |suffix: &str, format| {
+            Image::new(
+                ctx,
+                &format!("{}.{suffix}", kind.name),
+                ImageDesc {
+                    width,
+                    height,
+                    format,
+                    usage: STORAGE_READ,
+                },
+            )
+        };
+        let side = 1u32 << kind.block_shift;
+        // Blocks are listed by 16x16 reprojection groups, so count whole groups.
+        let max_blocks = width.div_ceil(16) * height.div_ceil(16) * (16 / side) * (16 / side);
+        let fixups = if kind.fixups { width * height } else { 0 };
+        Ok(Self {
+            kind,
+            history: [
+                image("history.0", AO_FORMAT)?,
+                image("history.1", AO_FORMAT)?,
+            ],
+            state: image("state", STATE_FORMAT)?,
+            counters: counters::create_gpu_buffer(
+                ctx,
+                &format!("{}.counters", kind.name),
+                max_blocks,
+                fixups,
+            )?,
+            max_blocks,
+            schedule: RefreshSchedule::with_tile(width, height, kind.refresh_tile),
+            readback: CounterReadback::new(ctx, slots)?,
+            reproject_sets,
+        })
+    }
+
+    /// Push constants (`Effect` in shaders/include/effect.glsl) for this frame.
+    pub fn push_constants(
+        &self,
+        refresh: Option<(u32, u32)>,
+        history_valid: bool,
+        pattern: u32,
+    ) -> [u8; 32] {
+        let (x, y) = refresh.unwrap_or((u32::MAX, u32::MAX));
+        let words = [
+            x,
+            y,
+            self.kind.refresh_tile,
+            history_valid as u32,
+            self.kind.block_shift,
+            pattern,
+            0,
+            0,
+        ];
+        let mut out = [0u8; 32];
+        for (i, w) in words.iter().enumerate() {
+            out[4 * i..4 * i + 4].copy_from_slice(&w.to_le_bytes());
+        }
+        out
+    }
+
+    pub fn reset_counters(&self, rec: &Recorder<'_>, tracker: &mut Tracker) {
+        counters::record_reset(rec, tracker, &self.counters, self.max_blocks);
+    }
+
+    /// Copy this frame's counters for reading when `slot` comes round again.
+    pub fn copy_counters(&mut self, rec: &Recorder<'_>, tracker: &mut Tracker, slot: usize) {
+        let fields = self.kind.counters.to_vec();
+        self.readback
+            .record_copy(rec, tracker, &self.counters, slot, fields);
+    }
+}
