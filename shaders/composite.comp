@@ -1,9 +1,13 @@
 #version 460
 // Composite and tonemap: direct light plus ambient x albedo (x AO visibility), Reinhard
 // tonemap, sRGB encode. Permutations leave out the inputs of disabled effects.
-// @permutation direct: USE_DIRECT
-// @permutation ao: USE_AO
-// @permutation direct_ao: USE_DIRECT USE_AO
+// @permutation d: USE_DIRECT
+// @permutation a: USE_AO
+// @permutation i: USE_INDIRECT
+// @permutation da: USE_DIRECT USE_AO
+// @permutation di: USE_DIRECT USE_INDIRECT
+// @permutation ai: USE_AO USE_INDIRECT
+// @permutation dai: USE_DIRECT USE_AO USE_INDIRECT
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_samplerless_texture_functions : require
 #include "frame.glsl"
@@ -18,6 +22,9 @@ layout(set = 1, binding = 3) uniform texture2D direct_light;
 #endif
 #ifdef USE_AO
 layout(set = 1, binding = 4) uniform texture2D ambient_visibility; // r = 1 - occlusion
+#endif
+#ifdef USE_INDIRECT
+layout(set = 1, binding = 5) uniform texture2D indirect_light; // rgb = eq 9's I_p
 #endif
 
 vec3 srgb_encode(vec3 linear) {
@@ -39,6 +46,11 @@ void main() {
         color = frame.ambient.rgb * albedo * visibility;
 #ifdef USE_DIRECT
         color += texelFetch(direct_light, pixel, 0).rgb;
+#endif
+#ifdef USE_INDIRECT
+        // Eq 9 treats a VPL as emitting Phi cos / d^2; a diffuse emitter of flux Phi has
+        // intensity Phi cos / pi, hence the 1/pi, and the receiver reflects albedo / pi of it.
+        color += albedo / PI * texelFetch(indirect_light, pixel, 0).rgb / PI;
 #endif
     }
     // Non-finite input must not reach the image as garbage: show it as black.

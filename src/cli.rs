@@ -7,7 +7,7 @@ use crate::frontend::headless;
 use crate::frontend::window::{self, Job, WindowOptions, WindowRun};
 use crate::passes::PassId;
 use crate::renderer::config::{
-    Accumulate, AoConfig, AoEstimator, Effects, Epsilon, TemporalConfig,
+    Accumulate, AoConfig, AoEstimator, Effects, Epsilon, IndirectConfig, TemporalConfig,
 };
 use crate::renderer::frame::Pcf;
 use crate::renderer::{RenderConfig, Renderer, MAX_SIZE};
@@ -99,6 +99,15 @@ pub struct SceneArgs {
     /// (scale-free, default 2), or abs:<world units> for the thesis's absolute epsilon.
     #[arg(long, default_value = "2", value_parser = parse_epsilon)]
     pub epsilon: Epsilon,
+    /// VPLs gathered per pixel and frame for indirect light (`all`: every RSM texel).
+    #[arg(long, default_value = "512", value_parser = parse_vpls)]
+    pub vpls: u32,
+    /// Screen-space visibility test of each VPL (Lin 2013 section 3.3.1; about halves speed).
+    #[arg(long)]
+    pub vpl_visibility: bool,
+    /// Gather indirect light at half resolution with geometry-aware upsampling.
+    #[arg(long, default_value = "on", value_parser = parse_on_off, action = clap::ArgAction::Set)]
+    pub half_res: bool,
     /// Tiled refresh (one 64x64 tile recomputed from scratch per frame).
     #[arg(long, default_value = "on", value_parser = parse_on_off, action = clap::ArgAction::Set)]
     pub refresh: bool,
@@ -135,6 +144,11 @@ impl SceneArgs {
                 samples: self.ao_samples,
                 ..AoConfig::default()
             },
+            indirect: IndirectConfig {
+                vpls: self.vpls,
+                visibility: self.vpl_visibility,
+                half_res: self.half_res,
+            },
             temporal: TemporalConfig {
                 reuse: self.reuse,
                 accumulate,
@@ -144,6 +158,18 @@ impl SceneArgs {
                 ..TemporalConfig::default()
             },
         }
+    }
+}
+
+fn parse_vpls(s: &str) -> std::result::Result<u32, String> {
+    if s == "all" {
+        return Ok(0);
+    }
+    match s.parse::<u32>() {
+        Ok(n) if (1..=65536).contains(&n) => Ok(n),
+        _ => Err(format!(
+            "--vpls takes a count in 1..=65536 or `all`, not {s:?}"
+        )),
     }
 }
 

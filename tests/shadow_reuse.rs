@@ -36,6 +36,7 @@ fn config(pcf: Pcf, reuse: bool) -> RenderConfig {
         effects: Effects {
             direct: true,
             ao: false,
+            indirect: false,
         },
         temporal: TemporalConfig {
             reuse,

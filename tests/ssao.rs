@@ -24,8 +24,10 @@ fn config(size: u32, temporal: TemporalConfig, ao: AoConfig) -> RenderConfig {
         effects: Effects {
             direct: false,
             ao: true,
+            indirect: false,
         },
         ao,
+        indirect: Default::default(),
         temporal,
     }
 }

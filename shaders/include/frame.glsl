@@ -21,6 +21,8 @@ layout(set = 0, binding = 0, std140) uniform Frame {
                            // z = patterns per evaluation, w = 0 thesis, 1 crytek
     vec4 ao_pattern;       // x = rotation per pattern [rad], y = pattern offset,
                            // z = PCF kernel (0 grid, 1 disc)
+    vec4 indirect_params;  // x = VPLs per gather (0 = every RSM texel), y = screen-space
+                           // visibility test (0/1), z = half resolution (0/1)
 } frame;
 
 const float PI = 3.14159265358979;

@@ -34,3 +34,20 @@ float accumulate(float old, float fresh, float n) {
     if (mode == 1u) return mix(old, fresh, k);
     return old + (fresh - old) / min(n + 1.0, max(k, 1.0));
 }
+
+// Eqs 4-5 for radiance: the difference is taken on values divided by the larger luminance of
+// the two, so the confidence measures relative change and does not depend on the light's
+// intensity (HDR values would otherwise always saturate eq 4).
+vec3 accumulate3(vec3 old, vec3 fresh, float n) {
+    if (n < 0.5) return fresh;
+    uint mode = uint(frame.temporal_params.x + 0.5);
+    float k = frame.temporal_params.y;
+    if (mode == 0u) {
+        const vec3 LUMA = vec3(0.2126, 0.7152, 0.0722);
+        float scale = max(max(dot(old, LUMA), dot(fresh, LUMA)), 1e-30);
+        float confidence = 1.0 - clamp(length(old - fresh) / scale, 0.0, 1.0) / (1.0 + k);
+        return confidence * old + (1.0 - confidence) * fresh;
+    }
+    if (mode == 1u) return mix(old, fresh, k);
+    return old + (fresh - old) / min(n + 1.0, max(k, 1.0));
+}

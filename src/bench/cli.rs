@@ -56,9 +56,9 @@ pub struct TableArgs {
     /// Frames rendered first at the path's first camera and left out of the statistics.
     #[arg(long, default_value_t = 10)]
     pub warmup: u32,
-    /// thesis-4.1: static, orbit (default), dolly, or a keyframe file, for all four scenes.
-    /// thesis-walkthroughs: a directory holding sponza.json, sibenik.json and
-    /// conference.json (default: the repository's paths/, compiled in).
+    /// thesis-4.1: static, orbit, dolly, or a keyframe file, for all four scenes (default:
+    /// paths/box.json, compiled in). thesis-walkthroughs: a directory holding sponza.json,
+    /// sibenik.json and conference.json (default: those of paths/, compiled in).
     #[arg(long, value_name = "P")]
     pub path: Option<String>,
 }

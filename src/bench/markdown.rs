@@ -3,7 +3,7 @@
 
 use super::measure::Buffer;
 use super::rows::{RowKind, COLUMNS};
-use super::table_report::{SceneResult, TableReport};
+use super::table_report::TableReport;
 
 fn num(v: Option<f64>, decimals: usize) -> String {
     v.map_or_else(|| "-".to_string(), |v| format!("{v:.decimals$}"))
@@ -63,8 +63,10 @@ fn header(r: &TableReport) -> String {
         r.thesis_setup,
     );
     md += &format!(
-        "Rows: **{}** (reverse reprojection cache), **{}** (one fixed pattern per frame), \
-         **{}** ({} frames held at the last camera, timed to show what convergence costs).\n\n",
+        "Rows: **{}** (reverse reprojection cache for AO and shadows), **{}** (one fixed AO \
+         pattern per frame), **{}** ({} frames held at the last camera, timed to show what \
+         convergence costs). SSAO = the AO passes (reproject, which also reprojects the shadow \
+         history with reuse, + SSAO + blur); Total = every pass of the frame.\n\n",
         RowKind::Reuse.label(),
         RowKind::NoReuse.label(),
         RowKind::Reference.label(),
@@ -94,7 +96,7 @@ fn timing_table(r: &TableReport) -> String {
     md += "\n";
     for s in &r.scenes {
         for row in &s.rows {
-            md += &format!("| {} | {} |", scene_cell(s), row.label);
+            md += &format!("| {} | {} |", s.name, row.label);
             for g in COLUMNS {
                 let ms = row.ms.get(g).copied().flatten();
                 md += &format!(" {} | {} |", num(ms, 3), num(ms.map(|m| 1000.0 / m), 1));
@@ -121,10 +123,6 @@ fn timing_table(r: &TableReport) -> String {
     }
     md += "\n";
     md
-}
-
-fn scene_cell(s: &SceneResult) -> String {
-    format!("{} ({} tris)", s.name, s.triangles)
 }
 
 fn speedup_table(r: &TableReport) -> String {
@@ -198,7 +196,11 @@ fn error_table(r: &TableReport) -> String {
 fn files_section(r: &TableReport) -> String {
     let mut md = "## Per scene\n\n".to_string();
     for s in &r.scenes {
-        md += &format!("### {}\n\nCamera path: `{}`.\n\n", s.name, s.path);
+        md += &format!(
+            "### {}\n\nScene `{}`: {} triangles (for the box scenes, model + room). Camera \
+             path: `{}`.\n\n",
+            s.name, s.spec, s.triangles, s.path
+        );
         for f in s.files.iter().filter(|f| !f.ends_with(".png")) {
             md += &format!("- [{f}]({f})\n");
         }

@@ -26,18 +26,21 @@ pub enum Buffer {
     Ao,
     /// Direct light with PCF shadows (linear RGB radiance).
     Direct,
+    /// Shadow visibility as the direct pass reads it (red channel).
+    Shadow,
     // indirect: `Indirect` (Target::Indirect, Channels::Rgb, effects.indirect) once issue 5
     // adds the buffer.
 }
 
 impl Buffer {
-    pub const ALL: [Buffer; 3] = [Buffer::Final, Buffer::Ao, Buffer::Direct];
+    pub const ALL: [Buffer; 4] = [Buffer::Final, Buffer::Ao, Buffer::Direct, Buffer::Shadow];
 
     pub fn name(self) -> &'static str {
         match self {
             Buffer::Final => "final",
             Buffer::Ao => "ao",
             Buffer::Direct => "direct",
+            Buffer::Shadow => "shadow",
         }
     }
 
@@ -46,12 +49,13 @@ impl Buffer {
             Buffer::Final => Target::Output,
             Buffer::Ao => Target::Ao,
             Buffer::Direct => Target::Direct,
+            Buffer::Shadow => Target::Shadow,
         }
     }
 
     pub fn channels(self) -> Channels {
         match self {
-            Buffer::Ao => Channels::Red,
+            Buffer::Ao | Buffer::Shadow => Channels::Red,
             Buffer::Final | Buffer::Direct => Channels::Rgb,
         }
     }
@@ -61,7 +65,7 @@ impl Buffer {
         match self {
             Buffer::Final => true,
             Buffer::Ao => effects.ao,
-            Buffer::Direct => effects.direct,
+            Buffer::Direct | Buffer::Shadow => effects.direct,
         }
     }
 }

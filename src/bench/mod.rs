@@ -10,6 +10,7 @@ pub mod measure;
 pub mod metrics;
 pub mod options;
 pub mod output;
+pub mod paths;
 pub mod plot;
 pub mod report;
 pub mod rows;

@@ -22,12 +22,11 @@ pub const COLUMNS: [&str; 2] = ["ao", "total"];
 
 /// AO patterns of the reference: 32 x 32 samples = 1024 per pixel, no blur.
 pub const REFERENCE_AO_PATTERNS: u32 = 32;
-/// PCF of the reference: a 32 x 32 grid = 1024 depth comparisons over the footprint of the
-/// rows' 49-sample grid.
-// shadow reuse: match the kernel shape of the rows' PCF once issue 5 gives them a disc.
+/// PCF of the reference: the reuse row's disc (Vogel spiral over the same radius) with 1024
+/// samples, without reuse: what the 9-sample disc accumulated over frames converges to.
 pub const REFERENCE_PCF: Pcf = Pcf {
-    kernel: PcfKernel::Grid { side: 32 },
-    radius_texels: Pcf::DEFAULT.radius_texels,
+    kernel: PcfKernel::Disc { samples: 1024 },
+    radius_texels: Pcf::NINE.radius_texels,
 };
 
 /// Report names of the GPU counters read here (see the renderer's effect kinds).
@@ -50,9 +49,9 @@ impl RowKind {
 
     pub fn label(self) -> &'static str {
         match self {
-            RowKind::Reuse => "reuse: yes, blur: no",
-            RowKind::NoReuse => "reuse: no, blur: 5x5 Gaussian",
-            RowKind::Reference => "reference: no reuse, 1024 AO samples, 1024-sample PCF, no blur",
+            RowKind::Reuse => "reuse: yes, blur: no (PCF 9, cached)",
+            RowKind::NoReuse => "reuse: no, blur: 5x5 Gaussian (PCF 49)",
+            RowKind::Reference => "reference: no reuse, 1024 AO samples, 1024-sample PCF disc",
         }
     }
 
@@ -68,11 +67,16 @@ impl RowKind {
     pub fn config(self, base: &RenderConfig) -> RenderConfig {
         let mut c = *base;
         match self {
-            RowKind::Reuse => c.temporal.reuse = true,
-            // One fixed pattern per frame; the renderer adds the 5x5 blur.
+            // The thesis's cached shadows: a 9-sample disc, rotated and scaled every frame.
+            RowKind::Reuse => {
+                c.temporal.reuse = true;
+                c.pcf = Pcf::NINE;
+            }
+            // One fixed AO pattern per frame (the renderer adds the 5x5 blur), 49-sample PCF.
             RowKind::NoReuse => {
                 c.temporal.reuse = false;
                 c.ao.patterns = 1;
+                c.pcf = Pcf::DEFAULT;
             }
             RowKind::Reference => {
                 c.temporal.reuse = false;
@@ -86,7 +90,7 @@ impl RowKind {
 }
 
 /// The thesis's configuration at `width` x `height`: SSAO 32 samples (8 directions x 4
-/// steps), 49-sample PCF, 512x512 shadow map, every effect on.
+/// steps), 512x512 shadow map, every effect on; the rows choose reuse and PCF.
 pub fn base_config(width: u32, height: u32) -> RenderConfig {
     // indirect: 512 VPLs at half resolution once issue 5 adds them to RenderConfig.
     RenderConfig {

@@ -3,6 +3,7 @@
 //! beside ours.
 
 use super::decimate::decimate;
+use super::paths::EmbeddedPath;
 use super::rows::{measure_rows, SceneRun};
 use super::table_report::{Header, SceneResult, TableReport, PENDING_ISSUE_5};
 use super::thesis::{table_4_1, SETUP};
@@ -46,8 +47,9 @@ pub const SCENES: [BoxScene; 4] = [
     },
 ];
 
-/// The default camera path: one turn around the box (the thesis used one path for all four).
-pub const DEFAULT_PATH: &str = "orbit";
+/// The default camera path (the thesis used one path for all four scenes): round the model
+/// inside the room, from its open side. (`orbit` circles outside the room's walls.)
+pub const DEFAULT_PATH: EmbeddedPath = super::paths::BOX;
 
 /// Load `s` in its box; the note says how the scene differs from the thesis's, if it does.
 pub fn load(s: &BoxScene, assets: Option<&Path>) -> Result<(Scene, Option<String>)> {
@@ -70,8 +72,10 @@ pub fn load(s: &BoxScene, assets: Option<&Path>) -> Result<(Scene, Option<String
 }
 
 pub fn run(ctx: &Arc<Context>, opts: &TableOptions) -> Result<TableReport> {
-    let path_spec = opts.path.as_deref().unwrap_or(DEFAULT_PATH);
-    let path = CameraPath::parse(path_spec)?;
+    let (path, path_spec) = match opts.path.as_deref() {
+        Some(p) => (CameraPath::parse(p)?, p),
+        None => (DEFAULT_PATH.parse()?, DEFAULT_PATH.file),
+    };
     // Load every scene before rendering anything: a missing file fails in seconds.
     let mut loaded = Vec::new();
     for s in &SCENES {

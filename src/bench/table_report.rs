@@ -153,18 +153,20 @@ pub struct Header<'a> {
 /// How the error columns are made.
 pub const REFERENCE: &str =
     "the same scene rendered from the camera of the last frame without temporal reuse, with \
-     32 AO patterns (1024 samples per pixel, no blur) and 1024-sample PCF over the same \
-     footprint; errors are over the pixels covered by geometry (final image: RGB in 0..1 \
-     after tonemapping; AO: visibility; direct: linear radiance)";
+     32 AO patterns (1024 samples per pixel, no blur) and a 1024-sample PCF disc of the reuse \
+     row's radius (what the cached 9-sample disc converges to; the no-reuse row's 7x7 grid has \
+     a square footprint, so its shadow error includes that difference of kernel shape); errors \
+     are over the pixels covered by geometry (final image: RGB in 0..1 after tonemapping; AO \
+     and shadow: visibility; direct: linear radiance)";
 
 /// Said in every report until issue 5 lands.
 // indirect: drop this note once the indirect and shadow-reuse columns exist.
 pub const PENDING_ISSUE_5: &str =
-    "Indirect column pending issue 5: the renderer has no RSM one-bounce indirect light and no \
-     PCF shadow reuse yet, so there is no indirect fps/ms or indirect error column, and our \
-     total is G-buffer + direct (PCF 49) + SSAO + composite, without indirect light. The \
-     thesis's total includes 512-VPL indirect light, so compare the SSAO speed-up ratios; the \
-     total ratios are not comparable yet.";
+    "Indirect column pending issue 5: the renderer has no RSM one-bounce indirect light yet, \
+     so there is no indirect fps/ms or indirect error column, and our total is G-buffer + \
+     shadows + direct + SSAO + composite, without indirect light. The thesis's total includes \
+     512-VPL indirect light, so compare the SSAO speed-up ratios; the total ratios are not \
+     comparable yet.";
 
 impl TableReport {
     pub fn new(h: Header<'_>, thesis_setup: &str, notes: Vec<String>) -> Self {

@@ -1,9 +1,10 @@
 //! `ssgi table thesis-walkthroughs`: Sponza, Sibenik and Conference walked through along
-//! keyframe paths saved in the repository (`paths/*.json`, compiled into the binary so a
-//! prebuilt binary needs no other file), with and without reuse: per-frame GPU time and the
+//! keyframe paths saved in the repository (`paths/*.json`, see paths.rs), with and without
+//! reuse: per-frame GPU time and the
 //! per-frame fraction of recomputed pixels (the thesis's Tables 4.2-4.4 and Figure 4.10), as
 //! CSV and PNG plots, plus the same summary rows and errors as Table 4.1.
 
+use super::paths::{self, EmbeddedPath};
 use super::plot::{
     write_line_plot, LinePlot, Series, NO_REUSE_AO_COLOR, NO_REUSE_COLOR, REUSE_AO_COLOR,
     REUSE_COLOR,
@@ -13,11 +14,11 @@ use super::table_report::{Header, SceneResult, TableReport, PENDING_ISSUE_5};
 use super::thesis::{SETUP, WALKTHROUGH_NUMBERS_MISSING};
 use super::TableOptions;
 use crate::error::{Error, Result};
-use crate::scene::{load_scene, Camera, CameraPath, Keyframe, Scene, SceneError, SpotLight};
+use crate::scene::{load_scene, Camera, CameraPath, Scene, SpotLight};
 use crate::vk::Context;
 use glam::Vec3;
 use plotters::style::RGBColor;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::sync::Arc;
 
 /// One walkthrough scene.
@@ -25,9 +26,8 @@ pub struct Walkthrough {
     /// Asset folder.
     pub asset: &'static str,
     pub name: &'static str,
-    /// The keyframe file's path in the repository, and its contents.
-    pub path_file: &'static str,
-    pub keyframes: &'static str,
+    /// The keyframe file (compiled in).
+    pub path: EmbeddedPath,
     /// Vertical field of view of the walkthrough camera, degrees.
     pub vfov_deg: f32,
     /// Spot light under the roof, as fractions of the bounding box (0 = min, 1 = max), aimed
@@ -41,8 +41,7 @@ pub const WALKTHROUGHS: [Walkthrough; 3] = [
     Walkthrough {
         asset: "sponza",
         name: "Sponza",
-        path_file: "paths/sponza.json",
-        keyframes: include_str!("../../paths/sponza.json"),
+        path: paths::SPONZA,
         vfov_deg: 60.0,
         light_at: [0.5, 0.95, 0.5],
         light_outer_deg: 60.0,
@@ -50,8 +49,7 @@ pub const WALKTHROUGHS: [Walkthrough; 3] = [
     Walkthrough {
         asset: "sibenik",
         name: "Sibenik",
-        path_file: "paths/sibenik.json",
-        keyframes: include_str!("../../paths/sibenik.json"),
+        path: paths::SIBENIK,
         vfov_deg: 60.0,
         light_at: [0.5, 0.56, 0.5],
         light_outer_deg: 75.0,
@@ -59,8 +57,7 @@ pub const WALKTHROUGHS: [Walkthrough; 3] = [
     Walkthrough {
         asset: "conference",
         name: "Conference",
-        path_file: "paths/conference.json",
-        keyframes: include_str!("../../paths/conference.json"),
+        path: paths::CONFERENCE,
         vfov_deg: 60.0,
         light_at: [0.5, 0.9, 0.5],
         light_outer_deg: 75.0,
@@ -72,28 +69,14 @@ pub const WALKTHROUGHS: [Walkthrough; 3] = [
 const NEAR_FRACTION: f32 = 0.001;
 const FAR_FRACTION: f32 = 1.2;
 
-#[derive(serde::Deserialize)]
-#[serde(deny_unknown_fields)]
-struct KeyframeFile {
-    keyframes: Vec<Keyframe>,
-}
-
 impl Walkthrough {
     /// The compiled-in keyframes, or those of `<dir>/<asset>.json` when a directory is given.
-    pub fn path(&self, dir: Option<&Path>) -> Result<(CameraPath, String)> {
+    pub fn camera_path(&self, dir: Option<&Path>) -> Result<(CameraPath, String)> {
         if let Some(dir) = dir {
             let file = dir.join(format!("{}.json", self.asset));
             return Ok((CameraPath::from_file(&file)?, file.display().to_string()));
         }
-        let parsed: KeyframeFile =
-            serde_json::from_str(self.keyframes).map_err(|e| SceneError::CameraPath {
-                path: PathBuf::from(self.path_file),
-                message: format!("invalid JSON: {e}"),
-            })?;
-        Ok((
-            CameraPath::Keyframes(parsed.keyframes),
-            self.path_file.to_string(),
-        ))
+        Ok((self.path.parse()?, self.path.file.to_string()))
     }
 
     /// The scene with the walkthrough's lens (first keyframe's view) and interior light.
@@ -137,7 +120,7 @@ pub fn run(ctx: &Arc<Context>, opts: &TableOptions, out: &Path) -> Result<TableR
     }
     let mut loaded = Vec::new();
     for w in &WALKTHROUGHS {
-        let (path, path_name) = w.path(dir)?;
+        let (path, path_name) = w.camera_path(dir)?;
         let scene = w.load(opts.assets.as_deref(), &path)?;
         loaded.push((w, path, path_name, scene));
     }
@@ -253,30 +236,5 @@ fn series<'a>(
             .iter()
             .filter_map(|f| y(f).map(|v| (f.frame as f64, v)))
             .collect(),
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    /// The compiled-in keyframes are the repository files, and pass the loader's checks.
-    #[test]
-    fn compiled_paths_match_the_files() {
-        let root = Path::new(env!("CARGO_MANIFEST_DIR"));
-        for w in &WALKTHROUGHS {
-            let (compiled, name) = w.path(None).unwrap();
-            assert_eq!(name, w.path_file);
-            let from_file = CameraPath::from_file(&root.join(w.path_file)).unwrap();
-            assert_eq!(compiled, from_file, "{}", w.path_file);
-            let CameraPath::Keyframes(keys) = compiled else {
-                panic!("{}: not keyframes", w.path_file)
-            };
-            assert!(
-                keys.len() >= 4,
-                "{}: a walkthrough needs turns",
-                w.path_file
-            );
-        }
     }
 }

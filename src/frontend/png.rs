@@ -82,7 +82,8 @@ pub fn visualize(target: Target, data: &ImageData, bounds: &Aabb) -> Vec<u8> {
                     [v, v, v]
                 }
                 Target::RsmFlux => [t[0] / range, t[1] / range, t[2] / range],
-                Target::Ao => [t[0], t[0], t[0]],
+                Target::Ao | Target::Shadow => [t[0], t[0], t[0]],
+                Target::DiscardMask => [t[0], 0.0, 0.0],
                 // Figure 4.10: red where recomputed from scratch (disoccluded), blue for the
                 // refresh tile, yellow accumulating, grey converged, black background.
                 Target::State => match t[0] as u32 {

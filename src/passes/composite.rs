@@ -17,28 +17,45 @@ const G_ALBEDO: ReflectedBinding = binding(1, 1, DescriptorKind::SampledImage);
 const OUT: ReflectedBinding = binding(1, 2, DescriptorKind::StorageImage);
 const DIRECT: ReflectedBinding = binding(1, 3, DescriptorKind::SampledImage);
 const AO: ReflectedBinding = binding(1, 4, DescriptorKind::SampledImage);
+const INDIRECT: ReflectedBinding = binding(1, 5, DescriptorKind::SampledImage);
 
-const DIRECT_ONLY: &[ReflectedBinding] = &[FRAME_BINDING, G_POSITION, G_ALBEDO, OUT, DIRECT];
-const AO_ONLY: &[ReflectedBinding] = &[FRAME_BINDING, G_POSITION, G_ALBEDO, OUT, AO];
-const DIRECT_AO: &[ReflectedBinding] = &[FRAME_BINDING, G_POSITION, G_ALBEDO, OUT, DIRECT, AO];
-
-fn variant(effects: Effects) -> (&'static ShaderModuleInfo, &'static [ReflectedBinding]) {
-    match (effects.direct, effects.ao) {
-        (true, false) => (&shaders::COMPOSITE_COMP_DIRECT, DIRECT_ONLY),
-        (false, true) => (&shaders::COMPOSITE_COMP_AO, AO_ONLY),
-        _ => (&shaders::COMPOSITE_COMP_DIRECT_AO, DIRECT_AO),
+/// The permutation for an effect combination and the bindings it declares.
+fn variant(effects: Effects) -> (&'static ShaderModuleInfo, Vec<ReflectedBinding>) {
+    let module: &'static ShaderModuleInfo = match (effects.direct, effects.ao, effects.indirect) {
+        (true, false, false) => &shaders::COMPOSITE_COMP_D,
+        (false, true, false) => &shaders::COMPOSITE_COMP_A,
+        (false, false, true) => &shaders::COMPOSITE_COMP_I,
+        (true, true, false) => &shaders::COMPOSITE_COMP_DA,
+        (true, false, true) => &shaders::COMPOSITE_COMP_DI,
+        (false, true, true) => &shaders::COMPOSITE_COMP_AI,
+        _ => &shaders::COMPOSITE_COMP_DAI,
+    };
+    let mut b = vec![FRAME_BINDING, G_POSITION, G_ALBEDO, OUT];
+    if effects.direct {
+        b.push(DIRECT);
     }
+    if effects.ao {
+        b.push(AO);
+    }
+    if effects.indirect {
+        b.push(INDIRECT);
+    }
+    (module, b)
 }
 
 pub fn layouts() -> Vec<PassLayout> {
-    [(true, false), (false, true), (true, true)]
-        .into_iter()
-        .map(|(direct, ao)| {
-            let (module, declared) = variant(Effects { direct, ao });
+    (1..8u32)
+        .map(|m| {
+            let effects = Effects {
+                direct: m & 1 != 0,
+                ao: m & 2 != 0,
+                indirect: m & 4 != 0,
+            };
+            let (module, declared) = variant(effects);
             PassLayout {
                 pass: "composite",
                 modules: vec![module],
-                declared: declared.to_vec(),
+                declared,
             }
         })
         .collect()
@@ -52,12 +69,18 @@ pub struct CompositePass {
 impl CompositePass {
     pub fn new(ctx: &Arc<Context>, pool: &DescriptorPool, effects: Effects) -> Result<Self> {
         let (module, declared) = variant(effects);
-        let pass = ComputePass::new(ctx, pool, "composite", module, declared)?;
+        let pass = ComputePass::new(ctx, pool, "composite", module, &declared)?;
         Ok(Self { pass, effects })
     }
 
-    /// `ao[parity]`: the AO visibility the composite of that parity reads.
-    pub fn bind_targets(&self, ctx: &Context, t: &Targets, ao: Option<[&Image; 2]>) {
+    /// `ao[parity]` / `indirect[parity]`: what the composite of that parity reads.
+    pub fn bind_targets(
+        &self,
+        ctx: &Context,
+        t: &Targets,
+        ao: Option<[&Image; 2]>,
+        indirect: Option<[&Image; 2]>,
+    ) {
         for parity in 0..2 {
             let mut w = SetWriter::new()
                 .sampled(0, &t.gbuffer.position[parity])
@@ -69,10 +92,14 @@ impl CompositePass {
             if let Some(ao) = ao {
                 w = w.sampled(4, ao[parity]);
             }
+            if let Some(indirect) = indirect {
+                w = w.sampled(5, indirect[parity]);
+            }
             self.pass.write(ctx, parity, w);
         }
     }
 
+    #[allow(clippy::too_many_arguments)]
     pub fn record(
         &self,
         rec: &Recorder<'_>,
@@ -81,14 +108,15 @@ impl CompositePass {
         parity: usize,
         t: &Targets,
         ao: Option<&Image>,
+        indirect: Option<&Image>,
     ) {
         tracker.image(&t.gbuffer.position[parity], Access::ComputeSampledRead);
         tracker.image(&t.gbuffer.albedo, Access::ComputeSampledRead);
         if self.effects.direct {
             tracker.image(&t.direct, Access::ComputeSampledRead);
         }
-        if let Some(ao) = ao {
-            tracker.image(ao, Access::ComputeSampledRead);
+        for input in [ao, indirect].into_iter().flatten() {
+            tracker.image(input, Access::ComputeSampledRead);
         }
         tracker.image(&t.output, Access::Undefined);
         tracker.image(&t.output, Access::ComputeStorageWrite);

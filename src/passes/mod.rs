@@ -5,6 +5,7 @@ pub mod composite;
 pub mod compute;
 pub mod direct;
 pub mod gbuffer;
+pub mod indirect;
 pub mod light_view;
 pub mod raster;
 pub mod reproject;
@@ -30,12 +31,18 @@ pub enum PassId {
     Ssao,
     /// 5x5 Gaussian blur of the AO (no-reuse baseline only).
     Blur,
+    /// RSM gather (half resolution, or full resolution without half-res).
+    IndirectGather,
+    /// Geometry-aware upsampling of the half-resolution gather.
+    IndirectUpsample,
+    /// Full-resolution gather of the pixels the upsampling discarded.
+    IndirectFixup,
     /// Composite + tonemap into the output image.
     Composite,
 }
 
 impl PassId {
-    pub const ALL: [PassId; 8] = [
+    pub const ALL: [PassId; 11] = [
         PassId::LightView,
         PassId::GBuffer,
         PassId::Reproject,
@@ -43,6 +50,9 @@ impl PassId {
         PassId::Direct,
         PassId::Ssao,
         PassId::Blur,
+        PassId::IndirectGather,
+        PassId::IndirectUpsample,
+        PassId::IndirectFixup,
         PassId::Composite,
     ];
 
@@ -55,6 +65,9 @@ impl PassId {
             PassId::Reproject => "reproject",
             PassId::Ssao => "ssao",
             PassId::Blur => "blur",
+            PassId::IndirectGather => "indirect_gather",
+            PassId::IndirectUpsample => "indirect_upsample",
+            PassId::IndirectFixup => "indirect_fixup",
             PassId::Composite => "composite",
         }
     }
@@ -94,6 +107,7 @@ pub fn all_layouts() -> Vec<PassLayout> {
     v.push(reproject::layout());
     v.extend(ssao::layouts());
     v.push(blur::layout());
+    v.extend(indirect::layouts());
     v.extend(composite::layouts());
     v
 }

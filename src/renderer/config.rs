@@ -15,36 +15,62 @@ pub const MAX_SIZE: u32 = 16384;
 pub struct Effects {
     pub direct: bool,
     pub ao: bool,
+    /// One-bounce indirect light from the reflective shadow map.
+    pub indirect: bool,
 }
 
 impl Effects {
     pub const ALL: Effects = Effects {
         direct: true,
         ao: true,
+        indirect: true,
     };
 
-    /// Comma-separated list: `direct`, `ao`, or `all`.
+    /// Comma-separated list: `direct`, `ao`, `indirect`, or `all`.
     pub fn parse(s: &str) -> std::result::Result<Effects, String> {
         let mut e = Effects {
             direct: false,
             ao: false,
+            indirect: false,
         };
         for part in s.split(',').map(str::trim).filter(|p| !p.is_empty()) {
             match part {
                 "all" => e = Effects::ALL,
                 "direct" => e.direct = true,
                 "ao" => e.ao = true,
+                "indirect" => e.indirect = true,
                 other => {
                     return Err(format!(
-                        "unknown effect {other:?} in --effects (known: direct, ao, all)"
+                        "unknown effect {other:?} in --effects (known: direct, ao, indirect, all)"
                     ))
                 }
             }
         }
-        if !e.direct && !e.ao {
-            return Err("--effects selects nothing (use e.g. direct,ao)".into());
+        if !e.direct && !e.ao && !e.indirect {
+            return Err("--effects selects nothing (use e.g. direct,ao,indirect)".into());
         }
         Ok(e)
+    }
+}
+
+/// One-bounce indirect light (Lin 2013 section 3.3).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+pub struct IndirectConfig {
+    /// VPLs gathered per pixel and pattern; 0 = every RSM texel (the full gather).
+    pub vpls: u32,
+    /// The screen-space visibility test of each VPL (about halves the speed, the thesis says).
+    pub visibility: bool,
+    /// Gather at half resolution, upsample geometry-aware, fix up discarded pixels.
+    pub half_res: bool,
+}
+
+impl Default for IndirectConfig {
+    fn default() -> Self {
+        Self {
+            vpls: 512,
+            visibility: false,
+            half_res: true,
+        }
     }
 }
 
@@ -182,6 +208,7 @@ pub struct RenderConfig {
     pub pcf: Pcf,
     pub effects: Effects,
     pub ao: AoConfig,
+    pub indirect: IndirectConfig,
     pub temporal: TemporalConfig,
 }
 
@@ -194,6 +221,7 @@ impl Default for RenderConfig {
             pcf: Pcf::DEFAULT,
             effects: Effects::ALL,
             ao: AoConfig::default(),
+            indirect: IndirectConfig::default(),
             temporal: TemporalConfig::default(),
         }
     }
@@ -226,6 +254,12 @@ impl RenderConfig {
         }
         if ao.attenuation.iter().any(|c| !c.is_finite() || *c < 0.0) {
             return bad("AO attenuation coefficients must be finite and >= 0".into());
+        }
+        if self.indirect.vpls > 1 << 20 {
+            return bad(format!(
+                "{} VPLs per pixel is more than 65536",
+                self.indirect.vpls
+            ));
         }
         let t = &self.temporal;
         if !(1..=4096).contains(&t.rotation_limit) {

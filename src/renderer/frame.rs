@@ -109,7 +109,7 @@ pub struct FrameUniforms {
 }
 
 impl FrameUniforms {
-    pub const SIZE: usize = 3 * 64 + 12 * 16;
+    pub const SIZE: usize = 3 * 64 + 13 * 16;
 
     pub fn new(config: &RenderConfig, f: &FrameInputs<'_>) -> Self {
         let mut w: Vec<u32> = Vec::with_capacity(Self::SIZE / 4);
@@ -171,6 +171,16 @@ impl FrameUniforms {
         let offset = if ao.patterns > 1 { 0.5 } else { 0.0 };
         vec4(
             [t.rotation_deg.to_radians(), offset, pcf_kernel as f32, 0.0],
+            &mut w,
+        );
+        let ind = &config.indirect;
+        vec4(
+            [
+                ind.vpls as f32,
+                ind.visibility as u32 as f32,
+                ind.half_res as u32 as f32,
+                0.0,
+            ],
             &mut w,
         );
         debug_assert_eq!(w.len() * 4, Self::SIZE);

@@ -17,6 +17,7 @@ use crate::passes::blur::BlurPass;
 use crate::passes::composite::CompositePass;
 use crate::passes::direct::DirectPass;
 use crate::passes::gbuffer::GBufferPass;
+use crate::passes::indirect::{IndirectPass, IndirectTargets};
 use crate::passes::light_view::LightViewPass;
 use crate::passes::reproject::ReprojectPass;
 use crate::passes::shadow::ShadowPass;
@@ -49,6 +50,14 @@ pub struct FrameHook<'a> {
     pub source: Target,
 }
 
+/// The pass whose timing row is `name` (sub-passes report by name).
+fn name_to_pass(name: &str) -> PassId {
+    PassId::ALL
+        .into_iter()
+        .find(|p| p.name() == name)
+        .unwrap_or(PassId::IndirectGather)
+}
+
 /// Frames the CPU may record ahead of the GPU.
 pub const FRAMES_IN_FLIGHT: usize = 2;
 
@@ -69,12 +78,14 @@ struct Sized {
     targets: Targets,
     ao: Option<TemporalEffect>,
     shadow: Option<TemporalEffect>,
+    indirect: Option<(TemporalEffect, IndirectTargets)>,
 }
 
 /// Reprojection descriptor sets of each effect, allocated once and rewritten on resize.
 struct EffectSets {
     ao: [vk::DescriptorSet; 2],
     shadow: [vk::DescriptorSet; 2],
+    indirect: [vk::DescriptorSet; 2],
 }
 
 pub struct Renderer {
@@ -88,6 +99,7 @@ pub struct Renderer {
     shadow_accumulate: Option<ShadowPass>,
     direct: Option<DirectPass>,
     ao: Option<AoPasses>,
+    indirect: Option<IndirectPass>,
     composite: CompositePass,
     scene_gpu: SceneGpu,
     sized: Sized,
@@ -127,6 +139,11 @@ impl Renderer {
             (None, None, None)
         };
         let composite = CompositePass::new(ctx, &pool, config.effects)?;
+        let indirect = if config.effects.indirect {
+            Some(IndirectPass::new(ctx, &pool, config.indirect.half_res)?)
+        } else {
+            None
+        };
         let mut tracker = Tracker::new();
         let scene_gpu = SceneGpu::new(
             ctx,
@@ -184,6 +201,7 @@ impl Renderer {
         let effect_sets = EffectSets {
             ao: reproject.allocate_sets(&pool)?,
             shadow: reproject.allocate_sets(&pool)?,
+            indirect: reproject.allocate_sets(&pool)?,
         };
         let sized = Self::create_sized(ctx, &config, &effect_sets)?;
         let renderer = Self {
@@ -197,6 +215,7 @@ impl Renderer {
             shadow_accumulate,
             direct,
             ao,
+            indirect,
             composite,
             scene_gpu,
             sized,
@@ -237,7 +256,45 @@ impl Renderer {
                 effect::SHADOW,
                 sets.shadow,
             )?,
+            indirect: match effect(c.effects.indirect, effect::INDIRECT, sets.indirect)? {
+                Some(e) => {
+                    let own = IndirectTargets {
+                        lowres: Buffer::new(
+                            ctx,
+                            "indirect.lowres",
+                            e.max_blocks as u64 * 100 * 16,
+                            vk::BufferUsageFlags::STORAGE_BUFFER,
+                            MemoryLocation::GpuOnly,
+                        )?,
+                        discard: Image::new(
+                            ctx,
+                            "indirect.discard",
+                            ImageDesc {
+                                width: w,
+                                height: h,
+                                format: targets::STATE_FORMAT,
+                                usage: vk::ImageUsageFlags::STORAGE
+                                    | vk::ImageUsageFlags::TRANSFER_SRC,
+                            },
+                        )?,
+                    };
+                    Some((e, own))
+                }
+                None => None,
+            },
         })
+    }
+
+    /// Every temporal effect of this configuration.
+    fn effects_mut(&mut self) -> impl Iterator<Item = &mut TemporalEffect> {
+        let s = &mut self.sized;
+        [
+            s.ao.as_mut(),
+            s.shadow.as_mut(),
+            s.indirect.as_mut().map(|(e, _)| e),
+        ]
+        .into_iter()
+        .flatten()
     }
 
     /// Whether this frame's shadows come from the accumulated history: reuse on and a disc
@@ -334,11 +391,21 @@ impl Renderer {
                 b.bind_targets(ctx, t);
             }
         }
+        if let (Some(pass), Some((e, own))) = (&self.indirect, &self.sized.indirect) {
+            self.reproject.bind_targets(ctx, t, e);
+            pass.bind_targets(ctx, t, e, own);
+        }
         let ao_images = match (self.ao_image(0), self.ao_image(1)) {
             (Some(a), Some(b)) => Some([a, b]),
             _ => None,
         };
-        self.composite.bind_targets(ctx, t, ao_images);
+        let indirect_images = self
+            .sized
+            .indirect
+            .as_ref()
+            .map(|(e, _)| [&e.history[0], &e.history[1]]);
+        self.composite
+            .bind_targets(ctx, t, ao_images, indirect_images);
     }
 
     pub fn context(&self) -> &Arc<Context> {
@@ -377,10 +444,7 @@ impl Renderer {
         let cmd = self.slots.begin(slot)?;
         let mut previous = self.timer.begin_frame(slot, self.frame_index);
         let mut counters = Vec::new();
-        for e in [&mut self.sized.ao, &mut self.sized.shadow]
-            .into_iter()
-            .flatten()
-        {
+        for e in self.effects_mut() {
             counters.extend(e.readback.collect(slot));
         }
         if let Some(p) = &mut previous {
@@ -419,6 +483,17 @@ impl Renderer {
             })
         };
         let ao_push = effect_push(&mut self.sized.ao);
+        // Indirect light always goes through the reprojection: without reuse every pixel is
+        // new and every block listed, with the fixed pattern 0.
+        let indirect_push = self.sized.indirect.as_mut().map(|(e, _)| {
+            let tile = (history_valid && c.temporal.refresh).then(|| e.schedule.next_tile());
+            let pattern = if reuse {
+                (self.frame_index % c.temporal.rotation_limit as u64) as u32
+            } else {
+                0
+            };
+            e.push_constants(tile, history_valid, pattern)
+        });
         let shadow_push = if shadow_reuse {
             effect_push(&mut self.sized.shadow)
         } else {
@@ -429,12 +504,17 @@ impl Renderer {
         let t = &self.sized.targets;
         let tracker = &mut self.tracker;
         let timer = &mut self.timer;
+        let mut timed_name =
+            |name: &'static str, tracker: &mut Tracker, f: &mut dyn FnMut(&mut Tracker)| {
+                let began = timer.begin_pass(cmd, slot, name);
+                f(tracker);
+                if began {
+                    timer.end_pass(cmd, slot);
+                }
+            };
+
         let mut timed = |pass: PassId, tracker: &mut Tracker, f: &mut dyn FnMut(&mut Tracker)| {
-            let began = timer.begin_pass(cmd, slot, pass.name());
-            f(tracker);
-            if began {
-                timer.end_pass(cmd, slot);
-            }
+            timed_name(pass.name(), tracker, f)
         };
 
         // Light view only when the light changed since the RSM was rendered (geometry is
@@ -455,11 +535,23 @@ impl Renderer {
         let reprojected: Vec<(&TemporalEffect, &[u8; 32])> = [
             (self.sized.ao.as_ref(), ao_push.as_ref().filter(|_| reuse)),
             (self.sized.shadow.as_ref(), shadow_push.as_ref()),
+            (
+                self.sized.indirect.as_ref().map(|(e, _)| e),
+                indirect_push.as_ref(),
+            ),
         ]
         .into_iter()
         .filter_map(|(e, p)| Some((e?, p?)))
         .collect();
-        for e in [&self.sized.ao, &self.sized.shadow].into_iter().flatten() {
+        let indirect_effect = self.sized.indirect.as_ref().map(|(e, _)| e);
+        for e in [
+            self.sized.ao.as_ref(),
+            self.sized.shadow.as_ref(),
+            indirect_effect,
+        ]
+        .into_iter()
+        .flatten()
+        {
             e.reset_counters(&rec, tracker);
         }
         if !reprojected.is_empty() {
@@ -506,11 +598,34 @@ impl Renderer {
                 });
             }
         }
+        let indirect_image = self
+            .sized
+            .indirect
+            .as_ref()
+            .map(|(e, _)| &e.history[parity]);
+        if let (Some(pass), Some((e, own)), Some(push)) =
+            (&self.indirect, &self.sized.indirect, &indirect_push)
+        {
+            pass.record(
+                &rec,
+                tracker,
+                frame_set,
+                parity,
+                t,
+                e,
+                own,
+                push,
+                &mut |name, tr, f| timed(name_to_pass(name), tr, f),
+            );
+        }
         timed(PassId::Composite, tracker, &mut |tr| {
             self.composite
-                .record(&rec, tr, frame_set, parity, t, ao_image)
+                .record(&rec, tr, frame_set, parity, t, ao_image, indirect_image)
         });
         if let Some(e) = &mut self.sized.ao {
+            e.copy_counters(&rec, &mut self.tracker, slot);
+        }
+        if let Some((e, _)) = &mut self.sized.indirect {
             e.copy_counters(&rec, &mut self.tracker, slot);
         }
         if let (Some(e), true) = (&mut self.sized.shadow, shadow_reuse) {
@@ -549,10 +664,7 @@ impl Renderer {
         let mut out = Vec::new();
         for slot in 0..FRAMES_IN_FLIGHT {
             let mut counters = Vec::new();
-            for e in [&mut self.sized.ao, &mut self.sized.shadow]
-                .into_iter()
-                .flatten()
-            {
+            for e in self.effects_mut() {
                 counters.extend(e.readback.collect(slot));
             }
             if let Some(mut t) = self.timer.collect(slot) {
@@ -592,6 +704,18 @@ impl Renderer {
             Target::Ao => Self::ao_source(&self.sized, self.ao.as_ref(), &self.config, parity)
                 .ok_or_else(|| Error::Config("the AO effect is off".into()))?,
             Target::Shadow => Self::shadow_source(&self.sized, shadow_reuse, parity),
+            Target::Indirect | Target::DiscardMask => {
+                let (e, own) = self
+                    .sized
+                    .indirect
+                    .as_ref()
+                    .ok_or_else(|| Error::Config("the indirect effect is off".into()))?;
+                if target == Target::Indirect {
+                    &e.history[parity]
+                } else {
+                    &own.discard
+                }
+            }
             Target::State => {
                 let effect = self.sized.ao.as_ref().or(self.sized.shadow.as_ref());
                 &effect

@@ -108,12 +108,16 @@ pub enum Target {
     Ao,
     /// Shadow visibility as the direct pass reads it.
     Shadow,
+    /// Indirect light (eq 9's I_p, rgb; a = estimates accumulated).
+    Indirect,
+    /// Pixels the half-resolution upsampling discarded this frame (Figure 4.1).
+    DiscardMask,
     /// Reprojection state per pixel (Figure 4.10's recompute mask).
     State,
 }
 
 impl Target {
-    pub const ALL: [Target; 14] = [
+    pub const ALL: [Target; 16] = [
         Target::Output,
         Target::Direct,
         Target::GPosition,
@@ -127,6 +131,8 @@ impl Target {
         Target::RsmDepth,
         Target::Ao,
         Target::Shadow,
+        Target::Indirect,
+        Target::DiscardMask,
         Target::State,
     ];
 
@@ -145,6 +151,8 @@ impl Target {
             Target::RsmDepth => "rsm_depth",
             Target::Ao => "ao",
             Target::Shadow => "shadow",
+            Target::Indirect => "indirect",
+            Target::DiscardMask => "discard_mask",
             Target::State => "recompute_mask",
         }
     }
@@ -198,7 +206,11 @@ impl Targets {
             Target::RsmNormal => &self.rsm.normal,
             Target::RsmFlux => &self.rsm.flux,
             Target::RsmDepth => &self.rsm.depth,
-            Target::Ao | Target::Shadow | Target::State => return None,
+            Target::Ao
+            | Target::Shadow
+            | Target::Indirect
+            | Target::DiscardMask
+            | Target::State => return None,
         })
     }
 }

@@ -1,0 +1,125 @@
+// One-bounce indirect light from the reflective shadow map (Lin 2013 eqs 9-10, Dachsbacher &
+// Stamminger 2005). Requires rsm_position, rsm_normal, rsm_flux, g_position (for the visibility
+// test) to be declared by the including shader.
+
+// Eq 9 for one VPL q at receiver p (normal n): Phi_q max(0, n.D) max(0, n_q.(-D)) / |q-p|^2.
+// |q-p|^2 is floored at the squared world size of one RSM texel at q: a VPL stands for a
+// texel-sized patch and the point-light law only holds beyond about its own size, so the
+// singularity at q -> p is cut at a distance that scales with the light's frustum, not a fixed
+// world epsilon.
+vec3 vpl_contribution(vec3 p, vec3 n, ivec2 texel) {
+    vec4 q = texelFetch(rsm_position, texel, 0);
+    if (q.w == 0.0) return vec3(0.0);
+    vec3 nq = texelFetch(rsm_normal, texel, 0).xyz;
+    vec3 flux = texelFetch(rsm_flux, texel, 0).rgb;
+    vec3 d = q.xyz - p;
+    float d2 = dot(d, d);
+    float depth = max(dot(q.xyz - frame.light_pos.xyz, frame.light_dir.xyz), 0.0);
+    float texel_world = 2.0 * depth * frame.light_params.y / frame.light_params.z;
+    if (d2 <= 0.0) return vec3(0.0);
+    vec3 dir = d * inversesqrt(d2); // eq 10
+    return flux * max(dot(n, dir), 0.0) * max(dot(nq, -dir), 0.0) / max(d2, texel_world * texel_world);
+}
+
+// Screen-space visibility of q from p (Lin 2013 section 3.3.1): points on the segment at
+// eq 8's log spacing in screen space are compared with the G-buffer's view depth; one behind
+// the visible surface (by more than 2% of its depth) rejects the VPL. Points off screen give
+// no information and are skipped.
+bool vpl_visible(vec3 p, vec3 q) {
+    vec4 cp = frame.view_proj * vec4(p, 1.0);
+    vec4 cq = frame.view_proj * vec4(q, 1.0);
+    if (cp.w <= 0.0 || cq.w <= 0.0) return true;
+    vec2 size = vec2(frame.size.xy);
+    vec2 sp = (cp.xy / cp.w * 0.5 + 0.5) * size;
+    vec2 sq = (cq.xy / cq.w * 0.5 + 0.5) * size;
+    float len = length(sq - sp);
+    float near_px = frame.ao_params.w;
+    if (len <= near_px) return true;
+    // Eq 8 with m = 8 steps: log-spaced from p, the last ones spanning the far part of the
+    // segment; stopping at 95% keeps q's own surface from occluding it.
+    const uint STEPS = 8u;
+    for (uint i = 1u; i <= STEPS; ++i) {
+        float t = min(near_px * pow(len / near_px, float(i) / float(STEPS)) / len, 0.95);
+        vec3 s = mix(p, q, t);
+        vec4 cs = frame.view_proj * vec4(s, 1.0);
+        if (cs.w <= 0.0) continue;
+        ivec2 px = ivec2(floor((cs.xy / cs.w * 0.5 + 0.5) * size));
+        if (any(lessThan(px, ivec2(0))) || any(greaterThanEqual(uvec2(px), frame.size.xy))) continue;
+        vec4 g = texelFetch(g_position, px, 0);
+        if (g.w == 0.0) continue;
+        float zg = (frame.view_proj * vec4(g.xyz, 1.0)).w;
+        if (cs.w > zg * 1.02) return false;
+    }
+    return true;
+}
+
+vec3 vpl_term(vec3 p, vec3 n, ivec2 texel) {
+    vec3 c = vpl_contribution(p, n, texel);
+    if (frame.indirect_params.y > 0.5 && any(greaterThan(c, vec3(0.0)))) {
+        if (!vpl_visible(p, texelFetch(rsm_position, texel, 0).xyz)) return vec3(0.0);
+    }
+    return c;
+}
+
+// The R2 low-discrepancy sequence (Roberts 2018): point i of the unit square. A closed form
+// with no inner loop (llvmpipe caps the iterations of a loop per invocation).
+vec2 r2_point(uint i) {
+    return fract(vec2(0.5) + float(i) * vec2(0.7548776662466927, 0.5698402909980532));
+}
+
+// Eq 9 summed over every RSM texel (the reference the sampled gather converges to).
+vec3 rsm_gather_all(vec3 p, vec3 n) {
+    int size = int(frame.light_params.z);
+    vec3 sum = vec3(0.0);
+    for (int y = 0; y < size; ++y)
+        for (int x = 0; x < size; ++x)
+            sum += vpl_term(p, n, ivec2(x, y));
+    return sum;
+}
+
+// `count` VPLs drawn around p's projection into the RSM with a density that falls off as
+// 1/r^2 beyond one texel (uniform inside it), each weighted by the inverse density, i.e. by its
+// squared distance (Dachsbacher & Stamminger's weighting). The disc reaches the farthest RSM
+// corner, so the estimator is unbiased for the sum over every texel. `pattern` rotates the
+// points and shifts the radii (a new pattern each frame); `seed` rotates per pixel.
+vec3 rsm_gather_sampled(vec3 p, vec3 n, float pattern, uint count, float seed) {
+    float size = frame.light_params.z;
+    // The density peaks at p's projection into the RSM. Any centre keeps the estimator
+    // unbiased, so points behind the light or projecting outside use the nearest RSM point
+    // (the centre when behind): otherwise nearly every sample would miss the map.
+    vec4 clip = frame.light_view_proj * vec4(p, 1.0);
+    vec2 c = clip.w > 0.0 ? clamp((clip.xy / clip.w * 0.5 + 0.5) * size, vec2(0.0), vec2(size))
+                          : vec2(0.5 * size);
+    vec2 far_corner = max(abs(c), abs(c - vec2(size)));
+    float r0 = 1.0;
+    float R = max(length(far_corner), 2.0 * r0);
+    float log_ratio = log(R / r0);
+    float p_inner = 1.0 / (1.0 + 2.0 * log_ratio);  // probability of the inner disc
+    float density = p_inner / (3.14159265358979 * r0 * r0); // C in p(x) = C / max(r, r0)^2
+    float angle = frame.ao_pattern.x * pattern + 6.28318530718 * seed;
+    float shift = fract(pattern * 0.6180339887);
+    vec3 sum = vec3(0.0);
+    for (uint i = 0u; i < count; ++i) {
+        vec2 u = r2_point(i);
+        float u1 = fract(u.x + shift);
+        float u2 = u.y;
+        float r = u1 < p_inner ? r0 * sqrt(u1 / p_inner) : r0 * exp(log_ratio * (u1 - p_inner) / (1.0 - p_inner));
+        float phi = 6.28318530718 * u2 + angle;
+        vec2 x = c + r * vec2(cos(phi), sin(phi));
+        if (any(lessThan(x, vec2(0.0))) || any(greaterThanEqual(x, vec2(size)))) continue;
+        float weight = max(r, r0) * max(r, r0) / (density * r0 * r0);
+        sum += weight * vpl_term(p, n, ivec2(floor(x)));
+    }
+    return sum / float(max(count, 1u));
+}
+
+// The configured gather for `patterns` consecutive patterns starting at `first`.
+vec3 rsm_gather(vec3 p, vec3 n, float first, uint patterns, ivec2 pixel) {
+    uint vpls = uint(frame.indirect_params.x + 0.5);
+    if (vpls == 0u) return rsm_gather_all(p, n);
+    // Per-pixel rotation: interleaved gradient noise (Jimenez 2014), stable per pixel.
+    float seed = fract(52.9829189 * fract(dot(vec2(pixel), vec2(0.06711056, 0.00583715))));
+    vec3 sum = vec3(0.0);
+    for (uint j = 0u; j < patterns; ++j) sum += rsm_gather_sampled(p, n, first + float(j), vpls, seed);
+    return sum / float(max(patterns, 1u));
+}

@@ -1,0 +1,69 @@
+#version 460
+// Geometry-aware upsampling of the half-resolution gather (Lin 2013 section 4): each
+// full-resolution pixel that needs work tests its four low-resolution neighbours (normal within
+// ~25 degrees, and on the pixel's tangent plane within two pixel footprints) and interpolates
+// bilinearly from the accepted ones; a pixel with none is discarded, marked in the mask
+// (Figure 4.1) and appended to the fix-up list for a full-resolution gather.
+#extension GL_GOOGLE_include_directive : require
+#extension GL_EXT_samplerless_texture_functions : require
+#include "frame.glsl"
+#include "temporal.glsl"
+#define COUNTERS_BINDING 5
+#include "counters.glsl"
+#include "effect.glsl"
+
+layout(local_size_x = 16, local_size_y = 16) in;
+
+layout(set = 1, binding = 6, std430) readonly buffer LowRes { vec4 lowres[]; };
+layout(set = 1, binding = 7, rgba16f) uniform image2D history;
+layout(set = 1, binding = 8, r32ui) uniform readonly uimage2D state_in;
+layout(set = 1, binding = 9, r32ui) uniform writeonly uimage2D discard_mask;
+
+#include "indirect_common.glsl"
+#include "indirect_merge.glsl"
+
+// cos(25 degrees): neighbours on a surface turned further away belong to another surface.
+const float NORMAL_ACCEPT = 0.9;
+// Tangent-plane distance limit in pixel footprints.
+const float PLANE_ACCEPT = 2.0;
+
+void main() {
+    uint packed = counters.data[gl_WorkGroupID.x];
+    ivec2 block = ivec2(packed & 0xffffu, packed >> 16);
+    ivec2 pixel = block * 16 + ivec2(gl_LocalInvocationID.xy);
+    if (any(greaterThanEqual(uvec2(pixel), frame.size.xy))) return;
+    uint state = imageLoad(state_in, pixel).r;
+    if (state != STATE_NEW && state != STATE_ACCUMULATING && state != STATE_REFRESH) return;
+    vec3 p = texelFetch(g_position, pixel, 0).xyz;
+    vec3 n = texelFetch(g_normal, pixel, 0).xyz;
+    float footprint = 2.0 * distance(p, frame.camera_pos.xyz) * frame.camera_pos.w / float(frame.size.y);
+    vec2 f = (vec2(pixel) + 0.5) * 0.5 - 0.5;
+    ivec2 base = ivec2(floor(f));
+    vec2 w = f - vec2(base);
+    ivec2 low_size = ivec2((frame.size.xy + 1u) / 2u);
+    ivec2 apron_origin = block * 8 - 1;
+    vec3 sum = vec3(0.0);
+    float weight_sum = 0.0;
+    for (int k = 0; k < 4; ++k) {
+        ivec2 o = ivec2(k & 1, k >> 1);
+        ivec2 low = base + o;
+        if (any(lessThan(low, ivec2(0))) || any(greaterThanEqual(low, low_size))) continue;
+        vec4 g = texelFetch(g_position, low * 2, 0);
+        if (g.w == 0.0) continue;
+        if (dot(texelFetch(g_normal, low * 2, 0).xyz, n) < NORMAL_ACCEPT) continue;
+        if (abs(dot(n, g.xyz - p)) > PLANE_ACCEPT * footprint) continue;
+        float weight = (o.x == 1 ? w.x : 1.0 - w.x) * (o.y == 1 ? w.y : 1.0 - w.y);
+        ivec2 local = low - apron_origin;
+        sum += weight * lowres[gl_WorkGroupID.x * 100u + uint(local.y * 10 + local.x)].rgb;
+        weight_sum += weight;
+    }
+    bool discarded = weight_sum <= 0.0;
+    imageStore(discard_mask, pixel, uvec4(discarded ? 1u : 0u));
+    if (discarded) {
+        uint slot = atomicAdd(counters.fixup_pixels, 1u);
+        counters.data[counters.max_blocks + slot] = uint(pixel.x) | (uint(pixel.y) << 16);
+        if (slot % 64u == 0u) atomicAdd(counters.fixup_dispatch_x, 1u);
+        return;
+    }
+    merge(pixel, imageLoad(history, pixel), sum / weight_sum, state == STATE_REFRESH);
+}
