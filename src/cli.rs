@@ -166,9 +166,9 @@ fn parse_vpls(s: &str) -> std::result::Result<u32, String> {
         return Ok(0);
     }
     match s.parse::<u32>() {
-        Ok(n) if (1..=65536).contains(&n) => Ok(n),
+        Ok(n) if (1..=16384).contains(&n) => Ok(n),
         _ => Err(format!(
-            "--vpls takes a count in 1..=65536 or `all`, not {s:?}"
+            "--vpls takes a count in 1..=16384 or `all`, not {s:?}"
         )),
     }
 }

@@ -21,36 +21,36 @@ vec3 vpl_contribution(vec3 p, vec3 n, ivec2 texel) {
     return flux * max(dot(n, dir), 0.0) * max(dot(nq, -dir), 0.0) / max(d2, texel_world * texel_world);
 }
 
-// Screen-space visibility of q from p (Lin 2013 section 3.3.1): points on the segment at
-// eq 8's log spacing in screen space are compared with the G-buffer's view depth; one behind
-// the visible surface (by more than 2% of its depth) rejects the VPL. Points off screen give
-// no information and are skipped.
+// One point of the screen-space visibility march: false when the point at parameter t of the
+// segment p -> q lies behind the visible surface (by more than 2% of its depth). Points off
+// screen or over the background give no information.
+bool march_point_visible(vec3 p, vec3 q, float t) {
+    vec4 cs = frame.view_proj * vec4(mix(p, q, t), 1.0);
+    if (cs.w <= 0.0) return true;
+    ivec2 px = ivec2(floor((cs.xy / cs.w * 0.5 + 0.5) * vec2(frame.size.xy)));
+    if (any(lessThan(px, ivec2(0))) || any(greaterThanEqual(uvec2(px), frame.size.xy))) return true;
+    vec4 g = texelFetch(g_position, px, 0);
+    if (g.w == 0.0) return true;
+    float zg = (frame.view_proj * vec4(g.xyz, 1.0)).w;
+    return cs.w <= zg * 1.02;
+}
+
+// Screen-space visibility of q from p (Lin 2013 section 3.3.1): points on the segment at eq 8's
+// log spacing in screen space, m = 8 steps, the last ones spanning the far part of the segment;
+// stopping at 95% keeps q's own surface from occluding it. Written without a loop: llvmpipe
+// caps the iterations of each loop per invocation, and this runs once per VPL.
 bool vpl_visible(vec3 p, vec3 q) {
     vec4 cp = frame.view_proj * vec4(p, 1.0);
     vec4 cq = frame.view_proj * vec4(q, 1.0);
     if (cp.w <= 0.0 || cq.w <= 0.0) return true;
     vec2 size = vec2(frame.size.xy);
-    vec2 sp = (cp.xy / cp.w * 0.5 + 0.5) * size;
-    vec2 sq = (cq.xy / cq.w * 0.5 + 0.5) * size;
-    float len = length(sq - sp);
+    float len = length((cq.xy / cq.w - cp.xy / cp.w) * 0.5 * size);
     float near_px = frame.ao_params.w;
     if (len <= near_px) return true;
-    // Eq 8 with m = 8 steps: log-spaced from p, the last ones spanning the far part of the
-    // segment; stopping at 95% keeps q's own surface from occluding it.
-    const uint STEPS = 8u;
-    for (uint i = 1u; i <= STEPS; ++i) {
-        float t = min(near_px * pow(len / near_px, float(i) / float(STEPS)) / len, 0.95);
-        vec3 s = mix(p, q, t);
-        vec4 cs = frame.view_proj * vec4(s, 1.0);
-        if (cs.w <= 0.0) continue;
-        ivec2 px = ivec2(floor((cs.xy / cs.w * 0.5 + 0.5) * size));
-        if (any(lessThan(px, ivec2(0))) || any(greaterThanEqual(uvec2(px), frame.size.xy))) continue;
-        vec4 g = texelFetch(g_position, px, 0);
-        if (g.w == 0.0) continue;
-        float zg = (frame.view_proj * vec4(g.xyz, 1.0)).w;
-        if (cs.w > zg * 1.02) return false;
-    }
-    return true;
+    float ratio = len / near_px;
+    #define STEP(i) march_point_visible(p, q, min(near_px * pow(ratio, float(i) / 8.0) / len, 0.95))
+    return STEP(1) && STEP(2) && STEP(3) && STEP(4) && STEP(5) && STEP(6) && STEP(7) && STEP(8);
+    #undef STEP
 }
 
 vec3 vpl_term(vec3 p, vec3 n, ivec2 texel) {
@@ -67,7 +67,9 @@ vec2 r2_point(uint i) {
     return fract(vec2(0.5) + float(i) * vec2(0.7548776662466927, 0.5698402909980532));
 }
 
-// Eq 9 summed over every RSM texel (the reference the sampled gather converges to).
+// Eq 9 summed over every RSM texel (the reference the sampled gather converges to). The
+// configuration limits this to RSMs of at most 128x128 texels (RenderConfig::validate): llvmpipe
+// caps loop iterations per invocation and GPU drivers reset devices on long dispatches.
 vec3 rsm_gather_all(vec3 p, vec3 n) {
     int size = int(frame.light_params.z);
     vec3 sum = vec3(0.0);

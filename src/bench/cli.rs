@@ -4,6 +4,7 @@ use super::options::TableOptions;
 use super::{output, table41, walkthrough};
 use crate::cli::{parse_size, Cli};
 use crate::error::{Error, Result};
+use crate::renderer::config::Effects;
 use crate::scene::asset_dir_from_env;
 use crate::vk::{Context, ContextOptions};
 use clap::{Args, ValueEnum};
@@ -61,6 +62,10 @@ pub struct TableArgs {
     /// sibenik.json and conference.json (default: those of paths/, compiled in).
     #[arg(long, value_name = "P")]
     pub path: Option<String>,
+    /// Effects to render, comma-separated: direct, ao, indirect (or all). Leaving one out drops
+    /// its columns (e.g. `direct,ao` on a slow device).
+    #[arg(long, default_value = "all", value_parser = Effects::parse)]
+    pub effects: Effects,
 }
 
 /// Most frames a table accepts per row (a typo guard, as for `bench`).
@@ -95,6 +100,7 @@ pub fn run(cli: &Cli, args: &TableArgs) -> Result<()> {
         frames: args.frames,
         warmup: args.warmup,
         path: args.path.clone(),
+        effects: args.effects,
         assets: cli.assets.clone().or_else(asset_dir_from_env),
         progress: true,
         command: command_line(),

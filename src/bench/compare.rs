@@ -8,8 +8,14 @@ use std::collections::BTreeMap;
 
 /// Pass groups whose summed per-frame time is compared.
 pub const GROUPS: &[(&str, &[&str])] = &[
-    ("ao", &["reproject", "ssao", "blur"]),
+    ("reproject", &["reproject"]),
+    ("ao", &["ssao", "blur"]),
+    ("shadow", &["shadow"]),
     ("direct", &["direct"]),
+    (
+        "indirect",
+        &["indirect_gather", "indirect_upsample", "indirect_fixup"],
+    ),
     ("total", &[]),
 ];
 

@@ -17,6 +17,8 @@ fn ratio(v: Option<f64>) -> String {
 fn heading(group: &str) -> &str {
     match group {
         "ao" => "SSAO",
+        "indirect" => "Indirect",
+        "reproject" => "Reproject",
         "total" => "Total",
         other => other,
     }
@@ -63,10 +65,9 @@ fn header(r: &TableReport) -> String {
         r.thesis_setup,
     );
     md += &format!(
-        "Rows: **{}** (reverse reprojection cache for AO and shadows), **{}** (one fixed AO \
-         pattern per frame), **{}** ({} frames held at the last camera, timed to show what \
-         convergence costs). SSAO = the AO passes (reproject, which also reprojects the shadow \
-         history with reuse, + SSAO + blur); Total = every pass of the frame.\n\n",
+        "Rows: **{}** (reverse reprojection cache for AO, shadows and indirect light), **{}** \
+         (one fixed pattern per frame), **{}** ({} frame held at the last camera after the \
+         frame whose buffers are the reference; timed to show what convergence costs).\n\n",
         RowKind::Reuse.label(),
         RowKind::NoReuse.label(),
         RowKind::Reference.label(),
@@ -125,32 +126,34 @@ fn timing_table(r: &TableReport) -> String {
     md
 }
 
+/// Our groups beside the thesis's columns.
+const SPEEDUP_COLUMNS: [(&str, &str); 3] =
+    [("ao", "SSAO"), ("indirect", "Indirect"), ("total", "Total")];
+
 fn speedup_table(r: &TableReport) -> String {
     let mut md = "## Speed-up of reuse over no reuse\n\nOurs: no-reuse ms / reuse ms, \
                   measured in one process on one device. Thesis: reuse fps / no-reuse fps.\n\n\
                   | Scene |"
         .to_string();
-    for g in COLUMNS {
-        md += &format!(" ours {} |", heading(g));
+    for (_, name) in SPEEDUP_COLUMNS {
+        md += &format!(" ours {name} | thesis {name} |");
     }
-    md += " thesis SSAO | thesis indirect | thesis total |\n|---|";
-    md += &"---:|".repeat(COLUMNS.len() + 3);
+    md += "\n|---|";
+    md += &"---:|".repeat(2 * SPEEDUP_COLUMNS.len());
     md += "\n";
     for s in &r.scenes {
         md += &format!("| {} |", s.name);
-        for g in COLUMNS {
-            md += &format!(" {} |", ratio(s.speedups.get(g).copied().flatten()));
-        }
-        match &s.thesis_speedups {
-            Some(t) => {
-                md += &format!(
-                    " {} | {} | {} |",
-                    ratio(Some(t.ssao)),
-                    ratio(Some(t.indirect)),
-                    ratio(Some(t.total))
-                )
-            }
-            None => md += " - | - | - |",
+        for (group, _) in SPEEDUP_COLUMNS {
+            let thesis = s.thesis_speedups.map(|t| match group {
+                "ao" => t.ssao,
+                "indirect" => t.indirect,
+                _ => t.total,
+            });
+            md += &format!(
+                " {} | {} |",
+                ratio(s.speedups.get(group).copied().flatten()),
+                ratio(thesis)
+            );
         }
         md += "\n";
     }
@@ -162,7 +165,6 @@ fn error_table(r: &TableReport) -> String {
     let mut md = "## Error against the converged reference\n\nLast frame of each row vs the \
                   reference from the same camera, over geometry pixels.\n\n| Scene | Row |"
         .to_string();
-    // indirect: Buffer::ALL gains Indirect, and with it two columns here.
     for b in Buffer::ALL {
         md += &format!(" {} RMSE | {} max |", b.name(), b.name());
     }
@@ -217,7 +219,7 @@ fn files_section(r: &TableReport) -> String {
 
 /// Legend of the walkthrough plots.
 pub const WALKTHROUGH_LEGEND: &str =
-    "Plots: `-time` shows the per-frame GPU time of the whole frame (total) and of the AO \
-     passes (reproject + SSAO + blur) with reuse and without; `-recomputed` shows the SSAO \
+    "Plots: `-time` shows the per-frame GPU time of the whole frame (total), of SSAO (+ blur) \
+     and of the indirect light (gather + upsample + fix-up), with reuse and without; `-recomputed` shows the SSAO \
      pixels computed in each frame over width x height (without reuse that is every geometry \
      pixel). The CSV holds the same series, one row per frame.\n\n";

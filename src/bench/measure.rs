@@ -28,12 +28,18 @@ pub enum Buffer {
     Direct,
     /// Shadow visibility as the direct pass reads it (red channel).
     Shadow,
-    // indirect: `Indirect` (Target::Indirect, Channels::Rgb, effects.indirect) once issue 5
-    // adds the buffer.
+    /// One-bounce indirect light (linear RGB irradiance x albedo as composited).
+    Indirect,
 }
 
 impl Buffer {
-    pub const ALL: [Buffer; 4] = [Buffer::Final, Buffer::Ao, Buffer::Direct, Buffer::Shadow];
+    pub const ALL: [Buffer; 5] = [
+        Buffer::Final,
+        Buffer::Ao,
+        Buffer::Indirect,
+        Buffer::Direct,
+        Buffer::Shadow,
+    ];
 
     pub fn name(self) -> &'static str {
         match self {
@@ -41,6 +47,7 @@ impl Buffer {
             Buffer::Ao => "ao",
             Buffer::Direct => "direct",
             Buffer::Shadow => "shadow",
+            Buffer::Indirect => "indirect",
         }
     }
 
@@ -50,13 +57,14 @@ impl Buffer {
             Buffer::Ao => Target::Ao,
             Buffer::Direct => Target::Direct,
             Buffer::Shadow => Target::Shadow,
+            Buffer::Indirect => Target::Indirect,
         }
     }
 
     pub fn channels(self) -> Channels {
         match self {
             Buffer::Ao | Buffer::Shadow => Channels::Red,
-            Buffer::Final | Buffer::Direct => Channels::Rgb,
+            Buffer::Final | Buffer::Direct | Buffer::Indirect => Channels::Rgb,
         }
     }
 
@@ -66,6 +74,7 @@ impl Buffer {
             Buffer::Final => true,
             Buffer::Ao => effects.ao,
             Buffer::Direct | Buffer::Shadow => effects.direct,
+            Buffer::Indirect => effects.indirect,
         }
     }
 }
@@ -78,6 +87,9 @@ pub struct RunSpec<'a> {
     pub path: &'a CameraPath,
     pub frames: u32,
     pub warmup: u32,
+    /// Also read the buffers after the warmup frames (the reference row compares its last
+    /// frame with them).
+    pub snapshot_after_warmup: bool,
     pub progress: bool,
 }
 
@@ -101,6 +113,8 @@ impl LastFrame {
 pub struct Measured {
     pub report: Report,
     pub last: LastFrame,
+    /// The buffers after the warmup frames, when asked for.
+    pub after_warmup: Option<LastFrame>,
 }
 
 /// The camera of the last frame of a `frames`-frame run along `path`.
@@ -132,6 +146,12 @@ pub fn measure(ctx: &Arc<Context>, scene: &Scene, spec: &RunSpec<'_>) -> Result<
         timings.extend(renderer.render_frame(&first)?);
         bar.inc();
     }
+    let after_warmup = if spec.snapshot_after_warmup {
+        timings.extend(renderer.finish()?);
+        Some(read_frame(&mut renderer, first)?)
+    } else {
+        None
+    };
     let mut camera = first;
     for i in 0..frames {
         camera = spec.path.camera_at(&base, &bounds, i, frames);
@@ -140,14 +160,7 @@ pub fn measure(ctx: &Arc<Context>, scene: &Scene, spec: &RunSpec<'_>) -> Result<
     }
     timings.extend(renderer.finish()?);
     bar.finish();
-
-    let mut buffers = Vec::new();
-    for b in Buffer::ALL {
-        if b.present(&spec.config.effects) {
-            buffers.push((b, renderer.read(b.target())?));
-        }
-    }
-    let geometry = super::metrics::geometry_mask(&renderer.read(Target::GPosition)?);
+    let last = read_frame(&mut renderer, camera)?;
     let config = serde_json::json!({
         "scene": renderer.scene.name,
         "path": spec.path.name(),
@@ -170,10 +183,24 @@ pub fn measure(ctx: &Arc<Context>, scene: &Scene, spec: &RunSpec<'_>) -> Result<
     );
     Ok(Measured {
         report,
-        last: LastFrame {
-            camera,
-            buffers,
-            geometry,
-        },
+        last,
+        after_warmup,
+    })
+}
+
+/// Every buffer of the frame last rendered (the GPU must be idle: after `finish`).
+fn read_frame(renderer: &mut Renderer, camera: Camera) -> Result<LastFrame> {
+    let effects = renderer.config.effects;
+    let mut buffers = Vec::new();
+    for b in Buffer::ALL {
+        if b.present(&effects) {
+            buffers.push((b, renderer.read(b.target())?));
+        }
+    }
+    let geometry = super::metrics::geometry_mask(&renderer.read(Target::GPosition)?);
+    Ok(LastFrame {
+        camera,
+        buffers,
+        geometry,
     })
 }

@@ -1,5 +1,6 @@
 //! What a table run was asked for, independent of the command line.
 
+use crate::renderer::config::Effects;
 use std::path::PathBuf;
 
 #[derive(Clone, Debug)]
@@ -11,6 +12,8 @@ pub struct TableOptions {
     pub warmup: u32,
     /// Camera path override (table-specific meaning; `None`: the table's default).
     pub path: Option<String>,
+    /// Effects rendered by every row.
+    pub effects: Effects,
     /// Asset directory (`None`: `$SSGI_ASSETS`).
     pub assets: Option<PathBuf>,
     /// Show progress bars on stderr.

@@ -26,6 +26,8 @@ pub const REUSE_COLOR: RGBColor = RGBColor(0x1f, 0x77, 0xb4);
 pub const NO_REUSE_COLOR: RGBColor = RGBColor(0xd6, 0x27, 0x28);
 pub const REUSE_AO_COLOR: RGBColor = RGBColor(0x6b, 0xae, 0xd6);
 pub const NO_REUSE_AO_COLOR: RGBColor = RGBColor(0xfc, 0x92, 0x72);
+pub const REUSE_INDIRECT_COLOR: RGBColor = RGBColor(0x2c, 0xa0, 0x2c);
+pub const NO_REUSE_INDIRECT_COLOR: RGBColor = RGBColor(0xff, 0x7f, 0x0e);
 
 const FONT: &str = "sans-serif";
 

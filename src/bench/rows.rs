@@ -3,11 +3,12 @@
 //! last frame against the reference rendered from the same camera.
 
 use super::compare::{group_median, GROUPS};
-use super::measure::{held_at, last_camera, measure, Buffer, Measured, RunSpec};
+use super::measure::{held_at, last_camera, measure, Buffer, LastFrame, Measured, RunSpec};
 use super::metrics::{image_error, ImageError};
 use super::report::FrameRow;
 use super::Report;
 use crate::error::{Error, Result};
+use crate::renderer::config::Effects;
 use crate::renderer::frame::{Pcf, PcfKernel};
 use crate::renderer::RenderConfig;
 use crate::scene::{CameraPath, Scene};
@@ -16,9 +17,9 @@ use serde::Serialize;
 use std::collections::BTreeMap;
 use std::sync::Arc;
 
-/// Timing groups (of `compare::GROUPS`) shown as table columns, in order.
-// indirect: add "indirect" between "ao" and "total" once compare::GROUPS has it (issue 5).
-pub const COLUMNS: [&str; 2] = ["ao", "total"];
+/// Timing groups (of `compare::GROUPS`) shown as table columns, in order: SSAO, indirect
+/// light, the reprojection shared by every temporal effect, the whole frame.
+pub const COLUMNS: [&str; 4] = ["ao", "indirect", "reproject", "total"];
 
 /// AO patterns of the reference: 32 x 32 samples = 1024 per pixel, no blur.
 pub const REFERENCE_AO_PATTERNS: u32 = 32;
@@ -29,12 +30,17 @@ pub const REFERENCE_PCF: Pcf = Pcf {
     radius_texels: Pcf::NINE.radius_texels,
 };
 
+/// VPLs per pixel of the reference: 32 x the rows' 512, the most the renderer gathers in one
+/// pass (the full gather of every texel is only allowed for RSMs up to 128x128).
+pub const REFERENCE_VPLS: u32 = 16384;
+
 /// Report names of the GPU counters read here (see the renderer's effect kinds).
 pub const SSAO_COMPUTED_PIXELS: &str = "ssao_computed_pixels";
 pub const DISOCCLUDED_PIXELS: &str = "disoccluded_pixels";
-/// Frames of the reference row (held at the last camera, after one warmup frame): it is
-/// timed only to show what convergence costs, so a few frames are enough.
-pub const REFERENCE_FRAMES: u32 = 8;
+/// Frames of the reference row, held at the last camera after one warmup frame whose buffers
+/// are the reference: it is timed only to show what convergence costs, and its full gather is
+/// slow on a CPU device, so one frame.
+pub const REFERENCE_FRAMES: u32 = 1;
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "snake_case")]
@@ -51,7 +57,9 @@ impl RowKind {
         match self {
             RowKind::Reuse => "reuse: yes, blur: no (PCF 9, cached)",
             RowKind::NoReuse => "reuse: no, blur: 5x5 Gaussian (PCF 49)",
-            RowKind::Reference => "reference: no reuse, 1024 AO samples, 1024-sample PCF disc",
+            RowKind::Reference => {
+                "reference: no reuse, 1024 AO samples, 1024-sample PCF disc, 16384 VPLs"
+            }
         }
     }
 
@@ -82,20 +90,21 @@ impl RowKind {
                 c.temporal.reuse = false;
                 c.ao.patterns = REFERENCE_AO_PATTERNS;
                 c.pcf = REFERENCE_PCF;
-                // indirect: every RSM texel as a VPL once issue 5 adds the VPL count.
+                c.indirect.vpls = REFERENCE_VPLS;
             }
         }
         c
     }
 }
 
-/// The thesis's configuration at `width` x `height`: SSAO 32 samples (8 directions x 4
-/// steps), 512x512 shadow map, every effect on; the rows choose reuse and PCF.
-pub fn base_config(width: u32, height: u32) -> RenderConfig {
-    // indirect: 512 VPLs at half resolution once issue 5 adds them to RenderConfig.
+/// The thesis's configuration at `width` x `height` with `effects` (the thesis: all): SSAO
+/// 32 samples (8 directions x 4 steps), indirect light with 512 VPLs at half resolution,
+/// 512x512 RSM / shadow map; the rows choose reuse and PCF.
+pub fn base_config(width: u32, height: u32, effects: Effects) -> RenderConfig {
     RenderConfig {
         width,
         height,
+        effects,
         ..RenderConfig::default()
     }
 }
@@ -131,7 +140,7 @@ pub struct RowResult {
 pub struct FrameSample {
     /// Frame number along the path, from 0.
     pub frame: u64,
-    /// GPU milliseconds of each group of `compare::GROUPS`.
+    /// GPU milliseconds of each group of `compare::GROUPS` that ran in this frame.
     pub ms: BTreeMap<String, f64>,
     pub ssao_computed_pixels: Option<u64>,
     pub disoccluded_pixels: Option<u64>,
@@ -149,7 +158,9 @@ impl RowResult {
                 frame: f.index - warmup,
                 ms: GROUPS
                     .iter()
-                    .map(|(name, passes)| (name.to_string(), group_ms(f, passes)))
+                    .filter_map(|(name, passes)| {
+                        group_ms(f, passes).map(|ms| (name.to_string(), ms))
+                    })
                     .collect(),
                 ssao_computed_pixels: f.counters.get(SSAO_COMPUTED_PIXELS).copied(),
                 disoccluded_pixels: f.counters.get(DISOCCLUDED_PIXELS).copied(),
@@ -158,14 +169,17 @@ impl RowResult {
     }
 }
 
-/// Sum of `passes` in one frame (every pass when empty), as `compare::group_median` sums.
-pub fn group_ms(frame: &FrameRow, passes: &[&str]) -> f64 {
-    frame
+/// Sum of `passes` in one frame (every pass when empty), as `compare::group_median` sums;
+/// `None` when none of them ran in that frame.
+pub fn group_ms(frame: &FrameRow, passes: &[&str]) -> Option<f64> {
+    let mut ran = frame
         .passes
         .iter()
         .filter(|(n, _)| passes.is_empty() || passes.contains(&n.as_str()))
-        .map(|(_, ms)| ms)
-        .sum()
+        .map(|(_, ms)| *ms)
+        .peekable();
+    ran.peek()?;
+    Some(ran.sum())
 }
 
 /// How a scene is measured.
@@ -177,55 +191,68 @@ pub struct SceneRun<'a> {
     pub progress: bool,
 }
 
-/// Measure every row of `scene`. The reference is rendered first, on its own renderer, from
-/// the camera of the path's last frame; each row's last frame (same camera) is compared to
-/// it. The reference row is a second, separate run of the reference configuration held at
-/// that camera, so its error is that of the reference against itself: 0 unless rendering is
-/// not deterministic.
+/// Measure every row of `scene`. The reference row renders the reference configuration held
+/// at the camera of the path's last frame: its first frame's buffers are the reference every
+/// row's last frame (same camera) is compared to, and its second frame is compared to the
+/// first, so its own error is 0 unless rendering is not deterministic.
 pub fn measure_rows(
     ctx: &Arc<Context>,
     scene: &Scene,
     run: &SceneRun<'_>,
 ) -> Result<Vec<RowResult>> {
     let frames = run.frames.max(1);
-    let camera = last_camera(scene, run.path, frames);
-    let held = held_at(&camera);
-    let reference_config = RowKind::Reference.config(&run.base);
-    let label = format!("{} reference image", scene.name);
-    let reference = measure(
+    let held = held_at(&last_camera(scene, run.path, frames));
+    let mut reference = measure(
         ctx,
         scene,
         &RunSpec {
-            label: &label,
-            config: reference_config,
+            label: &format!("{} {}", scene.name, RowKind::Reference.short()),
+            config: RowKind::Reference.config(&run.base),
             path: &held,
-            frames: 1,
-            warmup: 0,
+            frames: REFERENCE_FRAMES,
+            warmup: 1,
+            snapshot_after_warmup: true,
             progress: run.progress,
         },
     )?;
+    let reference_frame = reference
+        .after_warmup
+        .take()
+        .ok_or_else(|| Error::Config("the reference run kept no first frame".into()))?;
     let mut rows = Vec::new();
-    for kind in RowKind::ALL {
-        let (path, frames, warmup) = match kind {
-            RowKind::Reference => (&held, REFERENCE_FRAMES.min(frames), 1),
-            _ => (run.path, frames, run.warmup),
-        };
-        let label = format!("{} {}", scene.name, kind.short());
+    for kind in [RowKind::Reuse, RowKind::NoReuse] {
         let config = kind.config(&run.base);
         let measured = measure(
             ctx,
             scene,
             &RunSpec {
-                label: &label,
+                label: &format!("{} {}", scene.name, kind.short()),
                 config,
-                path,
+                path: run.path,
                 frames,
-                warmup,
+                warmup: run.warmup,
+                snapshot_after_warmup: false,
                 progress: run.progress,
             },
         )?;
-        rows.push(summarize(kind, config, measured, &reference, path, warmup)?);
+        rows.push(summarize(
+            kind,
+            config,
+            measured,
+            &reference_frame,
+            run.path,
+            run.warmup,
+        )?);
     }
+    let config = RowKind::Reference.config(&run.base);
+    rows.push(summarize(
+        RowKind::Reference,
+        config,
+        reference,
+        &reference_frame,
+        &held,
+        1,
+    )?);
     Ok(rows)
 }
 
@@ -233,11 +260,11 @@ fn summarize(
     kind: RowKind,
     config: RenderConfig,
     measured: Measured,
-    reference: &Measured,
+    reference: &LastFrame,
     path: &CameraPath,
     warmup: u32,
 ) -> Result<RowResult> {
-    let Measured { report, last } = measured;
+    let Measured { report, last, .. } = measured;
     let ms: BTreeMap<String, Option<f64>> = GROUPS
         .iter()
         .map(|(name, passes)| (name.to_string(), group_median(&report, passes)))
@@ -257,14 +284,14 @@ fn summarize(
     let area = report.width as f64 * report.height as f64;
     let mut error = BTreeMap::new();
     for (buffer, image) in &last.buffers {
-        let reference_image = reference.last.buffer(*buffer).ok_or_else(|| {
+        let reference_image = reference.buffer(*buffer).ok_or_else(|| {
             Error::Config(format!("the reference has no {} buffer", buffer.name()))
         })?;
         let e = image_error(
             image,
             reference_image,
             buffer.channels(),
-            Some(&reference.last.geometry),
+            Some(&reference.geometry),
         )?;
         error.insert(buffer.name().to_string(), e);
     }

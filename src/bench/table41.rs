@@ -5,7 +5,7 @@
 use super::decimate::decimate;
 use super::paths::EmbeddedPath;
 use super::rows::{measure_rows, SceneRun};
-use super::table_report::{Header, SceneResult, TableReport, PENDING_ISSUE_5};
+use super::table_report::{Header, SceneResult, TableReport, COLUMN_NOTE};
 use super::thesis::{table_4_1, SETUP};
 use super::TableOptions;
 use crate::error::Result;
@@ -81,7 +81,7 @@ pub fn run(ctx: &Arc<Context>, opts: &TableOptions) -> Result<TableReport> {
     for s in &SCENES {
         loaded.push((s, load(s, opts.assets.as_deref())?));
     }
-    let base = super::rows::base_config(opts.size.0, opts.size.1);
+    let base = super::rows::base_config(opts.size.0, opts.size.1, opts.effects);
     let mut report = TableReport::new(
         Header {
             table: "thesis-4.1",
@@ -92,7 +92,7 @@ pub fn run(ctx: &Arc<Context>, opts: &TableOptions) -> Result<TableReport> {
             warmup: opts.warmup,
         },
         SETUP,
-        vec![PENDING_ISSUE_5.to_string()],
+        vec![COLUMN_NOTE.to_string()],
     );
     for (s, (scene, note)) in loaded {
         let rows = measure_rows(

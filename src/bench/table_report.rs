@@ -152,24 +152,33 @@ pub struct Header<'a> {
 
 /// How the error columns are made.
 pub const REFERENCE: &str =
-    "the same scene rendered from the camera of the last frame without temporal reuse, with \
-     32 AO patterns (1024 samples per pixel, no blur) and a 1024-sample PCF disc of the reuse \
-     row's radius (what the cached 9-sample disc converges to; the no-reuse row's 7x7 grid has \
-     a square footprint, so its shadow error includes that difference of kernel shape); errors \
-     are over the pixels covered by geometry (final image: RGB in 0..1 after tonemapping; AO \
-     and shadow: visibility; direct: linear radiance)";
+    "the reference row's configuration (no temporal reuse; 32 AO patterns = 1024 samples per \
+     pixel, no blur; a 1024-sample PCF disc of the reuse row's radius; 16384 VPLs per pixel (32 x \
+     512) in the same half-resolution indirect estimator) rendered from the camera of the last \
+     frame. The no-reuse row's 7x7 PCF grid has a square footprint, so its shadow error \
+     includes that difference of kernel shape. Errors are over the pixels covered by geometry \
+     (final image: RGB in 0..1 after tonemapping; AO and shadow: visibility; direct and \
+     indirect: linear radiance)";
 
-/// Said in every report until issue 5 lands.
-// indirect: drop this note once the indirect and shadow-reuse columns exist.
-pub const PENDING_ISSUE_5: &str =
-    "Indirect column pending issue 5: the renderer has no RSM one-bounce indirect light yet, \
-     so there is no indirect fps/ms or indirect error column, and our total is G-buffer + \
-     shadows + direct + SSAO + composite, without indirect light. The thesis's total includes \
-     512-VPL indirect light, so compare the SSAO speed-up ratios; the total ratios are not \
-     comparable yet.";
+/// How our columns map to the thesis's.
+pub const COLUMN_NOTE: &str =
+    "SSAO = the SSAO pass (+ the 5x5 blur without reuse); Indirect = RSM gather + upsampling + \
+     full-resolution fix-up; Reproject = the reprojection pass, shared by AO, shadows and \
+     indirect light (the thesis counts it inside each effect); Total = every pass of the frame \
+     (G-buffer, shadows, direct, reprojection, SSAO, indirect, composite).";
+
+/// Said when the device is a CPU implementation.
+pub const CPU_DEVICE_NOTE: &str =
+    "This device is a CPU implementation of Vulkan (e.g. lavapipe): its timestamps are the \
+     wall-clock times of CPU threads, so anything else running on the machine inflates them \
+     (by 20x and more for single passes when other processes compete for the cores). Use \
+     these numbers to check the pipeline and the errors, not to claim speed-ups.";
 
 impl TableReport {
-    pub fn new(h: Header<'_>, thesis_setup: &str, notes: Vec<String>) -> Self {
+    pub fn new(h: Header<'_>, thesis_setup: &str, mut notes: Vec<String>) -> Self {
+        if h.device.device_type.eq_ignore_ascii_case("cpu") {
+            notes.push(CPU_DEVICE_NOTE.to_string());
+        }
         Self {
             version: TABLE_REPORT_VERSION,
             table: h.table.to_string(),

@@ -6,11 +6,11 @@
 
 use super::paths::{self, EmbeddedPath};
 use super::plot::{
-    write_line_plot, LinePlot, Series, NO_REUSE_AO_COLOR, NO_REUSE_COLOR, REUSE_AO_COLOR,
-    REUSE_COLOR,
+    write_line_plot, LinePlot, Series, NO_REUSE_AO_COLOR, NO_REUSE_COLOR, NO_REUSE_INDIRECT_COLOR,
+    REUSE_AO_COLOR, REUSE_COLOR, REUSE_INDIRECT_COLOR,
 };
 use super::rows::{measure_rows, FrameSample, RowKind, SceneRun};
-use super::table_report::{Header, SceneResult, TableReport, PENDING_ISSUE_5};
+use super::table_report::{Header, SceneResult, TableReport, COLUMN_NOTE};
 use super::thesis::{SETUP, WALKTHROUGH_NUMBERS_MISSING};
 use super::TableOptions;
 use crate::error::{Error, Result};
@@ -124,7 +124,7 @@ pub fn run(ctx: &Arc<Context>, opts: &TableOptions, out: &Path) -> Result<TableR
         let scene = w.load(opts.assets.as_deref(), &path)?;
         loaded.push((w, path, path_name, scene));
     }
-    let base = super::rows::base_config(opts.size.0, opts.size.1);
+    let base = super::rows::base_config(opts.size.0, opts.size.1, opts.effects);
     let mut report = TableReport::new(
         Header {
             table: "thesis-walkthroughs",
@@ -136,7 +136,7 @@ pub fn run(ctx: &Arc<Context>, opts: &TableOptions, out: &Path) -> Result<TableR
         },
         SETUP,
         vec![
-            PENDING_ISSUE_5.to_string(),
+            COLUMN_NOTE.to_string(),
             WALKTHROUGH_NUMBERS_MISSING.to_string(),
             format!(
                 "Walkthrough cameras: {}° vertical field of view, near/far {} / {} of the \
@@ -199,6 +199,18 @@ fn write_series(s: &SceneResult, asset: &str, out: &Path) -> Result<Vec<String>>
                 series("total, no reuse", NO_REUSE_COLOR, &no_reuse, ms("total")),
                 series("AO, reuse", REUSE_AO_COLOR, &reuse, ms("ao")),
                 series("AO, no reuse", NO_REUSE_AO_COLOR, &no_reuse, ms("ao")),
+                series(
+                    "indirect, reuse",
+                    REUSE_INDIRECT_COLOR,
+                    &reuse,
+                    ms("indirect"),
+                ),
+                series(
+                    "indirect, no reuse",
+                    NO_REUSE_INDIRECT_COLOR,
+                    &no_reuse,
+                    ms("indirect"),
+                ),
             ],
             size: (900, 480),
         },

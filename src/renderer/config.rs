@@ -255,10 +255,29 @@ impl RenderConfig {
         if ao.attenuation.iter().any(|c| !c.is_finite() || *c < 0.0) {
             return bad("AO attenuation coefficients must be finite and >= 0".into());
         }
-        if self.indirect.vpls > 1 << 20 {
+        // Per-invocation loop lengths: llvmpipe stops loops after ~2^16 iterations per
+        // invocation (the result is then silently wrong) and GPU drivers reset the device on
+        // very long dispatches, so gathers are bounded.
+        if self.indirect.vpls > 16384 {
             return bad(format!(
-                "{} VPLs per pixel is more than 65536",
+                "{} VPLs per pixel is more than 16384 (accumulate frames instead)",
                 self.indirect.vpls
+            ));
+        }
+        if self.indirect.vpls == 0 && self.rsm_size > 128 {
+            return bad(format!(
+                "--vpls all gathers every RSM texel: use --rsm-size 128 or less (got {})",
+                self.rsm_size
+            ));
+        }
+        if self.effects.indirect
+            && self.temporal.reuse
+            && self.indirect.vpls as u64 * self.temporal.rotation_limit as u64 > 32768
+        {
+            return bad(format!(
+                "the refresh tile gathers {} VPLs x {} patterns per pixel; keep the product at \
+                 most 32768",
+                self.indirect.vpls, self.temporal.rotation_limit
             ));
         }
         let t = &self.temporal;
