@@ -188,7 +188,8 @@ fn check_report(report: &Value, out: &Path, run: &Run<'_>, names: &[&str]) -> Ve
             );
         }
         assert!(pixels(&rows[0]) <= pixels(&rows[1]), "{name}");
-        assert!(num(&s["speedups"]["ao"]) > 0.0, "{name}");
+        let speedup = num(&rows[1]["ms"]["ao"]) / num(&rows[0]["ms"]["ao"]);
+        assert!((num(&s["speedups"]["ao"]) - speedup).abs() < 1e-9, "{name}");
         for f in s["files"].as_array().unwrap() {
             let f = f.as_str().unwrap();
             assert!(out.join(f).is_file(), "{name}: {f} missing");

@@ -311,3 +311,46 @@ fn summarize(
         image: last.buffer(Buffer::Final).cloned(),
     })
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::renderer::config::Effects;
+
+    #[test]
+    fn row_configs_are_the_thesis_rows_and_valid() {
+        let base = base_config(512, 512, Effects::ALL);
+        let reuse = RowKind::Reuse.config(&base);
+        assert!(reuse.temporal.reuse);
+        assert_eq!((reuse.pcf, reuse.ao.patterns), (Pcf::NINE, 1));
+        let no_reuse = RowKind::NoReuse.config(&base);
+        assert!(!no_reuse.temporal.reuse);
+        assert_eq!((no_reuse.pcf, no_reuse.ao.patterns), (Pcf::DEFAULT, 1));
+        let reference = RowKind::Reference.config(&base);
+        assert!(!reference.temporal.reuse);
+        assert_eq!(reference.ao.patterns * reference.ao.samples, 1024);
+        assert_eq!(reference.pcf.samples(), 1024);
+        assert_eq!(reference.indirect.vpls, 32 * base.indirect.vpls);
+        for c in [reuse, no_reuse, reference] {
+            assert_eq!((c.width, c.height, c.effects), (512, 512, Effects::ALL));
+            assert_eq!(c.ao.samples, 32);
+            c.validate().unwrap();
+        }
+    }
+
+    #[test]
+    fn group_sums_only_what_ran() {
+        let frame = FrameRow {
+            index: 3,
+            passes: [("ssao", 2.0), ("blur", 0.5), ("gbuffer", 1.0)]
+                .into_iter()
+                .map(|(n, ms)| (n.to_string(), ms))
+                .collect(),
+            skipped: Vec::new(),
+            counters: BTreeMap::new(),
+        };
+        assert_eq!(group_ms(&frame, &["ssao", "blur"]), Some(2.5));
+        assert_eq!(group_ms(&frame, &[]), Some(3.5));
+        assert_eq!(group_ms(&frame, &["indirect_gather"]), None);
+    }
+}
