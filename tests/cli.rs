@@ -142,7 +142,10 @@ fn bad_flags_get_clear_errors() {
     fails_with(&["bench", "--frames", "0"], "at least 1");
     fails_with(&["render", "--rsm-size", "0"], "shadow map size");
     fails_with(&["render", "--path", "/nonexistent/path.json"], "path.json");
-    fails_with(&["render", "--vpls", "all", "--rsm-size", "512"], "--rsm-size 128");
+    fails_with(
+        &["render", "--vpls", "all", "--rsm-size", "512"],
+        "--rsm-size 128",
+    );
     fails_with(&["render", "--vpls", "0"], "--vpls");
     fails_with(&["render", "--effects", "ssdo"], "unknown effect");
     fails_with(&["render", "--epsilon", "abs:-1"], "--epsilon");
