@@ -68,9 +68,9 @@ fn header(r: &TableReport) -> String {
         "Rows: **{}** (reverse reprojection cache for AO, shadows and indirect light), **{}** \
          (one fixed pattern per frame), **{}** ({} frame held at the last camera after the \
          frame whose buffers are the reference; timed to show what convergence costs).\n\n",
-        RowKind::Reuse.label(),
-        RowKind::NoReuse.label(),
-        RowKind::Reference.label(),
+        RowKind::Reuse.label(r.base_config.effects),
+        RowKind::NoReuse.label(r.base_config.effects),
+        RowKind::Reference.label(r.base_config.effects),
         super::rows::REFERENCE_FRAMES,
     );
     md += &format!("Error reference: {}.\n\n", r.reference);
@@ -81,10 +81,38 @@ fn header(r: &TableReport) -> String {
     md
 }
 
+/// Timing groups of `COLUMNS` that some row measured (a group whose passes never ran, like
+/// indirect light when it is off, gets no column).
+fn timing_columns(r: &TableReport) -> Vec<&'static str> {
+    COLUMNS
+        .into_iter()
+        .filter(|g| {
+            r.scenes
+                .iter()
+                .flat_map(|s| &s.rows)
+                .any(|row| row.ms.get(*g).copied().flatten().is_some())
+        })
+        .collect()
+}
+
+/// Error buffers that some row has.
+fn error_buffers(r: &TableReport) -> Vec<Buffer> {
+    Buffer::ALL
+        .into_iter()
+        .filter(|b| {
+            r.scenes
+                .iter()
+                .flat_map(|s| &s.rows)
+                .any(|row| row.error.contains_key(b.name()))
+        })
+        .collect()
+}
+
 fn timing_table(r: &TableReport) -> String {
     let thesis = r.scenes.iter().any(|s| s.thesis.is_some());
+    let columns = timing_columns(r);
     let mut md = "## Timing\n\n| Scene | Row |".to_string();
-    for g in COLUMNS {
+    for g in &columns {
         md += &format!(" {} ms | {} fps |", heading(g), heading(g));
     }
     md += " SSAO pixels / frame | recomputed |";
@@ -92,14 +120,13 @@ fn timing_table(r: &TableReport) -> String {
         md += " thesis SSAO fps | thesis indirect fps | thesis total fps |";
     }
     md += "\n|---|---|";
-    let columns = COLUMNS.len() * 2 + 2 + if thesis { 3 } else { 0 };
-    md += &"---:|".repeat(columns);
+    md += &"---:|".repeat(columns.len() * 2 + 2 + if thesis { 3 } else { 0 });
     md += "\n";
     for s in &r.scenes {
         for row in &s.rows {
             md += &format!("| {} | {} |", s.name, row.label);
-            for g in COLUMNS {
-                let ms = row.ms.get(g).copied().flatten();
+            for g in &columns {
+                let ms = row.ms.get(*g).copied().flatten();
                 md += &format!(" {} | {} |", num(ms, 3), num(ms.map(|m| 1000.0 / m), 1));
             }
             md += &format!(
@@ -165,17 +192,18 @@ fn error_table(r: &TableReport) -> String {
     let mut md = "## Error against the converged reference\n\nLast frame of each row vs the \
                   reference from the same camera, over geometry pixels.\n\n| Scene | Row |"
         .to_string();
-    for b in Buffer::ALL {
+    let buffers = error_buffers(r);
+    for b in &buffers {
         md += &format!(" {} RMSE | {} max |", b.name(), b.name());
     }
     md += " pixels |\n|---|---|";
-    md += &"---:|".repeat(Buffer::ALL.len() * 2 + 1);
+    md += &"---:|".repeat(buffers.len() * 2 + 1);
     md += "\n";
     for s in &r.scenes {
         for row in &s.rows {
             md += &format!("| {} | {} |", s.name, row.label);
             let mut pixels = None;
-            for b in Buffer::ALL {
+            for b in &buffers {
                 match row.error.get(b.name()) {
                     Some(e) => {
                         pixels = Some(e.pixels);

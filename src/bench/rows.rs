@@ -53,12 +53,18 @@ pub enum RowKind {
 impl RowKind {
     pub const ALL: [RowKind; 3] = [RowKind::Reuse, RowKind::NoReuse, RowKind::Reference];
 
-    pub fn label(self) -> &'static str {
+    /// The row's name in the tables; the reference names only the effects `effects` has.
+    pub fn label(self, effects: Effects) -> String {
         match self {
-            RowKind::Reuse => "reuse: yes, blur: no (PCF 9, cached)",
-            RowKind::NoReuse => "reuse: no, blur: 5x5 Gaussian (PCF 49)",
+            RowKind::Reuse => "reuse: yes, blur: no (PCF 9, cached)".into(),
+            RowKind::NoReuse => "reuse: no, blur: 5x5 Gaussian (PCF 49)".into(),
             RowKind::Reference => {
-                "reference: no reuse, 1024 AO samples, 1024-sample PCF disc, 16384 VPLs"
+                let mut l =
+                    "reference: no reuse, 1024 AO samples, 1024-sample PCF disc".to_string();
+                if effects.indirect {
+                    l += &format!(", {REFERENCE_VPLS} VPLs");
+                }
+                l
             }
         }
     }
@@ -297,7 +303,7 @@ fn summarize(
     }
     Ok(RowResult {
         kind,
-        label: kind.label().to_string(),
+        label: kind.label(config.effects),
         config,
         path: path.name(),
         measured_frames: report.measured_frames,
