@@ -602,7 +602,7 @@ impl App {
                 let displayable = self.live.as_ref().map(|l| l.displayable.clone());
                 for _ in 0..n {
                     view.display = (view.display as i32 + step).rem_euclid(n) as usize;
-                    if displayable.as_ref().map_or(true, |d| d[view.display]) {
+                    if displayable.as_ref().is_none_or(|d| d[view.display]) {
                         break;
                     }
                 }

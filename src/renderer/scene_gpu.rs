@@ -4,8 +4,8 @@
 use crate::error::{Error, Result};
 use crate::scene::{DrawRange, Mesh, TextureImage};
 use crate::vk::{
-    one_shot, Access, Buffer, Context, DescriptorPool, Image, ImageDesc, Sampler, SetWriter,
-    Tracker,
+    upload_buffer, upload_image, Access, Buffer, Context, DescriptorPool, Image, ImageDesc,
+    Sampler, SetWriter, Tracker,
 };
 use ash::vk;
 use gpu_allocator::MemoryLocation;
@@ -41,28 +41,6 @@ pub struct SceneGpu {
     _sampler: Option<Sampler>,
 }
 
-fn vertex_bytes(mesh: &Mesh) -> Vec<u8> {
-    let mut out = Vec::with_capacity(mesh.vertices.len() * 32);
-    for v in &mesh.vertices {
-        for f in v.position.iter().chain(&v.normal).chain(&v.uv) {
-            out.extend_from_slice(&f.to_le_bytes());
-        }
-    }
-    out
-}
-
-fn staging(ctx: &Arc<Context>, name: &str, data: &[u8]) -> Result<Buffer> {
-    let mut b = Buffer::new(
-        ctx,
-        name,
-        data.len() as u64,
-        vk::BufferUsageFlags::TRANSFER_SRC,
-        MemoryLocation::CpuToGpu,
-    )?;
-    b.write(data)?;
-    Ok(b)
-}
-
 impl SceneGpu {
     /// Upload `mesh`. `material_layout` is the textured permutation's set-1 layout, present
     /// only when the mesh has textures.
@@ -76,8 +54,8 @@ impl SceneGpu {
         if mesh.indices.is_empty() || mesh.vertices.is_empty() {
             return Err(Error::Config("the scene has no triangles to draw".into()));
         }
-        let vdata = vertex_bytes(mesh);
-        let idata: Vec<u8> = mesh.indices.iter().flat_map(|i| i.to_le_bytes()).collect();
+        let vdata = mesh.vertex_bytes();
+        let idata = mesh.index_bytes();
         let vertices = Buffer::new(
             ctx,
             "vertices",
@@ -92,8 +70,8 @@ impl SceneGpu {
             vk::BufferUsageFlags::INDEX_BUFFER | vk::BufferUsageFlags::TRANSFER_DST,
             MemoryLocation::GpuOnly,
         )?;
-        let vstage = staging(ctx, "vertices.staging", &vdata)?;
-        let istage = staging(ctx, "indices.staging", &idata)?;
+        upload_buffer(ctx, tracker, &vertices, &vdata, Access::VertexBufferRead)?;
+        upload_buffer(ctx, tracker, &indices, &idata, Access::IndexBufferRead)?;
 
         // Textures: decode once per path (shared Arc), upload each once.
         let mut unique: Vec<Arc<TextureImage>> = Vec::new();
@@ -109,7 +87,6 @@ impl SceneGpu {
             }
         }
         let mut textures = Vec::new();
-        let mut tex_staging = Vec::new();
         for t in &unique {
             if t.width == 0 || t.height == 0 || t.rgba8.len() != (t.width * t.height * 4) as usize {
                 return Err(Error::Config(format!(
@@ -117,7 +94,7 @@ impl SceneGpu {
                     t.path.display()
                 )));
             }
-            textures.push(Image::new(
+            let image = Image::new(
                 ctx,
                 &t.path.display().to_string(),
                 ImageDesc {
@@ -126,71 +103,10 @@ impl SceneGpu {
                     format: vk::Format::R8G8B8A8_SRGB,
                     usage: vk::ImageUsageFlags::SAMPLED | vk::ImageUsageFlags::TRANSFER_DST,
                 },
-            )?);
-            tex_staging.push(staging(ctx, "texture.staging", &t.rgba8)?);
+            )?;
+            upload_image(ctx, tracker, &image, &t.rgba8, Access::FragmentSampledRead)?;
+            textures.push(image);
         }
-
-        one_shot(ctx, |cmd| {
-            let d = &ctx.device;
-            tracker.buffer(&vertices, Access::TransferDst);
-            tracker.buffer(&indices, Access::TransferDst);
-            for img in &textures {
-                tracker.image(img, Access::TransferDst);
-            }
-            tracker.flush(d, cmd);
-            // SAFETY: recording; staging and destination buffers are live and large enough;
-            // texture images are in TRANSFER_DST layout.
-            unsafe {
-                d.cmd_copy_buffer(
-                    cmd,
-                    vstage.raw,
-                    vertices.raw,
-                    &[vk::BufferCopy {
-                        src_offset: 0,
-                        dst_offset: 0,
-                        size: vdata.len() as u64,
-                    }],
-                );
-                d.cmd_copy_buffer(
-                    cmd,
-                    istage.raw,
-                    indices.raw,
-                    &[vk::BufferCopy {
-                        src_offset: 0,
-                        dst_offset: 0,
-                        size: idata.len() as u64,
-                    }],
-                );
-                for (img, src) in textures.iter().zip(&tex_staging) {
-                    let region = vk::BufferImageCopy::default()
-                        .image_subresource(vk::ImageSubresourceLayers {
-                            aspect_mask: vk::ImageAspectFlags::COLOR,
-                            mip_level: 0,
-                            base_array_layer: 0,
-                            layer_count: 1,
-                        })
-                        .image_extent(vk::Extent3D {
-                            width: img.desc.width,
-                            height: img.desc.height,
-                            depth: 1,
-                        });
-                    d.cmd_copy_buffer_to_image(
-                        cmd,
-                        src.raw,
-                        img.raw,
-                        vk::ImageLayout::TRANSFER_DST_OPTIMAL,
-                        &[region],
-                    );
-                }
-            }
-            tracker.buffer(&vertices, Access::VertexBufferRead);
-            tracker.buffer(&indices, Access::IndexBufferRead);
-            for img in &textures {
-                tracker.image(img, Access::FragmentSampledRead);
-            }
-            tracker.flush(d, cmd);
-            Ok(())
-        })?;
 
         let sampler = if textures.is_empty() {
             None

@@ -153,7 +153,7 @@ fn parse_with_tobj(
     let mut material_dirs = Vec::with_capacity(materials.len());
     for (mtl_path, count) in mtl_log.into_inner() {
         let dir = mtl_path.parent().unwrap_or(Path::new("")).to_owned();
-        material_dirs.extend(std::iter::repeat(dir).take(count));
+        material_dirs.extend(std::iter::repeat_n(dir, count));
     }
     material_dirs.resize(materials.len(), obj_dir);
     Ok(Parsed {

@@ -228,6 +228,22 @@ impl Image {
         }
     }
 
+    /// Buffer <-> image copy region covering the whole image (tightly packed rows).
+    pub fn copy_region(&self) -> vk::BufferImageCopy {
+        vk::BufferImageCopy::default()
+            .image_subresource(vk::ImageSubresourceLayers {
+                aspect_mask: self.aspect(),
+                mip_level: 0,
+                base_array_layer: 0,
+                layer_count: 1,
+            })
+            .image_extent(vk::Extent3D {
+                width: self.desc.width,
+                height: self.desc.height,
+                depth: 1,
+            })
+    }
+
     pub fn extent(&self) -> vk::Extent2D {
         vk::Extent2D {
             width: self.desc.width,

@@ -26,4 +26,4 @@ pub use surface::Surface;
 pub use swapchain::{AcquiredImage, PresentPolicy, Swapchain, SwapchainOptions};
 pub use sync::{Access, Tracked, TrackedImage, Tracker};
 pub use timing::{FrameTiming, GpuTimer};
-pub use upload::upload_image;
+pub use upload::{upload_buffer, upload_image};

@@ -120,18 +120,7 @@ pub fn read_image(ctx: &Arc<Context>, tracker: &mut Tracker, image: &Image) -> R
         tracker.image(image, Access::TransferSrc);
         tracker.buffer(&staging, Access::TransferDst);
         tracker.flush(&ctx.device, cmd);
-        let region = vk::BufferImageCopy::default()
-            .image_subresource(vk::ImageSubresourceLayers {
-                aspect_mask: image.aspect(),
-                mip_level: 0,
-                base_array_layer: 0,
-                layer_count: 1,
-            })
-            .image_extent(vk::Extent3D {
-                width: image.desc.width,
-                height: image.desc.height,
-                depth: 1,
-            });
+        let region = image.copy_region();
         // SAFETY: recording; the image is in TRANSFER_SRC layout and the buffer large enough.
         unsafe {
             ctx.device.cmd_copy_image_to_buffer(

@@ -29,18 +29,7 @@ pub fn upload_image(
         tracker.image(image, Access::Undefined);
         tracker.image(image, Access::TransferDst);
         tracker.flush(&ctx.device, cmd);
-        let region = vk::BufferImageCopy::default()
-            .image_subresource(vk::ImageSubresourceLayers {
-                aspect_mask: image.aspect(),
-                mip_level: 0,
-                base_array_layer: 0,
-                layer_count: 1,
-            })
-            .image_extent(vk::Extent3D {
-                width: image.desc.width,
-                height: image.desc.height,
-                depth: 1,
-            });
+        let region = image.copy_region();
         // SAFETY: recording; the image is in TRANSFER_DST layout (tracker) and the staging
         // buffer holds the whole image.
         unsafe {
@@ -53,6 +42,42 @@ pub fn upload_image(
             )
         };
         tracker.image(image, then);
+        tracker.flush(&ctx.device, cmd);
+        Ok(())
+    })
+}
+
+/// Fill the start of `buffer` with `bytes` through a staging buffer and leave it in `then`.
+pub fn upload_buffer(
+    ctx: &Arc<Context>,
+    tracker: &mut Tracker,
+    buffer: &Buffer,
+    bytes: &[u8],
+    then: Access,
+) -> Result<()> {
+    let mut staging = Buffer::new(
+        ctx,
+        "upload.staging",
+        bytes.len() as u64,
+        vk::BufferUsageFlags::TRANSFER_SRC,
+        MemoryLocation::CpuToGpu,
+    )?;
+    staging.write(bytes)?;
+    one_shot(ctx, |cmd| {
+        tracker.buffer(buffer, Access::TransferDst);
+        tracker.flush(&ctx.device, cmd);
+        let region = [vk::BufferCopy {
+            src_offset: 0,
+            dst_offset: 0,
+            size: bytes.len() as u64,
+        }];
+        // SAFETY: recording; both buffers are live, `buffer` is at least `bytes.len()` long
+        // (callers size it from the same data) and in the transfer-write state.
+        unsafe {
+            ctx.device
+                .cmd_copy_buffer(cmd, staging.raw, buffer.raw, &region)
+        };
+        tracker.buffer(buffer, then);
         tracker.flush(&ctx.device, cmd);
         Ok(())
     })
