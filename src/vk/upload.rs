@@ -9,6 +9,19 @@ use ash::vk;
 use gpu_allocator::MemoryLocation;
 use std::sync::Arc;
 
+/// A host-visible buffer holding `bytes`, the source of one upload.
+fn staging(ctx: &Arc<Context>, bytes: &[u8]) -> Result<Buffer> {
+    let mut buffer = Buffer::new(
+        ctx,
+        "upload.staging",
+        bytes.len() as u64,
+        vk::BufferUsageFlags::TRANSFER_SRC,
+        MemoryLocation::CpuToGpu,
+    )?;
+    buffer.write(bytes)?;
+    Ok(buffer)
+}
+
 /// Fill `image` (whole, one mip) with `bytes` (tightly packed rows) and leave it in `then`.
 pub fn upload_image(
     ctx: &Arc<Context>,
@@ -17,14 +30,7 @@ pub fn upload_image(
     bytes: &[u8],
     then: Access,
 ) -> Result<()> {
-    let mut staging = Buffer::new(
-        ctx,
-        "upload.staging",
-        bytes.len() as u64,
-        vk::BufferUsageFlags::TRANSFER_SRC,
-        MemoryLocation::CpuToGpu,
-    )?;
-    staging.write(bytes)?;
+    let staging = staging(ctx, bytes)?;
     one_shot(ctx, |cmd| {
         tracker.image(image, Access::Undefined);
         tracker.image(image, Access::TransferDst);
@@ -55,14 +61,7 @@ pub fn upload_buffer(
     bytes: &[u8],
     then: Access,
 ) -> Result<()> {
-    let mut staging = Buffer::new(
-        ctx,
-        "upload.staging",
-        bytes.len() as u64,
-        vk::BufferUsageFlags::TRANSFER_SRC,
-        MemoryLocation::CpuToGpu,
-    )?;
-    staging.write(bytes)?;
+    let staging = staging(ctx, bytes)?;
     one_shot(ctx, |cmd| {
         tracker.buffer(buffer, Access::TransferDst);
         tracker.flush(&ctx.device, cmd);
