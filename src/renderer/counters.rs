@@ -55,7 +55,7 @@ pub fn record_reset(rec: &Recorder<'_>, tracker: &mut Tracker, gpu: &Buffer, max
 /// Host copies of a counters header, one per frame slot, and which fields each frame reports.
 pub struct CounterReadback {
     buffers: Vec<Buffer>,
-    pending: Vec<Option<Vec<(&'static str, usize)>>>,
+    pending: Vec<Option<&'static [(&'static str, usize)]>>,
 }
 
 impl CounterReadback {
@@ -84,7 +84,7 @@ impl CounterReadback {
         tracker: &mut Tracker,
         gpu: &Buffer,
         slot: usize,
-        fields: Vec<(&'static str, usize)>,
+        fields: &'static [(&'static str, usize)],
     ) {
         let host = &self.buffers[slot];
         tracker.buffer(gpu, Access::TransferSrc);
@@ -105,8 +105,8 @@ impl CounterReadback {
             return Vec::new();
         };
         fields
-            .into_iter()
-            .map(|(name, i)| {
+            .iter()
+            .map(|&(name, i)| {
                 let w = [
                     bytes[4 * i],
                     bytes[4 * i + 1],

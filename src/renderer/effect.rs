@@ -150,8 +150,7 @@ impl TemporalEffect {
 
     /// Copy this frame's counters for reading when `slot` comes round again.
     pub fn copy_counters(&mut self, rec: &Recorder<'_>, tracker: &mut Tracker, slot: usize) {
-        let fields = self.kind.counters.to_vec();
         self.readback
-            .record_copy(rec, tracker, &self.counters, slot, fields);
+            .record_copy(rec, tracker, &self.counters, slot, self.kind.counters);
     }
 }
