@@ -4,7 +4,8 @@ use crate::bench::compare::Comparison;
 use crate::bench::Report;
 use crate::error::{Error, Result};
 use crate::frontend::headless;
-use crate::frontend::window::{self, Job, WindowOptions, WindowRun};
+use crate::frontend::sink::{self, FrameSink, Offscreen};
+use crate::frontend::window::{self, WindowOptions, WindowRun};
 use crate::passes::PassId;
 use crate::renderer::config::{
     Accumulate, AoConfig, AoEstimator, Effects, Epsilon, IndirectConfig, TemporalConfig,
@@ -12,9 +13,10 @@ use crate::renderer::config::{
 use crate::renderer::frame::Pcf;
 use crate::renderer::{RenderConfig, Renderer, MAX_SIZE};
 use crate::scene::{asset_dir_from_env, load_scene, CameraPath, Scene};
-use crate::vk::{Context, ContextOptions, FrameTiming, PresentPolicy};
+use crate::vk::{Context, ContextOptions};
 use clap::{Args, Parser, Subcommand};
 use std::path::PathBuf;
+use std::sync::Arc;
 
 #[derive(Parser, Debug)]
 #[command(
@@ -239,7 +241,7 @@ pub struct BenchArgs {
     pub window: bool,
     /// Run the path twice in this process, with reuse on and off, and report both with the
     /// speed-up ratios (overrides --reuse).
-    #[arg(long, conflicts_with = "window")]
+    #[arg(long)]
     pub compare_reuse: bool,
 }
 
@@ -355,7 +357,7 @@ pub fn render(cli: &Cli, args: &RenderArgs) -> Result<()> {
         mut renderer,
         path,
     } = setup(cli, &args.scene)?;
-    headless::run(&mut renderer, &path, frames, true)?;
+    headless::run(&mut renderer, &mut Offscreen, &path, frames, true)?;
     headless::write_output(&mut renderer, &args.out)?;
     eprintln!("wrote {}", args.out.display());
     if let Some(dir) = &args.dump_gbuffer {
@@ -389,6 +391,7 @@ fn bench_config(
     ctx: &Context,
     renderer: &Renderer,
     path: &CameraPath,
+    sink: &dyn FrameSink,
 ) -> serde_json::Value {
     serde_json::json!({
         "scene": args.scene.scene,
@@ -402,26 +405,31 @@ fn bench_config(
         "device_type": ctx.info.device_type,
         "api_version": ctx.info.api_version,
         "triangles": renderer.scene.mesh.indices.len() / 3,
-        "window": false,
+        "window": sink.present_mode().is_some(),
+        "present_mode": sink.present_mode(),
     })
 }
 
 /// `bench --compare-reuse`: both configurations on one context, one after the other.
-fn bench_compare_reuse(cli: &Cli, args: &BenchArgs) -> Result<()> {
-    let (scene, path) = load(cli, &args.scene)?;
-    let ctx = Context::new(&context_options(cli))?;
+fn bench_compare_reuse(
+    args: &BenchArgs,
+    ctx: &Arc<Context>,
+    sink: &mut dyn FrameSink,
+    scene: Scene,
+    path: CameraPath,
+) -> Result<()> {
     let names: Vec<&str> = PassId::ALL.iter().map(|p| p.name()).collect();
     let mut reports = Vec::new();
     for reuse in [true, false] {
         let mut config = args.scene.render_config();
         config.temporal.reuse = reuse;
-        let mut renderer = Renderer::new(&ctx, scene.clone(), config)?;
-        let timings = headless::run(&mut renderer, &path, args.frames + args.warmup, true)?;
+        let mut renderer = Renderer::new(ctx, scene.clone(), config)?;
+        let timings = headless::run(&mut renderer, sink, &path, args.frames + args.warmup, true)?;
         let report = Report::new(
             &ctx.info,
             args.scene.size.0,
             args.scene.size.1,
-            bench_config(args, &ctx, &renderer, &path),
+            bench_config(args, ctx, &renderer, &path, sink),
             &names,
             &timings,
             args.warmup as u64,
@@ -442,7 +450,7 @@ fn bench_compare_reuse(cli: &Cli, args: &BenchArgs) -> Result<()> {
     if let Some(json) = &args.json {
         write_json(json, &comparison)?;
     }
-    finish(&ctx)
+    Ok(())
 }
 
 pub fn bench(cli: &Cli, args: &BenchArgs) -> Result<()> {
@@ -451,50 +459,18 @@ pub fn bench(cli: &Cli, args: &BenchArgs) -> Result<()> {
     if args.frames == 0 {
         return Err(Error::Config("--frames must be at least 1".into()));
     }
+    let (scene, path) = load(cli, &args.scene)?;
+    let window = args.window.then(|| format!("ssgi bench: {}", scene.name));
+    let (ctx, mut sink) = sink::open(window, args.scene.size, context_options(cli))?;
     if args.compare_reuse {
-        return bench_compare_reuse(cli, args);
+        bench_compare_reuse(args, &ctx, sink.as_mut(), scene, path)?;
+        drop(sink);
+        return finish(&ctx);
     }
     let total = args.frames + args.warmup;
-    let (ctx, mut renderer, path, timings, present_mode) = if args.window {
-        let (scene, path) = load(cli, &args.scene)?;
-        let config = args.scene.render_config();
-        let run = window::run(
-            WindowOptions {
-                title: format!("ssgi bench: {}", scene.name),
-                size: args.scene.size,
-                policy: PresentPolicy::Benchmark,
-                job: Job::Bench {
-                    path: path.clone(),
-                    frames: total,
-                },
-                script: Vec::new(),
-                capture: None,
-            },
-            context_options(cli),
-            move |ctx| Renderer::new(ctx, scene, config),
-        )?;
-        let WindowRun {
-            ctx,
-            renderer,
-            timings,
-            present_mode,
-            ..
-        } = run;
-        (ctx, renderer, path, timings, Some(present_mode))
-    } else {
-        let Setup {
-            ctx,
-            mut renderer,
-            path,
-        } = setup(cli, &args.scene)?;
-        let timings: Vec<FrameTiming> = headless::run(&mut renderer, &path, total, true)?;
-        (ctx, renderer, path, timings, None)
-    };
-    let mut config = bench_config(args, &ctx, &renderer, &path);
-    if let Some(mode) = present_mode {
-        config["window"] = true.into();
-        config["present_mode"] = mode.into();
-    }
+    let mut renderer = Renderer::new(&ctx, scene, args.scene.render_config())?;
+    let timings = headless::run(&mut renderer, sink.as_mut(), &path, total, true)?;
+    let config = bench_config(args, &ctx, &renderer, &path, sink.as_ref());
     let names: Vec<&str> = PassId::ALL.iter().map(|p| p.name()).collect();
     let report = Report::new(
         &ctx.info,
@@ -514,6 +490,7 @@ pub fn bench(cli: &Cli, args: &BenchArgs) -> Result<()> {
         eprintln!("wrote {}", out.display());
     }
     drop(renderer);
+    drop(sink);
     finish(&ctx)
 }
 
@@ -531,10 +508,7 @@ pub fn view(cli: &Cli, args: &ViewArgs) -> Result<()> {
         WindowOptions {
             title: format!("ssgi view: {}", scene.name),
             size: args.scene.size,
-            policy: PresentPolicy::Vsync,
-            job: Job::View {
-                frames: args.frames,
-            },
+            frames: args.frames,
             script,
             capture: args.capture.clone(),
         },

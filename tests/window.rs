@@ -371,3 +371,92 @@ fn view_without_a_display_fails_with_a_clear_error() {
     assert!(stderr.contains("cannot open a window"), "{stderr}");
     assert!(!stderr.contains("panicked"), "{stderr}");
 }
+
+/// Run `ssgi --validation --assets A table thesis-walkthroughs` at 32x32 with `extra` flags;
+/// returns report.json and stderr.
+fn walkthrough_table(
+    display: &Display,
+    assets: &std::path::Path,
+    out: &std::path::Path,
+    extra: &[&str],
+) -> (serde_json::Value, String) {
+    let mut args = vec![
+        "--validation",
+        "--assets",
+        assets.to_str().unwrap(),
+        "table",
+        "thesis-walkthroughs",
+        "--size",
+        "32x32",
+        "--frames",
+        "3",
+        "--warmup",
+        "2",
+        "--effects",
+        "direct,ao",
+        "--out",
+        out.to_str().unwrap(),
+    ];
+    args.extend_from_slice(extra);
+    let run = ssgi(display, &args);
+    let stderr = assert_clean_run(&run, &format!("table {extra:?}"));
+    let text = std::fs::read_to_string(out.join("report.json")).unwrap();
+    (serde_json::from_str(&text).unwrap(), stderr)
+}
+
+/// `table --window` presents every frame of every row (reference, reuse, no reuse) of every
+/// scene through one window, and presenting changes nothing in the rendered buffers: each
+/// row's error against its reference is the one of the same table run offscreen.
+#[test]
+fn table_window_presents_every_row_and_matches_offscreen() {
+    let Some(display) = display() else { return };
+    let Some(assets) = std::env::var_os("SSGI_ASSETS").filter(|v| !v.is_empty()) else {
+        println!("skipped: SSGI_ASSETS not set");
+        return;
+    };
+    let assets = PathBuf::from(assets);
+    let (windowed, stderr) =
+        walkthrough_table(&display, &assets, &tmp("table-window"), &["--window"]);
+    let (offscreen, _) = walkthrough_table(&display, &assets, &tmp("table-offscreen"), &[]);
+    assert_eq!(windowed["window"], true);
+    assert_eq!(offscreen["window"], false);
+    assert!(offscreen["present_mode"].is_null());
+    let mode = windowed["present_mode"].as_str().unwrap();
+    assert!(
+        ["immediate", "mailbox", "fifo"].contains(&mode),
+        "present mode {mode}"
+    );
+    let scenes = windowed["scenes"].as_array().unwrap();
+    assert_eq!(scenes.len(), 3);
+    let mut expected_frames = 0;
+    for (s, o) in scenes.iter().zip(offscreen["scenes"].as_array().unwrap()) {
+        let rows = s["rows"].as_array().unwrap();
+        assert_eq!(rows.len(), 3, "{}", s["name"]);
+        for (r, ro) in rows.iter().zip(o["rows"].as_array().unwrap()) {
+            assert_eq!(r["kind"], ro["kind"]);
+            assert_eq!(r["report"]["config"]["present_mode"], mode);
+            expected_frames +=
+                r["measured_frames"].as_u64().unwrap() + r["warmup"].as_u64().unwrap();
+            let errors = r["error"].as_object().unwrap();
+            assert!(!errors.is_empty());
+            for (buffer, e) in errors {
+                for key in ["rmse", "max_abs"] {
+                    let (a, b) = (
+                        e[key].as_f64().unwrap(),
+                        ro["error"][buffer][key].as_f64().unwrap(),
+                    );
+                    assert!(
+                        (a - b).abs() <= 1e-9,
+                        "{} {} {buffer} {key}: window {a} vs offscreen {b}",
+                        s["name"],
+                        r["kind"]
+                    );
+                }
+            }
+        }
+    }
+    assert!(
+        stderr.contains(&format!("presented {expected_frames} frames to the window")),
+        "expected {expected_frames} presented frames:\n{stderr}"
+    );
+}

@@ -4,9 +4,10 @@ use super::options::TableOptions;
 use super::{output, table41, walkthrough};
 use crate::cli::{parse_size, Cli};
 use crate::error::{Error, Result};
+use crate::frontend::sink;
 use crate::renderer::config::Effects;
 use crate::scene::asset_dir_from_env;
-use crate::vk::{Context, ContextOptions};
+use crate::vk::ContextOptions;
 use clap::{Args, ValueEnum};
 use std::path::PathBuf;
 
@@ -66,6 +67,10 @@ pub struct TableArgs {
     /// its columns (e.g. `direct,ao` on a slow device).
     #[arg(long, default_value = "all", value_parser = Effects::parse)]
     pub effects: Effects,
+    /// Present every frame to a window (present mode immediate, else mailbox, else fifo) and
+    /// time that; Escape or closing the window aborts the table.
+    #[arg(long)]
+    pub window: bool,
 }
 
 /// Most frames a table accepts per row (a typo guard, as for `bench`).
@@ -105,19 +110,30 @@ pub fn run(cli: &Cli, args: &TableArgs) -> Result<()> {
         progress: true,
         command: command_line(),
     };
-    let ctx = Context::new(&ContextOptions {
-        validation: cli.validation,
-        device: cli.device.clone(),
-        verbose: true,
-        ..Default::default()
-    })?;
+    let window = args
+        .window
+        .then(|| format!("ssgi table {}", args.table.name()));
+    let (ctx, mut sink) = sink::open(
+        window,
+        args.size,
+        ContextOptions {
+            validation: cli.validation,
+            device: cli.device.clone(),
+            verbose: true,
+            ..Default::default()
+        },
+    )?;
     let (mut report, extra_md) = match args.table {
-        TableName::Thesis41 => (table41::run(&ctx, &opts)?, ""),
+        TableName::Thesis41 => (table41::run(&ctx, sink.as_mut(), &opts)?, ""),
         TableName::ThesisWalkthroughs => (
-            walkthrough::run(&ctx, &opts, &out)?,
+            walkthrough::run(&ctx, sink.as_mut(), &opts, &out)?,
             super::markdown::WALKTHROUGH_LEGEND,
         ),
     };
+    if sink.present_mode().is_some() {
+        eprintln!("presented {} frames to the window", sink.frames_presented());
+    }
+    drop(sink);
     let images = output::write_last_frames(&out, &report)?;
     for (scene, names) in report.scenes.iter_mut().zip(images) {
         scene.files.extend(names);

@@ -49,6 +49,7 @@ fn header(r: &TableReport) -> String {
         "Produced by `{}` (ssgi {}).\n\n\
          | | |\n|---|---|\n\
          | device | {} ({}) |\n| driver | {} |\n| Vulkan | {} |\n| resolution | {}x{} |\n\
+         | frames shown | {} |\n\
          | frames | {} measured per row, after {} warmup frames at the path's first camera |\n\
          | timing | median per-frame GPU time from timestamp queries, ms; fps = 1000 / ms |\n\
          | thesis | {} |\n\n",
@@ -60,6 +61,10 @@ fn header(r: &TableReport) -> String {
         r.api_version,
         r.width,
         r.height,
+        match &r.present_mode {
+            Some(mode) => format!("presented to a window every frame (present mode {mode})"),
+            None => "offscreen (no window)".to_string(),
+        },
         r.frames,
         r.warmup,
         r.thesis_setup,

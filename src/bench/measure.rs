@@ -7,6 +7,7 @@ use super::metrics::Channels;
 use super::Report;
 use crate::error::Result;
 use crate::frontend::progress::Progress;
+use crate::frontend::sink::FrameSink;
 use crate::passes::PassId;
 use crate::renderer::config::Effects;
 use crate::renderer::targets::Target;
@@ -133,8 +134,13 @@ pub fn held_at(camera: &Camera) -> CameraPath {
     }])
 }
 
-/// Render `spec` on a fresh renderer for `scene`.
-pub fn measure(ctx: &Arc<Context>, scene: &Scene, spec: &RunSpec<'_>) -> Result<Measured> {
+/// Render `spec` on a fresh renderer for `scene`, into `sink` (offscreen or a window).
+pub fn measure(
+    ctx: &Arc<Context>,
+    sink: &mut dyn FrameSink,
+    scene: &Scene,
+    spec: &RunSpec<'_>,
+) -> Result<Measured> {
     let frames = spec.frames.max(1);
     let mut renderer = Renderer::new(ctx, scene.clone(), spec.config)?;
     let base = renderer.scene.camera;
@@ -142,8 +148,9 @@ pub fn measure(ctx: &Arc<Context>, scene: &Scene, spec: &RunSpec<'_>) -> Result<
     let mut bar = Progress::new((spec.warmup + frames) as u64, spec.label, spec.progress);
     let mut timings = Vec::with_capacity((spec.warmup + frames) as usize);
     let first = spec.path.camera_at(&base, &bounds, 0, frames);
+    sink.begin(spec.label);
     for _ in 0..spec.warmup {
-        timings.extend(renderer.render_frame(&first)?);
+        timings.extend(sink.frame(&mut renderer, &first)?);
         bar.inc();
     }
     let after_warmup = if spec.snapshot_after_warmup {
@@ -155,7 +162,7 @@ pub fn measure(ctx: &Arc<Context>, scene: &Scene, spec: &RunSpec<'_>) -> Result<
     let mut camera = first;
     for i in 0..frames {
         camera = spec.path.camera_at(&base, &bounds, i, frames);
-        timings.extend(renderer.render_frame(&camera)?);
+        timings.extend(sink.frame(&mut renderer, &camera)?);
         bar.inc();
     }
     timings.extend(renderer.finish()?);
@@ -170,6 +177,8 @@ pub fn measure(ctx: &Arc<Context>, scene: &Scene, spec: &RunSpec<'_>) -> Result<
         "triangles": renderer.scene.mesh.triangle_count(),
         "device_type": ctx.info.device_type,
         "api_version": ctx.info.api_version,
+        "window": sink.present_mode().is_some(),
+        "present_mode": sink.present_mode(),
     });
     let names: Vec<&str> = PassId::ALL.iter().map(|p| p.name()).collect();
     let report = Report::new(

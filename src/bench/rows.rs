@@ -8,6 +8,7 @@ use super::metrics::{image_error, ImageError};
 use super::report::FrameRow;
 use super::Report;
 use crate::error::{Error, Result};
+use crate::frontend::sink::FrameSink;
 use crate::renderer::config::Effects;
 use crate::renderer::frame::{Pcf, PcfKernel};
 use crate::renderer::RenderConfig;
@@ -203,6 +204,7 @@ pub struct SceneRun<'a> {
 /// first, so its own error is 0 unless rendering is not deterministic.
 pub fn measure_rows(
     ctx: &Arc<Context>,
+    sink: &mut dyn FrameSink,
     scene: &Scene,
     run: &SceneRun<'_>,
 ) -> Result<Vec<RowResult>> {
@@ -210,6 +212,7 @@ pub fn measure_rows(
     let held = held_at(&last_camera(scene, run.path, frames));
     let mut reference = measure(
         ctx,
+        sink,
         scene,
         &RunSpec {
             label: &format!("{} {}", scene.name, RowKind::Reference.short()),
@@ -230,6 +233,7 @@ pub fn measure_rows(
         let config = kind.config(&run.base);
         let measured = measure(
             ctx,
+            sink,
             scene,
             &RunSpec {
                 label: &format!("{} {}", scene.name, kind.short()),

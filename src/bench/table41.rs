@@ -9,6 +9,7 @@ use super::table_report::{Header, SceneResult, TableReport, COLUMN_NOTE};
 use super::thesis::{table_4_1, SETUP};
 use super::TableOptions;
 use crate::error::Result;
+use crate::frontend::sink::FrameSink;
 use crate::scene::{box_room, load_scene, CameraPath, Scene};
 use crate::vk::Context;
 use std::path::Path;
@@ -71,7 +72,11 @@ pub fn load(s: &BoxScene, assets: Option<&Path>) -> Result<(Scene, Option<String
     Ok((box_room(&d.mesh, &model.name), Some(note)))
 }
 
-pub fn run(ctx: &Arc<Context>, opts: &TableOptions) -> Result<TableReport> {
+pub fn run(
+    ctx: &Arc<Context>,
+    sink: &mut dyn FrameSink,
+    opts: &TableOptions,
+) -> Result<TableReport> {
     let (path, path_spec) = match opts.path.as_deref() {
         Some(p) => (CameraPath::parse(p)?, p),
         None => (DEFAULT_PATH.parse()?, DEFAULT_PATH.file),
@@ -87,6 +92,7 @@ pub fn run(ctx: &Arc<Context>, opts: &TableOptions) -> Result<TableReport> {
             table: "thesis-4.1",
             command: opts.command.clone(),
             device: &ctx.info,
+            present_mode: sink.present_mode(),
             base_config: base,
             frames: opts.frames,
             warmup: opts.warmup,
@@ -97,6 +103,7 @@ pub fn run(ctx: &Arc<Context>, opts: &TableOptions) -> Result<TableReport> {
     for (s, (scene, note)) in loaded {
         let rows = measure_rows(
             ctx,
+            sink,
             &scene,
             &SceneRun {
                 base,

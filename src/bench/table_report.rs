@@ -4,7 +4,8 @@
 //! JSON, version 1 (later versions only add fields):
 //! ```text
 //! { "version", "table", "command", "ssgi_version", "device", "driver", "device_type",
-//!   "api_version", "width", "height", "frames", "warmup", "base_config", "reference",
+//!   "api_version", "window", "present_mode", "width", "height", "frames", "warmup",
+//!   "base_config", "reference",
 //!   "thesis_setup", "notes": [str],
 //!   "scenes": [ { "spec", "name", "path", "triangles", "note", "thesis", "thesis_speedups",
 //!                 "speedups": { group: no-reuse ms / reuse ms }, "files": [str],
@@ -126,6 +127,9 @@ pub struct TableReport {
     pub driver: String,
     pub device_type: String,
     pub api_version: String,
+    /// Every frame was presented to a window (`--window`), with this present mode.
+    pub window: bool,
+    pub present_mode: Option<String>,
     pub width: u32,
     pub height: u32,
     pub frames: u32,
@@ -145,6 +149,8 @@ pub struct Header<'a> {
     pub table: &'a str,
     pub command: String,
     pub device: &'a DeviceInfo,
+    /// The window's present mode; `None` offscreen.
+    pub present_mode: Option<&'static str>,
     pub base_config: RenderConfig,
     pub frames: u32,
     pub warmup: u32,
@@ -188,6 +194,8 @@ impl TableReport {
             driver: h.device.driver.clone(),
             device_type: h.device.device_type.clone(),
             api_version: h.device.api_version.clone(),
+            window: h.present_mode.is_some(),
+            present_mode: h.present_mode.map(str::to_string),
             width: h.base_config.width,
             height: h.base_config.height,
             frames: h.frames,

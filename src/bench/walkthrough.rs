@@ -14,6 +14,7 @@ use super::table_report::{Header, SceneResult, TableReport, COLUMN_NOTE};
 use super::thesis::{SETUP, WALKTHROUGH_NUMBERS_MISSING};
 use super::TableOptions;
 use crate::error::{Error, Result};
+use crate::frontend::sink::FrameSink;
 use crate::scene::{load_scene, Camera, CameraPath, Scene, SpotLight};
 use crate::vk::Context;
 use glam::Vec3;
@@ -109,7 +110,12 @@ impl Walkthrough {
     }
 }
 
-pub fn run(ctx: &Arc<Context>, opts: &TableOptions, out: &Path) -> Result<TableReport> {
+pub fn run(
+    ctx: &Arc<Context>,
+    sink: &mut dyn FrameSink,
+    opts: &TableOptions,
+    out: &Path,
+) -> Result<TableReport> {
     let dir = opts.path.as_deref().map(Path::new);
     if let Some(d) = dir.filter(|d| !d.is_dir()) {
         return Err(Error::Config(format!(
@@ -130,6 +136,7 @@ pub fn run(ctx: &Arc<Context>, opts: &TableOptions, out: &Path) -> Result<TableR
             table: "thesis-walkthroughs",
             command: opts.command.clone(),
             device: &ctx.info,
+            present_mode: sink.present_mode(),
             base_config: base,
             frames: opts.frames,
             warmup: opts.warmup,
@@ -149,6 +156,7 @@ pub fn run(ctx: &Arc<Context>, opts: &TableOptions, out: &Path) -> Result<TableR
     for (w, path, path_name, scene) in loaded {
         let rows = measure_rows(
             ctx,
+            sink,
             &scene,
             &SceneRun {
                 base,

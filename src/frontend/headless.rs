@@ -1,7 +1,9 @@
-//! Headless frontend: render a camera path offscreen, collect GPU timings, write PNGs.
+//! Scripted runs: render a camera path (offscreen or into a presenting window), collect GPU
+//! timings, write PNGs.
 
 use super::png::{visualize, write_rgba8};
 use super::progress::Progress;
+use super::sink::FrameSink;
 use crate::error::Result;
 use crate::renderer::targets::Target;
 use crate::renderer::Renderer;
@@ -9,9 +11,11 @@ use crate::scene::CameraPath;
 use crate::vk::FrameTiming;
 use std::path::Path;
 
-/// Render `frames` frames along `path`; returns every frame's GPU timing in frame order.
+/// Render `frames` frames along `path` into `sink`; returns every frame's GPU timing in frame
+/// order.
 pub fn run(
     renderer: &mut Renderer,
+    sink: &mut dyn FrameSink,
     path: &CameraPath,
     frames: u32,
     progress: bool,
@@ -20,11 +24,10 @@ pub fn run(
     let bounds = renderer.scene.mesh.bounds;
     let mut timings = Vec::with_capacity(frames as usize);
     let mut bar = Progress::new(frames as u64, "rendering", progress);
+    sink.begin(&renderer.scene.name.clone());
     for i in 0..frames {
         let camera = path.camera_at(&base, &bounds, i, frames);
-        if let Some(t) = renderer.render_frame(&camera)? {
-            timings.push(t);
-        }
+        timings.extend(sink.frame(renderer, &camera)?);
         bar.inc();
     }
     timings.extend(renderer.finish()?);

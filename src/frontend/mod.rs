@@ -1,6 +1,11 @@
-//! Frontends sharing one renderer: headless (offscreen + PNG) and window (swapchain).
+//! Frontends sharing one renderer: headless (offscreen + PNG), the interactive window
+//! (`view`) and the presenting window of scripted runs (`bench --window`, `table --window`).
 
+pub mod display;
 pub mod headless;
 pub mod png;
+pub mod present;
+pub mod presenter;
 pub mod progress;
+pub mod sink;
 pub mod window;

@@ -1,12 +1,13 @@
-//! Window frontend: `ssgi view` (interactive fly camera) and `ssgi bench --window` (a camera
-//! path presented every frame). winit 0.30 `ApplicationHandler` + a Vulkan swapchain; the
-//! same `Renderer` as the headless frontend, whose output (or another target, for the buffer
-//! display) is blitted into the acquired swapchain image in the renderer's frame hook.
+//! Window frontend: `ssgi view` (interactive fly camera). winit 0.30 `ApplicationHandler` + a
+//! Vulkan swapchain; the same `Renderer` as the headless frontend, whose output (or another
+//! target, for the buffer display) is blitted into the acquired swapchain image in the
+//! renderer's frame hook. Scripted runs (`bench --window`, `table --window`) present through
+//! `presenter.rs` instead, which shares the frame steps in `present.rs`.
 //!
 //! Frame loop (one `RedrawRequested`):
-//! 1. if the swapchain is stale (resize, OUT_OF_DATE, SUBOPTIMAL): recreate it, and for `view`
-//!    resize the renderer's targets to the new extent; a zero extent (minimised) renders
-//!    nothing and polls again later, keeping the event loop alive;
+//! 1. if the swapchain is stale (resize, OUT_OF_DATE, SUBOPTIMAL): recreate it and resize the
+//!    renderer's targets to the new extent; a zero extent (minimised) renders nothing and
+//!    polls again later, keeping the event loop alive;
 //! 2. wait for the renderer's next frame slot (so the slot's acquire semaphore is free);
 //! 3. acquire an image; render the frame with a hook that blits into it and moves it to
 //!    PRESENT_SRC; the submission waits on the acquire semaphore and signals the image's
@@ -14,16 +15,17 @@
 //!
 //! Viewer keys: see [`HELP`].
 
+use super::display::{new_event_loop, presenting_context};
+use super::present::{recreate, render_and_present, Presented, Recreated};
 use crate::error::{Error, Result};
 use crate::renderer::frame::Pcf;
 use crate::renderer::targets::Target;
-use crate::renderer::{FrameHook, Renderer, FRAMES_IN_FLIGHT};
-use crate::scene::{Camera, CameraPath};
-use crate::vk::cmd::Recorder;
+use crate::renderer::{Renderer, FRAMES_IN_FLIGHT};
+use crate::scene::Camera;
 use crate::vk::swapchain::present_mode_name;
 use crate::vk::{
-    surface, Buffer, Context, ContextOptions, FrameTiming, Image, ImageData, PresentPolicy,
-    Surface, Swapchain, SwapchainOptions, Tracker,
+    Buffer, Context, ContextOptions, FrameTiming, ImageData, PresentPolicy, Surface, Swapchain,
+    SwapchainOptions,
 };
 use glam::Vec3;
 use std::collections::BTreeMap;
@@ -33,7 +35,7 @@ use std::time::{Duration, Instant};
 use winit::application::ApplicationHandler;
 use winit::dpi::PhysicalSize;
 use winit::event::{ElementState, KeyEvent, MouseButton, WindowEvent};
-use winit::event_loop::{ActiveEventLoop, ControlFlow, EventLoop};
+use winit::event_loop::{ActiveEventLoop, ControlFlow};
 use winit::keyboard::{KeyCode, ModifiersState, PhysicalKey};
 use winit::window::{Window, WindowId};
 
@@ -261,21 +263,12 @@ pub fn parse_script(s: &str) -> std::result::Result<Vec<ScriptStep>, String> {
     Ok(steps)
 }
 
-/// What the window shows.
-#[derive(Clone, Debug)]
-pub enum Job {
-    /// Interactive fly camera; `frames` ends the run by itself after that many frames.
-    View { frames: Option<u64> },
-    /// A camera path of `frames` frames (warmup included), presented every frame.
-    Bench { path: CameraPath, frames: u32 },
-}
-
 pub struct WindowOptions {
     pub title: String,
-    /// Initial inner size of the window (and the render size of `bench`).
+    /// Initial inner size of the window.
     pub size: (u32, u32),
-    pub policy: PresentPolicy,
-    pub job: Job,
+    /// End the run by itself after this many frames.
+    pub frames: Option<u64>,
     /// Test script (hidden flag).
     pub script: Vec<ScriptStep>,
     /// Write the last presented image (read back from the swapchain) here as PNG; needs a
@@ -290,32 +283,22 @@ pub struct WindowRun {
     pub renderer: Renderer,
     pub timings: Vec<FrameTiming>,
     pub frames_presented: u64,
-    pub present_mode: &'static str,
     /// The last presented image, read back from the swapchain (with `capture`).
     pub captured: Option<ImageData>,
 }
 
-/// Open a window and run `options.job`. `context` is the base context configuration (surface
-/// and swapchain extensions are added); `make_renderer` builds the renderer on the context.
+/// Open the viewer. `context` is the base context configuration (surface and swapchain
+/// extensions are added); `make_renderer` builds the renderer on the context.
 pub fn run(
     options: WindowOptions,
     context: ContextOptions,
     make_renderer: impl FnOnce(&Arc<Context>) -> Result<Renderer>,
 ) -> Result<WindowRun> {
-    if options.capture.is_some() && !matches!(options.job, Job::View { frames: Some(_) }) {
+    if options.capture.is_some() && options.frames.is_none() {
         return Err(Error::Config("--capture needs --frames".into()));
     }
     let event_loop = new_event_loop()?;
-    let mut ctx_options = context;
-    for e in surface::instance_extensions(&event_loop)? {
-        if !ctx_options.instance_extensions.contains(&e) {
-            ctx_options.instance_extensions.push(e);
-        }
-    }
-    ctx_options
-        .device_extensions
-        .push(ash::khr::swapchain::NAME);
-    let ctx = Context::new(&ctx_options)?;
+    let ctx = presenting_context(context, &event_loop)?;
     let renderer = make_renderer(&ctx)?;
     let mut app = App {
         options,
@@ -325,7 +308,6 @@ pub fn run(
         error: None,
         timings: Vec::new(),
         presented: 0,
-        present_mode: "none",
         captured: None,
         input: Input::default(),
         stats: Stats::new(),
@@ -334,7 +316,6 @@ pub fn run(
         last_frame: None,
         view: None,
         camera: None,
-        announced_mode: false,
     };
     let result = event_loop.run_app(&mut app);
     // `exiting` normally shut down already; make sure (an error before the loop started).
@@ -347,38 +328,13 @@ pub fn run(
         .renderer
         .take()
         .ok_or_else(|| Error::Window("the renderer was lost".into()))?;
-    if let Job::Bench { frames, .. } = &app.options.job {
-        if app.presented < *frames as u64 {
-            return Err(Error::Window(format!(
-                "the window was closed after {} of {} frames; no report",
-                app.presented, frames
-            )));
-        }
-    }
     app.timings.sort_by_key(|t| t.frame);
     Ok(WindowRun {
         ctx: app.ctx.clone(),
         renderer,
         timings: std::mem::take(&mut app.timings),
         frames_presented: app.presented,
-        present_mode: app.present_mode,
         captured: app.captured.take(),
-    })
-}
-
-fn new_event_loop() -> Result<EventLoop<()>> {
-    let mut builder = EventLoop::builder();
-    #[cfg(all(unix, not(target_os = "macos"), not(target_os = "android")))]
-    {
-        // Tests drive the window from a test thread; the CLI runs it on the main thread.
-        use winit::platform::x11::EventLoopBuilderExtX11;
-        builder.with_any_thread(true);
-    }
-    builder.build().map_err(|e| {
-        Error::Window(format!(
-            "cannot open a window: {e} (set DISPLAY, or run under Xvfb: \
-             `Xvfb :99 & DISPLAY=:99 ssgi view`)"
-        ))
     })
 }
 
@@ -481,7 +437,6 @@ struct App {
     error: Option<Error>,
     timings: Vec<FrameTiming>,
     presented: u64,
-    present_mode: &'static str,
     captured: Option<ImageData>,
     input: Input,
     stats: Stats,
@@ -493,7 +448,6 @@ struct App {
     view: Option<ViewState>,
     /// The viewer's camera (None until the first frame: the scene camera).
     camera: Option<Camera>,
-    announced_mode: bool,
 }
 
 impl App {
@@ -505,14 +459,7 @@ impl App {
     }
 
     fn total_frames(&self) -> Option<u64> {
-        match &self.options.job {
-            Job::View { frames } => *frames,
-            Job::Bench { frames, .. } => Some(*frames as u64),
-        }
-    }
-
-    fn is_view(&self) -> bool {
-        matches!(self.options.job, Job::View { .. })
+        self.options.frames
     }
 
     fn start(&mut self, event_loop: &ActiveEventLoop) -> Result<()> {
@@ -520,7 +467,7 @@ impl App {
         let attributes = Window::default_attributes()
             .with_title(self.options.title.clone())
             .with_inner_size(PhysicalSize::new(w, h))
-            .with_resizable(self.is_view());
+            .with_resizable(true);
         let window = Arc::new(
             event_loop
                 .create_window(attributes)
@@ -533,7 +480,7 @@ impl App {
             surface,
             (size.width, size.height),
             SwapchainOptions {
-                policy: self.options.policy,
+                policy: PresentPolicy::Vsync,
                 frames_in_flight: FRAMES_IN_FLIGHT,
                 readable: self.options.capture.is_some(),
             },
@@ -547,7 +494,6 @@ impl App {
             .map(|(t, _)| displayable(renderer, &swapchain, *t))
             .collect();
         self.view = Some(ViewState::new(renderer.config.pcf));
-        self.present_mode = present_mode_name(swapchain.present_mode);
         let live = Live {
             swapchain,
             window,
@@ -556,13 +502,11 @@ impl App {
         };
         self.on_swapchain(&live)?;
         self.live = Some(live);
-        if self.is_view() {
-            eprintln!("press H in the window for the viewer keys");
-        }
+        eprintln!("press H in the window for the viewer keys");
         Ok(())
     }
 
-    /// After (re)creating the swapchain: match the renderer to it (view) and report it.
+    /// After (re)creating the swapchain: match the renderer to it and report it.
     fn on_swapchain(&mut self, live: &Live) -> Result<()> {
         let sc = &live.swapchain;
         let (w, h) = (sc.extent.width, sc.extent.height);
@@ -570,8 +514,7 @@ impl App {
             .renderer
             .as_mut()
             .ok_or_else(|| Error::Window("no renderer".into()))?;
-        let follow = matches!(self.options.job, Job::View { .. });
-        if follow && (renderer.config.width, renderer.config.height) != (w, h) {
+        if (renderer.config.width, renderer.config.height) != (w, h) {
             let pending = renderer.resize(w, h)?;
             self.timings.extend(pending);
         }
@@ -581,13 +524,6 @@ impl App {
             sc.image_count(),
             present_mode_name(sc.present_mode)
         );
-        if !self.announced_mode && !self.is_view() {
-            eprintln!(
-                "present mode for benchmarking: {} (preference: immediate, mailbox, fifo)",
-                present_mode_name(sc.present_mode)
-            );
-            self.announced_mode = true;
-        }
         Ok(())
     }
 
@@ -777,13 +713,16 @@ impl App {
                 self.minimised = true;
                 return Ok(());
             }
-            if let Some(r) = self.renderer.as_mut() {
-                let pending = r.finish()?;
-                self.absorb(pending);
-            }
-            if !live.swapchain.recreate(window)? {
-                self.minimised = true;
-                return Ok(());
+            let renderer = self
+                .renderer
+                .as_mut()
+                .ok_or_else(|| Error::Window("no renderer".into()))?;
+            match recreate(&mut live.swapchain, window, renderer)? {
+                Recreated::Ready(pending) => self.absorb(pending),
+                Recreated::ZeroExtent => {
+                    self.minimised = true;
+                    return Ok(());
+                }
             }
             if self.minimised {
                 eprintln!("window restored: rendering resumed");
@@ -795,21 +734,7 @@ impl App {
         let dt = self
             .last_frame
             .map_or(0.0, |t| (now - t).as_secs_f32().min(0.1));
-        let camera = match &self.options.job {
-            Job::View { .. } => self.update_camera(dt),
-            Job::Bench { path, frames } => {
-                let r = self
-                    .renderer
-                    .as_ref()
-                    .ok_or_else(|| Error::Window("no renderer".into()))?;
-                path.camera_at(
-                    &r.scene.camera,
-                    &r.scene.mesh.bounds,
-                    self.presented as u32,
-                    *frames,
-                )
-            }
-        };
+        let camera = self.update_camera(dt);
         let capture_now =
             self.options.capture.is_some() && self.total_frames() == Some(self.presented + 1);
         let source = self
@@ -820,31 +745,15 @@ impl App {
             .renderer
             .as_mut()
             .ok_or_else(|| Error::Window("no renderer".into()))?;
-        renderer.wait_for_next_slot()?;
-        let Some(image) = live.swapchain.acquire(renderer.next_slot())? else {
-            return Ok(()); // out of date: recreated on the next redraw
-        };
-        if capture_now {
+        if capture_now && live.capture.is_none() {
             live.capture = Some(live.swapchain.readback_buffer()?);
         }
-        let swapchain = &live.swapchain;
         let capture = live.capture.as_ref().filter(|_| capture_now);
-        let mut record = |rec: &Recorder<'_>, tracker: &mut Tracker, src: &Image| {
-            swapchain.record_blit(rec, tracker, src, image.index);
-            if let Some(buffer) = capture {
-                swapchain.record_copy(rec, tracker, image.index, buffer);
-            }
-            swapchain.record_present_barrier(rec, tracker, image.index);
-        };
-        let timing = renderer.render_frame_with(
-            &camera,
-            Some(FrameHook {
-                record: &mut record,
-                sync: image.submit_sync(),
-                source,
-            }),
-        )?;
-        live.swapchain.present(&image)?;
+        let timing =
+            match render_and_present(&mut live.swapchain, renderer, &camera, source, capture)? {
+                Presented::Frame(timing) => timing,
+                Presented::OutOfDate => return Ok(()), // recreated on the next redraw
+            };
         self.presented += 1;
         if let Some(t) = timing {
             self.absorb(vec![t]);

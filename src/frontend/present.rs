@@ -1,0 +1,80 @@
+//! The two steps every windowed frame shares, for the interactive viewer (`window.rs`) and for
+//! runs driven from outside the event loop (`presenter.rs`): bring a stale swapchain up to
+//! date, and render one frame into an acquired swapchain image and present it.
+
+use crate::error::Result;
+use crate::renderer::targets::Target;
+use crate::renderer::{FrameHook, Renderer};
+use crate::scene::Camera;
+use crate::vk::cmd::Recorder;
+use crate::vk::{Buffer, FrameTiming, Image, Swapchain, Tracker};
+
+/// What [`recreate`] did.
+pub enum Recreated {
+    /// The swapchain matches the surface again; the timings of the frames the renderer had in
+    /// flight (it waited for them: the old images may not be in use when they go).
+    Ready(Vec<FrameTiming>),
+    /// The window has a zero extent (minimised): nothing was changed; try again later.
+    ZeroExtent,
+}
+
+/// Recreate `swapchain` for a window of inner size `window`.
+pub fn recreate(
+    swapchain: &mut Swapchain,
+    window: (u32, u32),
+    renderer: &mut Renderer,
+) -> Result<Recreated> {
+    if swapchain.surface_extent(window)?.is_none() {
+        return Ok(Recreated::ZeroExtent);
+    }
+    let pending = renderer.finish()?;
+    if !swapchain.recreate(window)? {
+        return Ok(Recreated::ZeroExtent);
+    }
+    Ok(Recreated::Ready(pending))
+}
+
+/// What [`render_and_present`] did.
+pub enum Presented {
+    /// The frame was rendered and queued for presentation; its timing is the one of an older
+    /// frame whose slot came round (see `Renderer::render_frame`).
+    Frame(Option<FrameTiming>),
+    /// The swapchain was out of date: nothing was rendered. Recreate it and try again.
+    OutOfDate,
+}
+
+/// Render one frame of `renderer` at `camera` with `source` blitted into the next swapchain
+/// image, then present it. With `capture`, the presented image is also copied into that
+/// buffer (read it after the frame completed).
+pub fn render_and_present(
+    swapchain: &mut Swapchain,
+    renderer: &mut Renderer,
+    camera: &Camera,
+    source: Target,
+    capture: Option<&Buffer>,
+) -> Result<Presented> {
+    // The slot's previous submission waited on the slot's acquire semaphore: it must be done
+    // before the semaphore is handed to vkAcquireNextImageKHR again.
+    renderer.wait_for_next_slot()?;
+    let Some(image) = swapchain.acquire(renderer.next_slot())? else {
+        return Ok(Presented::OutOfDate);
+    };
+    let chain = &*swapchain;
+    let mut record = |rec: &Recorder<'_>, tracker: &mut Tracker, src: &Image| {
+        chain.record_blit(rec, tracker, src, image.index);
+        if let Some(buffer) = capture {
+            chain.record_copy(rec, tracker, image.index, buffer);
+        }
+        chain.record_present_barrier(rec, tracker, image.index);
+    };
+    let timing = renderer.render_frame_with(
+        camera,
+        Some(FrameHook {
+            record: &mut record,
+            sync: image.submit_sync(),
+            source,
+        }),
+    )?;
+    swapchain.present(&image)?;
+    Ok(Presented::Frame(timing))
+}

@@ -1,0 +1,59 @@
+//! Where the frames of a scripted run go: offscreen, or presented to a window. Benchmarks and
+//! tables render through a [`FrameSink`], so the same loop measures both.
+
+use super::presenter::WindowPresenter;
+use crate::error::Result;
+use crate::renderer::Renderer;
+use crate::scene::Camera;
+use crate::vk::{Context, ContextOptions, FrameTiming};
+use std::sync::Arc;
+
+pub trait FrameSink {
+    /// A new run starts (a table row, a bench): `label` names it (window title).
+    fn begin(&mut self, label: &str);
+
+    /// Render one frame of `renderer` at `camera`; returns the GPU timings that became
+    /// available (of older frames, whose slots came round).
+    fn frame(&mut self, renderer: &mut Renderer, camera: &Camera) -> Result<Vec<FrameTiming>>;
+
+    /// The window's present mode (as written in reports); `None` offscreen.
+    fn present_mode(&self) -> Option<&'static str>;
+
+    /// Frames presented to a window so far (0 offscreen).
+    fn frames_presented(&self) -> u64;
+}
+
+/// Frames stay in the renderer's targets.
+pub struct Offscreen;
+
+impl FrameSink for Offscreen {
+    fn begin(&mut self, _label: &str) {}
+
+    fn frame(&mut self, renderer: &mut Renderer, camera: &Camera) -> Result<Vec<FrameTiming>> {
+        Ok(renderer.render_frame(camera)?.into_iter().collect())
+    }
+
+    fn present_mode(&self) -> Option<&'static str> {
+        None
+    }
+
+    fn frames_presented(&self) -> u64 {
+        0
+    }
+}
+
+/// A context and the sink its renderers draw into: a presenting window titled `window` (of
+/// `size`), or offscreen.
+pub fn open(
+    window: Option<String>,
+    size: (u32, u32),
+    context: ContextOptions,
+) -> Result<(Arc<Context>, Box<dyn FrameSink>)> {
+    Ok(match window {
+        Some(title) => {
+            let presenter = WindowPresenter::open(&title, size, context)?;
+            (presenter.ctx().clone(), Box::new(presenter))
+        }
+        None => (Context::new(&context)?, Box::new(Offscreen)),
+    })
+}
