@@ -110,6 +110,7 @@ fn resize_minimise_cycle_and_close_are_validation_clean() {
         "4:key=cycle", // direct
         "5:key=cycle", // shadow
         "6:key=cycle", // ao
+        "7:key=cycle", // indirect
         "8:key=cycle", // normal
         "10:resize=96x72",
         "12:key=cycle", // albedo
@@ -149,6 +150,8 @@ fn resize_minimise_cycle_and_close_are_validation_clean() {
         "window minimised (zero extent): rendering paused",
         "window restored: rendering resumed",
         "display: shadow",
+        "display: indirect",
+        "display: normal",
         "display: position",
         "display: final",
         "display: ao",
@@ -458,5 +461,76 @@ fn table_window_presents_every_row_and_matches_offscreen() {
     assert!(
         stderr.contains(&format!("presented {expected_frames} frames to the window")),
         "expected {expected_frames} presented frames:\n{stderr}"
+    );
+}
+
+/// The AO and reuse keys rebuild the renderer: after switching AO off and reuse off at frame 2,
+/// the presented image is the headless render of the new configuration over the remaining
+/// frames (histories start over), and not the one of the starting configuration.
+#[test]
+fn effect_keys_rebuild_the_renderer() {
+    let Some(display) = display() else { return };
+    let size = "64x48";
+    let shot = tmp("toggled.png");
+    let out = ssgi(
+        &display,
+        &[
+            "--validation",
+            "view",
+            "--size",
+            size,
+            "--rsm-size",
+            "128",
+            "--frames",
+            "6",
+            "--script",
+            "2:key=ao,2:key=reuse",
+            "--capture",
+            shot.to_str().unwrap(),
+        ],
+    );
+    let stderr = assert_clean_run(&out, "view with effect keys");
+    assert!(
+        stderr.contains("renderer rebuilt: pcf -ao indirect -ssdo -filter -reuse"),
+        "{stderr}"
+    );
+    let render = |frames: &str, extra: &[&str], name: &str| {
+        let path = tmp(name);
+        let mut args = vec![
+            "--validation",
+            "render",
+            "--size",
+            size,
+            "--rsm-size",
+            "128",
+            "--frames",
+            frames,
+            "--out",
+            path.to_str().unwrap(),
+        ];
+        args.extend_from_slice(extra);
+        let out = Command::new(env!("CARGO_BIN_EXE_ssgi"))
+            .args(&args)
+            .output()
+            .unwrap();
+        assert_clean_run(&out, "render");
+        load_rgba(&path)
+    };
+    let switched = render(
+        "4",
+        &["--effects", "direct,indirect", "--reuse", "off"],
+        "toggled-ref.png",
+    );
+    let unswitched = render("6", &[], "untoggled-ref.png");
+    let shot = load_rgba(&shot);
+    let total = (shot.width() * shot.height()) as usize;
+    let bad = differing_pixels(&shot, &switched);
+    assert!(
+        bad * 1000 <= total,
+        "{bad} of {total} pixels differ from the headless render of the switched configuration"
+    );
+    assert!(
+        differing_pixels(&shot, &unswitched) * 50 > total,
+        "the switches did not change the picture"
     );
 }

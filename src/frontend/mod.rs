@@ -8,4 +8,5 @@ pub mod present;
 pub mod presenter;
 pub mod progress;
 pub mod sink;
+pub mod view_state;
 pub mod window;

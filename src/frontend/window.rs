@@ -13,12 +13,13 @@
 //!    PRESENT_SRC; the submission waits on the acquire semaphore and signals the image's
 //!    render-finished semaphore; present.
 //!
-//! Viewer keys: see [`HELP`].
+//! Viewer keys: see [`HELP`] (`view_state.rs`).
 
 use super::display::{new_event_loop, presenting_context};
 use super::present::{recreate, render_and_present, Presented, Recreated};
+use super::view_state::needs_rebuild;
+pub use super::view_state::{Action, ViewState, DISPLAY_CYCLE, HELP};
 use crate::error::{Error, Result};
-use crate::renderer::frame::Pcf;
 use crate::renderer::targets::Target;
 use crate::renderer::{Renderer, FRAMES_IN_FLIGHT};
 use crate::scene::Camera;
@@ -38,164 +39,6 @@ use winit::event::{ElementState, KeyEvent, MouseButton, WindowEvent};
 use winit::event_loop::{ActiveEventLoop, ControlFlow};
 use winit::keyboard::{KeyCode, ModifiersState, PhysicalKey};
 use winit::window::{Window, WindowId};
-
-/// The viewer's keys, printed by `H` and documented in the README.
-pub const HELP: &str = "\
-ssgi view keys:
-  mouse drag (left button held)  look around
-  W A S D                        move forward / left / back / right
-  Q E                            move down / up
-  Shift / Ctrl (held)            move 4x faster / 4x slower
-  Tab / Shift+Tab                cycle the displayed buffer (final, direct, shadow, AO,
-                                 G-buffer normal / albedo / position; raw values clamped
-                                 to 0..1)
-  P                              soft (PCF) / hard shadows
-  1 2 3 4                        toggle AO / indirect / SSDO / spatial filter (not yet in the
-                                 renderer: the state is kept and reported)
-  R                              temporal reuse on / off (not yet in the renderer)
-  C                              print the camera as a keyframe (for --path files)
-  H                              print this help
-  Esc                            quit";
-
-/// Buffers the viewer can show, in cycling order. Depth targets cannot be blitted to a colour
-/// image and are left out; a target whose format lacks BLIT_SRC support is skipped.
-pub const DISPLAY_CYCLE: [(Target, &str); 7] = [
-    (Target::Output, "final"),
-    (Target::Direct, "direct"),
-    (Target::Shadow, "shadow"),
-    (Target::Ao, "ao"),
-    (Target::GNormal, "normal"),
-    (Target::GAlbedo, "albedo"),
-    (Target::GPosition, "position"),
-];
-
-/// Effect switches. Only `soft_shadows` has a renderer counterpart so far (the PCF kernel);
-/// the others are kept and shown in the title until the renderer grows the effects, when
-/// [`ViewState::apply`] wires them.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct EffectToggles {
-    pub soft_shadows: bool,
-    pub ao: bool,
-    pub indirect: bool,
-    pub ssdo: bool,
-    pub filter: bool,
-}
-
-/// What the viewer's keys control.
-#[derive(Clone, Debug, PartialEq)]
-pub struct ViewState {
-    /// Index into [`DISPLAY_CYCLE`].
-    pub display: usize,
-    pub effects: EffectToggles,
-    pub temporal_reuse: bool,
-    /// The PCF kernel to use when soft shadows are on (the one the run started with).
-    soft_pcf: Pcf,
-}
-
-impl ViewState {
-    pub fn new(initial_pcf: Pcf) -> Self {
-        let soft = initial_pcf != Pcf::HARD;
-        Self {
-            display: 0,
-            effects: EffectToggles {
-                soft_shadows: soft,
-                ao: true,
-                indirect: true,
-                ssdo: true,
-                filter: true,
-            },
-            temporal_reuse: true,
-            soft_pcf: if soft { initial_pcf } else { Pcf::DEFAULT },
-        }
-    }
-
-    pub fn display_target(&self) -> Target {
-        DISPLAY_CYCLE[self.display % DISPLAY_CYCLE.len()].0
-    }
-
-    pub fn display_name(&self) -> &'static str {
-        DISPLAY_CYCLE[self.display % DISPLAY_CYCLE.len()].1
-    }
-
-    /// Push the switches the renderer understands into its configuration.
-    pub fn apply(&self, renderer: &mut Renderer) {
-        renderer.config.pcf = if self.effects.soft_shadows {
-            self.soft_pcf
-        } else {
-            Pcf::HARD
-        };
-    }
-
-    fn summary(&self) -> String {
-        let e = &self.effects;
-        let flag = |on: bool, name: &str| {
-            if on {
-                name.to_string()
-            } else {
-                format!("-{name}")
-            }
-        };
-        [
-            flag(e.soft_shadows, "pcf"),
-            flag(e.ao, "ao"),
-            flag(e.indirect, "indirect"),
-            flag(e.ssdo, "ssdo"),
-            flag(e.filter, "filter"),
-            flag(self.temporal_reuse, "reuse"),
-        ]
-        .join(" ")
-    }
-}
-
-/// A viewer command, from a key or from a test script.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-enum Action {
-    CycleDisplay(i32),
-    ToggleShadows,
-    ToggleAo,
-    ToggleIndirect,
-    ToggleSsdo,
-    ToggleFilter,
-    ToggleReuse,
-    PrintCamera,
-    Help,
-    Quit,
-}
-
-impl Action {
-    fn from_key(key: KeyCode, mods: ModifiersState) -> Option<Action> {
-        Some(match key {
-            KeyCode::Tab if mods.shift_key() => Action::CycleDisplay(-1),
-            KeyCode::Tab => Action::CycleDisplay(1),
-            KeyCode::KeyP => Action::ToggleShadows,
-            KeyCode::Digit1 => Action::ToggleAo,
-            KeyCode::Digit2 => Action::ToggleIndirect,
-            KeyCode::Digit3 => Action::ToggleSsdo,
-            KeyCode::Digit4 => Action::ToggleFilter,
-            KeyCode::KeyR => Action::ToggleReuse,
-            KeyCode::KeyC => Action::PrintCamera,
-            KeyCode::KeyH | KeyCode::F1 => Action::Help,
-            KeyCode::Escape => Action::Quit,
-            _ => return None,
-        })
-    }
-
-    fn from_name(name: &str) -> Option<Action> {
-        Some(match name {
-            "cycle" => Action::CycleDisplay(1),
-            "pcf" => Action::ToggleShadows,
-            "ao" => Action::ToggleAo,
-            "indirect" => Action::ToggleIndirect,
-            "ssdo" => Action::ToggleSsdo,
-            "filter" => Action::ToggleFilter,
-            "reuse" => Action::ToggleReuse,
-            "camera" => Action::PrintCamera,
-            "help" => Action::Help,
-            "quit" => Action::Quit,
-            _ => return None,
-        })
-    }
-}
 
 /// One step of a scripted run (hidden `--script` flag, for tests under Xvfb): before
 /// presented frame `frame`, do `op`.
@@ -493,7 +336,7 @@ impl App {
             .iter()
             .map(|(t, _)| displayable(renderer, &swapchain, *t))
             .collect();
-        self.view = Some(ViewState::new(renderer.config.pcf));
+        self.view = Some(ViewState::new(&renderer.config));
         let live = Live {
             swapchain,
             window,
@@ -547,8 +390,16 @@ impl App {
             Action::ToggleShadows => e.soft_shadows = !e.soft_shadows,
             Action::ToggleAo => e.ao = !e.ao,
             Action::ToggleIndirect => e.indirect = !e.indirect,
-            Action::ToggleSsdo => e.ssdo = !e.ssdo,
-            Action::ToggleFilter => e.filter = !e.filter,
+            Action::ToggleSsdo => {
+                e.ssdo = !e.ssdo;
+                eprintln!("SSDO is not in the renderer yet: the switch is only recorded");
+            }
+            Action::ToggleFilter => {
+                e.filter = !e.filter;
+                eprintln!(
+                    "the spatial filter is not in the renderer yet: the switch is only recorded"
+                );
+            }
             Action::ToggleReuse => view.temporal_reuse = !view.temporal_reuse,
             Action::PrintCamera => {
                 if let Some(c) = self
@@ -575,9 +426,56 @@ impl App {
         ) {
             eprintln!("effects: {}", view.summary());
         }
-        if let (Some(view), Some(r)) = (self.view.as_ref(), self.renderer.as_mut()) {
-            view.apply(r);
+        if let Err(e) = self.apply_view() {
+            self.fail(event_loop, e);
         }
+    }
+
+    /// Make the renderer match the viewer's switches. The PCF kernel changes in place; effects
+    /// and reuse rebuild the renderer on the same context and size (histories start over). A
+    /// configuration the renderer rejects is reported and the switch undone.
+    fn apply_view(&mut self) -> Result<()> {
+        let (Some(view), Some(renderer)) = (self.view.as_mut(), self.renderer.as_mut()) else {
+            return Ok(());
+        };
+        let wanted = view.config(&renderer.config);
+        if !needs_rebuild(&renderer.config, &wanted) {
+            renderer.config = wanted;
+            return Ok(());
+        }
+        let pending = renderer.finish()?;
+        match Renderer::new(&self.ctx, renderer.scene.clone(), wanted) {
+            Ok(rebuilt) => {
+                *renderer = rebuilt;
+                eprintln!("renderer rebuilt: {}", view.summary());
+            }
+            Err(e) => {
+                eprintln!(
+                    "cannot switch to \"{}\": {e}; switch undone",
+                    view.summary()
+                );
+                let display = view.display;
+                *view = ViewState::new(&renderer.config);
+                view.display = display;
+            }
+        }
+        self.absorb(pending);
+        // Buffers of effects that are off are not written: step off them.
+        if let (Some(live), Some(view), Some(renderer)) = (
+            self.live.as_mut(),
+            self.view.as_mut(),
+            self.renderer.as_ref(),
+        ) {
+            live.displayable = DISPLAY_CYCLE
+                .iter()
+                .map(|(t, _)| displayable(renderer, &live.swapchain, *t))
+                .collect();
+            if !live.displayable[view.display] {
+                view.display = 0;
+                eprintln!("display: {}", view.display_name());
+            }
+        }
+        Ok(())
     }
 
     fn run_script(&mut self, event_loop: &ActiveEventLoop) {
@@ -827,6 +725,7 @@ fn displayable(renderer: &Renderer, swapchain: &Swapchain, target: Target) -> bo
     let enabled = match target {
         Target::Direct | Target::Shadow => effects.direct,
         Target::Ao => effects.ao,
+        Target::Indirect => effects.indirect,
         _ => true,
     };
     enabled && swapchain.can_blit_from(renderer.target_format(target))
@@ -981,21 +880,6 @@ mod tests {
     }
 
     #[test]
-    fn pcf_toggle_round_trips() {
-        let mut v = ViewState::new(Pcf::DEFAULT);
-        assert!(v.effects.soft_shadows);
-        v.effects.soft_shadows = false;
-        assert_eq!(v.soft_pcf, Pcf::DEFAULT);
-        let hard = ViewState::new(Pcf::HARD);
-        assert!(!hard.effects.soft_shadows);
-        assert_eq!(
-            hard.soft_pcf,
-            Pcf::DEFAULT,
-            "turning PCF on uses the default kernel"
-        );
-    }
-
-    #[test]
     fn title_averages_frame_time_and_passes() {
         let mut stats = Stats::new();
         assert_eq!(stats.title("x"), None, "nothing measured yet");
@@ -1011,24 +895,5 @@ mod tests {
         let title = stats.title("ssgi").unwrap();
         assert_eq!(title, "ssgi | 20.0 ms (50 fps) | GPU 2.00 ms: gbuffer 2.00");
         assert_eq!(stats.frames, 0, "averages start over");
-    }
-
-    #[test]
-    fn keys_map_to_actions() {
-        let none = ModifiersState::empty();
-        assert_eq!(
-            Action::from_key(KeyCode::Tab, none),
-            Some(Action::CycleDisplay(1))
-        );
-        assert_eq!(
-            Action::from_key(KeyCode::Tab, ModifiersState::SHIFT),
-            Some(Action::CycleDisplay(-1))
-        );
-        assert_eq!(Action::from_key(KeyCode::Escape, none), Some(Action::Quit));
-        assert_eq!(
-            Action::from_key(KeyCode::KeyW, none),
-            None,
-            "movement is held"
-        );
     }
 }

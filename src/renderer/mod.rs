@@ -327,10 +327,6 @@ impl Renderer {
     }
 
     /// The shadow visibility the direct pass reads for `parity`.
-    fn shadow_image(&self, parity: usize) -> &Image {
-        Self::shadow_source(&self.sized, self.shadow_reuse(), parity)
-    }
-
     fn shadow_source(sized: &Sized, reuse: bool, parity: usize) -> &Image {
         match (&sized.shadow, reuse) {
             (Some(e), true) => &e.history[parity],
@@ -353,13 +349,41 @@ impl Renderer {
     /// Format of a target's image (the window frontend checks blit support with it).
     pub fn target_format(&self, target: Target) -> vk::Format {
         let parity = (self.frame_index.wrapping_sub(1) % 2) as usize;
+        let shadow_reuse = self.shadow_reuse();
+        Self::target_image(
+            &self.sized,
+            self.ao.as_ref(),
+            &self.config,
+            shadow_reuse,
+            target,
+            parity,
+        )
+        .map_or(vk::Format::UNDEFINED, |i| i.desc.format)
+    }
+
+    /// The image that holds `target` for history parity `parity` (the one place targets are
+    /// resolved: reads, formats and the frame hook agree); `None` when the target does not
+    /// exist in this configuration (its effect is off).
+    fn target_image<'a>(
+        sized: &'a Sized,
+        ao: Option<&AoPasses>,
+        config: &RenderConfig,
+        shadow_reuse: bool,
+        target: Target,
+        parity: usize,
+    ) -> Option<&'a Image> {
         match target {
-            Target::Ao => self.ao_image(parity).map(|i| i.desc.format),
-            Target::Shadow => Some(self.shadow_image(parity).desc.format),
-            Target::State => Some(targets::STATE_FORMAT),
-            other => self.sized.targets.get(other, parity).map(|i| i.desc.format),
+            Target::Ao => Self::ao_source(sized, ao, config, parity),
+            Target::Shadow => Some(Self::shadow_source(sized, shadow_reuse, parity)),
+            Target::Indirect => sized.indirect.as_ref().map(|(e, _)| &e.history[parity]),
+            Target::DiscardMask => sized.indirect.as_ref().map(|(_, own)| &own.discard),
+            Target::State => sized
+                .ao
+                .as_ref()
+                .or(sized.shadow.as_ref())
+                .map(|e| &e.state),
+            other => sized.targets.get(other, parity),
         }
-        .unwrap_or(vk::Format::UNDEFINED)
     }
 
     fn bind_targets(&self) {
@@ -639,15 +663,16 @@ impl Renderer {
             Some(h) => {
                 // The hook gets the target it asked for (the viewer's buffer display), this
                 // frame's image of it; the output when the target does not exist in this run.
-                let t = &self.sized.targets;
-                let source = match h.source {
-                    Target::Ao => {
-                        Self::ao_source(&self.sized, self.ao.as_ref(), &self.config, parity)
-                    }
-                    Target::Shadow => Some(Self::shadow_source(&self.sized, shadow_reuse, parity)),
-                    other => t.get(other, parity),
-                };
-                (h.record)(&rec, &mut self.tracker, source.unwrap_or(&t.output));
+                let source = Self::target_image(
+                    &self.sized,
+                    self.ao.as_ref(),
+                    &self.config,
+                    shadow_reuse,
+                    h.source,
+                    parity,
+                );
+                let output = &self.sized.targets.output;
+                (h.record)(&rec, &mut self.tracker, source.unwrap_or(output));
                 h.sync.clone()
             }
             None => SubmitSync::default(),
@@ -700,34 +725,20 @@ impl Renderer {
     pub fn read(&mut self, target: Target) -> Result<ImageData> {
         let parity = (self.frame_index.wrapping_sub(1) % 2) as usize;
         let shadow_reuse = self.shadow_reuse();
-        let image = match target {
-            Target::Ao => Self::ao_source(&self.sized, self.ao.as_ref(), &self.config, parity)
-                .ok_or_else(|| Error::Config("the AO effect is off".into()))?,
-            Target::Shadow => Self::shadow_source(&self.sized, shadow_reuse, parity),
-            Target::Indirect | Target::DiscardMask => {
-                let (e, own) = self
-                    .sized
-                    .indirect
-                    .as_ref()
-                    .ok_or_else(|| Error::Config("the indirect effect is off".into()))?;
-                if target == Target::Indirect {
-                    &e.history[parity]
-                } else {
-                    &own.discard
-                }
-            }
-            Target::State => {
-                let effect = self.sized.ao.as_ref().or(self.sized.shadow.as_ref());
-                &effect
-                    .ok_or_else(|| Error::Config("no temporal effect is on".into()))?
-                    .state
-            }
-            other => self
-                .sized
-                .targets
-                .get(other, parity)
-                .ok_or_else(|| Error::Config(format!("{other:?} is not a plain target")))?,
-        };
+        let image = Self::target_image(
+            &self.sized,
+            self.ao.as_ref(),
+            &self.config,
+            shadow_reuse,
+            target,
+            parity,
+        )
+        .ok_or_else(|| {
+            Error::Config(format!(
+                "the {} buffer does not exist in this run (its effect is off)",
+                target.name()
+            ))
+        })?;
         read_image(&self.ctx, &mut self.tracker, image)
     }
 }
