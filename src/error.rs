@@ -5,7 +5,7 @@ use std::path::PathBuf;
 
 #[derive(Debug, thiserror::Error)]
 pub enum Error {
-    #[error("{call} failed: {result:?}")]
+    #[error("{call} failed: {result:?}{}", vk_hint(*result))]
     Vulkan {
         call: &'static str,
         result: vk::Result,
@@ -37,6 +37,21 @@ pub enum Error {
     Validation { count: usize, first: String },
 }
 
+/// What a user can do about the Vulkan results that are not bugs.
+fn vk_hint(result: vk::Result) -> &'static str {
+    match result {
+        vk::Result::ERROR_DEVICE_LOST => {
+            " (the device was lost: the driver crashed or reset the GPU, often because one \
+             dispatch ran past the OS's GPU timeout; nothing more can run on this device in \
+             this process. Try a smaller --size, --vpls or --rsm-size, and check the driver log)"
+        }
+        vk::Result::ERROR_OUT_OF_DEVICE_MEMORY | vk::Result::ERROR_OUT_OF_HOST_MEMORY => {
+            " (out of memory: try a smaller --size or --rsm-size)"
+        }
+        _ => "",
+    }
+}
+
 pub type Result<T, E = Error> = std::result::Result<T, E>;
 
 /// Attach the failing call's name to a raw `vk::Result`.
@@ -60,5 +75,29 @@ impl Error {
                 ..
             }
         )
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn device_loss_says_what_to_do() {
+        let lost = Error::Vulkan {
+            call: "vkQueueSubmit2",
+            result: vk::Result::ERROR_DEVICE_LOST,
+        };
+        assert!(lost.is_device_lost());
+        let text = lost.to_string();
+        assert!(text.starts_with("vkQueueSubmit2 failed: ERROR_DEVICE_LOST (the device was lost"));
+        let other = Error::Vulkan {
+            call: "vkCreateImage",
+            result: vk::Result::ERROR_FORMAT_NOT_SUPPORTED,
+        };
+        assert_eq!(
+            other.to_string(),
+            "vkCreateImage failed: ERROR_FORMAT_NOT_SUPPORTED"
+        );
     }
 }

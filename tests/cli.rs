@@ -185,3 +185,41 @@ fn malformed_obj_is_reported_with_file_and_line() {
     assert!(stderr.contains("nan_vertex.obj:"), "{stderr}");
     assert!(!stderr.contains("panicked"), "{stderr}");
 }
+
+/// `render --dump-gbuffer` writes the buffers that exist in the run and leaves out those of
+/// effects that are off (they used to abort the dump).
+#[test]
+fn dump_leaves_out_the_buffers_of_disabled_effects() {
+    let dir = tmp("dump-direct-only");
+    let out = ssgi()
+        .args([
+            "--validation",
+            "render",
+            "--size",
+            "32x32",
+            "--rsm-size",
+            "128",
+            "--effects",
+            "direct",
+            "--out",
+        ])
+        .arg(tmp("dump-direct-only.png"))
+        .arg("--dump-gbuffer")
+        .arg(&dir)
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "render failed:\n{stderr}");
+    for present in ["shadow", "direct", "gbuffer_normal", "rsm_flux", "output"] {
+        assert!(
+            dir.join(format!("{present}.png")).is_file(),
+            "{present}.png missing"
+        );
+    }
+    for absent in ["ao", "indirect", "discard_mask"] {
+        assert!(
+            !dir.join(format!("{absent}.png")).exists(),
+            "{absent}.png written"
+        );
+    }
+}

@@ -1,35 +1,74 @@
 // Percentage-closer filtering (Reeves et al. 1987) against the light view's depth. Requires
 // `shadow_depth` to be declared by the including shader.
 
-// Receiver in light space: shadow-map uv, view distance along the light axis, and a bias in the
-// same units: the world size of one shadow texel at the receiver, grown with the slope of the
-// surface to the light. Everything is proportional to depth, so the bias is scale-free.
+// Receiver in light space: shadow-map uv, view distance along the light axis (clip w), and the
+// receiver's tangent plane in light clip space (point + two tangents), so each PCF tap can
+// compare the occluder against the receiver plane's own depth on that texel's ray
+// ("receiver plane depth bias"): a slanted receiver then does not shadow itself however wide
+// the kernel is. What is left is a small bias for the curvature of real receivers and
+// precision: one shadow texel's world size at the receiver, half of it grown with the
+// slope. Everything is proportional to depth, so the bias is scale-free.
 struct Receiver {
     vec2 uv;
     float depth;
     float bias;
+    // Largest depth change the plane may claim between taps (guards rays that run nearly
+    // parallel to the plane, where the intersection runs off to infinity).
+    float reach;
+    vec4 clip;
+    vec4 tangent_clip;
+    vec4 bitangent_clip;
 };
 
-Receiver light_receiver(vec3 p, float cos_surface) {
-    vec4 clip = frame.light_view_proj * vec4(p, 1.0);
+Receiver light_receiver(vec3 p, vec3 n, float cos_surface) {
     Receiver r;
-    r.depth = clip.w;
-    r.uv = clip.xy / max(clip.w, 1e-30) * 0.5 + 0.5;
+    r.clip = frame.light_view_proj * vec4(p, 1.0);
+    r.depth = r.clip.w;
+    r.uv = r.clip.xy / max(r.clip.w, 1e-30) * 0.5 + 0.5;
     float texel_world = 2.0 * r.depth * frame.light_params.y / frame.light_params.z;
-    float slope = sqrt(max(1.0 - cos_surface * cos_surface, 0.0)) / max(cos_surface, 0.1);
-    r.bias = texel_world * (1.0 + min(slope, 10.0)) + 1e-5 * r.depth;
+    float slope = min(sqrt(max(1.0 - cos_surface * cos_surface, 0.0)) / max(cos_surface, 0.1), 10.0);
+    r.bias = texel_world * (1.0 + 0.5 * slope) + 1e-5 * r.depth;
+    r.reach = texel_world * slope * (frame.light_params.w + 2.0);
+    vec3 t = normalize(cross(n, abs(n.y) < 0.9 ? vec3(0.0, 1.0, 0.0) : vec3(1.0, 0.0, 0.0)));
+    r.tangent_clip = frame.light_view_proj * vec4(t, 0.0);
+    r.bitangent_clip = frame.light_view_proj * vec4(cross(n, t), 0.0);
     return r;
 }
 
-// 1 when the texel at `offset` (in texels) from the receiver's projection sees the light.
-// Outside the shadow map is outside the light frustum: the spot cone darkens it anyway, so it
-// counts as lit and the cone alone shapes that edge.
+// Depth the receiver is compared at for the light ray through shadow-map position `uv`: its
+// tangent plane's depth on that ray (solve p + a t + b s = the ray in clip space for (a, b),
+// take clip w) where the plane comes nearer the light than the receiver point, the point's own
+// depth where it recedes. Nearer is where a slanted plane shadows itself (acne) and the plane
+// fixes it exactly; where the plane recedes, the point's depth already passes the surface's
+// own texels, and using the plane there would put taps beyond a convex edge (a box's rim)
+// inside the solid and darken lit rims.
+float receiver_plane_depth(Receiver r, vec2 uv) {
+    vec2 ndc = uv * 2.0 - 1.0;
+    vec2 col_a = r.tangent_clip.xy - ndc * r.tangent_clip.w;
+    vec2 col_b = r.bitangent_clip.xy - ndc * r.bitangent_clip.w;
+    vec2 rhs = ndc * r.clip.w - r.clip.xy;
+    float det = col_a.x * col_b.y - col_a.y * col_b.x;
+    float delta = 0.0;
+    if (det != 0.0) {
+        float a = (rhs.x * col_b.y - rhs.y * col_b.x) / det;
+        float b = (col_a.x * rhs.y - col_a.y * rhs.x) / det;
+        delta = a * r.tangent_clip.w + b * r.bitangent_clip.w;
+        if (isnan(delta)) delta = 0.0;
+    }
+    return r.depth + clamp(delta, -r.reach, 0.0);
+}
+
+// 1 when the texel at `offset` (in texels) from the receiver's projection sees the light: the
+// occluder depth stored for that texel (rasterised at its centre) against the receiver plane's
+// depth on the same ray. Outside the shadow map is outside the light frustum: the spot cone
+// darkens it anyway, so it counts as lit and the cone alone shapes that edge.
 float shadow_test(Receiver r, vec2 offset) {
     int size = int(frame.light_params.z);
     ivec2 texel = ivec2(floor(r.uv * float(size) + offset));
     if (any(lessThan(texel, ivec2(0))) || any(greaterThanEqual(texel, ivec2(size)))) return 1.0;
     float occluder = light_linear_depth(texelFetch(shadow_depth, texel, 0).r);
-    return r.depth <= occluder + r.bias ? 1.0 : 0.0;
+    float receiver = receiver_plane_depth(r, (vec2(texel) + 0.5) / float(size));
+    return receiver <= occluder + r.bias ? 1.0 : 0.0;
 }
 
 // k x k regular grid over +-radius texels (k = 1: hard shadow).
@@ -66,7 +105,7 @@ float shadow_visibility(vec3 p, vec3 n, float pattern) {
     vec3 l = safe_normalize(frame.light_pos.xyz - p, -frame.light_dir.xyz);
     float cos_surface = dot(n, l);
     if (cos_surface <= 0.0) return 0.0; // facing away: no direct light to shadow
-    Receiver r = light_receiver(p, cos_surface);
+    Receiver r = light_receiver(p, n, cos_surface);
     if (frame.ao_pattern.z > 0.5)
         return pcf_disc(r, frame.size.w, frame.ao_pattern.x * pattern, shadow_pattern_scale(pattern));
     return pcf_grid(r, int(frame.size.w));

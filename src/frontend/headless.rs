@@ -42,10 +42,15 @@ pub fn write_output(renderer: &mut Renderer, path: &Path) -> Result<()> {
     write_rgba8(path, data.width, data.height, &rgba)
 }
 
-/// Write every G-buffer and RSM target as `<dir>/<name>.png`.
+/// Write every target of the run (G-buffer, RSM, effect buffers) as `<dir>/<name>.png`; the
+/// buffers of effects that are off do not exist and are left out.
 pub fn dump_targets(renderer: &mut Renderer, dir: &Path) -> Result<Vec<std::path::PathBuf>> {
     let mut written = Vec::new();
-    for target in Target::ALL {
+    let present: Vec<Target> = Target::ALL
+        .into_iter()
+        .filter(|t| renderer.has_target(*t))
+        .collect();
+    for target in present {
         let data = renderer.read(target)?;
         let rgba = visualize(target, &data, &renderer.scene.mesh.bounds);
         let path = dir.join(format!("{}.png", target.name()));

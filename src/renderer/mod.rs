@@ -361,6 +361,11 @@ impl Renderer {
         .map_or(vk::Format::UNDEFINED, |i| i.desc.format)
     }
 
+    /// Whether `target` exists in this run (the buffers of effects that are off do not).
+    pub fn has_target(&self, target: Target) -> bool {
+        self.target_format(target) != vk::Format::UNDEFINED
+    }
+
     /// The image that holds `target` for history parity `parity` (the one place targets are
     /// resolved: reads, formats and the frame hook agree); `None` when the target does not
     /// exist in this configuration (its effect is off).
