@@ -26,9 +26,12 @@ Receiver light_receiver(vec3 p, vec3 n, float cos_surface) {
     r.depth = r.clip.w;
     r.uv = r.clip.xy / max(r.clip.w, 1e-30) * 0.5 + 0.5;
     float texel_world = 2.0 * r.depth * frame.light_params.y / frame.light_params.z;
-    float slope = min(sqrt(max(1.0 - cos_surface * cos_surface, 0.0)) / max(cos_surface, 0.1), 10.0);
-    r.bias = texel_world * (1.0 + 0.5 * slope) + 1e-5 * r.depth;
-    r.reach = texel_world * slope * (frame.light_params.w + 2.0);
+    // tan of the angle between normal and light: depth change per texel of the plane.
+    float tangent = sqrt(max(1.0 - cos_surface * cos_surface, 0.0)) / max(cos_surface, 0.01);
+    r.bias = texel_world * (1.0 + 0.5 * min(tangent, 10.0)) + 1e-5 * r.depth;
+    // The kernel's reach (its radius, diagonally, plus the texel rounding) along the plane,
+    // up to 89.4 degrees; beyond that the cosine factor leaves no direct light to shadow.
+    r.reach = texel_world * min(tangent, 100.0) * (1.5 * frame.light_params.w + 2.0);
     vec3 t = normalize(cross(n, abs(n.y) < 0.9 ? vec3(0.0, 1.0, 0.0) : vec3(1.0, 0.0, 0.0)));
     r.tangent_clip = frame.light_view_proj * vec4(t, 0.0);
     r.bitangent_clip = frame.light_view_proj * vec4(cross(n, t), 0.0);
