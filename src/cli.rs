@@ -320,7 +320,8 @@ fn load(cli: &Cli, args: &SceneArgs) -> Result<(Scene, CameraPath)> {
     Ok((scene, path))
 }
 
-fn context_options(cli: &Cli) -> ContextOptions {
+/// The context every command starts from: `--validation`, `--device`, the device printed.
+pub(crate) fn context_options(cli: &Cli) -> ContextOptions {
     ContextOptions {
         validation: cli.validation,
         device: cli.device.clone(),

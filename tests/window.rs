@@ -190,6 +190,30 @@ fn quit_key_exits_cleanly_without_a_frame_limit() {
     assert!(stderr.contains("ssgi view keys"), "help printed:\n{stderr}");
 }
 
+/// `ssgi --validation render` of the built-in scene at `size` for `frames` frames (RSM 128,
+/// plus `extra` flags), validation-clean; the image written to `name`.
+fn headless_render(size: &str, frames: &str, extra: &[&str], name: &str) -> image::RgbaImage {
+    let path = tmp(name);
+    let out = Command::new(env!("CARGO_BIN_EXE_ssgi"))
+        .args([
+            "--validation",
+            "render",
+            "--size",
+            size,
+            "--rsm-size",
+            "128",
+            "--frames",
+            frames,
+        ])
+        .args(extra)
+        .arg("--out")
+        .arg(&path)
+        .output()
+        .unwrap();
+    assert_clean_run(&out, "render");
+    load_rgba(&path)
+}
+
 fn load_rgba(path: &PathBuf) -> image::RgbaImage {
     image::open(path)
         .unwrap_or_else(|e| panic!("{}: {e}", path.display()))
@@ -246,7 +270,6 @@ fn presented_frame_matches_the_headless_render() {
     let Some(display) = display() else { return };
     let (size, frames) = ("64x48", "6");
     let shot = tmp("presented.png");
-    let reference = tmp("headless.png");
     let out = ssgi(
         &display,
         &[
@@ -263,23 +286,10 @@ fn presented_frame_matches_the_headless_render() {
         ],
     );
     assert_clean_run(&out, "view --capture");
-    let out = Command::new(env!("CARGO_BIN_EXE_ssgi"))
-        .args([
-            "--validation",
-            "render",
-            "--size",
-            size,
-            "--rsm-size",
-            "128",
-            "--frames",
-            frames,
-            "--out",
-            reference.to_str().unwrap(),
-        ])
-        .output()
-        .unwrap();
-    assert_clean_run(&out, "render");
-    let (a, b) = (load_rgba(&shot), load_rgba(&reference));
+    let (a, b) = (
+        load_rgba(&shot),
+        headless_render(size, frames, &[], "headless.png"),
+    );
     assert_eq!(a.dimensions(), (64, 48));
     assert_eq!(a.dimensions(), b.dimensions());
     // The picture is not trivially flat (a black or cleared swapchain would fail here).
@@ -494,34 +504,13 @@ fn effect_keys_rebuild_the_renderer() {
         stderr.contains("renderer rebuilt: pcf -ao indirect -ssdo -filter -reuse"),
         "{stderr}"
     );
-    let render = |frames: &str, extra: &[&str], name: &str| {
-        let path = tmp(name);
-        let mut args = vec![
-            "--validation",
-            "render",
-            "--size",
-            size,
-            "--rsm-size",
-            "128",
-            "--frames",
-            frames,
-            "--out",
-            path.to_str().unwrap(),
-        ];
-        args.extend_from_slice(extra);
-        let out = Command::new(env!("CARGO_BIN_EXE_ssgi"))
-            .args(&args)
-            .output()
-            .unwrap();
-        assert_clean_run(&out, "render");
-        load_rgba(&path)
-    };
-    let switched = render(
+    let switched = headless_render(
+        size,
         "4",
         &["--effects", "direct,indirect", "--reuse", "off"],
         "toggled-ref.png",
     );
-    let unswitched = render("6", &[], "untoggled-ref.png");
+    let unswitched = headless_render(size, "6", &[], "untoggled-ref.png");
     let shot = load_rgba(&shot);
     let total = (shot.width() * shot.height()) as usize;
     let bad = differing_pixels(&shot, &switched);

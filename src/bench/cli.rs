@@ -2,12 +2,11 @@
 
 use super::options::TableOptions;
 use super::{output, table41, walkthrough};
-use crate::cli::{parse_size, Cli};
+use crate::cli::{context_options, parse_size, Cli};
 use crate::error::{Error, Result};
 use crate::frontend::sink;
 use crate::renderer::config::Effects;
 use crate::scene::asset_dir_from_env;
-use crate::vk::ContextOptions;
 use clap::{Args, ValueEnum};
 use std::path::PathBuf;
 
@@ -113,16 +112,7 @@ pub fn run(cli: &Cli, args: &TableArgs) -> Result<()> {
     let window = args
         .window
         .then(|| format!("ssgi table {}", args.table.name()));
-    let (ctx, mut sink) = sink::open(
-        window,
-        args.size,
-        ContextOptions {
-            validation: cli.validation,
-            device: cli.device.clone(),
-            verbose: true,
-            ..Default::default()
-        },
-    )?;
+    let (ctx, mut sink) = sink::open(window, args.size, context_options(cli))?;
     let (mut report, extra_md) = match args.table {
         TableName::Thesis41 => (table41::run(&ctx, sink.as_mut(), &opts)?, ""),
         TableName::ThesisWalkthroughs => (

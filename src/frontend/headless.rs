@@ -24,7 +24,7 @@ pub fn run(
     let bounds = renderer.scene.mesh.bounds;
     let mut timings = Vec::with_capacity(frames as usize);
     let mut bar = Progress::new(frames as u64, "rendering", progress);
-    sink.begin(&renderer.scene.name.clone());
+    sink.begin(&renderer.scene.name);
     for i in 0..frames {
         let camera = path.camera_at(&base, &bounds, i, frames);
         timings.extend(sink.frame(renderer, &camera)?);

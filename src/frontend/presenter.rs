@@ -46,6 +46,7 @@ const TITLE_EVERY: Duration = Duration::from_millis(250);
 struct Events {
     /// Taken when the event loop is ready to create the window.
     attributes: Option<WindowAttributes>,
+    /// The created window, until `open` takes it.
     window: Option<Arc<Window>>,
     create_error: Option<String>,
     /// Close button or Escape.
@@ -120,8 +121,8 @@ impl WindowPresenter {
             if let Some(e) = events.create_error.take() {
                 return Err(Error::Window(format!("cannot create the window: {e}")));
             }
-            if let Some(w) = &events.window {
-                break w.clone();
+            if let Some(w) = events.window.take() {
+                break w;
             }
             if let PumpStatus::Exit(code) = status {
                 return Err(Error::Window(format!(

@@ -332,10 +332,7 @@ impl App {
             .renderer
             .as_mut()
             .ok_or_else(|| Error::Window("no renderer".into()))?;
-        let displayable = DISPLAY_CYCLE
-            .iter()
-            .map(|(t, _)| displayable(renderer, &swapchain, *t))
-            .collect();
+        let displayable = displayable(renderer, &swapchain);
         self.view = Some(ViewState::new(&renderer.config));
         let live = Live {
             swapchain,
@@ -466,10 +463,7 @@ impl App {
             self.view.as_mut(),
             self.renderer.as_ref(),
         ) {
-            live.displayable = DISPLAY_CYCLE
-                .iter()
-                .map(|(t, _)| displayable(renderer, &live.swapchain, *t))
-                .collect();
+            live.displayable = displayable(renderer, &live.swapchain);
             if !live.displayable[view.display] {
                 view.display = 0;
                 eprintln!("display: {}", view.display_name());
@@ -718,17 +712,21 @@ fn renderer_size(r: Option<&Renderer>) -> (u32, u32) {
     r.map_or((0, 0), |r| (r.config.width, r.config.height))
 }
 
-/// Whether `target` can be shown: its effect is on (else it is never written) and its format
-/// can be blitted into the swapchain (depth and integer formats cannot).
-fn displayable(renderer: &Renderer, swapchain: &Swapchain, target: Target) -> bool {
-    let effects = renderer.config.effects;
-    let enabled = match target {
-        Target::Direct | Target::Shadow => effects.direct,
-        Target::Ao => effects.ao,
-        Target::Indirect => effects.indirect,
-        _ => true,
-    };
-    enabled && swapchain.can_blit_from(renderer.target_format(target))
+/// Per [`DISPLAY_CYCLE`] entry, whether it can be shown: the target exists in this run (the
+/// buffers of effects that are off do not) and is written (the direct and shadow
+/// targets exist without direct light, unwritten), and its format can be blitted into the
+/// swapchain (depth and integer formats cannot).
+fn displayable(renderer: &Renderer, swapchain: &Swapchain) -> Vec<bool> {
+    DISPLAY_CYCLE
+        .iter()
+        .map(|(target, _)| {
+            let written = renderer.config.effects.direct
+                || !matches!(target, Target::Direct | Target::Shadow);
+            written
+                && renderer.has_target(*target)
+                && swapchain.can_blit_from(renderer.target_format(*target))
+        })
+        .collect()
 }
 
 impl ApplicationHandler for App {

@@ -305,32 +305,13 @@ impl Renderer {
             && self.sized.shadow.is_some()
     }
 
-    /// The AO image the composite reads for `parity`.
-    fn ao_image(&self, parity: usize) -> Option<&Image> {
-        Self::ao_source(&self.sized, self.ao.as_ref(), &self.config, parity)
-    }
-
-    fn ao_source<'a>(
-        sized: &'a Sized,
-        ao: Option<&AoPasses>,
-        config: &RenderConfig,
-        parity: usize,
-    ) -> Option<&'a Image> {
-        let ao = ao?;
-        Some(if config.temporal.reuse {
-            &sized.ao.as_ref()?.history[parity]
-        } else if ao.blur.is_some() {
-            &sized.targets.ao_blurred
-        } else {
-            &sized.targets.ao_raw
-        })
-    }
-
-    /// The shadow visibility the direct pass reads for `parity`.
-    fn shadow_source(sized: &Sized, reuse: bool, parity: usize) -> &Image {
-        match (&sized.shadow, reuse) {
-            (Some(e), true) => &e.history[parity],
-            _ => &sized.targets.shadow,
+    /// Which images hold the effect targets in this configuration.
+    fn sources(&self) -> TargetSources {
+        TargetSources {
+            ao: self.ao.is_some(),
+            ao_blur: self.ao.as_ref().is_some_and(|a| a.blur.is_some()),
+            reuse: self.config.temporal.reuse,
+            shadow_reuse: self.shadow_reuse(),
         }
     }
 
@@ -349,46 +330,14 @@ impl Renderer {
     /// Format of a target's image (the window frontend checks blit support with it).
     pub fn target_format(&self, target: Target) -> vk::Format {
         let parity = (self.frame_index.wrapping_sub(1) % 2) as usize;
-        let shadow_reuse = self.shadow_reuse();
-        Self::target_image(
-            &self.sized,
-            self.ao.as_ref(),
-            &self.config,
-            shadow_reuse,
-            target,
-            parity,
-        )
-        .map_or(vk::Format::UNDEFINED, |i| i.desc.format)
+        self.sources()
+            .image(&self.sized, target, parity)
+            .map_or(vk::Format::UNDEFINED, |i| i.desc.format)
     }
 
     /// Whether `target` exists in this run (the buffers of effects that are off do not).
     pub fn has_target(&self, target: Target) -> bool {
         self.target_format(target) != vk::Format::UNDEFINED
-    }
-
-    /// The image that holds `target` for history parity `parity` (the one place targets are
-    /// resolved: reads, formats and the frame hook agree); `None` when the target does not
-    /// exist in this configuration (its effect is off).
-    fn target_image<'a>(
-        sized: &'a Sized,
-        ao: Option<&AoPasses>,
-        config: &RenderConfig,
-        shadow_reuse: bool,
-        target: Target,
-        parity: usize,
-    ) -> Option<&'a Image> {
-        match target {
-            Target::Ao => Self::ao_source(sized, ao, config, parity),
-            Target::Shadow => Some(Self::shadow_source(sized, shadow_reuse, parity)),
-            Target::Indirect => sized.indirect.as_ref().map(|(e, _)| &e.history[parity]),
-            Target::DiscardMask => sized.indirect.as_ref().map(|(_, own)| &own.discard),
-            Target::State => sized
-                .ao
-                .as_ref()
-                .or(sized.shadow.as_ref())
-                .map(|e| &e.state),
-            other => sized.targets.get(other, parity),
-        }
     }
 
     fn bind_targets(&self) {
@@ -424,7 +373,8 @@ impl Renderer {
             self.reproject.bind_targets(ctx, t, e);
             pass.bind_targets(ctx, t, e, own);
         }
-        let ao_images = match (self.ao_image(0), self.ao_image(1)) {
+        let sources = self.sources();
+        let ao_images = match (sources.ao(&self.sized, 0), sources.ao(&self.sized, 1)) {
             (Some(a), Some(b)) => Some([a, b]),
             _ => None,
         };
@@ -503,7 +453,8 @@ impl Renderer {
         };
         let reuse = c.temporal.reuse;
         let history_valid = reuse && self.history.is_some();
-        let shadow_reuse = self.shadow_reuse();
+        let sources = self.sources();
+        let shadow_reuse = sources.shadow_reuse;
         // Per-effect push constants: refresh tile (drawn only with a valid history) and flags.
         let effect_push = |e: &mut Option<TemporalEffect>| {
             e.as_mut().map(|e| {
@@ -528,8 +479,8 @@ impl Renderer {
         } else {
             None
         };
-        let ao_image = Self::ao_source(&self.sized, self.ao.as_ref(), &c, parity);
-        let shadow_image = Self::shadow_source(&self.sized, shadow_reuse, parity);
+        let ao_image = sources.ao(&self.sized, parity);
+        let shadow_image = sources.shadow(&self.sized, parity);
         let t = &self.sized.targets;
         let tracker = &mut self.tracker;
         let timer = &mut self.timer;
@@ -668,14 +619,7 @@ impl Renderer {
             Some(h) => {
                 // The hook gets the target it asked for (the viewer's buffer display), this
                 // frame's image of it; the output when the target does not exist in this run.
-                let source = Self::target_image(
-                    &self.sized,
-                    self.ao.as_ref(),
-                    &self.config,
-                    shadow_reuse,
-                    h.source,
-                    parity,
-                );
+                let source = sources.image(&self.sized, h.source, parity);
                 let output = &self.sized.targets.output;
                 (h.record)(&rec, &mut self.tracker, source.unwrap_or(output));
                 h.sync.clone()
@@ -729,21 +673,69 @@ impl Renderer {
     /// Copy a target of the last rendered frame to the host (waits for the GPU).
     pub fn read(&mut self, target: Target) -> Result<ImageData> {
         let parity = (self.frame_index.wrapping_sub(1) % 2) as usize;
-        let shadow_reuse = self.shadow_reuse();
-        let image = Self::target_image(
-            &self.sized,
-            self.ao.as_ref(),
-            &self.config,
-            shadow_reuse,
-            target,
-            parity,
-        )
-        .ok_or_else(|| {
-            Error::Config(format!(
-                "the {} buffer does not exist in this run (its effect is off)",
-                target.name()
-            ))
-        })?;
+        let image = self
+            .sources()
+            .image(&self.sized, target, parity)
+            .ok_or_else(|| {
+                Error::Config(format!(
+                    "the {} buffer does not exist in this run (its effect is off)",
+                    target.name()
+                ))
+            })?;
         read_image(&self.ctx, &mut self.tracker, image)
+    }
+}
+
+/// Which image of [`Sized`] holds each target in a configuration: the one place targets are
+/// resolved, so the passes, reads, formats and the window's frame hook agree. A copy of the
+/// choices, so resolving borrows only `Sized` (the tracker stays free for recording).
+#[derive(Clone, Copy)]
+struct TargetSources {
+    /// AO passes exist, and whether they blur (no reuse).
+    ao: bool,
+    ao_blur: bool,
+    reuse: bool,
+    /// Shadows come from the accumulated history (see `Renderer::shadow_reuse`).
+    shadow_reuse: bool,
+}
+
+impl TargetSources {
+    /// The AO visibility the composite reads for `parity`; `None` with AO off.
+    fn ao(self, sized: &Sized, parity: usize) -> Option<&Image> {
+        if !self.ao {
+            return None;
+        }
+        Some(if self.reuse {
+            &sized.ao.as_ref()?.history[parity]
+        } else if self.ao_blur {
+            &sized.targets.ao_blurred
+        } else {
+            &sized.targets.ao_raw
+        })
+    }
+
+    /// The shadow visibility the direct pass reads for `parity`.
+    fn shadow(self, sized: &Sized, parity: usize) -> &Image {
+        match (&sized.shadow, self.shadow_reuse) {
+            (Some(e), true) => &e.history[parity],
+            _ => &sized.targets.shadow,
+        }
+    }
+
+    /// The image holding `target` for history parity `parity`; `None` when the target does not
+    /// exist in this configuration (its effect is off).
+    fn image(self, sized: &Sized, target: Target, parity: usize) -> Option<&Image> {
+        match target {
+            Target::Ao => self.ao(sized, parity),
+            Target::Shadow => Some(self.shadow(sized, parity)),
+            Target::Indirect => sized.indirect.as_ref().map(|(e, _)| &e.history[parity]),
+            Target::DiscardMask => sized.indirect.as_ref().map(|(_, own)| &own.discard),
+            Target::State => sized
+                .ao
+                .as_ref()
+                .or(sized.shadow.as_ref())
+                .map(|e| &e.state),
+            other => sized.targets.get(other, parity),
+        }
     }
 }
