@@ -450,17 +450,34 @@ fn jittering_camera_keeps_history_finite() {
     let ao = r.read(Target::Ao).unwrap();
     for y in 0..32 {
         for x in 0..32 {
-            let t = ao.texel(x, y);
-            assert!(
-                t[0].is_finite() && (0.0..=1.0).contains(&t[0]),
-                "({x},{y}) = {t:?}"
-            );
-            assert!(
-                t[1].is_finite() && (0.0..=36.0).contains(&t[1]),
-                "({x},{y}) count {t:?}"
-            );
+            if let Err(e) = check_history_texel(ao.texel(x, y), 36) {
+                panic!("({x},{y}): {e}");
+            }
         }
     }
     drop(r);
     common::assert_clean(&ctx);
+}
+
+/// An AO history texel is sane: r = visibility in [0, 1], a = estimates accumulated, an integer
+/// in [0, `limit`] (the count lives in alpha; green is unused and always 0).
+fn check_history_texel(t: [f32; 4], limit: u32) -> Result<(), String> {
+    if !(t[0].is_finite() && (0.0..=1.0).contains(&t[0])) {
+        return Err(format!("visibility {t:?}"));
+    }
+    if !(t[3].is_finite() && (0.0..=limit as f32).contains(&t[3]) && t[3].fract() == 0.0) {
+        return Err(format!("sample count {t:?}"));
+    }
+    Ok(())
+}
+
+#[test]
+fn history_texel_check_reads_the_count_in_alpha() {
+    assert!(check_history_texel([0.5, 0.0, 0.0, 36.0], 36).is_ok());
+    assert!(check_history_texel([0.5, 0.0, 0.0, 0.0], 36).is_ok());
+    // A count past the rotation limit, a fractional or a non-finite count must fail.
+    assert!(check_history_texel([0.5, 0.0, 0.0, 37.0], 36).is_err());
+    assert!(check_history_texel([0.5, 0.0, 0.0, 2.5], 36).is_err());
+    assert!(check_history_texel([0.5, 0.0, 0.0, f32::NAN], 36).is_err());
+    assert!(check_history_texel([1.5, 0.0, 0.0, 3.0], 36).is_err());
 }

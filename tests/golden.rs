@@ -1,0 +1,169 @@
+//! Golden-image regression: 64x64 renders of the Cornell box and the bunny in a box for every
+//! combination of effects, with reuse on and off, against PNGs in `tests/golden/`.
+//!
+//! The goldens pin the renderer's behaviour across refactors: they were rendered by the code
+//! before the pass/effect restructuring (commit b395a11's renderer) and must keep matching.
+//! Each run renders four frames along a slow orbit (so reprojection, disocclusion and
+//! accumulation all take part) and compares the final RGBA8 output.
+//!
+//! Tolerance: lavapipe is deterministic for a given shader binary, so the same code reproduces
+//! every byte. A refactor may legitimately reorder floating-point operations (another shader
+//! permutation mechanism, another evaluation order), which moves a channel by a code or two
+//! after tonemapping. So each channel may differ by at most [`MAX_CHANNEL_DIFF`] codes, and at
+//! most [`MAX_CHANGED_FRACTION`] of the pixels may differ at all; anything larger is a change
+//! in behaviour, and the failure message names the image, the worst pixel and both values.
+//!
+//! Re-bless (only for an intended change of the image, stated in the commit):
+//! `SSGI_BLESS_GOLDEN=1 cargo test --test golden`.
+
+mod common;
+
+use ssgi::renderer::config::Effects;
+use ssgi::renderer::frame::Pcf;
+use ssgi::renderer::targets::Target;
+use ssgi::renderer::{RenderConfig, Renderer};
+use ssgi::scene::{load_scene, CameraPath};
+use std::path::{Path, PathBuf};
+
+const SIZE: u32 = 64;
+const FRAMES: u32 = 4;
+/// The orbit's frame count: 1/240 of a turn (1.5 degrees) per frame.
+const ORBIT_FRAMES: u32 = 240;
+/// Largest accepted difference of one 8-bit channel (see the module comment).
+const MAX_CHANNEL_DIFF: u8 = 3;
+/// Largest accepted fraction of pixels with any difference.
+const MAX_CHANGED_FRACTION: f64 = 0.02;
+
+fn golden_dir() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/golden")
+}
+
+/// Every non-empty combination of the three effects, named like `--effects`.
+fn combinations() -> Vec<(String, Effects)> {
+    let mut out = Vec::new();
+    for bits in 1u32..8 {
+        let e = Effects {
+            direct: bits & 1 != 0,
+            ao: bits & 2 != 0,
+            indirect: bits & 4 != 0,
+        };
+        let names: Vec<&str> = [("direct", e.direct), ("ao", e.ao), ("indirect", e.indirect)]
+            .into_iter()
+            .filter_map(|(n, on)| on.then_some(n))
+            .collect();
+        out.push((names.join("+"), e));
+    }
+    out
+}
+
+fn render(scene_spec: &str, effects: Effects, reuse: bool) -> Vec<u8> {
+    let ctx = common::context();
+    let scene = load_scene(scene_spec, None).unwrap_or_else(|e| {
+        panic!(
+            "golden scene {scene_spec:?} is missing: {e} (set SSGI_ASSETS to the shared \
+             scenes directory, as tools/test does)"
+        )
+    });
+    let mut config = RenderConfig {
+        width: SIZE,
+        height: SIZE,
+        rsm_size: 128,
+        effects,
+        // The thesis's pairing: the accumulated 9-sample disc with reuse, the 7x7 grid without.
+        pcf: if reuse { Pcf::NINE } else { Pcf::DEFAULT },
+        ..Default::default()
+    };
+    config.temporal.reuse = reuse;
+    let mut r = Renderer::new(&ctx, scene, config).expect("renderer");
+    let base = r.scene.camera;
+    let bounds = r.scene.mesh.bounds;
+    for f in 0..FRAMES {
+        let camera = CameraPath::Orbit.camera_at(&base, &bounds, f, ORBIT_FRAMES);
+        r.render_frame(&camera).expect("frame");
+    }
+    r.finish().expect("finish");
+    let out = r.read(Target::Output).expect("read output");
+    common::assert_clean(&ctx);
+    out.rgba8().expect("RGBA8 output")
+}
+
+fn check(scene_spec: &str, file_stem: &str) {
+    let bless = std::env::var_os("SSGI_BLESS_GOLDEN").is_some();
+    let mut failures = Vec::new();
+    for (name, effects) in combinations() {
+        for reuse in [true, false] {
+            let file = golden_dir().join(format!(
+                "{file_stem}-{name}-{}.png",
+                if reuse { "reuse" } else { "noreuse" }
+            ));
+            let got = render(scene_spec, effects, reuse);
+            if bless {
+                std::fs::create_dir_all(golden_dir()).unwrap();
+                image::save_buffer(&file, &got, SIZE, SIZE, image::ExtendedColorType::Rgba8)
+                    .unwrap();
+                continue;
+            }
+            let want = image::open(&file)
+                .unwrap_or_else(|e| panic!("golden image {} missing: {e}", file.display()))
+                .to_rgba8();
+            assert_eq!(want.dimensions(), (SIZE, SIZE), "{}", file.display());
+            if let Some(msg) = compare(&got, want.as_raw()) {
+                failures.push(format!("{}: {msg}", file.display()));
+            }
+        }
+    }
+    assert!(
+        failures.is_empty(),
+        "golden mismatch:\n{}",
+        failures.join("\n")
+    );
+}
+
+/// `None` when `got` matches `want` within the tolerance, else what differs.
+fn compare(got: &[u8], want: &[u8]) -> Option<String> {
+    let mut changed = 0usize;
+    let mut worst = (0u8, 0usize);
+    for (i, (g, w)) in got.chunks(4).zip(want.chunks(4)).enumerate() {
+        let d = g.iter().zip(w).map(|(a, b)| a.abs_diff(*b)).max().unwrap();
+        if d > 0 {
+            changed += 1;
+        }
+        if d > worst.0 {
+            worst = (d, i);
+        }
+    }
+    let fraction = changed as f64 / (got.len() / 4) as f64;
+    if worst.0 <= MAX_CHANNEL_DIFF && fraction <= MAX_CHANGED_FRACTION {
+        return None;
+    }
+    let i = worst.1;
+    Some(format!(
+        "{changed} pixels differ ({:.2}%), worst {} codes at ({}, {}): got {:?}, golden {:?}",
+        100.0 * fraction,
+        worst.0,
+        i as u32 % SIZE,
+        i as u32 / SIZE,
+        &got[4 * i..4 * i + 4],
+        &want[4 * i..4 * i + 4]
+    ))
+}
+
+#[test]
+fn golden_cornell_box() {
+    check("cornell-box", "cornell");
+}
+
+#[test]
+fn golden_bunny_in_box() {
+    check("box:bunny", "bunny");
+}
+
+#[test]
+fn comparison_catches_a_changed_pixel() {
+    let a = vec![10u8; 4 * 64 * 64];
+    let mut b = a.clone();
+    assert!(compare(&a, &b).is_none());
+    b[4 * 100 + 1] = 10 + MAX_CHANNEL_DIFF + 1;
+    let msg = compare(&b, &a).expect("a 4-code difference fails");
+    assert!(msg.contains("(36, 1)"), "{msg}");
+}
