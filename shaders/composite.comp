@@ -35,7 +35,7 @@ vec3 srgb_encode(vec3 linear) {
 
 void main() {
     ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
-    if (any(greaterThanEqual(uvec2(pixel), frame.size.xy))) return;
+    if (any(greaterThanEqual(uvec2(pixel), frame.size))) return;
     vec3 color = vec3(0.0);
     if (texelFetch(g_position, pixel, 0).w != 0.0) {
         vec3 albedo = texelFetch(g_albedo, pixel, 0).rgb;
@@ -43,7 +43,7 @@ void main() {
 #ifdef USE_AO
         visibility = texelFetch(ambient_visibility, pixel, 0).r;
 #endif
-        color = frame.ambient.rgb * albedo * visibility;
+        color = frame.ambient * albedo * visibility;
 #ifdef USE_DIRECT
         color += texelFetch(direct_light, pixel, 0).rgb;
 #endif

@@ -15,7 +15,7 @@ layout(set = 1, binding = 4, rgba16f) uniform writeonly image2D direct_out;
 
 void main() {
     ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
-    if (any(greaterThanEqual(uvec2(pixel), frame.size.xy))) return;
+    if (any(greaterThanEqual(uvec2(pixel), frame.size))) return;
     vec4 position = texelFetch(g_position, pixel, 0);
     if (position.w == 0.0) { // background
         imageStore(direct_out, pixel, vec4(0.0, 0.0, 0.0, 1.0));
@@ -25,14 +25,14 @@ void main() {
     vec3 n = texelFetch(g_normal, pixel, 0).xyz;
     vec3 albedo = texelFetch(g_albedo, pixel, 0).rgb;
 
-    vec3 to_light = frame.light_pos.xyz - p;
+    vec3 to_light = frame.light_pos - p;
     // 1/d^2 with d^2 floored at the light's near^2 (as SpotLight::irradiance on the CPU): points
     // that close are outside the shadow frustum anyway, and the floor scales with the light.
-    float near = frame.light_intensity.w;
+    float near = frame.light_near;
     float dist2 = max(dot(to_light, to_light), max(near * near, 1e-30));
-    vec3 l = safe_normalize(to_light, frame.light_dir.xyz);
+    vec3 l = safe_normalize(to_light, frame.light_dir);
     float cos_surface = max(dot(n, l), 0.0);
-    vec3 irradiance = frame.light_intensity.rgb * spot_factor(-l) * cos_surface / dist2;
+    vec3 irradiance = frame.light_intensity * spot_factor(-l) * cos_surface / dist2;
     float visibility = cos_surface > 0.0 ? texelFetch(shadow_visibility, pixel, 0).r : 0.0;
     vec3 radiance = albedo / PI * irradiance * visibility;
     imageStore(direct_out, pixel, vec4(radiance, visibility));

@@ -23,7 +23,7 @@ layout(location = 1) out vec4 out_normal;
 layout(location = 2) out vec4 out_albedo;
 
 void main() {
-    vec3 to_eye = frame.camera_pos.xyz - v_position;
+    vec3 to_eye = frame.camera_pos - v_position;
     vec3 n = safe_normalize(v_normal, safe_normalize(to_eye, vec3(0.0, 1.0, 0.0)));
     // Two-sided surfaces: OBJ winding is unreliable, so the visible side is the one facing the
     // eye, whatever the triangle order says.

@@ -26,7 +26,7 @@ void main() {
     uint packed = counters.data[gl_WorkGroupID.x];
     ivec2 block = ivec2(packed & 0xffffu, packed >> 16);
     ivec2 low = block * 8 - 1 + ivec2(gl_LocalInvocationID.xy);
-    ivec2 low_size = ivec2((frame.size.xy + 1u) / 2u);
+    ivec2 low_size = ivec2((frame.size + 1u) / 2u);
     vec4 value = vec4(0.0);
     if (all(greaterThanEqual(low, ivec2(0))) && all(lessThan(low, low_size))) {
         ivec2 full = low * 2;

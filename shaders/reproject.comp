@@ -25,7 +25,7 @@ shared uint quadrant_needs_work[4];
 shared uint group_disoccluded;
 
 bool tap_valid(ivec2 t, vec3 p, float eps) {
-    if (any(lessThan(t, ivec2(0))) || any(greaterThanEqual(uvec2(t), frame.size.xy))) return false;
+    if (any(lessThan(t, ivec2(0))) || any(greaterThanEqual(uvec2(t), frame.size))) return false;
     vec4 h = texelFetch(prev_position, t, 0);
     return h.w != 0.0 && distance(h.xyz, p) <= eps; // eq 3
 }
@@ -58,21 +58,21 @@ void main() {
     barrier();
     ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
     uint state = STATE_BACKGROUND;
-    if (all(lessThan(uvec2(pixel), frame.size.xy))) {
+    if (all(lessThan(uvec2(pixel), frame.size))) {
         vec4 history = vec4(0.0);
         vec4 position = texelFetch(g_position, pixel, 0);
         if (position.w != 0.0) {
             vec3 p = position.xyz;
             state = STATE_NEW;
-            if (effect.refresh.w != 0u) {
+            if (effect.history_valid != 0u) {
                 vec4 clip = frame.prev_view_proj * vec4(p, 1.0); // eq 1
                 if (clip.w > 0.0) {
-                    vec2 f = (clip.xy / clip.w * 0.5 + 0.5) * vec2(frame.size.xy);
+                    vec2 f = (clip.xy / clip.w * 0.5 + 0.5) * vec2(frame.size);
                     ivec2 nearest = ivec2(floor(f));
                     float eps = disocclusion_epsilon(p, texelFetch(g_normal, pixel, 0).xyz);
                     if (tap_valid(nearest, p, eps)) { // eqs 2-3 on the nearest texel
                         history = resample(f, nearest, p, eps);
-                        state = history.a >= float(frame.temporal.w) ? STATE_CONVERGED : STATE_ACCUMULATING;
+                        state = history.a >= float(frame.rotation_limit) ? STATE_CONVERGED : STATE_ACCUMULATING;
                     }
                 }
             }
@@ -80,9 +80,9 @@ void main() {
                 history = vec4(0.0);
                 atomicAdd(group_disoccluded, 1u);
             }
-            uvec2 tile = effect.refresh.xy;
+            uvec2 tile = effect.refresh_origin;
             if (tile.x != 0xffffffffu && all(greaterThanEqual(uvec2(pixel), tile)) &&
-                all(lessThan(uvec2(pixel), tile + effect.refresh.z))) {
+                all(lessThan(uvec2(pixel), tile + effect.refresh_tile))) {
                 state = STATE_REFRESH;
             }
         }
@@ -97,7 +97,7 @@ void main() {
     if (gl_LocalInvocationIndex == 0u) {
         if (group_disoccluded > 0u) atomicAdd(counters.disoccluded_pixels, group_disoccluded);
         uvec2 group = gl_WorkGroupID.xy;
-        if (effect.block.x == 4u) { // 16x16 blocks: the whole group
+        if (effect.block_shift == 4u) { // 16x16 blocks: the whole group
             uint any_work = quadrant_needs_work[0] | quadrant_needs_work[1] |
                             quadrant_needs_work[2] | quadrant_needs_work[3];
             if (any_work != 0u) {

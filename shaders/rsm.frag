@@ -24,7 +24,7 @@ layout(location = 1) out vec4 out_normal;
 layout(location = 2) out vec4 out_flux;
 
 void main() {
-    vec3 to_light = frame.light_pos.xyz - v_position;
+    vec3 to_light = frame.light_pos - v_position;
     vec3 n = safe_normalize(v_normal, safe_normalize(to_light, vec3(0.0, 1.0, 0.0)));
     if (dot(n, to_light) < 0.0) n = -n; // the lit side is the side facing the light
     vec3 albedo = material.albedo.rgb;
@@ -34,11 +34,11 @@ void main() {
     // Flux through this texel: I(w) times the texel's solid angle. On the image plane at unit
     // distance a texel has area (2 tan(fov/2) / N)^2; seen off-axis at angle t it subtends
     // that area times cos^3(t). All of it lands on this surface, which reflects albedo of it.
-    vec3 dir = safe_normalize(-to_light, frame.light_dir.xyz);
-    float cos_axis = max(dot(dir, frame.light_dir.xyz), 0.0);
-    float texel = 2.0 * frame.light_params.y / frame.light_params.z;
+    vec3 dir = safe_normalize(-to_light, frame.light_dir);
+    float cos_axis = max(dot(dir, frame.light_dir), 0.0);
+    float texel = 2.0 * frame.light_tan_half_fov / frame.shadow_map_size;
     float solid_angle = texel * texel * cos_axis * cos_axis * cos_axis;
-    vec3 flux = albedo * frame.light_intensity.rgb * spot_factor(dir) * solid_angle;
+    vec3 flux = albedo * frame.light_intensity * spot_factor(dir) * solid_angle;
     out_position = vec4(v_position, 1.0);
     out_normal = vec4(n, 0.0);
     out_flux = vec4(flux, 1.0);

@@ -27,13 +27,13 @@ void main() {
     if (gl_LocalInvocationIndex == 0u) group_computed = 0u;
     barrier();
     ivec2 pixel = block_pixel(gl_WorkGroupID.x, gl_LocalInvocationID.xy);
-    if (all(lessThan(uvec2(pixel), frame.size.xy))) {
+    if (all(lessThan(uvec2(pixel), frame.size))) {
         uint state = imageLoad(state_in, pixel).r;
         if (state == STATE_NEW || state == STATE_ACCUMULATING || state == STATE_REFRESH) {
             vec3 p = texelFetch(g_position, pixel, 0).xyz;
             vec3 n = texelFetch(g_normal, pixel, 0).xyz;
             vec4 h = imageLoad(history, pixel);
-            uint limit = frame.temporal.w;
+            uint limit = frame.rotation_limit;
             vec2 result;
             if (state == STATE_REFRESH) {
                 float sum = 0.0;

@@ -22,15 +22,15 @@ void main() {
     if (gl_LocalInvocationIndex == 0u) block_computed = 0u;
     barrier();
     ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
-    if (all(lessThan(uvec2(pixel), frame.size.xy))) {
+    if (all(lessThan(uvec2(pixel), frame.size))) {
         vec4 position = texelFetch(g_position, pixel, 0);
         float visibility = 1.0;
         if (position.w != 0.0) {
             vec3 n = texelFetch(g_normal, pixel, 0).xyz;
-            visibility = 1.0 - ao_estimate(pixel, position.xyz, n, frame.ao_pattern.y, frame.ao_config.z);
+            visibility = 1.0 - ao_estimate(pixel, position.xyz, n, frame.pattern_offset, frame.ao_patterns);
             atomicAdd(block_computed, 1u);
         }
-        imageStore(ao_out, pixel, vec4(visibility, 0.0, 0.0, float(frame.ao_config.z)));
+        imageStore(ao_out, pixel, vec4(visibility, 0.0, 0.0, float(frame.ao_patterns)));
     }
     barrier();
     if (gl_LocalInvocationIndex == 0u && block_computed > 0u)

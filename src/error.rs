@@ -33,6 +33,15 @@ pub enum Error {
     ImageWrite { path: PathBuf, message: String },
     #[error("window: {0}")]
     Window(String),
+    #[error(
+        "{call} failed: ERROR_DEVICE_LOST in a frame whose last recorded pass was '{pass}'{}",
+        vk_hint(vk::Result::ERROR_DEVICE_LOST)
+    )]
+    DeviceLost {
+        call: &'static str,
+        /// The last pass recorded into the lost frame's command buffer: the first suspect.
+        pass: &'static str,
+    },
     #[error("{count} Vulkan validation message(s); first: {first}")]
     Validation { count: usize, first: String },
 }
@@ -73,8 +82,23 @@ impl Error {
             Error::Vulkan {
                 result: vk::Result::ERROR_DEVICE_LOST,
                 ..
-            }
+            } | Error::DeviceLost { .. }
         )
+    }
+
+    /// A device loss named after `pass`, the last pass recorded in the lost frame; any other
+    /// error unchanged.
+    pub fn lost_after(self, pass: Option<&'static str>) -> Error {
+        match (self, pass) {
+            (
+                Error::Vulkan {
+                    call,
+                    result: vk::Result::ERROR_DEVICE_LOST,
+                },
+                Some(pass),
+            ) => Error::DeviceLost { call, pass },
+            (e, _) => e,
+        }
     }
 }
 
@@ -97,6 +121,19 @@ mod tests {
         };
         assert_eq!(
             other.to_string(),
+            "vkCreateImage failed: ERROR_FORMAT_NOT_SUPPORTED"
+        );
+        let named = lost.lost_after(Some("indirect_gather"));
+        assert!(named.is_device_lost());
+        assert!(
+            named.to_string().starts_with(
+                "vkQueueSubmit2 failed: ERROR_DEVICE_LOST in a frame whose last recorded pass \
+                 was 'indirect_gather' (the device was lost"
+            ),
+            "{named}"
+        );
+        assert_eq!(
+            other.lost_after(Some("ssao")).to_string(),
             "vkCreateImage failed: ERROR_FORMAT_NOT_SUPPORTED"
         );
     }

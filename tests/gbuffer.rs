@@ -3,7 +3,7 @@
 mod common;
 
 use glam::Vec3;
-use ssgi::renderer::frame::Pcf;
+use ssgi::renderer::pcf::Pcf;
 use ssgi::renderer::targets::Target;
 use ssgi::scene::{cornell_box, pixel_to_ndc, pyramids, Scene};
 

@@ -19,7 +19,7 @@
 mod common;
 
 use ssgi::renderer::config::Effects;
-use ssgi::renderer::frame::Pcf;
+use ssgi::renderer::pcf::Pcf;
 use ssgi::renderer::targets::Target;
 use ssgi::renderer::{RenderConfig, Renderer};
 use ssgi::scene::{load_scene, CameraPath};

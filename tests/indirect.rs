@@ -6,7 +6,7 @@ mod common;
 
 use glam::Vec3;
 use ssgi::renderer::config::{Effects, IndirectConfig, RenderConfig, TemporalConfig};
-use ssgi::renderer::frame::Pcf;
+use ssgi::renderer::pcf::Pcf;
 use ssgi::renderer::targets::Target;
 use ssgi::renderer::Renderer;
 use ssgi::scene::{cornell_box, Camera, Material, MeshBuilder, Scene, SpotLight};

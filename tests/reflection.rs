@@ -1,14 +1,14 @@
 //! Every pass's declared descriptor layout equals what naga reflected from its shaders, and
 //! every compiled shader module belongs to some pass.
 
-use ssgi::passes::all_layouts;
+use ssgi::passes::{all_layouts, PassId};
 use ssgi::shaders::{DescriptorKind, ReflectedBinding, ALL};
 use ssgi::vk::pipeline::check_bindings;
 
 #[test]
 fn every_pass_layout_matches_reflection() {
     for layout in all_layouts() {
-        check_bindings(layout.pass, &layout.modules, &layout.declared)
+        check_bindings(layout.pass.name(), &layout.modules, &layout.declared)
             .unwrap_or_else(|e| panic!("{e}"));
     }
 }
@@ -28,14 +28,14 @@ fn every_shader_module_is_used_by_a_pass() {
 fn a_wrong_declaration_is_rejected() {
     let layout = all_layouts()
         .into_iter()
-        .find(|l| l.pass == "direct")
+        .find(|l| l.pass == PassId::Direct)
         .unwrap();
     let mut wrong: Vec<ReflectedBinding> = layout.declared.to_vec();
     wrong.last_mut().unwrap().kind = DescriptorKind::SampledImage;
-    let err = check_bindings(layout.pass, &layout.modules, &wrong).unwrap_err();
+    let err = check_bindings(layout.pass.name(), &layout.modules, &wrong).unwrap_err();
     assert!(err.to_string().contains("direct"), "{err}");
     let missing = &layout.declared[..layout.declared.len() - 1];
-    assert!(check_bindings(layout.pass, &layout.modules, missing).is_err());
+    assert!(check_bindings(layout.pass.name(), &layout.modules, missing).is_err());
 }
 
 #[test]
@@ -54,4 +54,132 @@ fn compute_modules_have_workgroups_and_graphics_do_not() {
             m.label()
         );
     }
+}
+
+// ------------------------------------------------------------- shared blocks (build.rs)
+
+#[path = "../build/block_layout.rs"]
+#[allow(dead_code)]
+mod block_layout;
+
+use ssgi::shaders::{BlockMember, CountersHeader, EffectPush, FrameBlock, MaterialPush};
+
+/// The generated struct of a GLSL block: its members and size.
+fn generated(name: &str) -> (&'static [BlockMember], usize) {
+    match name {
+        "Frame" => (FrameBlock::MEMBERS, FrameBlock::SIZE),
+        "Effect" => (EffectPush::MEMBERS, EffectPush::SIZE),
+        "Counters" => (CountersHeader::MEMBERS, CountersHeader::SIZE),
+        "Material" => (MaterialPush::MEMBERS, MaterialPush::SIZE),
+        other => panic!("block {other} has no generated struct"),
+    }
+}
+
+#[test]
+fn every_module_declares_the_shared_blocks_as_generated() {
+    let mut seen = 0;
+    for m in ALL {
+        for b in m.blocks {
+            let (members, size) = generated(b.name);
+            assert_eq!(b.members, members, "{}: block {}", m.label(), b.name);
+            assert_eq!(b.size, size, "{}: block {} size", m.label(), b.name);
+            seen += 1;
+        }
+    }
+    // Every compute pass reads the frame block, so a reflection that found no block is broken.
+    assert!(
+        seen >= ALL.len(),
+        "only {seen} block declarations reflected"
+    );
+}
+
+/// Bytes where every 4-byte word holds its own index + 1, so a member read from the wrong
+/// offset shows up as the wrong number.
+fn numbered<const N: usize>() -> [u8; N] {
+    let mut b = [0u8; N];
+    for (i, w) in b.chunks_mut(4).enumerate() {
+        w.copy_from_slice(&(i as u32 + 1).to_le_bytes());
+    }
+    b
+}
+
+#[test]
+fn generated_structs_put_each_member_at_its_reflected_offset() {
+    let bytes = numbered::<{ FrameBlock::SIZE }>();
+    let frame = FrameBlock::from_bytes(&bytes);
+    let word = |offset: usize| offset as u32 / 4 + 1;
+    assert_eq!(
+        frame.rotation_limit,
+        word(FrameBlock::OFFSET_ROTATION_LIMIT)
+    );
+    assert_eq!(
+        frame.size,
+        [
+            word(FrameBlock::OFFSET_SIZE),
+            word(FrameBlock::OFFSET_SIZE + 4)
+        ]
+    );
+    assert_eq!(
+        frame.light_near.to_bits(),
+        word(FrameBlock::OFFSET_LIGHT_NEAR)
+    );
+    // Round trip: every member's bytes come back where they were; padding is zero.
+    let out = frame.to_bytes();
+    for m in FrameBlock::MEMBERS {
+        let len = match m.glsl {
+            "mat4" => 64,
+            "vec4" | "uvec4" | "ivec4" => 16,
+            "vec3" | "uvec3" | "ivec3" => 12,
+            "vec2" | "uvec2" | "ivec2" => 8,
+            _ => 4,
+        };
+        let r = m.offset..m.offset + len;
+        assert_eq!(out[r.clone()], bytes[r], "member {}", m.name);
+    }
+    let push = EffectPush {
+        refresh_origin: [7, 9],
+        pattern: 5,
+        ..Default::default()
+    }
+    .to_bytes();
+    assert_eq!(push[..8], [7, 0, 0, 0, 9, 0, 0, 0]);
+    let p = EffectPush::MEMBERS
+        .iter()
+        .find(|m| m.name == "pattern")
+        .unwrap();
+    assert_eq!(push[p.offset], 5);
+    let counters = CountersHeader::from_bytes(&numbered::<{ CountersHeader::SIZE }>());
+    assert_eq!(counters.max_blocks, word(CountersHeader::OFFSET_MAX_BLOCKS));
+}
+
+#[test]
+fn two_shaders_declaring_a_block_differently_fail_the_build() {
+    use block_layout::{merge, Block, Member};
+    let member = |name: &str, offset, glsl: &'static str| Member {
+        name: name.into(),
+        offset,
+        glsl,
+        rust: "f32",
+    };
+    let a = Block {
+        name: "Frame".into(),
+        size: 8,
+        members: vec![member("near", 0, "float"), member("far", 4, "float")],
+    };
+    let mut b = a.clone();
+    b.members[1] = member("far_plane", 4, "float");
+    let mut all = Default::default();
+    merge(&mut all, vec![a.clone()], "shaders/a.comp").unwrap();
+    merge(&mut all, vec![a.clone()], "shaders/c.comp").expect("identical declarations agree");
+    let err = merge(&mut all, vec![b], "shaders/b.comp").unwrap_err();
+    assert!(
+        err.contains("member 1")
+            && err.contains("far at byte 4 in shaders/a.comp")
+            && err.contains("far_plane at byte 4 in shaders/b.comp"),
+        "{err}"
+    );
+    let mut moved = a;
+    moved.members[1].offset = 8;
+    moved.size = 12;
+    assert!(merge(&mut all, vec![moved], "shaders/d.comp").is_err());
 }

@@ -5,7 +5,7 @@ mod common;
 
 use glam::Vec3;
 use ssgi::renderer::config::{Effects, RenderConfig, TemporalConfig};
-use ssgi::renderer::frame::{Pcf, PcfKernel};
+use ssgi::renderer::pcf::{Pcf, PcfKernel};
 use ssgi::renderer::targets::Target;
 use ssgi::renderer::Renderer;
 use ssgi::scene::{cornell_box, Camera, Scene};

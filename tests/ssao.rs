@@ -8,7 +8,7 @@ use glam::{Mat4, Vec3, Vec4};
 use ssgi::renderer::config::{
     Accumulate, AoConfig, AoEstimator, Effects, RenderConfig, TemporalConfig,
 };
-use ssgi::renderer::frame::Pcf;
+use ssgi::renderer::pcf::Pcf;
 use ssgi::renderer::targets::Target;
 use ssgi::renderer::Renderer;
 use ssgi::scene::{cornell_box, Camera, Material, MeshBuilder, Scene, SpotLight};

@@ -19,16 +19,16 @@ vec2 rotate2(vec2 v, vec2 cs) {
 // Lin 2013 eq 6-8: directions x log-spaced screen-space steps; each sample q contributes
 // max(n . (q - p)/|q - p|, 0) / D(d) with D(d) = 1 + a d + b d^2, d in units of the radius.
 float ao_thesis(ivec2 pixel, vec3 p, vec3 n, float pattern) {
-    uint dirs = frame.ao_config.x;
-    uint steps = frame.ao_config.y;
-    float radius = frame.ao_params.x;
-    float dist = max(distance(p, frame.camera_pos.xyz), 1e-30);
+    uint dirs = frame.ao_directions;
+    uint steps = frame.ao_steps;
+    float radius = frame.ao_radius;
+    float dist = max(distance(p, frame.camera_pos), 1e-30);
     // The world radius projected to pixels at this depth; eq 8's far.
-    float px_per_world = float(frame.size.y) / (2.0 * frame.camera_pos.w * dist);
-    float near_px = frame.ao_params.w;
+    float px_per_world = float(frame.size.y) / (2.0 * frame.tan_half_fov * dist);
+    float near_px = frame.ao_near_px;
     float far_px = clamp(radius * px_per_world, near_px * 1.5, 0.25 * float(frame.size.y));
     float scale = pattern_scale(pattern);
-    float angle = frame.ao_pattern.x * pattern;
+    float angle = frame.pattern_rotation * pattern;
     vec2 rot = rotate2(pixel_rotation(pixel), vec2(cos(angle), sin(angle)));
     vec2 center = vec2(pixel) + 0.5;
     float sum = 0.0;
@@ -38,7 +38,7 @@ float ao_thesis(ivec2 pixel, vec3 p, vec3 n, float pattern) {
         for (uint i = 1u; i <= steps; ++i) {
             float s = near_px * pow(far_px / near_px, float(i) / float(steps)) * scale; // eq 8
             ivec2 q_pixel = ivec2(floor(center + dir * s));
-            if (any(lessThan(q_pixel, ivec2(0))) || any(greaterThanEqual(uvec2(q_pixel), frame.size.xy)))
+            if (any(lessThan(q_pixel, ivec2(0))) || any(greaterThanEqual(uvec2(q_pixel), frame.size)))
                 continue;
             vec4 q = texelFetch(g_position, q_pixel, 0);
             if (q.w == 0.0) continue;
@@ -49,7 +49,7 @@ float ao_thesis(ivec2 pixel, vec3 p, vec3 n, float pattern) {
             if (d2 <= 1e-12 * dist * dist) continue;
             float len = sqrt(d2);
             float x = len / radius;
-            sum += max(dot(n, v / len), 0.0) / (1.0 + frame.ao_params.y * x + frame.ao_params.z * x * x);
+            sum += max(dot(n, v / len), 0.0) / (1.0 + frame.ao_atten_a * x + frame.ao_atten_b * x * x);
         }
     }
     return sum / float(dirs * steps);
@@ -58,12 +58,12 @@ float ao_thesis(ivec2 pixel, vec3 p, vec3 n, float pattern) {
 // Mittring 2007: points in a sphere of the world radius around p; a point is occluded when
 // the visible surface at its screen position is in front of it (within the radius).
 float ao_crytek(ivec2 pixel, vec3 p, float pattern) {
-    uint count = frame.ao_config.y;
-    float radius = frame.ao_params.x * pattern_scale(pattern);
-    vec3 view_dir = safe_normalize(p - frame.camera_pos.xyz, vec3(0.0, 0.0, -1.0));
+    uint count = frame.ao_samples;
+    float radius = frame.ao_radius * pattern_scale(pattern);
+    vec3 view_dir = safe_normalize(p - frame.camera_pos, vec3(0.0, 0.0, -1.0));
     vec3 t = safe_normalize(cross(view_dir, abs(view_dir.y) < 0.99 ? vec3(0, 1, 0) : vec3(1, 0, 0)), vec3(1, 0, 0));
     vec3 b = cross(view_dir, t);
-    float angle = frame.ao_pattern.x * pattern;
+    float angle = frame.pattern_rotation * pattern;
     vec2 rot = rotate2(pixel_rotation(pixel), vec2(cos(angle), sin(angle)));
     float occluded = 0.0;
     for (uint k = 0u; k < count; ++k) {
@@ -77,8 +77,8 @@ float ao_crytek(ivec2 pixel, vec3 p, float pattern) {
         vec4 clip = frame.view_proj * vec4(s, 1.0);
         if (clip.w <= 0.0) continue;
         vec2 uv = clip.xy / clip.w * 0.5 + 0.5;
-        ivec2 q_pixel = ivec2(floor(uv * vec2(frame.size.xy)));
-        if (any(lessThan(q_pixel, ivec2(0))) || any(greaterThanEqual(uvec2(q_pixel), frame.size.xy)))
+        ivec2 q_pixel = ivec2(floor(uv * vec2(frame.size)));
+        if (any(lessThan(q_pixel, ivec2(0))) || any(greaterThanEqual(uvec2(q_pixel), frame.size)))
             continue;
         vec4 q = texelFetch(g_position, q_pixel, 0);
         if (q.w == 0.0) continue;
@@ -97,7 +97,7 @@ float ao_estimate(ivec2 pixel, vec3 p, vec3 n, float first, uint patterns) {
     float sum = 0.0;
     for (uint j = 0u; j < patterns; ++j) {
         float pattern = first + float(j);
-        sum += frame.ao_config.w == 1u ? ao_crytek(pixel, p, pattern) : ao_thesis(pixel, p, n, pattern);
+        sum += frame.ao_estimator == 1u ? ao_crytek(pixel, p, pattern) : ao_thesis(pixel, p, n, pattern);
     }
     return sum / float(max(patterns, 1u));
 }

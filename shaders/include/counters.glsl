@@ -1,5 +1,5 @@
-// Per-effect GPU counters and work lists (indirect dispatch arguments first). Mirrors
-// src/renderer/counters.rs; the CPU resets the header every frame.
+// Per-effect GPU counters and work lists (indirect dispatch arguments first). build.rs
+// generates the Rust struct `CountersHeader` from the header; the CPU resets it every frame.
 layout(set = 1, binding = COUNTERS_BINDING, std430) buffer Counters {
     uint dispatch_x;         // work blocks listed (indirect dispatch x), y = z = 1
     uint dispatch_y;
@@ -8,14 +8,8 @@ layout(set = 1, binding = COUNTERS_BINDING, std430) buffer Counters {
     uint computed_pixels;    // pixels the effect evaluated (low-resolution ones for half res)
     uint fixup_pixels;       // full-resolution fix-ups (half-resolution indirect light)
     uint max_blocks;         // size of the block list; the fix-up list follows it in `data`
-    uint reserved0;
     uint fixup_dispatch_x;   // ceil(fixup_pixels / 64), y = z = 1
     uint fixup_dispatch_y;
     uint fixup_dispatch_z;
-    uint reserved1;
-    uint reserved2;
-    uint reserved3;
-    uint reserved4;
-    uint reserved5;
     uint data[];             // blocks (x | y << 16), then fix-up pixels (x | y << 16)
 } counters;

@@ -1,11 +1,15 @@
 // Push constants shared by the reprojection and the effect passes of one temporal effect.
+// build.rs generates the Rust struct `EffectPush` from this declaration.
 layout(push_constant) uniform Effect {
-    uvec4 refresh;    // xy = refresh tile origin [px] (~0 = none), z = tile side, w = history valid
-    uvec4 block;      // x = log2 of the work-block side (3: 8x8, 4: 16x16), y = frame pattern
+    uvec2 refresh_origin;  // refresh tile origin [px]; ~0 = no refresh this frame
+    uint refresh_tile;     // refresh tile side [px]
+    uint history_valid;    // 0 on the first frame, after a resize or a camera cut
+    uint block_shift;      // log2 of the work-block side (3: 8x8, 4: 16x16)
+    uint pattern;          // this frame's pattern index
 } effect;
 
 // Full-resolution pixel of local invocation `local` in listed work block `index`.
 ivec2 block_pixel(uint index, uvec2 local) {
     uint packed = counters.data[index];
-    return ivec2(uvec2(packed & 0xffffu, packed >> 16) << effect.block.x) + ivec2(local);
+    return ivec2(uvec2(packed & 0xffffu, packed >> 16) << effect.block_shift) + ivec2(local);
 }

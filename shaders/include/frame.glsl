@@ -1,28 +1,46 @@
-// Per-frame constants shared by every pass (set 0, binding 0). Mirrors `FrameUniforms` in
-// src/renderer/frame.rs; std140, every member 16-byte aligned.
+// Per-frame constants shared by every pass (set 0, binding 0), std140. build.rs generates the
+// Rust struct `FrameBlock` from this declaration (src/renderer/frame.rs fills it by name), so
+// the two sides cannot drift. One parameter per member.
 layout(set = 0, binding = 0, std140) uniform Frame {
-    mat4 view_proj;        // camera, world -> clip (Vulkan: y down, depth 0..1)
-    mat4 prev_view_proj;   // last frame's camera (eq 1)
-    mat4 light_view_proj;  // spot light, world -> clip
-    vec4 camera_pos;       // xyz, w = tan(vertical fov / 2)
-    vec4 light_pos;        // xyz, w = cos(outer half-angle)
-    vec4 light_dir;        // xyz unit axis, w = cos(inner half-angle)
-    vec4 light_intensity;  // rgb radiant intensity on the axis [W/sr], w = light near plane
-    vec4 light_params;     // x = light far plane, y = tan(half fov of the shadow frustum),
-                           // z = shadow map size [texels], w = PCF kernel radius [texels]
-    vec4 ambient;          // rgb ambient radiance
-    uvec4 size;            // width, height, frame index, PCF grid side or disc samples
-    uvec4 temporal;        // x = history valid (camera), yz unused,
-                           // w = rotation limit (patterns until converged)
-    vec4 temporal_params;  // x = accumulation (0 confidence, 1 EMA, 2 mean), y = its parameter
-                           // (bias / alpha / cap), z = epsilon, w = 0 relative, 1 absolute
-    vec4 ao_params;        // x = world radius, y = a, z = b (eq 7), w = nearest step [px]
-    uvec4 ao_config;       // x = directions, y = steps (thesis) or samples (crytek),
-                           // z = patterns per evaluation, w = 0 thesis, 1 crytek
-    vec4 ao_pattern;       // x = rotation per pattern [rad], y = pattern offset,
-                           // z = PCF kernel (0 grid, 1 disc)
-    vec4 indirect_params;  // x = VPLs per gather (0 = every RSM texel), y = screen-space
-                           // visibility test (0/1), z = half resolution (0/1)
+    mat4 view_proj;            // camera, world -> clip (Vulkan: y down, depth 0..1)
+    mat4 prev_view_proj;       // last frame's camera (eq 1)
+    mat4 light_view_proj;      // spot light, world -> clip
+    vec3 camera_pos;
+    float tan_half_fov;        // tan(camera's vertical fov / 2)
+    vec3 light_pos;
+    float light_cos_outer;     // cos(outer half-angle of the spot cone)
+    vec3 light_dir;            // unit axis of the spot
+    float light_cos_inner;     // cos(inner half-angle)
+    vec3 light_intensity;      // rgb radiant intensity on the axis [W/sr]
+    float light_near;          // light view's near plane
+    vec3 ambient;              // rgb ambient radiance
+    float light_far;           // light view's far plane
+    uvec2 size;                // render width, height [px]
+    uint frame_index;
+    uint rotation_limit;       // patterns per pixel until it counts as converged
+    float light_tan_half_fov;  // tan(half fov of the shadow frustum)
+    float shadow_map_size;     // side of the shadow map / RSM [texels]
+    float pcf_radius;          // PCF kernel radius [texels]
+    uint pcf_kernel;           // 0 grid, 1 rotated disc
+    uint pcf_count;            // grid side, or disc samples
+    uint accumulate_mode;      // 0 confidence (eqs 4-5), 1 EMA, 2 capped mean
+    float accumulate_param;    // confidence bias / EMA alpha / mean cap
+    float epsilon;             // eq 3 threshold: texel footprints (relative) or world units
+    uint epsilon_absolute;     // 0 relative, 1 absolute
+    float pattern_rotation;    // rotation between consecutive patterns [rad]
+    float pattern_offset;      // offset of the first pattern (0.5 for multi-pattern references)
+    float ao_radius;           // world-space sampling radius
+    float ao_atten_a;          // eq 7: D(d) = 1 + a d + b d^2, d in units of the radius
+    float ao_atten_b;
+    float ao_near_px;          // nearest AO step [px] (eq 8)
+    uint ao_directions;        // thesis estimator: directions
+    uint ao_steps;             // thesis estimator: steps per direction
+    uint ao_samples;           // crytek estimator: samples in the sphere
+    uint ao_patterns;          // patterns per evaluation (1, or many for references)
+    uint ao_estimator;         // 0 thesis, 1 crytek
+    uint vpl_count;            // VPLs per gather (0 = every RSM texel)
+    uint vpl_visibility;       // screen-space visibility test of each VPL (0/1)
+    float vpl_march_near_px;   // nearest step of that visibility march [px]
 } frame;
 
 const float PI = 3.14159265358979;
@@ -36,14 +54,14 @@ vec3 safe_normalize(vec3 v, vec3 fallback) {
 
 // Smooth spot cone: 1 inside the inner angle, 0 outside the outer, Hermite in between.
 float spot_factor(vec3 to_point_unit) {
-    float c = dot(frame.light_dir.xyz, to_point_unit);
-    return smoothstep(frame.light_pos.w, frame.light_dir.w, c);
+    float c = dot(frame.light_dir, to_point_unit);
+    return smoothstep(frame.light_cos_outer, frame.light_cos_inner, c);
 }
 
 // View-space distance along the light axis from a stored shadow-map depth (perspective,
 // depth 0 at near, 1 at far).
 float light_linear_depth(float ndc_depth) {
-    float n = frame.light_intensity.w;
-    float f = frame.light_params.x;
+    float n = frame.light_near;
+    float f = frame.light_far;
     return n * f / max(f - ndc_depth * (f - n), 1e-30);
 }

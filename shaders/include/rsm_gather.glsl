@@ -14,8 +14,8 @@ vec3 vpl_contribution(vec3 p, vec3 n, ivec2 texel) {
     vec3 flux = texelFetch(rsm_flux, texel, 0).rgb;
     vec3 d = q.xyz - p;
     float d2 = dot(d, d);
-    float depth = max(dot(q.xyz - frame.light_pos.xyz, frame.light_dir.xyz), 0.0);
-    float texel_world = 2.0 * depth * frame.light_params.y / frame.light_params.z;
+    float depth = max(dot(q.xyz - frame.light_pos, frame.light_dir), 0.0);
+    float texel_world = 2.0 * depth * frame.light_tan_half_fov / frame.shadow_map_size;
     if (d2 <= 0.0) return vec3(0.0);
     vec3 dir = d * inversesqrt(d2); // eq 10
     return flux * max(dot(n, dir), 0.0) * max(dot(nq, -dir), 0.0) / max(d2, texel_world * texel_world);
@@ -27,8 +27,8 @@ vec3 vpl_contribution(vec3 p, vec3 n, ivec2 texel) {
 bool march_point_visible(vec3 p, vec3 q, float t) {
     vec4 cs = frame.view_proj * vec4(mix(p, q, t), 1.0);
     if (cs.w <= 0.0) return true;
-    ivec2 px = ivec2(floor((cs.xy / cs.w * 0.5 + 0.5) * vec2(frame.size.xy)));
-    if (any(lessThan(px, ivec2(0))) || any(greaterThanEqual(uvec2(px), frame.size.xy))) return true;
+    ivec2 px = ivec2(floor((cs.xy / cs.w * 0.5 + 0.5) * vec2(frame.size)));
+    if (any(lessThan(px, ivec2(0))) || any(greaterThanEqual(uvec2(px), frame.size))) return true;
     vec4 g = texelFetch(g_position, px, 0);
     if (g.w == 0.0) return true;
     float zg = (frame.view_proj * vec4(g.xyz, 1.0)).w;
@@ -43,9 +43,9 @@ bool vpl_visible(vec3 p, vec3 q) {
     vec4 cp = frame.view_proj * vec4(p, 1.0);
     vec4 cq = frame.view_proj * vec4(q, 1.0);
     if (cp.w <= 0.0 || cq.w <= 0.0) return true;
-    vec2 size = vec2(frame.size.xy);
+    vec2 size = vec2(frame.size);
     float len = length((cq.xy / cq.w - cp.xy / cp.w) * 0.5 * size);
-    float near_px = frame.ao_params.w;
+    float near_px = frame.vpl_march_near_px;
     if (len <= near_px) return true;
     float ratio = len / near_px;
     #define STEP(i) march_point_visible(p, q, min(near_px * pow(ratio, float(i) / 8.0) / len, 0.95))
@@ -55,7 +55,7 @@ bool vpl_visible(vec3 p, vec3 q) {
 
 vec3 vpl_term(vec3 p, vec3 n, ivec2 texel) {
     vec3 c = vpl_contribution(p, n, texel);
-    if (frame.indirect_params.y > 0.5 && any(greaterThan(c, vec3(0.0)))) {
+    if (frame.vpl_visibility != 0u && any(greaterThan(c, vec3(0.0)))) {
         if (!vpl_visible(p, texelFetch(rsm_position, texel, 0).xyz)) return vec3(0.0);
     }
     return c;
@@ -71,7 +71,7 @@ vec2 r2_point(uint i) {
 // configuration limits this to RSMs of at most 128x128 texels (RenderConfig::validate): llvmpipe
 // caps loop iterations per invocation and GPU drivers reset devices on long dispatches.
 vec3 rsm_gather_all(vec3 p, vec3 n) {
-    int size = int(frame.light_params.z);
+    int size = int(frame.shadow_map_size);
     vec3 sum = vec3(0.0);
     for (int y = 0; y < size; ++y)
         for (int x = 0; x < size; ++x)
@@ -85,7 +85,7 @@ vec3 rsm_gather_all(vec3 p, vec3 n) {
 // corner, so the estimator is unbiased for the sum over every texel. `pattern` rotates the
 // points and shifts the radii (a new pattern each frame); `seed` rotates per pixel.
 vec3 rsm_gather_sampled(vec3 p, vec3 n, float pattern, uint count, float seed) {
-    float size = frame.light_params.z;
+    float size = frame.shadow_map_size;
     // The density peaks at p's projection into the RSM. Any centre keeps the estimator
     // unbiased, so points behind the light or projecting outside use the nearest RSM point
     // (the centre when behind): otherwise nearly every sample would miss the map.
@@ -98,7 +98,7 @@ vec3 rsm_gather_sampled(vec3 p, vec3 n, float pattern, uint count, float seed) {
     float log_ratio = log(R / r0);
     float p_inner = 1.0 / (1.0 + 2.0 * log_ratio);  // probability of the inner disc
     float density = p_inner / (3.14159265358979 * r0 * r0); // C in p(x) = C / max(r, r0)^2
-    float angle = frame.ao_pattern.x * pattern + 6.28318530718 * seed;
+    float angle = frame.pattern_rotation * pattern + 6.28318530718 * seed;
     float shift = fract(pattern * 0.6180339887);
     vec3 sum = vec3(0.0);
     for (uint i = 0u; i < count; ++i) {
@@ -117,7 +117,7 @@ vec3 rsm_gather_sampled(vec3 p, vec3 n, float pattern, uint count, float seed) {
 
 // The configured gather for `patterns` consecutive patterns starting at `first`.
 vec3 rsm_gather(vec3 p, vec3 n, float first, uint patterns, ivec2 pixel) {
-    uint vpls = uint(frame.indirect_params.x + 0.5);
+    uint vpls = frame.vpl_count;
     if (vpls == 0u) return rsm_gather_all(p, n);
     // Per-pixel rotation: interleaved gradient noise (Jimenez 2014), stable per pixel.
     float seed = fract(52.9829189 * fract(dot(vec2(pixel), vec2(0.06711056, 0.00583715))));

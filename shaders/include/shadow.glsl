@@ -25,13 +25,13 @@ Receiver light_receiver(vec3 p, vec3 n, float cos_surface) {
     r.clip = frame.light_view_proj * vec4(p, 1.0);
     r.depth = r.clip.w;
     r.uv = r.clip.xy / max(r.clip.w, 1e-30) * 0.5 + 0.5;
-    float texel_world = 2.0 * r.depth * frame.light_params.y / frame.light_params.z;
+    float texel_world = 2.0 * r.depth * frame.light_tan_half_fov / frame.shadow_map_size;
     // tan of the angle between normal and light: depth change per texel of the plane.
     float tangent = sqrt(max(1.0 - cos_surface * cos_surface, 0.0)) / max(cos_surface, 0.01);
     r.bias = texel_world * (1.0 + 0.5 * min(tangent, 10.0)) + 1e-5 * r.depth;
     // The kernel's reach (its radius, diagonally, plus the texel rounding) along the plane,
     // up to 89.4 degrees; beyond that the cosine factor leaves no direct light to shadow.
-    r.reach = texel_world * min(tangent, 100.0) * (1.5 * frame.light_params.w + 2.0);
+    r.reach = texel_world * min(tangent, 100.0) * (1.5 * frame.pcf_radius + 2.0);
     vec3 t = normalize(cross(n, abs(n.y) < 0.9 ? vec3(0.0, 1.0, 0.0) : vec3(1.0, 0.0, 0.0)));
     r.tangent_clip = frame.light_view_proj * vec4(t, 0.0);
     r.bitangent_clip = frame.light_view_proj * vec4(cross(n, t), 0.0);
@@ -66,7 +66,7 @@ float receiver_plane_depth(Receiver r, vec2 uv) {
 // depth on the same ray. Outside the shadow map is outside the light frustum: the spot cone
 // darkens it anyway, so it counts as lit and the cone alone shapes that edge.
 float shadow_test(Receiver r, vec2 offset) {
-    int size = int(frame.light_params.z);
+    int size = int(frame.shadow_map_size);
     ivec2 texel = ivec2(floor(r.uv * float(size) + offset));
     if (any(lessThan(texel, ivec2(0))) || any(greaterThanEqual(texel, ivec2(size)))) return 1.0;
     float occluder = light_linear_depth(texelFetch(shadow_depth, texel, 0).r);
@@ -76,7 +76,7 @@ float shadow_test(Receiver r, vec2 offset) {
 
 // k x k regular grid over +-radius texels (k = 1: hard shadow).
 float pcf_grid(Receiver r, int k) {
-    float radius = frame.light_params.w;
+    float radius = frame.pcf_radius;
     float lit = 0.0;
     for (int j = 0; j < k; ++j)
         for (int i = 0; i < k; ++i)
@@ -87,7 +87,7 @@ float pcf_grid(Receiver r, int k) {
 // `count` samples of a Vogel spiral filling the disc of the PCF radius, rotated by `angle` and
 // scaled by `scale` (the thesis rotates and scales the 9-sample pattern every frame).
 float pcf_disc(Receiver r, uint count, float angle, float scale) {
-    float radius = frame.light_params.w * scale;
+    float radius = frame.pcf_radius * scale;
     float lit = 0.0;
     for (uint j = 0u; j < count; ++j) {
         float rho = radius * sqrt((float(j) + 0.5) / float(count));
@@ -105,11 +105,11 @@ float shadow_pattern_scale(float pattern) {
 // Visibility of world point p (normal n) with the configured kernel; `pattern` picks the disc's
 // rotation and scale.
 float shadow_visibility(vec3 p, vec3 n, float pattern) {
-    vec3 l = safe_normalize(frame.light_pos.xyz - p, -frame.light_dir.xyz);
+    vec3 l = safe_normalize(frame.light_pos - p, -frame.light_dir);
     float cos_surface = dot(n, l);
     if (cos_surface <= 0.0) return 0.0; // facing away: no direct light to shadow
     Receiver r = light_receiver(p, n, cos_surface);
-    if (frame.ao_pattern.z > 0.5)
-        return pcf_disc(r, frame.size.w, frame.ao_pattern.x * pattern, shadow_pattern_scale(pattern));
-    return pcf_grid(r, int(frame.size.w));
+    if (frame.pcf_kernel == 1u)
+        return pcf_disc(r, frame.pcf_count, frame.pattern_rotation * pattern, shadow_pattern_scale(pattern));
+    return pcf_grid(r, int(frame.pcf_count));
 }

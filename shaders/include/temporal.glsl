@@ -13,19 +13,19 @@ const uint STATE_BACKGROUND = 4u;   // no geometry
 // view angle), so it does not depend on scene units or depth. |cos| is floored at 0.1: beyond
 // ~84 degrees a surface is a sliver and ten footprints is already lenient.
 float disocclusion_epsilon(vec3 p, vec3 n) {
-    if (frame.temporal_params.w > 0.5) return frame.temporal_params.z;
-    vec3 to_eye = frame.camera_pos.xyz - p;
+    if (frame.epsilon_absolute != 0u) return frame.epsilon;
+    vec3 to_eye = frame.camera_pos - p;
     float dist = length(to_eye);
-    float footprint = 2.0 * dist * frame.camera_pos.w / float(frame.size.y);
+    float footprint = 2.0 * dist * frame.tan_half_fov / float(frame.size.y);
     float cos_view = abs(dot(n, to_eye / max(dist, 1e-30)));
-    return frame.temporal_params.z * footprint / max(cos_view, 0.1);
+    return frame.epsilon * footprint / max(cos_view, 0.1);
 }
 
 // Merge a fresh estimate into the reprojected history `old` that holds `n` estimates.
 float accumulate(float old, float fresh, float n) {
     if (n < 0.5) return fresh;
-    uint mode = uint(frame.temporal_params.x + 0.5);
-    float k = frame.temporal_params.y;
+    uint mode = frame.accumulate_mode;
+    float k = frame.accumulate_param;
     if (mode == 0u) {
         // Eqs 4-5; values are in [0, 1], so saturate() keeps the difference's meaning.
         float confidence = 1.0 - clamp(abs(old - fresh), 0.0, 1.0) / (1.0 + k);
@@ -40,8 +40,8 @@ float accumulate(float old, float fresh, float n) {
 // intensity (HDR values would otherwise always saturate eq 4).
 vec3 accumulate3(vec3 old, vec3 fresh, float n) {
     if (n < 0.5) return fresh;
-    uint mode = uint(frame.temporal_params.x + 0.5);
-    float k = frame.temporal_params.y;
+    uint mode = frame.accumulate_mode;
+    float k = frame.accumulate_param;
     if (mode == 0u) {
         const vec3 LUMA = vec3(0.2126, 0.7152, 0.0722);
         float scale = max(max(dot(old, LUMA), dot(fresh, LUMA)), 1e-30);

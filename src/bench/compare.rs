@@ -3,21 +3,31 @@
 
 use super::report::Report;
 use super::stats::summarize;
+use crate::passes::PassId;
 use serde::Serialize;
 use std::collections::BTreeMap;
 
 /// Pass groups whose summed per-frame time is compared.
-pub const GROUPS: &[(&str, &[&str])] = &[
-    ("reproject", &["reproject"]),
-    ("ao", &["ssao", "blur"]),
-    ("shadow", &["shadow"]),
-    ("direct", &["direct"]),
+pub const GROUPS: &[(&str, &[PassId])] = &[
+    ("reproject", &[PassId::Reproject]),
+    ("ao", &[PassId::Ssao, PassId::Blur]),
+    ("shadow", &[PassId::Shadow]),
+    ("direct", &[PassId::Direct]),
     (
         "indirect",
-        &["indirect_gather", "indirect_upsample", "indirect_fixup"],
+        &[
+            PassId::IndirectGather,
+            PassId::IndirectUpsample,
+            PassId::IndirectFixup,
+        ],
     ),
     ("total", &[]),
 ];
+
+/// Whether the timing row `name` belongs to a group of `passes` (every pass when empty).
+pub fn in_group(passes: &[PassId], name: &str) -> bool {
+    passes.is_empty() || passes.iter().any(|p| p.name() == name)
+}
 
 #[derive(Clone, Debug, Serialize)]
 pub struct GroupRatio {
@@ -38,7 +48,7 @@ pub struct Comparison {
 }
 
 /// Median over measured frames of the per-frame sum of `passes` (all passes when empty).
-pub fn group_median(report: &Report, passes: &[&str]) -> Option<f64> {
+pub fn group_median(report: &Report, passes: &[PassId]) -> Option<f64> {
     let warmup = report.config["warmup"].as_u64().unwrap_or(0);
     let sums: Vec<f64> = report
         .frames
@@ -47,7 +57,7 @@ pub fn group_median(report: &Report, passes: &[&str]) -> Option<f64> {
         .map(|f| {
             f.passes
                 .iter()
-                .filter(|(n, _)| passes.is_empty() || passes.contains(&n.as_str()))
+                .filter(|(n, _)| in_group(passes, n))
                 .map(|(_, ms)| ms)
                 .sum()
         })

@@ -2,15 +2,16 @@
 //! reference, each measured on one context along the same camera path, with the error of its
 //! last frame against the reference rendered from the same camera.
 
-use super::compare::{group_median, GROUPS};
+use super::compare::{group_median, in_group, GROUPS};
 use super::measure::{held_at, last_camera, measure, Buffer, LastFrame, Measured, RunSpec};
 use super::metrics::{image_error, ImageError};
 use super::report::FrameRow;
 use super::Report;
 use crate::error::{Error, Result};
 use crate::frontend::sink::FrameSink;
+use crate::passes::PassId;
 use crate::renderer::config::Effects;
-use crate::renderer::frame::{Pcf, PcfKernel};
+use crate::renderer::pcf::{Pcf, PcfKernel};
 use crate::renderer::RenderConfig;
 use crate::scene::{CameraPath, Scene};
 use crate::vk::{Context, ImageData};
@@ -178,11 +179,11 @@ impl RowResult {
 
 /// Sum of `passes` in one frame (every pass when empty), as `compare::group_median` sums;
 /// `None` when none of them ran in that frame.
-pub fn group_ms(frame: &FrameRow, passes: &[&str]) -> Option<f64> {
+pub fn group_ms(frame: &FrameRow, passes: &[PassId]) -> Option<f64> {
     let mut ran = frame
         .passes
         .iter()
-        .filter(|(n, _)| passes.is_empty() || passes.contains(&n.as_str()))
+        .filter(|(n, _)| in_group(passes, n))
         .map(|(_, ms)| *ms)
         .peekable();
     ran.peek()?;
@@ -359,8 +360,8 @@ mod tests {
             skipped: Vec::new(),
             counters: BTreeMap::new(),
         };
-        assert_eq!(group_ms(&frame, &["ssao", "blur"]), Some(2.5));
+        assert_eq!(group_ms(&frame, &[PassId::Ssao, PassId::Blur]), Some(2.5));
         assert_eq!(group_ms(&frame, &[]), Some(3.5));
-        assert_eq!(group_ms(&frame, &["indirect_gather"]), None);
+        assert_eq!(group_ms(&frame, &[PassId::IndirectGather]), None);
     }
 }

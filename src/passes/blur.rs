@@ -1,7 +1,7 @@
 //! 5x5 Gaussian blur of the AO: the thesis's no-reuse baseline.
 
 use super::compute::ComputePass;
-use super::{binding, PassLayout, FRAME_BINDING};
+use super::{binding, PassId, PassLayout, FRAME_BINDING};
 use crate::error::Result;
 use crate::renderer::targets::Targets;
 use crate::shaders::{self, DescriptorKind, ReflectedBinding};
@@ -19,7 +19,7 @@ const BINDINGS: &[ReflectedBinding] = &[
 
 pub fn layout() -> PassLayout {
     PassLayout {
-        pass: "blur",
+        pass: PassId::Blur,
         modules: vec![&shaders::BLUR_COMP],
         declared: BINDINGS.to_vec(),
     }
@@ -31,7 +31,7 @@ pub struct BlurPass {
 
 impl BlurPass {
     pub fn new(ctx: &Arc<Context>, pool: &DescriptorPool) -> Result<Self> {
-        let pass = ComputePass::new(ctx, pool, "blur", &shaders::BLUR_COMP, BINDINGS)?;
+        let pass = ComputePass::new(ctx, pool, PassId::Blur, &shaders::BLUR_COMP, BINDINGS)?;
         Ok(Self { pass })
     }
 

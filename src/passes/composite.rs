@@ -2,7 +2,7 @@
 //! RGBA8 output. One permutation per effect combination, so disabled effects are not read.
 
 use super::compute::ComputePass;
-use super::{binding, PassLayout, FRAME_BINDING};
+use super::{binding, PassId, PassLayout, FRAME_BINDING};
 use crate::error::Result;
 use crate::renderer::config::Effects;
 use crate::renderer::targets::Targets;
@@ -53,7 +53,7 @@ pub fn layouts() -> Vec<PassLayout> {
             };
             let (module, declared) = variant(effects);
             PassLayout {
-                pass: "composite",
+                pass: PassId::Composite,
                 modules: vec![module],
                 declared,
             }
@@ -69,7 +69,7 @@ pub struct CompositePass {
 impl CompositePass {
     pub fn new(ctx: &Arc<Context>, pool: &DescriptorPool, effects: Effects) -> Result<Self> {
         let (module, declared) = variant(effects);
-        let pass = ComputePass::new(ctx, pool, "composite", module, &declared)?;
+        let pass = ComputePass::new(ctx, pool, PassId::Composite, module, &declared)?;
         Ok(Self { pass, effects })
     }
 

@@ -1,6 +1,7 @@
 //! What every full-screen compute pass shares: one pipeline and a descriptor set per frame
 //! parity (the G-buffer position and the histories are ping-ponged).
 
+use super::PassId;
 use crate::error::Result;
 use crate::shaders::{ReflectedBinding, ShaderModuleInfo};
 use crate::vk::cmd::Recorder;
@@ -17,23 +18,29 @@ impl ComputePass {
     pub fn new(
         ctx: &Arc<Context>,
         pool: &DescriptorPool,
-        name: &'static str,
+        pass: PassId,
         module: &ShaderModuleInfo,
         bindings: &[ReflectedBinding],
     ) -> Result<Self> {
+        let name = pass.name();
         let pipeline = Pipeline::compute(ctx, name, module, bindings)?;
         let sets = [
-            pool.allocate(pipeline.set_layouts[1])?,
-            pool.allocate(pipeline.set_layouts[1])?,
+            pool.allocate(pipeline.set_layouts[1], &format!("{name} set 1 parity 0"))?,
+            pool.allocate(pipeline.set_layouts[1], &format!("{name} set 1 parity 1"))?,
         ];
         Ok(Self { pipeline, sets })
     }
 
     /// Two more sets with this pipeline's set-1 layout (for per-effect bindings).
-    pub fn allocate_sets(&self, pool: &DescriptorPool) -> Result<[vk::DescriptorSet; 2]> {
+    pub fn allocate_sets(
+        &self,
+        pool: &DescriptorPool,
+        name: &str,
+    ) -> Result<[vk::DescriptorSet; 2]> {
+        let layout = self.pipeline.set_layouts[1];
         Ok([
-            pool.allocate(self.pipeline.set_layouts[1])?,
-            pool.allocate(self.pipeline.set_layouts[1])?,
+            pool.allocate(layout, &format!("{name} parity 0"))?,
+            pool.allocate(layout, &format!("{name} parity 1"))?,
         ])
     }
 

@@ -2,7 +2,7 @@
 //! Output: rgb = outgoing diffuse radiance albedo/pi * E * V, a = PCF visibility V.
 
 use super::compute::ComputePass;
-use super::{binding, PassLayout, FRAME_BINDING};
+use super::{binding, PassId, PassLayout, FRAME_BINDING};
 use crate::error::Result;
 use crate::renderer::targets::Targets;
 use crate::shaders::{self, DescriptorKind, ReflectedBinding};
@@ -22,7 +22,7 @@ const BINDINGS: &[ReflectedBinding] = &[
 
 pub fn layout() -> PassLayout {
     PassLayout {
-        pass: "direct",
+        pass: PassId::Direct,
         modules: vec![&shaders::DIRECT_COMP],
         declared: BINDINGS.to_vec(),
     }
@@ -36,8 +36,8 @@ pub struct DirectPass {
 
 impl DirectPass {
     pub fn new(ctx: &Arc<Context>, pool: &DescriptorPool) -> Result<Self> {
-        let pass = ComputePass::new(ctx, pool, "direct", &shaders::DIRECT_COMP, BINDINGS)?;
-        let history_sets = pass.allocate_sets(pool)?;
+        let pass = ComputePass::new(ctx, pool, PassId::Direct, &shaders::DIRECT_COMP, BINDINGS)?;
+        let history_sets = pass.allocate_sets(pool, "direct shadow-history set 1")?;
         Ok(Self { pass, history_sets })
     }
 

@@ -2,6 +2,7 @@
 //! eye), albedo, and depth, from the camera.
 
 use super::raster::{MaterialPipelines, RasterModules, FLAT_BINDINGS, TEXTURED_BINDINGS};
+use super::PassId;
 use super::PassLayout;
 use crate::error::Result;
 use crate::renderer::scene_gpu::SceneGpu;
@@ -21,12 +22,12 @@ const MODULES: RasterModules = RasterModules {
 pub fn layouts() -> Vec<PassLayout> {
     vec![
         PassLayout {
-            pass: "gbuffer",
+            pass: PassId::GBuffer,
             modules: vec![MODULES.vertex, MODULES.flat],
             declared: FLAT_BINDINGS.to_vec(),
         },
         PassLayout {
-            pass: "gbuffer",
+            pass: PassId::GBuffer,
             modules: vec![MODULES.vertex, MODULES.textured],
             declared: TEXTURED_BINDINGS.to_vec(),
         },
@@ -41,7 +42,7 @@ impl GBufferPass {
     pub fn new(ctx: &Arc<Context>, textured: bool) -> Result<Self> {
         let pipelines = MaterialPipelines::new(
             ctx,
-            "gbuffer",
+            PassId::GBuffer,
             &MODULES,
             &GBUFFER_COLOR_FORMATS,
             DEPTH_FORMAT,

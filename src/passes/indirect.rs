@@ -4,7 +4,7 @@
 //! into the indirect history. Without half resolution, one full-resolution gather per block.
 
 use super::compute::ComputePass;
-use super::{binding, PassLayout, FRAME_BINDING};
+use super::{binding, PassId, PassLayout, FRAME_BINDING};
 use crate::error::Result;
 use crate::renderer::counters::FIXUP_DISPATCH_OFFSET;
 use crate::renderer::effect::TemporalEffect;
@@ -52,21 +52,37 @@ fn gather_bindings() -> Vec<ReflectedBinding> {
 }
 
 pub fn layouts() -> Vec<PassLayout> {
-    let layout = |module, declared| PassLayout {
-        pass: "indirect",
+    let layout = |pass, module, declared| PassLayout {
+        pass,
         modules: vec![module],
         declared,
     };
     vec![
-        layout(&shaders::INDIRECT_LOWRES_COMP, lowres_bindings()),
-        layout(&shaders::INDIRECT_UPSAMPLE_COMP, upsample_bindings()),
-        layout(&shaders::INDIRECT_GATHER_COMP_FIXUP, gather_bindings()),
-        layout(&shaders::INDIRECT_GATHER_COMP_BLOCKS, gather_bindings()),
+        layout(
+            PassId::IndirectGather,
+            &shaders::INDIRECT_LOWRES_COMP,
+            lowres_bindings(),
+        ),
+        layout(
+            PassId::IndirectUpsample,
+            &shaders::INDIRECT_UPSAMPLE_COMP,
+            upsample_bindings(),
+        ),
+        layout(
+            PassId::IndirectFixup,
+            &shaders::INDIRECT_GATHER_COMP_FIXUP,
+            gather_bindings(),
+        ),
+        layout(
+            PassId::IndirectGather,
+            &shaders::INDIRECT_GATHER_COMP_BLOCKS,
+            gather_bindings(),
+        ),
     ]
 }
 
 /// Records a sub-pass between the timestamps of the named timing row.
-pub type TimedFn<'a> = dyn FnMut(&'static str, &mut Tracker, &mut dyn FnMut(&mut Tracker)) + 'a;
+pub type TimedFn<'a> = dyn FnMut(PassId, &mut Tracker, &mut dyn FnMut(&mut Tracker)) + 'a;
 
 /// The indirect effect's own size-dependent resources.
 pub struct IndirectTargets {
@@ -90,28 +106,28 @@ impl IndirectPass {
             lowres: ComputePass::new(
                 ctx,
                 pool,
-                "indirect_gather",
+                PassId::IndirectGather,
                 &shaders::INDIRECT_LOWRES_COMP,
                 &lowres_bindings(),
             )?,
             upsample: ComputePass::new(
                 ctx,
                 pool,
-                "indirect_upsample",
+                PassId::IndirectUpsample,
                 &shaders::INDIRECT_UPSAMPLE_COMP,
                 &upsample_bindings(),
             )?,
             fixup: ComputePass::new(
                 ctx,
                 pool,
-                "indirect_fixup",
+                PassId::IndirectFixup,
                 &shaders::INDIRECT_GATHER_COMP_FIXUP,
                 &gather_bindings(),
             )?,
             blocks: ComputePass::new(
                 ctx,
                 pool,
-                "indirect_gather",
+                PassId::IndirectGather,
                 &shaders::INDIRECT_GATHER_COMP_BLOCKS,
                 &gather_bindings(),
             )?,
@@ -187,7 +203,7 @@ impl IndirectPass {
         let history = &e.history[parity];
         let counters = &e.counters;
         if !self.half_res {
-            timed("indirect_gather", tracker, &mut |tr| {
+            timed(PassId::IndirectGather, tracker, &mut |tr| {
                 Self::read_inputs(tr, t, parity);
                 tr.image(&e.state, Access::ComputeStorageRead);
                 tr.image(history, Access::ComputeStorageReadWrite);
@@ -199,7 +215,7 @@ impl IndirectPass {
             });
             return;
         }
-        timed("indirect_gather", tracker, &mut |tr| {
+        timed(PassId::IndirectGather, tracker, &mut |tr| {
             Self::read_inputs(tr, t, parity);
             tr.buffer(counters, Access::IndirectCommandRead);
             tr.buffer(counters, Access::ComputeStorageReadWrite);
@@ -208,7 +224,7 @@ impl IndirectPass {
             self.lowres
                 .dispatch_indirect(rec, frame_set, parity, counters, 0, push);
         });
-        timed("indirect_upsample", tracker, &mut |tr| {
+        timed(PassId::IndirectUpsample, tracker, &mut |tr| {
             Self::read_inputs(tr, t, parity);
             tr.buffer(&own.lowres, Access::ComputeStorageRead);
             tr.image(&e.state, Access::ComputeStorageRead);
@@ -220,7 +236,7 @@ impl IndirectPass {
             self.upsample
                 .dispatch_indirect(rec, frame_set, parity, counters, 0, push);
         });
-        timed("indirect_fixup", tracker, &mut |tr| {
+        timed(PassId::IndirectFixup, tracker, &mut |tr| {
             Self::read_inputs(tr, t, parity);
             tr.image(&e.state, Access::ComputeStorageRead);
             tr.image(history, Access::ComputeStorageReadWrite);

@@ -2,6 +2,7 @@
 //! depth, which is also the shadow map. Rendered only when the light or geometry changed.
 
 use super::raster::{MaterialPipelines, RasterModules, FLAT_BINDINGS, TEXTURED_BINDINGS};
+use super::PassId;
 use super::PassLayout;
 use crate::error::Result;
 use crate::renderer::scene_gpu::SceneGpu;
@@ -21,12 +22,12 @@ const MODULES: RasterModules = RasterModules {
 pub fn layouts() -> Vec<PassLayout> {
     vec![
         PassLayout {
-            pass: "light_view",
+            pass: PassId::LightView,
             modules: vec![MODULES.vertex, MODULES.flat],
             declared: FLAT_BINDINGS.to_vec(),
         },
         PassLayout {
-            pass: "light_view",
+            pass: PassId::LightView,
             modules: vec![MODULES.vertex, MODULES.textured],
             declared: TEXTURED_BINDINGS.to_vec(),
         },
@@ -41,7 +42,7 @@ impl LightViewPass {
     pub fn new(ctx: &Arc<Context>, textured: bool) -> Result<Self> {
         let pipelines = MaterialPipelines::new(
             ctx,
-            "light_view",
+            PassId::LightView,
             &MODULES,
             &RSM_COLOR_FORMATS,
             DEPTH_FORMAT,

@@ -14,19 +14,20 @@ pub mod ssao;
 
 use crate::shaders::{DescriptorKind, ReflectedBinding, ShaderModuleInfo};
 
-/// The passes of one frame, in recording order.
+/// The passes of one frame, in recording order (`ALL` lists them in the same order). Their
+/// names are the timing report's rows, the command labels and the pipelines' debug names.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum PassId {
     /// Reflective shadow map + shadow depth from the spot light (only when light/geometry change).
     LightView,
     /// Camera G-buffer MRT.
     GBuffer,
+    /// Reverse reprojection: disocclusion test, history resampling, work list.
+    Reproject,
     /// PCF shadow visibility (every frame, or accumulated with the cache).
     Shadow,
     /// Direct spot light times the shadow visibility.
     Direct,
-    /// Reverse reprojection: disocclusion test, history resampling, work list.
-    Reproject,
     /// Screen-space ambient occlusion.
     Ssao,
     /// 5x5 Gaussian blur of the AO (no-reuse baseline only).
@@ -92,7 +93,7 @@ pub(crate) const fn binding(set: u32, binding: u32, kind: DescriptorKind) -> Ref
 
 /// One pipeline of a pass: the modules it is built from and the layout the pass declares.
 pub struct PassLayout {
-    pub pass: &'static str,
+    pub pass: PassId,
     pub modules: Vec<&'static ShaderModuleInfo>,
     pub declared: Vec<ReflectedBinding>,
 }

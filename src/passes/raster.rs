@@ -1,6 +1,7 @@
 //! What the two raster passes (light view and G-buffer) share: the vertex layout, the two
 //! material permutations (flat colour / textured) and the draw loop over material ranges.
 
+use super::PassId;
 use crate::error::Result;
 use crate::renderer::scene_gpu::SceneGpu;
 use crate::shaders::{DescriptorKind, ReflectedBinding, ShaderModuleInfo};
@@ -63,7 +64,7 @@ pub struct RasterModules {
 impl MaterialPipelines {
     pub fn new(
         ctx: &Arc<Context>,
-        name: &'static str,
+        pass: PassId,
         modules: &RasterModules,
         color_formats: &[vk::Format],
         depth_format: vk::Format,
@@ -77,6 +78,7 @@ impl MaterialPipelines {
             color_formats,
             depth_format,
         };
+        let name = pass.name();
         let flat = Pipeline::graphics(ctx, name, &desc(modules.flat), FLAT_BINDINGS)?;
         let textured = if textured {
             Some(Pipeline::graphics(

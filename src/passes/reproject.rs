@@ -2,7 +2,7 @@
 //! history resampling, the disocclusion count and the effect's list of blocks needing work.
 
 use super::compute::ComputePass;
-use super::{binding, PassLayout, FRAME_BINDING};
+use super::{binding, PassId, PassLayout, FRAME_BINDING};
 use crate::error::Result;
 use crate::renderer::effect::TemporalEffect;
 use crate::renderer::targets::Targets;
@@ -25,7 +25,7 @@ const BINDINGS: &[ReflectedBinding] = &[
 
 pub fn layout() -> PassLayout {
     PassLayout {
-        pass: "reproject",
+        pass: PassId::Reproject,
         modules: vec![&shaders::REPROJECT_COMP],
         declared: BINDINGS.to_vec(),
     }
@@ -37,13 +37,24 @@ pub struct ReprojectPass {
 
 impl ReprojectPass {
     pub fn new(ctx: &Arc<Context>, pool: &DescriptorPool) -> Result<Self> {
-        let pass = ComputePass::new(ctx, pool, "reproject", &shaders::REPROJECT_COMP, BINDINGS)?;
+        let pass = ComputePass::new(
+            ctx,
+            pool,
+            PassId::Reproject,
+            &shaders::REPROJECT_COMP,
+            BINDINGS,
+        )?;
         Ok(Self { pass })
     }
 
     /// Descriptor sets for one more effect (one per parity).
-    pub fn allocate_sets(&self, pool: &DescriptorPool) -> Result<[vk::DescriptorSet; 2]> {
-        self.pass.allocate_sets(pool)
+    pub fn allocate_sets(
+        &self,
+        pool: &DescriptorPool,
+        effect: &str,
+    ) -> Result<[vk::DescriptorSet; 2]> {
+        self.pass
+            .allocate_sets(pool, &format!("reproject {effect} set 1"))
     }
 
     pub fn bind_targets(&self, ctx: &Context, t: &Targets, effect: &TemporalEffect) {

@@ -3,7 +3,7 @@
 //! 9-sample disc rotated and scaled per frame and accumulated over the blocks that need work.
 
 use super::compute::ComputePass;
-use super::{binding, PassLayout, FRAME_BINDING};
+use super::{binding, PassId, PassLayout, FRAME_BINDING};
 use crate::error::Result;
 use crate::renderer::effect::TemporalEffect;
 use crate::renderer::targets::Targets;
@@ -34,12 +34,12 @@ const ACCUMULATE: &[ReflectedBinding] = &[
 pub fn layouts() -> Vec<PassLayout> {
     vec![
         PassLayout {
-            pass: "shadow",
+            pass: PassId::Shadow,
             modules: vec![&shaders::SHADOW_FULL_COMP],
             declared: FULL.to_vec(),
         },
         PassLayout {
-            pass: "shadow",
+            pass: PassId::Shadow,
             modules: vec![&shaders::SHADOW_ACCUMULATE_COMP],
             declared: ACCUMULATE.to_vec(),
         },
@@ -58,12 +58,12 @@ impl ShadowPass {
             ComputePass::new(
                 ctx,
                 pool,
-                "shadow",
+                PassId::Shadow,
                 &shaders::SHADOW_ACCUMULATE_COMP,
                 ACCUMULATE,
             )?
         } else {
-            ComputePass::new(ctx, pool, "shadow", &shaders::SHADOW_FULL_COMP, FULL)?
+            ComputePass::new(ctx, pool, PassId::Shadow, &shaders::SHADOW_FULL_COMP, FULL)?
         };
         Ok(Self { pass, reuse })
     }

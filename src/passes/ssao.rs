@@ -3,7 +3,7 @@
 //! Without reuse: every pixel with a fixed pattern (or many patterns, for references).
 
 use super::compute::ComputePass;
-use super::{binding, PassLayout, FRAME_BINDING};
+use super::{binding, PassId, PassLayout, FRAME_BINDING};
 use crate::error::Result;
 use crate::renderer::effect::TemporalEffect;
 use crate::renderer::targets::Targets;
@@ -35,12 +35,12 @@ const FULL: &[ReflectedBinding] = &[
 pub fn layouts() -> Vec<PassLayout> {
     vec![
         PassLayout {
-            pass: "ssao",
+            pass: PassId::Ssao,
             modules: vec![&shaders::SSAO_ACCUMULATE_COMP],
             declared: ACCUMULATE.to_vec(),
         },
         PassLayout {
-            pass: "ssao",
+            pass: PassId::Ssao,
             modules: vec![&shaders::SSAO_FULL_COMP],
             declared: FULL.to_vec(),
         },
@@ -58,12 +58,12 @@ impl SsaoPass {
             ComputePass::new(
                 ctx,
                 pool,
-                "ssao",
+                PassId::Ssao,
                 &shaders::SSAO_ACCUMULATE_COMP,
                 ACCUMULATE,
             )?
         } else {
-            ComputePass::new(ctx, pool, "ssao", &shaders::SSAO_FULL_COMP, FULL)?
+            ComputePass::new(ctx, pool, PassId::Ssao, &shaders::SSAO_FULL_COMP, FULL)?
         };
         Ok(Self { pass, reuse })
     }

@@ -1,7 +1,7 @@
 //! What a run renders: size, effects and their parameters. Parsed from the command line,
 //! validated here (absurd values get a clear error, never a silent clamp).
 
-use super::frame::Pcf;
+use super::pcf::Pcf;
 use crate::error::{Error, Result};
 use serde::Serialize;
 
@@ -62,6 +62,13 @@ pub struct IndirectConfig {
     pub visibility: bool,
     /// Gather at half resolution, upsample geometry-aware, fix up discarded pixels.
     pub half_res: bool,
+}
+
+impl IndirectConfig {
+    /// Nearest step of each VPL's screen-space visibility march [px]: eq 8's log spacing
+    /// starting one and a half pixels out, like SSAO's default, so the march leaves the
+    /// receiver's own pixel before testing depth.
+    pub const MARCH_NEAR_PX: f32 = 1.5;
 }
 
 impl Default for IndirectConfig {

@@ -1,22 +1,41 @@
-//! Per-effect GPU counters (mirrors shaders/include/counters.glsl): written by atomics during
-//! the frame, the header copied to a per-slot host buffer at the frame's end and read when the
-//! slot comes round again, like the timestamps, so reading never stalls.
+//! Per-effect GPU counters (`Counters` in shaders/include/counters.glsl, whose header build.rs
+//! generates as `CountersHeader`): written by atomics during the frame, the header copied to a
+//! per-slot host buffer at the frame's end and read when the slot comes round again, like the
+//! timestamps, so reading never stalls.
 
 use crate::error::Result;
+use crate::shaders::CountersHeader;
 use crate::vk::cmd::Recorder;
 use crate::vk::{Access, Buffer, Context, Tracker};
 use ash::vk;
 use gpu_allocator::MemoryLocation;
 use std::sync::Arc;
 
-/// Header words before the work lists.
-pub const HEADER_WORDS: usize = 16;
-/// Word offsets of the header fields.
-pub const DISOCCLUDED: usize = 3;
-pub const COMPUTED: usize = 4;
-pub const FIXUP: usize = 5;
+/// Bytes of the header before the work lists.
+const HEADER_BYTES: u64 = CountersHeader::SIZE as u64;
 /// Byte offset of the fix-up pass's indirect dispatch arguments.
-pub const FIXUP_DISPATCH_OFFSET: u64 = 8 * 4;
+pub const FIXUP_DISPATCH_OFFSET: u64 = CountersHeader::OFFSET_FIXUP_DISPATCH_X as u64;
+
+/// A header field an effect reports.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Counter {
+    /// Pixels that failed eq 3 or had no history.
+    Disoccluded,
+    /// Pixels the effect evaluated (low-resolution ones at half resolution).
+    Computed,
+    /// Full-resolution fix-ups.
+    Fixup,
+}
+
+impl Counter {
+    fn read(self, h: &CountersHeader) -> u32 {
+        match self {
+            Counter::Disoccluded => h.disoccluded_pixels,
+            Counter::Computed => h.computed_pixels,
+            Counter::Fixup => h.fixup_pixels,
+        }
+    }
+}
 
 /// The device-side buffer: header, one entry per work block, then (when `fixups`) one entry
 /// per pixel for the fix-up list.
@@ -29,7 +48,7 @@ pub fn create_gpu_buffer(
     Buffer::new(
         ctx,
         name,
-        (HEADER_WORDS as u64 + max_blocks as u64 + fixups as u64) * 4,
+        HEADER_BYTES + (max_blocks as u64 + fixups as u64) * 4,
         vk::BufferUsageFlags::STORAGE_BUFFER
             | vk::BufferUsageFlags::INDIRECT_BUFFER
             | vk::BufferUsageFlags::TRANSFER_DST
@@ -42,20 +61,25 @@ pub fn create_gpu_buffer(
 pub fn record_reset(rec: &Recorder<'_>, tracker: &mut Tracker, gpu: &Buffer, max_blocks: u32) {
     tracker.buffer(gpu, Access::TransferDst);
     tracker.flush(rec.device, rec.cmd);
-    let mut header = [0u32; HEADER_WORDS];
-    header[1] = 1;
-    header[2] = 1;
-    header[6] = max_blocks;
-    header[9] = 1;
-    header[10] = 1;
-    let bytes: Vec<u8> = header.iter().flat_map(|w| w.to_le_bytes()).collect();
-    rec.update_buffer(gpu, &bytes);
+    let header = CountersHeader {
+        dispatch_x: 0,
+        dispatch_y: 1,
+        dispatch_z: 1,
+        disoccluded_pixels: 0,
+        computed_pixels: 0,
+        fixup_pixels: 0,
+        max_blocks,
+        fixup_dispatch_x: 0,
+        fixup_dispatch_y: 1,
+        fixup_dispatch_z: 1,
+    };
+    rec.update_buffer(gpu, &header.to_bytes());
 }
 
 /// Host copies of a counters header, one per frame slot, and which fields each frame reports.
 pub struct CounterReadback {
     buffers: Vec<Buffer>,
-    pending: Vec<Option<&'static [(&'static str, usize)]>>,
+    pending: Vec<Option<&'static [(&'static str, Counter)]>>,
 }
 
 impl CounterReadback {
@@ -65,7 +89,7 @@ impl CounterReadback {
             buffers.push(Buffer::new(
                 ctx,
                 "counters.readback",
-                (HEADER_WORDS * 4) as u64,
+                HEADER_BYTES,
                 vk::BufferUsageFlags::TRANSFER_DST,
                 MemoryLocation::GpuToCpu,
             )?);
@@ -84,13 +108,13 @@ impl CounterReadback {
         tracker: &mut Tracker,
         gpu: &Buffer,
         slot: usize,
-        fields: &'static [(&'static str, usize)],
+        fields: &'static [(&'static str, Counter)],
     ) {
         let host = &self.buffers[slot];
         tracker.buffer(gpu, Access::TransferSrc);
         tracker.buffer(host, Access::TransferDst);
         tracker.flush(rec.device, rec.cmd);
-        rec.copy_buffer(gpu, host, (HEADER_WORDS * 4) as u64);
+        rec.copy_buffer(gpu, host, HEADER_BYTES);
         tracker.buffer(host, Access::HostRead);
         tracker.flush(rec.device, rec.cmd);
         self.pending[slot] = Some(fields);
@@ -101,20 +125,17 @@ impl CounterReadback {
         let Some(fields) = self.pending[slot].take() else {
             return Vec::new();
         };
-        let Some(bytes) = self.buffers[slot].mapped() else {
+        let Some(header) = self.buffers[slot]
+            .mapped()
+            .and_then(|b| b.get(..CountersHeader::SIZE))
+            .and_then(|b| b.try_into().ok())
+            .map(CountersHeader::from_bytes)
+        else {
             return Vec::new();
         };
         fields
             .iter()
-            .map(|&(name, i)| {
-                let w = [
-                    bytes[4 * i],
-                    bytes[4 * i + 1],
-                    bytes[4 * i + 2],
-                    bytes[4 * i + 3],
-                ];
-                (name, u32::from_le_bytes(w) as u64)
-            })
+            .map(|&(name, c)| (name, c.read(&header) as u64))
             .collect()
     }
 }

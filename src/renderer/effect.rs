@@ -2,10 +2,11 @@
 //! lists and counters, refresh schedule and the push constants its passes share. The
 //! reprojection pass and the accumulation rules are the same for every effect.
 
-use super::counters::{self, CounterReadback};
+use super::counters::{self, Counter, CounterReadback};
 use super::targets::{AO_FORMAT, STATE_FORMAT};
 use super::temporal::RefreshSchedule;
 use crate::error::Result;
+use crate::shaders::EffectPush;
 use crate::vk::cmd::Recorder;
 use crate::vk::{Buffer, Context, Image, ImageDesc, Tracker};
 use ash::vk;
@@ -20,7 +21,7 @@ pub struct EffectKind {
     /// Side of the refresh tile (the thesis: 64 for SSAO and shadows, 16 for indirect light).
     pub refresh_tile: u32,
     /// Report names of the header words (see counters.rs) this effect fills.
-    pub counters: &'static [(&'static str, usize)],
+    pub counters: &'static [(&'static str, Counter)],
     /// Whether the effect has a full-resolution fix-up list.
     pub fixups: bool,
 }
@@ -30,8 +31,8 @@ pub const AO: EffectKind = EffectKind {
     block_shift: 3,
     refresh_tile: 64,
     counters: &[
-        ("disoccluded_pixels", counters::DISOCCLUDED),
-        ("ssao_computed_pixels", counters::COMPUTED),
+        ("disoccluded_pixels", Counter::Disoccluded),
+        ("ssao_computed_pixels", Counter::Computed),
     ],
     fixups: false,
 };
@@ -40,7 +41,7 @@ pub const SHADOW: EffectKind = EffectKind {
     name: "shadow",
     block_shift: 3,
     refresh_tile: 64,
-    counters: &[("shadow_computed_pixels", counters::COMPUTED)],
+    counters: &[("shadow_computed_pixels", Counter::Computed)],
     fixups: false,
 };
 
@@ -49,8 +50,8 @@ pub const INDIRECT: EffectKind = EffectKind {
     block_shift: 4,
     refresh_tile: 16,
     counters: &[
-        ("indirect_computed_pixels", counters::COMPUTED),
-        ("indirect_fixup_pixels", counters::FIXUP),
+        ("indirect_computed_pixels", Counter::Computed),
+        ("indirect_fixup_pixels", Counter::Fixup),
     ],
     fixups: true,
 };
@@ -125,23 +126,15 @@ impl TemporalEffect {
         refresh: Option<(u32, u32)>,
         history_valid: bool,
         pattern: u32,
-    ) -> [u8; 32] {
+    ) -> EffectPush {
         let (x, y) = refresh.unwrap_or((u32::MAX, u32::MAX));
-        let words = [
-            x,
-            y,
-            self.kind.refresh_tile,
-            history_valid as u32,
-            self.kind.block_shift,
+        EffectPush {
+            refresh_origin: [x, y],
+            refresh_tile: self.kind.refresh_tile,
+            history_valid: history_valid as u32,
+            block_shift: self.kind.block_shift,
             pattern,
-            0,
-            0,
-        ];
-        let mut out = [0u8; 32];
-        for (i, w) in words.iter().enumerate() {
-            out[4 * i..4 * i + 4].copy_from_slice(&w.to_le_bytes());
         }
-        out
     }
 
     pub fn reset_counters(&self, rec: &Recorder<'_>, tracker: &mut Tracker) {

@@ -8,6 +8,7 @@ pub mod config;
 pub mod counters;
 pub mod effect;
 pub mod frame;
+pub mod pcf;
 pub mod scene_gpu;
 pub mod targets;
 pub mod temporal;
@@ -24,6 +25,7 @@ use crate::passes::shadow::ShadowPass;
 use crate::passes::ssao::SsaoPass;
 use crate::passes::PassId;
 use crate::scene::{Camera, Scene, SpotLight};
+use crate::shaders::EffectPush;
 use crate::vk::cmd::Recorder;
 use crate::vk::{
     read_image, upload_image, Access, Buffer, Context, DescriptorPool, FrameSlots, FrameTiming,
@@ -32,9 +34,10 @@ use crate::vk::{
 use ash::vk;
 pub use config::{RenderConfig, MAX_SIZE};
 use effect::TemporalEffect;
-use frame::{FrameInputs, FrameUniforms, PcfKernel};
+use frame::{frame_block, FrameBlock, FrameInputs};
 use glam::Mat4;
 use gpu_allocator::MemoryLocation;
+use pcf::PcfKernel;
 use scene_gpu::SceneGpu;
 use std::sync::Arc;
 use targets::{Target, Targets};
@@ -48,14 +51,6 @@ pub struct FrameHook<'a> {
     /// Which target `record` receives: `Target::Output` (the final RGBA8 image), or another
     /// one for the viewer's buffer display.
     pub source: Target,
-}
-
-/// The pass whose timing row is `name` (sub-passes report by name).
-fn name_to_pass(name: &str) -> PassId {
-    PassId::ALL
-        .into_iter()
-        .find(|p| p.name() == name)
-        .unwrap_or(PassId::IndirectGather)
 }
 
 /// Frames the CPU may record ahead of the GPU.
@@ -113,6 +108,8 @@ pub struct Renderer {
     rsm_light: Option<SpotLight>,
     /// Last frame's camera view-projection, when the histories hold last frame's data.
     history: Option<Mat4>,
+    /// The last pass recorded into each slot's command buffer (device-loss reports).
+    last_pass: [Option<PassId>; FRAMES_IN_FLIGHT],
     _pool: DescriptorPool,
 }
 
@@ -190,18 +187,18 @@ impl Renderer {
             let uniforms = Buffer::new(
                 ctx,
                 "frame.uniforms",
-                FrameUniforms::SIZE as u64,
+                FrameBlock::SIZE as u64,
                 vk::BufferUsageFlags::UNIFORM_BUFFER,
                 MemoryLocation::CpuToGpu,
             )?;
-            let set = pool.allocate(frame_layout)?;
+            let set = pool.allocate(frame_layout, "frame.uniforms set 0")?;
             SetWriter::new().uniform(0, &uniforms).write(ctx, set);
             frames.push(FrameResources { uniforms, set });
         }
         let effect_sets = EffectSets {
-            ao: reproject.allocate_sets(&pool)?,
-            shadow: reproject.allocate_sets(&pool)?,
-            indirect: reproject.allocate_sets(&pool)?,
+            ao: reproject.allocate_sets(&pool, "ao")?,
+            shadow: reproject.allocate_sets(&pool, "shadow")?,
+            indirect: reproject.allocate_sets(&pool, "indirect")?,
         };
         let sized = Self::create_sized(ctx, &config, &effect_sets)?;
         let renderer = Self {
@@ -227,6 +224,7 @@ impl Renderer {
             frame_index: 0,
             rsm_light: None,
             history: None,
+            last_pass: [None; FRAMES_IN_FLIGHT],
             _pool: pool,
         };
         renderer.bind_targets();
@@ -420,7 +418,12 @@ impl Renderer {
     ) -> Result<Option<FrameTiming>> {
         let slot = (self.frame_index % FRAMES_IN_FLIGHT as u64) as usize;
         let parity = (self.frame_index % 2) as usize;
-        let cmd = self.slots.begin(slot)?;
+        // A device loss shows when waiting for the slot's previous frame: name its last pass.
+        let cmd = self
+            .slots
+            .begin(slot)
+            .map_err(|e| e.lost_after(self.last_pass[slot].map(PassId::name)))?;
+        self.last_pass[slot] = None;
         let mut previous = self.timer.begin_frame(slot, self.frame_index);
         let mut counters = Vec::new();
         for e in self.effects_mut() {
@@ -432,7 +435,7 @@ impl Renderer {
         let c = self.config;
         let aspect = c.width as f32 / c.height as f32;
         let view_proj = camera.view_proj(aspect);
-        let uniforms = FrameUniforms::new(
+        let uniforms = frame_block(
             &c,
             &FrameInputs {
                 camera,
@@ -440,17 +443,13 @@ impl Renderer {
                 light: &self.scene.light,
                 ambient: self.scene.ambient,
                 frame: self.frame_index,
-                history_valid: self.history.is_some(),
                 scene_radius: self.scene.mesh.bounds.radius(),
             },
         );
         // Host write before submission: the submit makes it visible, no barrier needed.
-        self.frames[slot].uniforms.write(&uniforms.bytes())?;
+        self.frames[slot].uniforms.write(&uniforms.to_bytes())?;
         let frame_set = self.frames[slot].set;
-        let rec = Recorder {
-            device: &self.ctx.device,
-            cmd,
-        };
+        let rec = Recorder::new(&self.ctx, cmd);
         let reuse = c.temporal.reuse;
         let history_valid = reuse && self.history.is_some();
         let sources = self.sources();
@@ -459,7 +458,7 @@ impl Renderer {
         let effect_push = |e: &mut Option<TemporalEffect>| {
             e.as_mut().map(|e| {
                 let tile = (history_valid && c.temporal.refresh).then(|| e.schedule.next_tile());
-                e.push_constants(tile, history_valid, 0)
+                e.push_constants(tile, history_valid, 0).to_bytes()
             })
         };
         let ao_push = effect_push(&mut self.sized.ao);
@@ -472,7 +471,7 @@ impl Renderer {
             } else {
                 0
             };
-            e.push_constants(tile, history_valid, pattern)
+            e.push_constants(tile, history_valid, pattern).to_bytes()
         });
         let shadow_push = if shadow_reuse {
             effect_push(&mut self.sized.shadow)
@@ -484,17 +483,18 @@ impl Renderer {
         let t = &self.sized.targets;
         let tracker = &mut self.tracker;
         let timer = &mut self.timer;
-        let mut timed_name =
-            |name: &'static str, tracker: &mut Tracker, f: &mut dyn FnMut(&mut Tracker)| {
-                let began = timer.begin_pass(cmd, slot, name);
-                f(tracker);
-                if began {
-                    timer.end_pass(cmd, slot);
-                }
-            };
-
+        let last_pass = &mut self.last_pass[slot];
+        // Every pass inside its command label and its timestamps; the last one recorded is
+        // remembered for device-loss reports.
         let mut timed = |pass: PassId, tracker: &mut Tracker, f: &mut dyn FnMut(&mut Tracker)| {
-            timed_name(pass.name(), tracker, f)
+            rec.begin_label(pass.name());
+            let began = timer.begin_pass(cmd, slot, pass.name());
+            f(tracker);
+            if began {
+                timer.end_pass(cmd, slot);
+            }
+            rec.end_label();
+            *last_pass = Some(pass);
         };
 
         // Light view only when the light changed since the RSM was rendered (geometry is
@@ -512,7 +512,7 @@ impl Renderer {
                 .record(&rec, tr, frame_set, &self.scene_gpu, &t.gbuffer, parity)
         });
         // Reprojection of every temporal effect that reuses its history this frame.
-        let reprojected: Vec<(&TemporalEffect, &[u8; 32])> = [
+        let reprojected: Vec<(&TemporalEffect, &[u8; EffectPush::SIZE])> = [
             (self.sized.ao.as_ref(), ao_push.as_ref().filter(|_| reuse)),
             (self.sized.shadow.as_ref(), shadow_push.as_ref()),
             (
@@ -549,7 +549,7 @@ impl Renderer {
                 self.shadow_full.as_ref()
             };
             if let Some(pass) = shadow_pass {
-                let push = shadow_push.unwrap_or([0; 32]);
+                let push = shadow_push.unwrap_or([0; EffectPush::SIZE]);
                 timed(PassId::Shadow, tracker, &mut |tr| {
                     pass.record(
                         &rec,
@@ -567,7 +567,7 @@ impl Renderer {
             });
         }
         if let (Some(ao), Some(effect)) = (&self.ao, &self.sized.ao) {
-            let push = ao_push.unwrap_or([0; 32]);
+            let push = ao_push.unwrap_or([0; EffectPush::SIZE]);
             timed(PassId::Ssao, tracker, &mut |tr| {
                 ao.ssao
                     .record(&rec, tr, frame_set, parity, t, &ao.random, effect, &push)
@@ -595,7 +595,7 @@ impl Renderer {
                 e,
                 own,
                 push,
-                &mut |name, tr, f| timed(name_to_pass(name), tr, f),
+                &mut |pass, tr, f| timed(pass, tr, f),
             );
         }
         timed(PassId::Composite, tracker, &mut |tr| {
@@ -621,12 +621,16 @@ impl Renderer {
                 // frame's image of it; the output when the target does not exist in this run.
                 let source = sources.image(&self.sized, h.source, parity);
                 let output = &self.sized.targets.output;
+                rec.begin_label("frame_hook");
                 (h.record)(&rec, &mut self.tracker, source.unwrap_or(output));
+                rec.end_label();
                 h.sync.clone()
             }
             None => SubmitSync::default(),
         };
-        self.slots.submit_with(slot, &sync)?;
+        self.slots
+            .submit_with(slot, &sync)
+            .map_err(|e| e.lost_after(self.last_pass[slot].map(PassId::name)))?;
         self.history = Some(view_proj);
         self.frame_index += 1;
         Ok(previous)
@@ -634,7 +638,10 @@ impl Renderer {
 
     /// Wait for the GPU and return the timings not yet returned, oldest first.
     pub fn finish(&mut self) -> Result<Vec<FrameTiming>> {
-        self.slots.wait_all()?;
+        let newest = (self.frame_index.wrapping_sub(1) % FRAMES_IN_FLIGHT as u64) as usize;
+        self.slots
+            .wait_all()
+            .map_err(|e| e.lost_after(self.last_pass[newest].map(PassId::name)))?;
         let mut out = Vec::new();
         for slot in 0..FRAMES_IN_FLIGHT {
             let mut counters = Vec::new();

@@ -3,6 +3,7 @@
 
 use crate::error::{Error, Result};
 use crate::scene::{DrawRange, Mesh, TextureImage};
+use crate::shaders::MaterialPush;
 use crate::vk::{
     upload_buffer, upload_image, Access, Buffer, Context, DescriptorPool, Image, ImageDesc,
     Sampler, SetWriter, Tracker,
@@ -20,15 +21,11 @@ pub struct MaterialGpu {
 
 impl MaterialGpu {
     /// The `Material` push-constant block (vec4 albedo).
-    pub fn push_bytes(&self) -> [u8; 16] {
-        let mut out = [0u8; 16];
-        for (i, v) in [self.albedo[0], self.albedo[1], self.albedo[2], 1.0]
-            .iter()
-            .enumerate()
-        {
-            out[i * 4..i * 4 + 4].copy_from_slice(&v.to_le_bytes());
+    pub fn push_bytes(&self) -> [u8; MaterialPush::SIZE] {
+        MaterialPush {
+            albedo: [self.albedo[0], self.albedo[1], self.albedo[2], 1.0],
         }
-        out
+        .to_bytes()
     }
 }
 
@@ -117,7 +114,7 @@ impl SceneGpu {
         for m in &mesh.materials {
             let texture_set = match (&m.diffuse_texture, material_layout, &sampler) {
                 (Some(t), Some(layout), Some(s)) => {
-                    let set = pool.allocate(layout)?;
+                    let set = pool.allocate(layout, &format!("material {} texture set", m.name))?;
                     SetWriter::new()
                         .sampled(0, &textures[index_of[&Arc::as_ptr(t)]])
                         .sampler(1, s.raw)

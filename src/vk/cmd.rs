@@ -1,15 +1,36 @@
 //! Thin typed wrappers over the command-recording calls passes use, so pass code stays free of
 //! raw `unsafe`. Every function requires `cmd` to be in the recording state.
 
-use super::{Buffer, Image, Pipeline};
+use super::debug::DebugNames;
+use super::{Buffer, Context, Image, Pipeline};
 use ash::vk;
 
 pub struct Recorder<'a> {
     pub device: &'a ash::Device,
     pub cmd: vk::CommandBuffer,
+    names: &'a DebugNames,
 }
 
-impl Recorder<'_> {
+impl<'a> Recorder<'a> {
+    /// Record into `cmd` (in the recording state) on `ctx`'s device.
+    pub fn new(ctx: &'a Context, cmd: vk::CommandBuffer) -> Self {
+        Self {
+            device: &ctx.device,
+            cmd,
+            names: &ctx.names,
+        }
+    }
+
+    /// Open a debug label region `name` (a pass): validation messages, captures and device-loss
+    /// reports name it. Close it with [`Self::end_label`].
+    pub fn begin_label(&self, name: &str) {
+        self.names.begin_label(self.cmd, name);
+    }
+
+    pub fn end_label(&self) {
+        self.names.end_label(self.cmd);
+    }
+
     pub fn bind(&self, pipeline: &Pipeline, sets: &[vk::DescriptorSet]) {
         // SAFETY: recording; the pipeline and sets are live and the sets match its layout.
         unsafe {
@@ -100,6 +121,23 @@ impl Recorder<'_> {
         unsafe {
             self.device
                 .cmd_copy_buffer(self.cmd, src.raw, dst.raw, &region)
+        };
+    }
+
+    /// Copy the whole of `image` into the start of `buffer` (tightly packed texels). The tracker
+    /// must have put `image` in `Access::TransferSrc` and `buffer` in `Access::TransferDst`.
+    pub fn copy_image_to_buffer(&self, image: &Image, buffer: &Buffer) {
+        let region = image.copy_region();
+        // SAFETY: recording outside rendering; the image has TRANSFER_SRC usage and (caller)
+        // TRANSFER_SRC_OPTIMAL layout; the buffer is large enough for the region (caller).
+        unsafe {
+            self.device.cmd_copy_image_to_buffer(
+                self.cmd,
+                image.raw,
+                vk::ImageLayout::TRANSFER_SRC_OPTIMAL,
+                buffer.raw,
+                &[region],
+            )
         };
     }
 

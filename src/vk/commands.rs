@@ -45,7 +45,8 @@ impl FrameSlots {
         // SAFETY: the pool is live.
         let cmds = unsafe { ctx.device.allocate_command_buffers(&alloc) }
             .vk("vkAllocateCommandBuffers")?;
-        for cmd in cmds {
+        for (i, cmd) in cmds.into_iter().enumerate() {
+            ctx.names.set(cmd, &format!("frame slot {i}"));
             let info = vk::FenceCreateInfo::default().flags(vk::FenceCreateFlags::SIGNALED);
             // SAFETY: valid create info; destroyed in Drop.
             let fence = unsafe { ctx.device.create_fence(&info, None) }.vk("vkCreateFence")?;

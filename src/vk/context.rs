@@ -1,6 +1,7 @@
 //! The Vulkan context: instance, chosen physical device, logical device with the Vulkan 1.3
 //! features ssgi needs, one graphics+compute queue, the allocator and the deletion queue.
 
+use super::debug::DebugNames;
 use super::instance::{Instance, ValidationLog};
 use crate::error::{Error, Result, VkContext};
 use ash::vk;
@@ -70,6 +71,8 @@ pub struct Context {
     submitted: AtomicU64,
     completed: AtomicU64,
     garbage: Mutex<Vec<(u64, Garbage)>>,
+    /// Debug names and command labels (no-ops without `VK_EXT_debug_utils`).
+    pub names: DebugNames,
     pub instance: Instance,
 }
 
@@ -129,6 +132,7 @@ impl Context {
         // SAFETY: `physical` came from this instance; the create info references locals only.
         let device = unsafe { instance.raw.create_device(physical, &device_info, None) }
             .vk("vkCreateDevice")?;
+        let names = DebugNames::new(&instance.raw, &device, instance.debug_utils);
         // SAFETY: the family and index were requested in `queue_info`.
         let queue = unsafe { device.get_device_queue(queue_family, 0) };
         let allocator = Allocator::new(&AllocatorCreateDesc {
@@ -153,6 +157,7 @@ impl Context {
             submitted: AtomicU64::new(0),
             completed: AtomicU64::new(0),
             garbage: Mutex::new(Vec::new()),
+            names,
             instance,
         }))
     }

@@ -50,14 +50,21 @@ impl DescriptorPool {
         })
     }
 
-    pub fn allocate(&self, layout: vk::DescriptorSetLayout) -> Result<vk::DescriptorSet> {
+    /// One set of `layout`, debug-named `name`.
+    pub fn allocate(
+        &self,
+        layout: vk::DescriptorSetLayout,
+        name: &str,
+    ) -> Result<vk::DescriptorSet> {
         let layouts = [layout];
         let info = vk::DescriptorSetAllocateInfo::default()
             .descriptor_pool(self.raw)
             .set_layouts(&layouts);
         // SAFETY: pool and layout are live; sets die with the pool.
-        Ok(unsafe { self.ctx.device.allocate_descriptor_sets(&info) }
-            .vk("vkAllocateDescriptorSets")?[0])
+        let set = unsafe { self.ctx.device.allocate_descriptor_sets(&info) }
+            .vk("vkAllocateDescriptorSets")?[0];
+        self.ctx.names.set(set, name);
+        Ok(set)
     }
 }
 

@@ -51,7 +51,7 @@ unsafe extern "system" fn debug_callback(
 ) -> vk::Bool32 {
     // SAFETY: the layer passes a valid callback-data pointer for the duration of the call, and
     // `user` is the `ValidationLog` kept alive by the `Instance` that owns the messenger.
-    let (message, log) = unsafe {
+    let (message, context, log) = unsafe {
         let text = if data.is_null() || (*data).p_message.is_null() {
             "<no message>".to_string()
         } else {
@@ -59,17 +59,77 @@ unsafe extern "system" fn debug_callback(
                 .to_string_lossy()
                 .into_owned()
         };
-        (text, &*(user as *const ValidationLog))
+        let context = if data.is_null() {
+            String::new()
+        } else {
+            named_context(&*data)
+        };
+        (text, context, &*(user as *const ValidationLog))
     };
-    let line = format!("[{severity:?} {kind:?}] {message}");
+    let line = format!("[{severity:?} {kind:?}] {message}{context}");
     eprintln!("vulkan: {line}");
     log.push(line);
     vk::FALSE
 }
 
+/// The debug names of the objects and the open command labels of a message, e.g.
+/// ` [objects: VkImage "ao.history.0"] [labels: ssao]`, so a message always names what it is
+/// about even when the layer's text does not.
+///
+/// # Safety
+/// `data` must be the callback data the layer passed, valid for the duration of the call.
+unsafe fn named_context(data: &vk::DebugUtilsMessengerCallbackDataEXT<'_>) -> String {
+    let text = |p: *const std::ffi::c_char| {
+        // SAFETY: the layer's strings are NUL-terminated and live for the call (caller).
+        (!p.is_null()).then(|| unsafe { CStr::from_ptr(p) }.to_string_lossy().into_owned())
+    };
+    // SAFETY: the layer passes `object_count` valid elements at `p_objects` (caller).
+    let objects: Vec<String> = unsafe { raw_slice(data.p_objects, data.object_count) }
+        .iter()
+        .filter_map(|o| {
+            Some(format!(
+                "{:?} \"{}\"",
+                o.object_type,
+                text(o.p_object_name)?
+            ))
+        })
+        .collect();
+    // SAFETY: as above, `cmd_buf_label_count` labels at `p_cmd_buf_labels`.
+    let mut labels: Vec<String> =
+        unsafe { raw_slice(data.p_cmd_buf_labels, data.cmd_buf_label_count) }
+            .iter()
+            .filter_map(|l| text(l.p_label_name))
+            .collect();
+    // Some layer versions list the innermost region twice.
+    labels.dedup();
+    let mut out = String::new();
+    if !objects.is_empty() {
+        out += &format!(" [objects: {}]", objects.join(", "));
+    }
+    if !labels.is_empty() {
+        out += &format!(" [labels: {}]", labels.join(" > "));
+    }
+    out
+}
+
+/// `n` elements at `ptr`, or none when it is null.
+///
+/// # Safety
+/// A non-null `ptr` must point to `n` initialised elements that outlive `'a`.
+unsafe fn raw_slice<'a, T>(ptr: *const T, n: u32) -> &'a [T] {
+    if ptr.is_null() || n == 0 {
+        &[]
+    } else {
+        // SAFETY: guaranteed by the caller.
+        unsafe { std::slice::from_raw_parts(ptr, n as usize) }
+    }
+}
+
 pub struct Instance {
     pub entry: ash::Entry,
     pub raw: ash::Instance,
+    /// `VK_EXT_debug_utils` is enabled: objects can be named and passes labelled.
+    pub debug_utils: bool,
     debug: Option<(ext::debug_utils::Instance, vk::DebugUtilsMessengerEXT)>,
     /// Present when validation is on.
     pub validation: Option<Arc<ValidationLog>>,
@@ -87,6 +147,15 @@ impl Instance {
         let mut ext_names: Vec<*const std::ffi::c_char> = extensions.to_vec();
         let mut layers = Vec::new();
         let log = validation.then(|| Arc::new(ValidationLog::default()));
+        // Debug names and labels whenever the loader offers them (validation needs them too).
+        // SAFETY: plain enumeration call on a loaded entry.
+        let debug_utils = unsafe { entry.enumerate_instance_extension_properties(None) }
+            .vk("vkEnumerateInstanceExtensionProperties")?
+            .iter()
+            .any(|e| e.extension_name_as_c_str() == Ok(ext::debug_utils::NAME));
+        if debug_utils {
+            ext_names.push(ext::debug_utils::NAME.as_ptr());
+        }
         if validation {
             // SAFETY: plain enumeration call on a loaded entry.
             let available = unsafe { entry.enumerate_instance_layer_properties() }
@@ -101,7 +170,10 @@ impl Instance {
                 ));
             }
             layers.push(VALIDATION_LAYER.as_ptr());
-            ext_names.push(ext::debug_utils::NAME.as_ptr());
+            if !debug_utils {
+                // The layer provides the extension itself when the loader does not list it.
+                ext_names.push(ext::debug_utils::NAME.as_ptr());
+            }
             ext_names.push(ext::validation_features::NAME.as_ptr());
         }
         let enabled_features = [vk::ValidationFeatureEnableEXT::SYNCHRONIZATION_VALIDATION];
@@ -119,6 +191,7 @@ impl Instance {
         let mut instance = Instance {
             entry,
             raw,
+            debug_utils: debug_utils || validation,
             debug: None,
             validation: log,
         };

@@ -53,6 +53,7 @@ impl Buffer {
             .sharing_mode(vk::SharingMode::EXCLUSIVE);
         // SAFETY: valid create info; the buffer is destroyed through the deletion queue.
         let raw = unsafe { ctx.device.create_buffer(&info, None) }.vk("vkCreateBuffer")?;
+        ctx.names.set(raw, name);
         // SAFETY: `raw` was just created on this device.
         let req = unsafe { ctx.device.get_buffer_memory_requirements(raw) };
         let allocation = match allocate(ctx, name, req, location, true) {
@@ -174,6 +175,7 @@ impl Image {
             .initial_layout(vk::ImageLayout::UNDEFINED);
         // SAFETY: valid create info; destroyed through the deletion queue.
         let raw = unsafe { ctx.device.create_image(&info, None) }.vk("vkCreateImage")?;
+        ctx.names.set(raw, name);
         // SAFETY: `raw` was just created on this device.
         let req = unsafe { ctx.device.get_image_memory_requirements(raw) };
         let allocation = match allocate(ctx, name, req, MemoryLocation::GpuOnly, false) {
@@ -207,6 +209,7 @@ impl Image {
         // SAFETY: the image is bound to memory; the view is destroyed before the image.
         image.view =
             unsafe { ctx.device.create_image_view(&view_info, None) }.vk("vkCreateImageView")?;
+        ctx.names.set(image.view, name);
         Ok(image)
     }
 

@@ -3,6 +3,7 @@
 pub mod cmd;
 pub mod commands;
 pub mod context;
+pub mod debug;
 pub mod descriptors;
 pub mod instance;
 pub mod memory;

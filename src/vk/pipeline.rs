@@ -211,6 +211,7 @@ impl Pipeline {
             r
         };
         pipeline.raw = result.map_err(|(_, e)| e).vk("vkCreateComputePipelines")?[0];
+        pipeline.name_objects(module);
         Ok(pipeline)
     }
 
@@ -308,7 +309,18 @@ impl Pipeline {
             r
         };
         pipeline.raw = result.map_err(|(_, e)| e).vk("vkCreateGraphicsPipelines")?[0];
+        pipeline.name_objects(desc.fragment);
         Ok(pipeline)
+    }
+
+    /// Debug names: the pipeline and its layout carry the pass name and the shader it runs.
+    fn name_objects(&self, module: &ShaderModuleInfo) {
+        let name = format!("{} ({})", self.name, module.label());
+        self.ctx.names.set(self.raw, &name);
+        self.ctx.names.set(self.layout, &name);
+        for (i, l) in self.set_layouts.iter().enumerate() {
+            self.ctx.names.set(*l, &format!("{name} set {i}"));
+        }
     }
 }
 

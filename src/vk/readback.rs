@@ -1,5 +1,6 @@
 //! Copy an image back to the host (tests, PNG output, G-buffer dumps).
 
+use super::cmd::Recorder;
 use super::commands::one_shot;
 use super::context::Context;
 use super::sync::{Access, Tracker};
@@ -120,17 +121,7 @@ pub fn read_image(ctx: &Arc<Context>, tracker: &mut Tracker, image: &Image) -> R
         tracker.image(image, Access::TransferSrc);
         tracker.buffer(&staging, Access::TransferDst);
         tracker.flush(&ctx.device, cmd);
-        let region = image.copy_region();
-        // SAFETY: recording; the image is in TRANSFER_SRC layout and the buffer large enough.
-        unsafe {
-            ctx.device.cmd_copy_image_to_buffer(
-                cmd,
-                image.raw,
-                vk::ImageLayout::TRANSFER_SRC_OPTIMAL,
-                staging.raw,
-                &[region],
-            )
-        };
+        Recorder::new(ctx, cmd).copy_image_to_buffer(image, &staging);
         tracker.buffer(&staging, Access::HostRead);
         tracker.flush(&ctx.device, cmd);
         Ok(())

@@ -2,7 +2,7 @@
 //! check that no validation message was reported.
 #![allow(dead_code)]
 
-use ssgi::renderer::frame::Pcf;
+use ssgi::renderer::pcf::Pcf;
 use ssgi::renderer::targets::Target;
 use ssgi::renderer::{RenderConfig, Renderer};
 use ssgi::scene::{Camera, Scene};
