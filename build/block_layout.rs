@@ -13,6 +13,7 @@ pub const GENERATED: &[(&str, &str)] = &[
     ("Effect", "EffectPush"),
     ("Counters", "CountersHeader"),
     ("Material", "MaterialPush"),
+    ("Composite", "CompositePush"),
 ];
 
 #[derive(Clone, Debug, PartialEq)]

@@ -3,6 +3,7 @@
 
 pub mod bench;
 pub mod cli;
+pub mod effects;
 pub mod error;
 pub mod frontend;
 pub mod passes;

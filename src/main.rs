@@ -9,7 +9,7 @@ fn main() -> std::process::ExitCode {
         Command::Render(args) => ssgi::cli::render(&cli, args),
         Command::Bench(args) => ssgi::cli::bench(&cli, args),
         Command::View(args) => ssgi::cli::view(&cli, args),
-        Command::Table(args) => ssgi::bench::cli::run(&cli, args),
+        Command::Table(args) => ssgi::cli::table(&cli, args),
     };
     match result {
         Ok(()) => std::process::ExitCode::SUCCESS,

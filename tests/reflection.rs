@@ -1,7 +1,8 @@
 //! Every pass's declared descriptor layout equals what naga reflected from its shaders, and
 //! every compiled shader module belongs to some pass.
 
-use ssgi::passes::{all_layouts, PassId};
+use ssgi::effects::all_layouts;
+use ssgi::passes::PassId;
 use ssgi::shaders::{DescriptorKind, ReflectedBinding, ALL};
 use ssgi::vk::pipeline::check_bindings;
 
@@ -62,7 +63,9 @@ fn compute_modules_have_workgroups_and_graphics_do_not() {
 #[allow(dead_code)]
 mod block_layout;
 
-use ssgi::shaders::{BlockMember, CountersHeader, EffectPush, FrameBlock, MaterialPush};
+use ssgi::shaders::{
+    BlockMember, CompositePush, CountersHeader, EffectPush, FrameBlock, MaterialPush,
+};
 
 /// The generated struct of a GLSL block: its members and size.
 fn generated(name: &str) -> (&'static [BlockMember], usize) {
@@ -71,6 +74,7 @@ fn generated(name: &str) -> (&'static [BlockMember], usize) {
         "Effect" => (EffectPush::MEMBERS, EffectPush::SIZE),
         "Counters" => (CountersHeader::MEMBERS, CountersHeader::SIZE),
         "Material" => (MaterialPush::MEMBERS, MaterialPush::SIZE),
+        "Composite" => (CompositePush::MEMBERS, CompositePush::SIZE),
         other => panic!("block {other} has no generated struct"),
     }
 }

@@ -1,7 +1,6 @@
 //! Benchmark runs: timing aggregation and reports, and the thesis's tables (`ssgi table`):
 //! measured rows, error against converged references, Markdown/JSON/CSV reports, PNG plots.
 
-pub mod cli;
 pub mod compare;
 pub mod csv;
 pub mod decimate;

@@ -1,4 +1,4 @@
-//! The two steps every windowed frame shares, for the interactive viewer (`window.rs`) and for
+//! The two steps every windowed frame shares, for the interactive viewer (`window/`) and for
 //! runs driven from outside the event loop (`presenter.rs`): bring a stale swapchain up to
 //! date, and render one frame into an acquired swapchain image and present it.
 

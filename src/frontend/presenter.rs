@@ -1,7 +1,8 @@
 //! A window for scripted runs: `ssgi bench --window` and `ssgi table --window`. The run's own
 //! loop drives the frames and pumps winit's event loop between them (non-blocking), so one
 //! window, one swapchain and one context serve every renderer a table creates in turn, and
-//! the table code is the same loop as offscreen (a [`FrameSink`]).
+//! the table code is the same loop as offscreen (a [`FrameSink`]). [`open_sink`] picks this
+//! window or offscreen for a run's `--window` flag.
 //!
 //! Pumping is what winit offers for an external loop on X11, Wayland and Windows (the
 //! platforms ssgi presents on). Each frame: handle pending window events (close or Escape
@@ -12,7 +13,7 @@
 
 use super::display::{new_event_loop, presenting_context};
 use super::present::{recreate, render_and_present, Presented, Recreated};
-use super::sink::FrameSink;
+use super::sink::{FrameSink, Offscreen};
 use crate::error::{Error, Result};
 use crate::renderer::targets::Target;
 use crate::renderer::{Renderer, FRAMES_IN_FLIGHT};
@@ -262,4 +263,20 @@ impl FrameSink for WindowPresenter {
     fn frames_presented(&self) -> u64 {
         self.presented
     }
+}
+
+/// A context and the sink its renderers draw into: a presenting window titled `window` (of
+/// `size`), or offscreen.
+pub fn open_sink(
+    window: Option<String>,
+    size: (u32, u32),
+    context: ContextOptions,
+) -> Result<(Arc<Context>, Box<dyn FrameSink>)> {
+    Ok(match window {
+        Some(title) => {
+            let presenter = WindowPresenter::open(&title, size, context)?;
+            (presenter.ctx().clone(), Box::new(presenter))
+        }
+        None => (Context::new(&context)?, Box::new(Offscreen)),
+    })
 }

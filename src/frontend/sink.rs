@@ -1,12 +1,11 @@
 //! Where the frames of a scripted run go: offscreen, or presented to a window. Benchmarks and
-//! tables render through a [`FrameSink`], so the same loop measures both.
+//! tables render through a [`FrameSink`], so the same loop measures both. The window sink is
+//! `presenter.rs`, which depends on this file, not the other way round.
 
-use super::presenter::WindowPresenter;
 use crate::error::Result;
 use crate::renderer::Renderer;
 use crate::scene::Camera;
-use crate::vk::{Context, ContextOptions, FrameTiming};
-use std::sync::Arc;
+use crate::vk::FrameTiming;
 
 pub trait FrameSink {
     /// A new run starts (a table row, a bench): `label` names it (window title).
@@ -40,20 +39,4 @@ impl FrameSink for Offscreen {
     fn frames_presented(&self) -> u64 {
         0
     }
-}
-
-/// A context and the sink its renderers draw into: a presenting window titled `window` (of
-/// `size`), or offscreen.
-pub fn open(
-    window: Option<String>,
-    size: (u32, u32),
-    context: ContextOptions,
-) -> Result<(Arc<Context>, Box<dyn FrameSink>)> {
-    Ok(match window {
-        Some(title) => {
-            let presenter = WindowPresenter::open(&title, size, context)?;
-            (presenter.ctx().clone(), Box::new(presenter))
-        }
-        None => (Context::new(&context)?, Box::new(Offscreen)),
-    })
 }

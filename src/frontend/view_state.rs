@@ -4,7 +4,6 @@
 use crate::renderer::frame::Pcf;
 use crate::renderer::targets::Target;
 use crate::renderer::RenderConfig;
-use winit::keyboard::{KeyCode, ModifiersState};
 
 /// The viewer's keys, printed by `H` and documented in the README.
 pub const HELP: &str = "\
@@ -129,7 +128,7 @@ pub fn needs_rebuild(current: &RenderConfig, wanted: &RenderConfig) -> bool {
     current.effects != wanted.effects || current.temporal.reuse != wanted.temporal.reuse
 }
 
-/// A viewer command, from a key or from a test script.
+/// A viewer command, from a key (`window/keys.rs`) or from a test script.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Action {
     CycleDisplay(i32),
@@ -145,23 +144,7 @@ pub enum Action {
 }
 
 impl Action {
-    pub fn from_key(key: KeyCode, mods: ModifiersState) -> Option<Action> {
-        Some(match key {
-            KeyCode::Tab if mods.shift_key() => Action::CycleDisplay(-1),
-            KeyCode::Tab => Action::CycleDisplay(1),
-            KeyCode::KeyP => Action::ToggleShadows,
-            KeyCode::Digit1 => Action::ToggleAo,
-            KeyCode::Digit2 => Action::ToggleIndirect,
-            KeyCode::Digit3 => Action::ToggleSsdo,
-            KeyCode::Digit4 => Action::ToggleFilter,
-            KeyCode::KeyR => Action::ToggleReuse,
-            KeyCode::KeyC => Action::PrintCamera,
-            KeyCode::KeyH | KeyCode::F1 => Action::Help,
-            KeyCode::Escape => Action::Quit,
-            _ => return None,
-        })
-    }
-
+    /// The action a test script names (`key=NAME`).
     pub fn from_name(name: &str) -> Option<Action> {
         Some(match name {
             "cycle" => Action::CycleDisplay(1),
@@ -239,25 +222,6 @@ mod tests {
                     "reuse"
                 }
             ]
-        );
-    }
-
-    #[test]
-    fn keys_map_to_actions() {
-        let none = ModifiersState::empty();
-        assert_eq!(
-            Action::from_key(KeyCode::Tab, none),
-            Some(Action::CycleDisplay(1))
-        );
-        assert_eq!(
-            Action::from_key(KeyCode::Tab, ModifiersState::SHIFT),
-            Some(Action::CycleDisplay(-1))
-        );
-        assert_eq!(Action::from_key(KeyCode::Escape, none), Some(Action::Quit));
-        assert_eq!(
-            Action::from_key(KeyCode::KeyW, none),
-            None,
-            "movement is held"
         );
     }
 }

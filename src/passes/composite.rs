@@ -1,134 +1,121 @@
-//! Composite: direct + ambient x albedo x AO visibility, Reinhard tonemap, sRGB encode into the
-//! RGBA8 output. One permutation per effect combination, so disabled effects are not read.
+//! Composite: ambient x albedo x the product of the visibility terms, plus every radiance term
+//! the effects contribute, Reinhard tonemap, sRGB encode into the RGBA8 output. The effects'
+//! images come in as numbered terms with a kind each (push constants), so a new effect needs no
+//! new shader variant.
 
-use super::compute::ComputePass;
-use super::{binding, PassId, PassLayout, FRAME_BINDING};
-use crate::error::Result;
-use crate::renderer::config::Effects;
-use crate::renderer::targets::Targets;
-use crate::shaders::{self, DescriptorKind, ReflectedBinding, ShaderModuleInfo};
+use super::compute::{ComputePass, Dispatch, FrameSet};
+use super::decl::{Bind, Resolve, Slot, Use};
+use super::layout::PassLayout;
+use super::pass_id::PassId;
+use crate::error::{Error, Result};
+use crate::shaders::{self, CompositePush};
 use crate::vk::cmd::Recorder;
-use crate::vk::{Access, Context, DescriptorPool, Image, SetWriter, Tracker};
-use ash::vk;
+use crate::vk::{Buffer, Context, DescriptorPool, Image, Tracker};
 use std::sync::Arc;
 
-const G_POSITION: ReflectedBinding = binding(1, 0, DescriptorKind::SampledImage);
-const G_ALBEDO: ReflectedBinding = binding(1, 1, DescriptorKind::SampledImage);
-const OUT: ReflectedBinding = binding(1, 2, DescriptorKind::StorageImage);
-const DIRECT: ReflectedBinding = binding(1, 3, DescriptorKind::SampledImage);
-const AO: ReflectedBinding = binding(1, 4, DescriptorKind::SampledImage);
-const INDIRECT: ReflectedBinding = binding(1, 5, DescriptorKind::SampledImage);
+/// Terms the shader has bindings for.
+pub const MAX_TERMS: usize = 4;
 
-/// The permutation for an effect combination and the bindings it declares.
-fn variant(effects: Effects) -> (&'static ShaderModuleInfo, Vec<ReflectedBinding>) {
-    let module: &'static ShaderModuleInfo = match (effects.direct, effects.ao, effects.indirect) {
-        (true, false, false) => &shaders::COMPOSITE_COMP_D,
-        (false, true, false) => &shaders::COMPOSITE_COMP_A,
-        (false, false, true) => &shaders::COMPOSITE_COMP_I,
-        (true, true, false) => &shaders::COMPOSITE_COMP_DA,
-        (true, false, true) => &shaders::COMPOSITE_COMP_DI,
-        (false, true, true) => &shaders::COMPOSITE_COMP_AI,
-        _ => &shaders::COMPOSITE_COMP_DAI,
-    };
-    let mut b = vec![FRAME_BINDING, G_POSITION, G_ALBEDO, OUT];
-    if effects.direct {
-        b.push(DIRECT);
-    }
-    if effects.ao {
-        b.push(AO);
-    }
-    if effects.indirect {
-        b.push(INDIRECT);
-    }
-    (module, b)
+const BINDS: &[Bind] = &[
+    Bind::new(0, Slot::GPosition, Use::Sampled),
+    Bind::new(1, Slot::GAlbedo, Use::Sampled),
+    Bind::new(2, Slot::Output, Use::StorageWrite),
+    Bind::new(3, Slot::Term(0), Use::Sampled),
+    Bind::new(4, Slot::Term(1), Use::Sampled),
+    Bind::new(5, Slot::Term(2), Use::Sampled),
+    Bind::new(6, Slot::Term(3), Use::Sampled),
+];
+
+pub fn layout() -> PassLayout {
+    ComputePass::layout(PassId::Composite, &shaders::COMPOSITE_COMP, BINDS)
 }
 
-pub fn layouts() -> Vec<PassLayout> {
-    (1..8u32)
-        .map(|m| {
-            let effects = Effects {
-                direct: m & 1 != 0,
-                ao: m & 2 != 0,
-                indirect: m & 4 != 0,
-            };
-            let (module, declared) = variant(effects);
-            PassLayout {
-                pass: PassId::Composite,
-                modules: vec![module],
-                declared,
-            }
-        })
-        .collect()
+/// The composite's inputs: the shared targets, and each term's image per parity with the
+/// code of its kind. Bindings past the last term repeat the first image (never read).
+pub struct Terms<'a> {
+    pub shared: &'a dyn Resolve,
+    pub images: Vec<([&'a Image; 2], u32)>,
+}
+
+impl Terms<'_> {
+    fn push(&self) -> CompositePush {
+        let mut kinds = [0; 4];
+        for (k, (_, kind)) in kinds.iter_mut().zip(&self.images) {
+            *k = *kind;
+        }
+        CompositePush {
+            term_kinds: kinds,
+            term_count: self.images.len() as u32,
+        }
+    }
+}
+
+impl Resolve for Terms<'_> {
+    fn image(&self, slot: Slot, parity: usize) -> Option<&Image> {
+        match slot {
+            Slot::Term(i) => self
+                .images
+                .get(i as usize)
+                .or(self.images.first())
+                .map(|(pair, _)| pair[parity]),
+            other => self.shared.image(other, parity),
+        }
+    }
+
+    fn buffer(&self, _slot: Slot) -> Option<&Buffer> {
+        None
+    }
 }
 
 pub struct CompositePass {
     pass: ComputePass,
-    effects: Effects,
 }
 
 impl CompositePass {
-    pub fn new(ctx: &Arc<Context>, pool: &DescriptorPool, effects: Effects) -> Result<Self> {
-        let (module, declared) = variant(effects);
-        let pass = ComputePass::new(ctx, pool, PassId::Composite, module, &declared)?;
-        Ok(Self { pass, effects })
+    pub fn new(ctx: &Arc<Context>, pool: &DescriptorPool) -> Result<Self> {
+        Ok(Self {
+            pass: ComputePass::new(
+                ctx,
+                pool,
+                PassId::Composite,
+                &shaders::COMPOSITE_COMP,
+                BINDS,
+            )?,
+        })
     }
 
-    /// `ao[parity]` / `indirect[parity]`: what the composite of that parity reads.
-    pub fn bind_targets(
-        &self,
-        ctx: &Context,
-        t: &Targets,
-        ao: Option<[&Image; 2]>,
-        indirect: Option<[&Image; 2]>,
-    ) {
-        for parity in 0..2 {
-            let mut w = SetWriter::new()
-                .sampled(0, &t.gbuffer.position[parity])
-                .sampled(1, &t.gbuffer.albedo)
-                .storage(2, &t.output);
-            if self.effects.direct {
-                w = w.sampled(3, &t.direct);
-            }
-            if let Some(ao) = ao {
-                w = w.sampled(4, ao[parity]);
-            }
-            if let Some(indirect) = indirect {
-                w = w.sampled(5, indirect[parity]);
-            }
-            self.pass.write(ctx, parity, w);
+    pub fn bind(&self, ctx: &Context, terms: &Terms<'_>) -> Result<()> {
+        if terms.images.is_empty() || terms.images.len() > MAX_TERMS {
+            return Err(Error::Config(format!(
+                "the composite takes 1 to {MAX_TERMS} effect terms, not {}",
+                terms.images.len()
+            )));
         }
+        self.pass.bind(ctx, terms)
     }
 
-    #[allow(clippy::too_many_arguments)]
     pub fn record(
         &self,
         rec: &Recorder<'_>,
         tracker: &mut Tracker,
-        frame_set: vk::DescriptorSet,
-        parity: usize,
-        t: &Targets,
-        ao: Option<&Image>,
-        indirect: Option<&Image>,
+        frame: FrameSet,
+        terms: &Terms<'_>,
+        width: u32,
+        height: u32,
     ) {
-        tracker.image(&t.gbuffer.position[parity], Access::ComputeSampledRead);
-        tracker.image(&t.gbuffer.albedo, Access::ComputeSampledRead);
-        if self.effects.direct {
-            tracker.image(&t.direct, Access::ComputeSampledRead);
-        }
-        for input in [ao, indirect].into_iter().flatten() {
-            tracker.image(input, Access::ComputeSampledRead);
-        }
-        tracker.image(&t.output, Access::Undefined);
-        tracker.image(&t.output, Access::ComputeStorageWrite);
-        tracker.flush(rec.device, rec.cmd);
-        self.pass
-            .dispatch(rec, frame_set, parity, t.width, t.height);
+        let push = terms.push().to_bytes();
+        self.pass.record(
+            rec,
+            tracker,
+            frame,
+            terms,
+            &push,
+            Dispatch::Pixels { width, height },
+        );
     }
-}
 
-impl CompositePass {
     /// Set 0 (frame constants) layout; identical in every pipeline.
-    pub fn frame_layout(&self) -> vk::DescriptorSetLayout {
-        self.pass.pipeline.set_layouts[0]
+    pub fn frame_layout(&self) -> ash::vk::DescriptorSetLayout {
+        self.pass.frame_layout()
     }
 }

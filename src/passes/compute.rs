@@ -1,82 +1,133 @@
-//! What every full-screen compute pass shares: one pipeline and a descriptor set per frame
-//! parity (the G-buffer position and the histories are ping-ponged).
+//! What every compute pass shares: its declaration, one pipeline, a descriptor set per frame
+//! parity (the G-buffer position and the histories are ping-ponged), and recording as
+//! "declared accesses → barriers → bind → dispatch".
 
-use super::PassId;
-use crate::error::Result;
-use crate::shaders::{ReflectedBinding, ShaderModuleInfo};
+use super::decl::{self, Bind, Resolve, Slot};
+use super::layout::PassLayout;
+use super::pass_id::PassId;
+use crate::error::{Error, Result};
+use crate::shaders::ShaderModuleInfo;
 use crate::vk::cmd::Recorder;
-use crate::vk::{Buffer, Context, DescriptorPool, Pipeline, SetWriter};
+use crate::vk::{Context, DescriptorPool, Pipeline, Tracker};
 use ash::vk;
 use std::sync::Arc;
 
+/// The frame's set 0 (per-frame constants) and its history parity.
+#[derive(Clone, Copy, Debug)]
+pub struct FrameSet {
+    pub set: vk::DescriptorSet,
+    pub parity: usize,
+}
+
+/// How many workgroups a dispatch launches.
+#[derive(Clone, Copy, Debug)]
+pub enum Dispatch {
+    /// Enough to cover `width x height` pixels.
+    Pixels { width: u32, height: u32 },
+    /// The (x, y, z) counts stored at byte `offset` of the pass's `Slot::Counters` buffer.
+    Indirect { offset: u64 },
+}
+
 pub struct ComputePass {
-    pub pipeline: Pipeline,
-    pub sets: [vk::DescriptorSet; 2],
+    pub id: PassId,
+    pipeline: Arc<Pipeline>,
+    sets: [vk::DescriptorSet; 2],
+    binds: &'static [Bind],
 }
 
 impl ComputePass {
+    /// The layout entry of a pass for the up-front reflection check.
+    pub fn layout(
+        id: PassId,
+        module: &'static ShaderModuleInfo,
+        binds: &'static [Bind],
+    ) -> PassLayout {
+        PassLayout {
+            pass: id,
+            modules: vec![module],
+            declared: decl::layout(binds),
+        }
+    }
+
     pub fn new(
         ctx: &Arc<Context>,
         pool: &DescriptorPool,
-        pass: PassId,
+        id: PassId,
         module: &ShaderModuleInfo,
-        bindings: &[ReflectedBinding],
+        binds: &'static [Bind],
     ) -> Result<Self> {
-        let name = pass.name();
-        let pipeline = Pipeline::compute(ctx, name, module, bindings)?;
-        let sets = [
-            pool.allocate(pipeline.set_layouts[1], &format!("{name} set 1 parity 0"))?,
-            pool.allocate(pipeline.set_layouts[1], &format!("{name} set 1 parity 1"))?,
-        ];
-        Ok(Self { pipeline, sets })
+        let pipeline = Pipeline::compute(ctx, id.name(), module, &decl::layout(binds))?;
+        Self::with_pipeline(pool, id, Arc::new(pipeline), binds, id.name())
     }
 
-    /// Two more sets with this pipeline's set-1 layout (for per-effect bindings).
-    pub fn allocate_sets(
-        &self,
+    /// Another instance of the same pipeline with its own descriptor sets (the reprojection
+    /// runs once per temporal effect); `name` labels the sets.
+    pub fn instance(&self, pool: &DescriptorPool, name: &str) -> Result<Self> {
+        Self::with_pipeline(pool, self.id, self.pipeline.clone(), self.binds, name)
+    }
+
+    fn with_pipeline(
         pool: &DescriptorPool,
+        id: PassId,
+        pipeline: Arc<Pipeline>,
+        binds: &'static [Bind],
         name: &str,
-    ) -> Result<[vk::DescriptorSet; 2]> {
-        let layout = self.pipeline.set_layouts[1];
-        Ok([
-            pool.allocate(layout, &format!("{name} parity 0"))?,
-            pool.allocate(layout, &format!("{name} parity 1"))?,
-        ])
+    ) -> Result<Self> {
+        let layout = pipeline.set_layouts[1];
+        let sets = [
+            pool.allocate(layout, &format!("{name} set 1 parity 0"))?,
+            pool.allocate(layout, &format!("{name} set 1 parity 1"))?,
+        ];
+        Ok(Self {
+            id,
+            pipeline,
+            sets,
+            binds,
+        })
     }
 
-    /// Write the set of `parity`.
-    pub fn write(&self, ctx: &Context, parity: usize, writer: SetWriter) {
-        writer.write(ctx, self.sets[parity]);
+    /// Point both parities' descriptor sets at the resources `res` resolves (at creation and
+    /// after a resize, with the device idle).
+    pub fn bind(&self, ctx: &Context, res: &dyn Resolve) -> Result<()> {
+        for (parity, set) in self.sets.iter().enumerate() {
+            decl::writes(self.id.name(), self.binds, res, parity)?.write(ctx, *set);
+        }
+        Ok(())
     }
 
-    /// Bind for `parity` and dispatch over `width x height` pixels.
-    pub fn dispatch(
+    /// Barriers for the declared accesses, then bind, push `push` (if any) and dispatch.
+    pub fn record(
         &self,
         rec: &Recorder<'_>,
-        frame_set: vk::DescriptorSet,
-        parity: usize,
-        width: u32,
-        height: u32,
-    ) {
-        rec.bind(&self.pipeline, &[frame_set, self.sets[parity]]);
-        rec.dispatch_2d(&self.pipeline, width, height);
-    }
-
-    /// Bind for `parity`, push `push` (if any) and dispatch with the workgroup counts stored in
-    /// `args` at byte `offset`.
-    pub fn dispatch_indirect(
-        &self,
-        rec: &Recorder<'_>,
-        frame_set: vk::DescriptorSet,
-        parity: usize,
-        args: &Buffer,
-        offset: u64,
+        tracker: &mut Tracker,
+        frame: FrameSet,
+        res: &dyn Resolve,
         push: &[u8],
+        dispatch: Dispatch,
     ) {
-        rec.bind(&self.pipeline, &[frame_set, self.sets[parity]]);
+        decl::access(self.id.name(), self.binds, res, frame.parity, tracker);
+        tracker.flush(rec.device, rec.cmd);
+        rec.bind(&self.pipeline, &[frame.set, self.sets[frame.parity]]);
         if !push.is_empty() {
             rec.push(&self.pipeline, push);
         }
-        rec.dispatch_indirect(args, offset);
+        match dispatch {
+            Dispatch::Pixels { width, height } => rec.dispatch_2d(&self.pipeline, width, height),
+            Dispatch::Indirect { offset } => match res.buffer(Slot::Counters) {
+                Some(args) => rec.dispatch_indirect(args, offset),
+                None => panic!(
+                    "{}",
+                    Error::Reflection(format!(
+                        "{}: an indirect dispatch needs the effect's counters",
+                        self.id.name()
+                    ))
+                ),
+            },
+        }
+    }
+
+    /// Set 0 (frame constants) layout; identical in every pipeline.
+    pub fn frame_layout(&self) -> vk::DescriptorSetLayout {
+        self.pipeline.set_layouts[0]
     }
 }

@@ -1,9 +1,9 @@
 //! G-buffer: world position (w = 1 on geometry, 0 on background), world normal (facing the
 //! eye), albedo, and depth, from the camera.
 
+use super::layout::PassLayout;
+use super::pass_id::PassId;
 use super::raster::{MaterialPipelines, RasterModules, FLAT_BINDINGS, TEXTURED_BINDINGS};
-use super::PassId;
-use super::PassLayout;
 use crate::error::Result;
 use crate::renderer::scene_gpu::SceneGpu;
 use crate::renderer::targets::{GBuffer, DEPTH_FORMAT, GBUFFER_COLOR_FORMATS};
@@ -60,7 +60,7 @@ impl GBufferPass {
         g: &GBuffer,
         parity: usize,
     ) {
-        let position = &g.position[parity];
+        let position = g.position.current(parity);
         for target in [position, &g.normal, &g.albedo] {
             tracker.image(target, Access::Undefined);
             tracker.image(target, Access::ColorAttachmentWrite);

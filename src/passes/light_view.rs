@@ -1,9 +1,9 @@
 //! Light view: the reflective shadow map (world position, normal, reflected flux) and its
 //! depth, which is also the shadow map. Rendered only when the light or geometry changed.
 
+use super::layout::PassLayout;
+use super::pass_id::PassId;
 use super::raster::{MaterialPipelines, RasterModules, FLAT_BINDINGS, TEXTURED_BINDINGS};
-use super::PassId;
-use super::PassLayout;
 use crate::error::Result;
 use crate::renderer::scene_gpu::SceneGpu;
 use crate::renderer::targets::{Rsm, DEPTH_FORMAT, RSM_COLOR_FORMATS};

@@ -1,7 +1,7 @@
 //! What the two raster passes (light view and G-buffer) share: the vertex layout, the two
 //! material permutations (flat colour / textured) and the draw loop over material ranges.
 
-use super::PassId;
+use super::pass_id::PassId;
 use crate::error::Result;
 use crate::renderer::scene_gpu::SceneGpu;
 use crate::shaders::{DescriptorKind, ReflectedBinding, ShaderModuleInfo};
@@ -10,7 +10,7 @@ use crate::vk::{Context, GraphicsDesc, Pipeline};
 use ash::vk;
 use std::sync::Arc;
 
-use super::{binding, FRAME_BINDING};
+use super::layout::{binding, FRAME_BINDING};
 
 /// Bindings of the flat-colour permutation: only the frame constants.
 pub const FLAT_BINDINGS: &[ReflectedBinding] = &[FRAME_BINDING];

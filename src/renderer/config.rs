@@ -5,6 +5,9 @@ use super::pcf::Pcf;
 use crate::error::{Error, Result};
 use serde::Serialize;
 
+/// Frames the CPU may record ahead of the GPU.
+pub const FRAMES_IN_FLIGHT: usize = 2;
+
 /// Largest accepted image side: well above any real display, small enough that a typo like
 /// `--size 100000x100000` fails with a clear message instead of an allocation error.
 pub const MAX_SIZE: u32 = 16384;

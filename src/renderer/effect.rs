@@ -2,8 +2,9 @@
 //! lists and counters, refresh schedule and the push constants its passes share. The
 //! reprojection pass and the accumulation rules are the same for every effect.
 
+use super::config::FRAMES_IN_FLIGHT;
 use super::counters::{self, Counter, CounterReadback};
-use super::targets::{AO_FORMAT, STATE_FORMAT};
+use super::targets::{PingPong, AO_FORMAT, STATE_FORMAT};
 use super::temporal::RefreshSchedule;
 use crate::error::Result;
 use crate::shaders::EffectPush;
@@ -64,26 +65,17 @@ const STORAGE_READ: vk::ImageUsageFlags = vk::ImageUsageFlags::from_raw(
 
 pub struct TemporalEffect {
     pub kind: EffectKind,
-    /// rgb = value, a = estimates accumulated; `history[parity]` is this frame's.
-    pub history: [Image; 2],
+    /// rgb = value, a = estimates accumulated.
+    pub history: PingPong,
     pub state: Image,
     pub counters: Buffer,
     pub max_blocks: u32,
     pub schedule: RefreshSchedule,
     pub readback: CounterReadback,
-    /// Descriptor sets of the reprojection pass for this effect, per parity.
-    pub reproject_sets: [vk::DescriptorSet; 2],
 }
 
 impl TemporalEffect {
-    pub fn new(
-        ctx: &Arc<Context>,
-        kind: EffectKind,
-        width: u32,
-        height: u32,
-        slots: usize,
-        reproject_sets: [vk::DescriptorSet; 2],
-    ) -> Result<Self> {
+    pub fn new(ctx: &Arc<Context>, kind: EffectKind, width: u32, height: u32) -> Result<Self> {
         let image = |suffix: &str, format| {
             Image::new(
                 ctx,
@@ -102,10 +94,10 @@ impl TemporalEffect {
         let fixups = if kind.fixups { width * height } else { 0 };
         Ok(Self {
             kind,
-            history: [
+            history: PingPong::new([
                 image("history.0", AO_FORMAT)?,
                 image("history.1", AO_FORMAT)?,
-            ],
+            ]),
             state: image("state", STATE_FORMAT)?,
             counters: counters::create_gpu_buffer(
                 ctx,
@@ -115,9 +107,15 @@ impl TemporalEffect {
             )?,
             max_blocks,
             schedule: RefreshSchedule::with_tile(width, height, kind.refresh_tile),
-            readback: CounterReadback::new(ctx, slots)?,
-            reproject_sets,
+            readback: CounterReadback::new(ctx, FRAMES_IN_FLIGHT)?,
         })
+    }
+
+    /// This frame's push constants: a refresh tile is drawn only while the history is reused
+    /// (`reusing`) and tiled refresh is on; `pattern` is the frame's pattern index.
+    pub fn frame_push(&mut self, reusing: bool, refresh: bool, pattern: u32) -> EffectPush {
+        let tile = (reusing && refresh).then(|| self.schedule.next_tile());
+        self.push_constants(tile, reusing, pattern)
     }
 
     /// Push constants (`Effect` in shaders/include/effect.glsl) for this frame.

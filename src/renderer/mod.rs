@@ -1,8 +1,8 @@
-//! The fixed pass order of one frame, frames in flight, history ping-pong and the skip
-//! decisions:
+//! The frame as a list of steps over the registered effects (DESIGN.md's "One frame"), frames
+//! in flight, the shared targets, and the skip decisions:
 //!
-//! light view (only when the light changed) → G-buffer → direct → [reproject → SSAO (indirect,
-//! only blocks that need work)] or [SSAO every pixel → 5x5 blur] → composite.
+//! light view (only when the light changed) → G-buffer → reprojection of every temporal effect
+//! → each effect's passes (shadow + direct, SSAO [+ blur], indirect light) → composite.
 
 pub mod config;
 pub mod counters;
@@ -13,31 +13,26 @@ pub mod scene_gpu;
 pub mod targets;
 pub mod temporal;
 
+use crate::effects::resolve::shared;
+use crate::effects::{self, Effect, EffectId, FrameInfo, Recording, Setup, SharedPasses};
 use crate::error::{Error, Result};
-use crate::passes::blur::BlurPass;
-use crate::passes::composite::CompositePass;
-use crate::passes::direct::DirectPass;
+use crate::passes::composite::{CompositePass, Terms};
+use crate::passes::compute::FrameSet;
+use crate::passes::decl::{Resolve, Slot};
 use crate::passes::gbuffer::GBufferPass;
-use crate::passes::indirect::{IndirectPass, IndirectTargets};
 use crate::passes::light_view::LightViewPass;
-use crate::passes::reproject::ReprojectPass;
-use crate::passes::shadow::ShadowPass;
-use crate::passes::ssao::SsaoPass;
-use crate::passes::PassId;
+use crate::passes::{reproject, PassId};
 use crate::scene::{Camera, Scene, SpotLight};
-use crate::shaders::EffectPush;
 use crate::vk::cmd::Recorder;
 use crate::vk::{
-    read_image, upload_image, Access, Buffer, Context, DescriptorPool, FrameSlots, FrameTiming,
-    GpuTimer, Image, ImageData, ImageDesc, SetWriter, SubmitSync, Tracker,
+    read_image, Buffer, Context, DescriptorPool, FrameSlots, FrameTiming, GpuTimer, Image,
+    ImageData, SetWriter, SubmitSync, Tracker,
 };
 use ash::vk;
-pub use config::{RenderConfig, MAX_SIZE};
-use effect::TemporalEffect;
+pub use config::{RenderConfig, FRAMES_IN_FLIGHT, MAX_SIZE};
 use frame::{frame_block, FrameBlock, FrameInputs};
 use glam::Mat4;
 use gpu_allocator::MemoryLocation;
-use pcf::PcfKernel;
 use scene_gpu::SceneGpu;
 use std::sync::Arc;
 use targets::{Target, Targets};
@@ -45,7 +40,7 @@ use targets::{Target, Targets};
 /// Extra recording at the end of a frame plus the frame's submit semaphores.
 pub struct FrameHook<'a> {
     /// Called with the target named by `source` (the window frontend blits it into the
-    /// swapchain image there).
+    /// swapchain image there), inside the command label `frame_hook`.
     pub record: &'a mut dyn FnMut(&Recorder<'_>, &mut Tracker, &crate::vk::Image),
     pub sync: SubmitSync,
     /// Which target `record` receives: `Target::Output` (the final RGBA8 image), or another
@@ -53,34 +48,9 @@ pub struct FrameHook<'a> {
     pub source: Target,
 }
 
-/// Frames the CPU may record ahead of the GPU.
-pub const FRAMES_IN_FLIGHT: usize = 2;
-
 struct FrameResources {
     uniforms: Buffer,
     set: vk::DescriptorSet,
-}
-
-/// AO passes, present only when the AO effect is on.
-struct AoPasses {
-    ssao: SsaoPass,
-    blur: Option<BlurPass>,
-    random: Image,
-}
-
-/// Size-dependent state: targets and the temporal effects' histories and work lists.
-struct Sized {
-    targets: Targets,
-    ao: Option<TemporalEffect>,
-    shadow: Option<TemporalEffect>,
-    indirect: Option<(TemporalEffect, IndirectTargets)>,
-}
-
-/// Reprojection descriptor sets of each effect, allocated once and rewritten on resize.
-struct EffectSets {
-    ao: [vk::DescriptorSet; 2],
-    shadow: [vk::DescriptorSet; 2],
-    indirect: [vk::DescriptorSet; 2],
 }
 
 pub struct Renderer {
@@ -89,16 +59,10 @@ pub struct Renderer {
     pub scene: Scene,
     light_view: LightViewPass,
     gbuffer: GBufferPass,
-    reproject: ReprojectPass,
-    shadow_full: Option<ShadowPass>,
-    shadow_accumulate: Option<ShadowPass>,
-    direct: Option<DirectPass>,
-    ao: Option<AoPasses>,
-    indirect: Option<IndirectPass>,
     composite: CompositePass,
+    effects: Vec<Box<dyn Effect>>,
     scene_gpu: SceneGpu,
-    sized: Sized,
-    effect_sets: EffectSets,
+    targets: Targets,
     frames: Vec<FrameResources>,
     slots: FrameSlots,
     timer: GpuTimer,
@@ -110,6 +74,7 @@ pub struct Renderer {
     history: Option<Mat4>,
     /// The last pass recorded into each slot's command buffer (device-loss reports).
     last_pass: [Option<PassId>; FRAMES_IN_FLIGHT],
+    _shared: SharedPasses,
     _pool: DescriptorPool,
 }
 
@@ -119,28 +84,6 @@ impl Renderer {
         let textured = scene.mesh.has_textures();
         let pool = DescriptorPool::new(ctx, 48 + scene.mesh.materials.len() as u32)?;
         let light_view = LightViewPass::new(ctx, textured)?;
-        let gbuffer = GBufferPass::new(ctx, textured)?;
-        let reproject = ReprojectPass::new(ctx, &pool)?;
-        let direct_on = config.effects.direct;
-        let (direct, shadow_full, shadow_accumulate) = if direct_on {
-            (
-                Some(DirectPass::new(ctx, &pool)?),
-                Some(ShadowPass::new(ctx, &pool, false)?),
-                if config.temporal.reuse {
-                    Some(ShadowPass::new(ctx, &pool, true)?)
-                } else {
-                    None
-                },
-            )
-        } else {
-            (None, None, None)
-        };
-        let composite = CompositePass::new(ctx, &pool, config.effects)?;
-        let indirect = if config.effects.indirect {
-            Some(IndirectPass::new(ctx, &pool, config.indirect.half_res)?)
-        } else {
-            None
-        };
         let mut tracker = Tracker::new();
         let scene_gpu = SceneGpu::new(
             ctx,
@@ -149,74 +92,42 @@ impl Renderer {
             &scene.mesh,
             light_view.material_layout(),
         )?;
-        let ao = if config.effects.ao {
-            let reuse = config.temporal.reuse;
-            let random = Image::new(
-                ctx,
-                "ao.random_vectors",
-                ImageDesc {
-                    width: 4,
-                    height: 4,
-                    format: vk::Format::R32G32B32A32_SFLOAT,
-                    usage: vk::ImageUsageFlags::SAMPLED | vk::ImageUsageFlags::TRANSFER_DST,
-                },
-            )?;
-            upload_image(
-                ctx,
-                &mut tracker,
-                &random,
-                &temporal::random_vectors(),
-                Access::ComputeSampledRead,
-            )?;
-            Some(AoPasses {
-                ssao: SsaoPass::new(ctx, &pool, reuse)?,
-                blur: if !reuse && config.ao.patterns == 1 {
-                    Some(BlurPass::new(ctx, &pool)?)
-                } else {
-                    None
-                },
-                random,
-            })
-        } else {
-            None
+        let shared = SharedPasses {
+            reproject: reproject::new(ctx, &pool)?,
         };
+        let effects = effects::create(&mut Setup {
+            ctx,
+            pool: &pool,
+            config: &config,
+            shared: &shared,
+            tracker: &mut tracker,
+        })?;
+        let composite = CompositePass::new(ctx, &pool)?;
         // Set 0 layout: every pipeline declares the same frame binding, so any of them works.
         let frame_layout = composite.frame_layout();
         let mut frames = Vec::new();
-        for _ in 0..FRAMES_IN_FLIGHT {
+        for slot in 0..FRAMES_IN_FLIGHT {
             let uniforms = Buffer::new(
                 ctx,
-                "frame.uniforms",
+                &format!("frame.uniforms.{slot}"),
                 FrameBlock::SIZE as u64,
                 vk::BufferUsageFlags::UNIFORM_BUFFER,
                 MemoryLocation::CpuToGpu,
             )?;
-            let set = pool.allocate(frame_layout, "frame.uniforms set 0")?;
+            let set = pool.allocate(frame_layout, &format!("frame set 0 slot {slot}"))?;
             SetWriter::new().uniform(0, &uniforms).write(ctx, set);
             frames.push(FrameResources { uniforms, set });
         }
-        let effect_sets = EffectSets {
-            ao: reproject.allocate_sets(&pool, "ao")?,
-            shadow: reproject.allocate_sets(&pool, "shadow")?,
-            indirect: reproject.allocate_sets(&pool, "indirect")?,
-        };
-        let sized = Self::create_sized(ctx, &config, &effect_sets)?;
         let renderer = Self {
             ctx: ctx.clone(),
+            targets: Targets::new(ctx, config.width, config.height, config.rsm_size)?,
             config,
             scene,
             light_view,
-            gbuffer,
-            reproject,
-            shadow_full,
-            shadow_accumulate,
-            direct,
-            ao,
-            indirect,
+            gbuffer: GBufferPass::new(ctx, textured)?,
             composite,
+            effects,
             scene_gpu,
-            sized,
-            effect_sets,
             frames,
             slots: FrameSlots::new(ctx, FRAMES_IN_FLIGHT)?,
             timer: GpuTimer::new(ctx, FRAMES_IN_FLIGHT, PassId::ALL.len() as u32 + 2)?,
@@ -225,92 +136,31 @@ impl Renderer {
             rsm_light: None,
             history: None,
             last_pass: [None; FRAMES_IN_FLIGHT],
+            _shared: shared,
             _pool: pool,
         };
-        renderer.bind_targets();
+        renderer.bind()?;
         Ok(renderer)
     }
 
-    fn create_sized(ctx: &Arc<Context>, c: &RenderConfig, sets: &EffectSets) -> Result<Sized> {
-        let (w, h) = (c.width, c.height);
-        let effect = |on: bool, kind, sets| -> Result<Option<TemporalEffect>> {
-            if !on {
-                return Ok(None);
-            }
-            Ok(Some(TemporalEffect::new(
-                ctx,
-                kind,
-                w,
-                h,
-                FRAMES_IN_FLIGHT,
-                sets,
-            )?))
-        };
-        Ok(Sized {
-            targets: Targets::new(ctx, w, h, c.rsm_size)?,
-            ao: effect(c.effects.ao, effect::AO, sets.ao)?,
-            shadow: effect(
-                c.effects.direct && c.temporal.reuse,
-                effect::SHADOW,
-                sets.shadow,
-            )?,
-            indirect: match effect(c.effects.indirect, effect::INDIRECT, sets.indirect)? {
-                Some(e) => {
-                    let own = IndirectTargets {
-                        lowres: Buffer::new(
-                            ctx,
-                            "indirect.lowres",
-                            e.max_blocks as u64 * 100 * 16,
-                            vk::BufferUsageFlags::STORAGE_BUFFER,
-                            MemoryLocation::GpuOnly,
-                        )?,
-                        discard: Image::new(
-                            ctx,
-                            "indirect.discard",
-                            ImageDesc {
-                                width: w,
-                                height: h,
-                                format: targets::STATE_FORMAT,
-                                usage: vk::ImageUsageFlags::STORAGE
-                                    | vk::ImageUsageFlags::TRANSFER_SRC,
-                            },
-                        )?,
-                    };
-                    Some((e, own))
-                }
-                None => None,
-            },
-        })
-    }
-
-    /// Every temporal effect of this configuration.
-    fn effects_mut(&mut self) -> impl Iterator<Item = &mut TemporalEffect> {
-        let s = &mut self.sized;
-        [
-            s.ao.as_mut(),
-            s.shadow.as_mut(),
-            s.indirect.as_mut().map(|(e, _)| e),
-        ]
-        .into_iter()
-        .flatten()
-    }
-
-    /// Whether this frame's shadows come from the accumulated history: reuse on and a disc
-    /// kernel (the thesis's rotated and scaled 9-sample PCF). Grids run every frame.
-    fn shadow_reuse(&self) -> bool {
-        self.config.temporal.reuse
-            && matches!(self.config.pcf.kernel, PcfKernel::Disc { .. })
-            && self.sized.shadow.is_some()
-    }
-
-    /// Which images hold the effect targets in this configuration.
-    fn sources(&self) -> TargetSources {
-        TargetSources {
-            ao: self.ao.is_some(),
-            ao_blur: self.ao.as_ref().is_some_and(|a| a.blur.is_some()),
-            reuse: self.config.temporal.reuse,
-            shadow_reuse: self.shadow_reuse(),
+    /// Point every descriptor set at the current targets (creation and resize).
+    fn bind(&self) -> Result<()> {
+        for e in &self.effects {
+            e.bind(&self.ctx, &self.targets)?;
         }
+        let shared = SharedTargets(&self.targets);
+        self.composite
+            .bind(&self.ctx, &terms(&shared, &self.effects))
+    }
+
+    /// The image behind `target` for parity `parity` (see [`resolve_target`]).
+    fn image(&self, target: Target, parity: usize) -> Option<&Image> {
+        resolve_target(&self.targets, &self.effects, &self.config, target, parity)
+    }
+
+    /// Parity of the last rendered frame.
+    fn last_parity(&self) -> usize {
+        (self.frame_index.wrapping_sub(1) % 2) as usize
     }
 
     /// Slot the next frame will record into.
@@ -327,62 +177,13 @@ impl Renderer {
 
     /// Format of a target's image (the window frontend checks blit support with it).
     pub fn target_format(&self, target: Target) -> vk::Format {
-        let parity = (self.frame_index.wrapping_sub(1) % 2) as usize;
-        self.sources()
-            .image(&self.sized, target, parity)
+        self.image(target, self.last_parity())
             .map_or(vk::Format::UNDEFINED, |i| i.desc.format)
     }
 
     /// Whether `target` exists in this run (the buffers of effects that are off do not).
     pub fn has_target(&self, target: Target) -> bool {
         self.target_format(target) != vk::Format::UNDEFINED
-    }
-
-    fn bind_targets(&self) {
-        let t = &self.sized.targets;
-        let ctx = &self.ctx;
-        if let Some(e) = &self.sized.ao {
-            self.reproject.bind_targets(ctx, t, e);
-        }
-        if let Some(e) = &self.sized.shadow {
-            self.reproject.bind_targets(ctx, t, e);
-        }
-        if let Some(s) = &self.shadow_full {
-            s.bind_targets(ctx, t, None);
-        }
-        if let Some(s) = &self.shadow_accumulate {
-            s.bind_targets(ctx, t, self.sized.shadow.as_ref());
-        }
-        if let Some(direct) = &self.direct {
-            let history = self
-                .sized
-                .shadow
-                .as_ref()
-                .map(|e| [&e.history[0], &e.history[1]]);
-            direct.bind_targets(ctx, t, history);
-        }
-        if let (Some(ao), Some(e)) = (&self.ao, &self.sized.ao) {
-            ao.ssao.bind_targets(ctx, t, &ao.random, e);
-            if let Some(b) = &ao.blur {
-                b.bind_targets(ctx, t);
-            }
-        }
-        if let (Some(pass), Some((e, own))) = (&self.indirect, &self.sized.indirect) {
-            self.reproject.bind_targets(ctx, t, e);
-            pass.bind_targets(ctx, t, e, own);
-        }
-        let sources = self.sources();
-        let ao_images = match (sources.ao(&self.sized, 0), sources.ao(&self.sized, 1)) {
-            (Some(a), Some(b)) => Some([a, b]),
-            _ => None,
-        };
-        let indirect_images = self
-            .sized
-            .indirect
-            .as_ref()
-            .map(|(e, _)| [&e.history[0], &e.history[1]]);
-        self.composite
-            .bind_targets(ctx, t, ao_images, indirect_images);
     }
 
     pub fn context(&self) -> &Arc<Context> {
@@ -411,32 +212,125 @@ impl Renderer {
 
     /// As `render_frame`, with a hook that records after the composite (the window frontend
     /// copies the output into the swapchain image there) and the submission's semaphores.
+    /// The steps of DESIGN.md's "One frame".
     pub fn render_frame_with(
         &mut self,
         camera: &Camera,
         mut hook: Option<FrameHook<'_>>,
     ) -> Result<Option<FrameTiming>> {
-        let slot = (self.frame_index % FRAMES_IN_FLIGHT as u64) as usize;
-        let parity = (self.frame_index % 2) as usize;
-        // A device loss shows when waiting for the slot's previous frame: name its last pass.
-        let cmd = self
-            .slots
-            .begin(slot)
-            .map_err(|e| e.lost_after(self.last_pass[slot].map(PassId::name)))?;
-        self.last_pass[slot] = None;
-        let mut previous = self.timer.begin_frame(slot, self.frame_index);
+        let slot = self.next_slot();
+        let cmd = self.begin_slot(slot)?;
+        let previous = self.collect(slot);
+        // 1. Scene update: constants, change flags, each effect's refresh tile and pattern.
+        let view_proj = self.write_uniforms(slot, camera)?;
+        let light_changed = self.rsm_light != Some(self.scene.light);
+        let info = FrameInfo {
+            config: &self.config,
+            targets: &self.targets,
+            frame: FrameSet {
+                set: self.frames[slot].set,
+                parity: (self.frame_index % 2) as usize,
+            },
+            frame_index: self.frame_index,
+            history_valid: self.history.is_some(),
+        };
+        for e in &mut self.effects {
+            e.prepare(&info);
+        }
+        let mut r = Recording {
+            rec: Recorder::new(&self.ctx, cmd),
+            tracker: &mut self.tracker,
+            timer: &mut self.timer,
+            slot,
+            last_pass: None,
+        };
+        let (frame, t, scene) = (info.frame, &self.targets, &self.scene_gpu);
+        // 2. Light view, only when the light changed (geometry is static for the renderer).
+        if light_changed {
+            r.timed(PassId::LightView, |rec, tr| {
+                self.light_view.record(rec, tr, frame.set, scene, &t.rsm)
+            });
+        } else {
+            r.timer.skip(slot, PassId::LightView.name());
+        }
+        // 3. G-buffer.
+        r.timed(PassId::GBuffer, |rec, tr| {
+            self.gbuffer
+                .record(rec, tr, frame.set, scene, &t.gbuffer, frame.parity)
+        });
+        // 4. Reprojection of every temporal effect that reuses its history this frame.
+        let config = &self.config;
+        for e in self.effects.iter().filter(|e| e.counts(config)) {
+            if let Some(temporal) = e.temporal() {
+                temporal.reset_counters(&r.rec, r.tracker);
+            }
+        }
+        if self.effects.iter().any(|e| e.reprojects(&info)) {
+            r.timed(PassId::Reproject, |rec, tr| {
+                for e in self.effects.iter().filter(|e| e.reprojects(&info)) {
+                    e.record_reprojection(&info, rec, tr);
+                }
+            });
+        }
+        // 5. Effects, in registry order.
+        for e in &self.effects {
+            e.record(&info, &mut r);
+        }
+        // 6-7. Composite + tonemap.
+        let shared = SharedTargets(t);
+        let terms = terms(&shared, &self.effects);
+        r.timed(PassId::Composite, |rec, tr| {
+            self.composite
+                .record(rec, tr, frame, &terms, t.width, t.height)
+        });
+        let source = |target| resolve_target(t, &self.effects, config, target, frame.parity);
+        let hook_sync = record_hook(&mut r, &mut hook, source, &t.output);
+        let last_pass = r.last_pass;
+        self.copy_counters(cmd, slot);
+        self.last_pass[slot] = last_pass;
+        self.slots
+            .submit_with(slot, &hook_sync)
+            .map_err(|e| e.lost_after(last_pass.map(PassId::name)))?;
+        if light_changed {
+            self.rsm_light = Some(self.scene.light);
+        }
+        self.history = Some(view_proj);
+        self.frame_index += 1;
+        Ok(previous)
+    }
+
+    /// Wait for `slot`'s previous frame and begin recording its command buffer. A device loss
+    /// shows here: it is named after that frame's last pass.
+    fn begin_slot(&mut self, slot: usize) -> Result<vk::CommandBuffer> {
+        let lost_in = self.last_pass[slot].map(PassId::name);
+        self.slots.begin(slot).map_err(|e| e.lost_after(lost_in))
+    }
+
+    /// Timings and counters of the frame that last used `slot` (its fence has signalled).
+    fn collect(&mut self, slot: usize) -> Option<FrameTiming> {
+        let counters = self.collect_counters(slot);
+        let mut previous = self.timer.begin_frame(slot, self.frame_index)?;
+        previous.counters = counters;
+        Some(previous)
+    }
+
+    fn collect_counters(&mut self, slot: usize) -> Vec<(&'static str, u64)> {
         let mut counters = Vec::new();
-        for e in self.effects_mut() {
-            counters.extend(e.readback.collect(slot));
+        for e in &mut self.effects {
+            if let Some(t) = e.temporal_mut() {
+                counters.extend(t.readback.collect(slot));
+            }
         }
-        if let Some(p) = &mut previous {
-            p.counters = counters;
-        }
-        let c = self.config;
-        let aspect = c.width as f32 / c.height as f32;
+        counters
+    }
+
+    /// The frame's constants into this slot's uniform buffer (host write before submission: the
+    /// submit makes it visible, no barrier needed). Returns the camera's view-projection.
+    fn write_uniforms(&mut self, slot: usize, camera: &Camera) -> Result<Mat4> {
+        let aspect = self.config.width as f32 / self.config.height as f32;
         let view_proj = camera.view_proj(aspect);
-        let uniforms = frame_block(
-            &c,
+        let block = frame_block(
+            &self.config,
             &FrameInputs {
                 camera,
                 prev_view_proj: self.history.unwrap_or(view_proj),
@@ -446,194 +340,19 @@ impl Renderer {
                 scene_radius: self.scene.mesh.bounds.radius(),
             },
         );
-        // Host write before submission: the submit makes it visible, no barrier needed.
-        self.frames[slot].uniforms.write(&uniforms.to_bytes())?;
-        let frame_set = self.frames[slot].set;
+        self.frames[slot].uniforms.write(&block.to_bytes())?;
+        Ok(view_proj)
+    }
+
+    /// Copy this frame's counters for reading when `slot` comes round again.
+    fn copy_counters(&mut self, cmd: vk::CommandBuffer, slot: usize) {
         let rec = Recorder::new(&self.ctx, cmd);
-        let reuse = c.temporal.reuse;
-        let history_valid = reuse && self.history.is_some();
-        let sources = self.sources();
-        let shadow_reuse = sources.shadow_reuse;
-        // Per-effect push constants: refresh tile (drawn only with a valid history) and flags.
-        let effect_push = |e: &mut Option<TemporalEffect>| {
-            e.as_mut().map(|e| {
-                let tile = (history_valid && c.temporal.refresh).then(|| e.schedule.next_tile());
-                e.push_constants(tile, history_valid, 0).to_bytes()
-            })
-        };
-        let ao_push = effect_push(&mut self.sized.ao);
-        // Indirect light always goes through the reprojection: without reuse every pixel is
-        // new and every block listed, with the fixed pattern 0.
-        let indirect_push = self.sized.indirect.as_mut().map(|(e, _)| {
-            let tile = (history_valid && c.temporal.refresh).then(|| e.schedule.next_tile());
-            let pattern = if reuse {
-                (self.frame_index % c.temporal.rotation_limit as u64) as u32
-            } else {
-                0
-            };
-            e.push_constants(tile, history_valid, pattern).to_bytes()
-        });
-        let shadow_push = if shadow_reuse {
-            effect_push(&mut self.sized.shadow)
-        } else {
-            None
-        };
-        let ao_image = sources.ao(&self.sized, parity);
-        let shadow_image = sources.shadow(&self.sized, parity);
-        let t = &self.sized.targets;
-        let tracker = &mut self.tracker;
-        let timer = &mut self.timer;
-        let last_pass = &mut self.last_pass[slot];
-        // Every pass inside its command label and its timestamps; the last one recorded is
-        // remembered for device-loss reports.
-        let mut timed = |pass: PassId, tracker: &mut Tracker, f: &mut dyn FnMut(&mut Tracker)| {
-            rec.begin_label(pass.name());
-            let began = timer.begin_pass(cmd, slot, pass.name());
-            f(tracker);
-            if began {
-                timer.end_pass(cmd, slot);
-            }
-            rec.end_label();
-            *last_pass = Some(pass);
-        };
-
-        // Light view only when the light changed since the RSM was rendered (geometry is
-        // static for the renderer's lifetime).
-        let light_changed = self.rsm_light != Some(self.scene.light);
-        if light_changed {
-            timed(PassId::LightView, tracker, &mut |tr| {
-                self.light_view
-                    .record(&rec, tr, frame_set, &self.scene_gpu, &t.rsm)
-            });
-            self.rsm_light = Some(self.scene.light);
-        }
-        timed(PassId::GBuffer, tracker, &mut |tr| {
-            self.gbuffer
-                .record(&rec, tr, frame_set, &self.scene_gpu, &t.gbuffer, parity)
-        });
-        // Reprojection of every temporal effect that reuses its history this frame.
-        let reprojected: Vec<(&TemporalEffect, &[u8; EffectPush::SIZE])> = [
-            (self.sized.ao.as_ref(), ao_push.as_ref().filter(|_| reuse)),
-            (self.sized.shadow.as_ref(), shadow_push.as_ref()),
-            (
-                self.sized.indirect.as_ref().map(|(e, _)| e),
-                indirect_push.as_ref(),
-            ),
-        ]
-        .into_iter()
-        .filter_map(|(e, p)| Some((e?, p?)))
-        .collect();
-        let indirect_effect = self.sized.indirect.as_ref().map(|(e, _)| e);
-        for e in [
-            self.sized.ao.as_ref(),
-            self.sized.shadow.as_ref(),
-            indirect_effect,
-        ]
-        .into_iter()
-        .flatten()
-        {
-            e.reset_counters(&rec, tracker);
-        }
-        if !reprojected.is_empty() {
-            timed(PassId::Reproject, tracker, &mut |tr| {
-                for (e, push) in &reprojected {
-                    self.reproject
-                        .record(&rec, tr, frame_set, parity, t, e, &push[..]);
-                }
-            });
-        }
-        if let Some(direct) = &self.direct {
-            let shadow_pass = if shadow_reuse {
-                self.shadow_accumulate.as_ref()
-            } else {
-                self.shadow_full.as_ref()
-            };
-            if let Some(pass) = shadow_pass {
-                let push = shadow_push.unwrap_or([0; EffectPush::SIZE]);
-                timed(PassId::Shadow, tracker, &mut |tr| {
-                    pass.record(
-                        &rec,
-                        tr,
-                        frame_set,
-                        parity,
-                        t,
-                        self.sized.shadow.as_ref(),
-                        &push,
-                    )
-                });
-            }
-            timed(PassId::Direct, tracker, &mut |tr| {
-                direct.record(&rec, tr, frame_set, parity, t, shadow_image)
-            });
-        }
-        if let (Some(ao), Some(effect)) = (&self.ao, &self.sized.ao) {
-            let push = ao_push.unwrap_or([0; EffectPush::SIZE]);
-            timed(PassId::Ssao, tracker, &mut |tr| {
-                ao.ssao
-                    .record(&rec, tr, frame_set, parity, t, &ao.random, effect, &push)
-            });
-            if let Some(blur) = &ao.blur {
-                timed(PassId::Blur, tracker, &mut |tr| {
-                    blur.record(&rec, tr, frame_set, parity, t)
-                });
+        let config = self.config;
+        for e in self.effects.iter_mut().filter(|e| e.counts(&config)) {
+            if let Some(t) = e.temporal_mut() {
+                t.copy_counters(&rec, &mut self.tracker, slot);
             }
         }
-        let indirect_image = self
-            .sized
-            .indirect
-            .as_ref()
-            .map(|(e, _)| &e.history[parity]);
-        if let (Some(pass), Some((e, own)), Some(push)) =
-            (&self.indirect, &self.sized.indirect, &indirect_push)
-        {
-            pass.record(
-                &rec,
-                tracker,
-                frame_set,
-                parity,
-                t,
-                e,
-                own,
-                push,
-                &mut |pass, tr, f| timed(pass, tr, f),
-            );
-        }
-        timed(PassId::Composite, tracker, &mut |tr| {
-            self.composite
-                .record(&rec, tr, frame_set, parity, t, ao_image, indirect_image)
-        });
-        if let Some(e) = &mut self.sized.ao {
-            e.copy_counters(&rec, &mut self.tracker, slot);
-        }
-        if let Some((e, _)) = &mut self.sized.indirect {
-            e.copy_counters(&rec, &mut self.tracker, slot);
-        }
-        if let (Some(e), true) = (&mut self.sized.shadow, shadow_reuse) {
-            e.copy_counters(&rec, &mut self.tracker, slot);
-        }
-        if !light_changed {
-            self.timer.skip(slot, PassId::LightView.name());
-        }
-
-        let sync = match &mut hook {
-            Some(h) => {
-                // The hook gets the target it asked for (the viewer's buffer display), this
-                // frame's image of it; the output when the target does not exist in this run.
-                let source = sources.image(&self.sized, h.source, parity);
-                let output = &self.sized.targets.output;
-                rec.begin_label("frame_hook");
-                (h.record)(&rec, &mut self.tracker, source.unwrap_or(output));
-                rec.end_label();
-                h.sync.clone()
-            }
-            None => SubmitSync::default(),
-        };
-        self.slots
-            .submit_with(slot, &sync)
-            .map_err(|e| e.lost_after(self.last_pass[slot].map(PassId::name)))?;
-        self.history = Some(view_proj);
-        self.frame_index += 1;
-        Ok(previous)
     }
 
     /// Wait for the GPU and return the timings not yet returned, oldest first.
@@ -644,10 +363,7 @@ impl Renderer {
             .map_err(|e| e.lost_after(self.last_pass[newest].map(PassId::name)))?;
         let mut out = Vec::new();
         for slot in 0..FRAMES_IN_FLIGHT {
-            let mut counters = Vec::new();
-            for e in self.effects_mut() {
-                counters.extend(e.readback.collect(slot));
-            }
+            let counters = self.collect_counters(slot);
             if let Some(mut t) = self.timer.collect(slot) {
                 t.counters = counters;
                 out.push(t);
@@ -668,9 +384,12 @@ impl Renderer {
         config.validate()?;
         let pending = self.finish()?;
         self.ctx.wait_idle()?;
-        self.sized = Self::create_sized(&self.ctx, &config, &self.effect_sets)?;
+        self.targets = Targets::new(&self.ctx, width, height, config.rsm_size)?;
+        for e in &mut self.effects {
+            e.resize(&self.ctx, &config)?;
+        }
         self.config = config;
-        self.bind_targets();
+        self.bind()?;
         // The RSM targets were recreated with the rest: render the light view again.
         self.rsm_light = None;
         self.history = None;
@@ -679,70 +398,85 @@ impl Renderer {
 
     /// Copy a target of the last rendered frame to the host (waits for the GPU).
     pub fn read(&mut self, target: Target) -> Result<ImageData> {
-        let parity = (self.frame_index.wrapping_sub(1) % 2) as usize;
-        let image = self
-            .sources()
-            .image(&self.sized, target, parity)
-            .ok_or_else(|| {
-                Error::Config(format!(
-                    "the {} buffer does not exist in this run (its effect is off)",
-                    target.name()
-                ))
-            })?;
+        let parity = self.last_parity();
+        let image = resolve_target(&self.targets, &self.effects, &self.config, target, parity);
+        let image = image.ok_or_else(|| {
+            Error::Config(format!(
+                "the {} buffer does not exist in this run (its effect is off)",
+                target.name()
+            ))
+        })?;
         read_image(&self.ctx, &mut self.tracker, image)
     }
 }
 
-/// Which image of [`Sized`] holds each target in a configuration: the one place targets are
-/// resolved, so the passes, reads, formats and the window's frame hook agree. A copy of the
-/// choices, so resolving borrows only `Sized` (the tracker stays free for recording).
-#[derive(Clone, Copy)]
-struct TargetSources {
-    /// AO passes exist, and whether they blur (no reuse).
-    ao: bool,
-    ao_blur: bool,
-    reuse: bool,
-    /// Shadows come from the accumulated history (see `Renderer::shadow_reuse`).
-    shadow_reuse: bool,
+/// The image behind `target` for parity `parity` under `config`: the one place targets are
+/// resolved, so reads, formats and the window's frame hook agree. `None` when the target's
+/// effect is off in this run.
+fn resolve_target<'a>(
+    targets: &'a Targets,
+    effects: &'a [Box<dyn Effect>],
+    config: &RenderConfig,
+    target: Target,
+    parity: usize,
+) -> Option<&'a Image> {
+    let of = |id| {
+        effects
+            .iter()
+            .find(|e| e.id() == id)
+            .and_then(|e| e.target(target, parity, config))
+    };
+    match target {
+        // The recompute mask shows AO's state when AO runs, else the shadows'.
+        Target::State => of(EffectId::Ao).or_else(|| of(EffectId::Direct)),
+        _ => targets.get(target, parity).or_else(|| {
+            effects
+                .iter()
+                .find_map(|e| e.target(target, parity, config))
+        }),
+    }
 }
 
-impl TargetSources {
-    /// The AO visibility the composite reads for `parity`; `None` with AO off.
-    fn ao(self, sized: &Sized, parity: usize) -> Option<&Image> {
-        if !self.ao {
-            return None;
-        }
-        Some(if self.reuse {
-            &sized.ao.as_ref()?.history[parity]
-        } else if self.ao_blur {
-            &sized.targets.ao_blurred
-        } else {
-            &sized.targets.ao_raw
-        })
+/// The composite's inputs: every effect's contribution, in registry order.
+fn terms<'a>(shared: &'a SharedTargets<'a>, effects: &'a [Box<dyn Effect>]) -> Terms<'a> {
+    Terms {
+        shared,
+        images: effects
+            .iter()
+            .map(|e| {
+                let (kind, current) = e.term(0);
+                ([current, e.term(1).1], kind as u32)
+            })
+            .collect(),
+    }
+}
+
+/// The frontend's hook (inside the `frame_hook` label) with this frame's image of the target
+/// it asked for (`output` when that target does not exist in this run).
+fn record_hook<'a>(
+    r: &mut Recording<'_>,
+    hook: &mut Option<FrameHook<'_>>,
+    source: impl Fn(Target) -> Option<&'a Image>,
+    output: &'a Image,
+) -> SubmitSync {
+    let Some(h) = hook else {
+        return SubmitSync::default();
+    };
+    r.rec.begin_label("frame_hook");
+    (h.record)(&r.rec, r.tracker, source(h.source).unwrap_or(output));
+    r.rec.end_label();
+    h.sync.clone()
+}
+
+/// The shared targets as a resolver (the composite's G-buffer and output).
+struct SharedTargets<'a>(&'a Targets);
+
+impl Resolve for SharedTargets<'_> {
+    fn image(&self, slot: Slot, parity: usize) -> Option<&Image> {
+        shared(self.0, slot, parity)
     }
 
-    /// The shadow visibility the direct pass reads for `parity`.
-    fn shadow(self, sized: &Sized, parity: usize) -> &Image {
-        match (&sized.shadow, self.shadow_reuse) {
-            (Some(e), true) => &e.history[parity],
-            _ => &sized.targets.shadow,
-        }
-    }
-
-    /// The image holding `target` for history parity `parity`; `None` when the target does not
-    /// exist in this configuration (its effect is off).
-    fn image(self, sized: &Sized, target: Target, parity: usize) -> Option<&Image> {
-        match target {
-            Target::Ao => self.ao(sized, parity),
-            Target::Shadow => Some(self.shadow(sized, parity)),
-            Target::Indirect => sized.indirect.as_ref().map(|(e, _)| &e.history[parity]),
-            Target::DiscardMask => sized.indirect.as_ref().map(|(_, own)| &own.discard),
-            Target::State => sized
-                .ao
-                .as_ref()
-                .or(sized.shadow.as_ref())
-                .map(|e| &e.state),
-            other => sized.targets.get(other, parity),
-        }
+    fn buffer(&self, _slot: Slot) -> Option<&Buffer> {
+        None
     }
 }

@@ -1,4 +1,5 @@
-//! Size-dependent render targets: G-buffer, reflective shadow map, direct light, output.
+//! Render targets every effect shares (G-buffer, reflective shadow map, output) and the
+//! ping-pong pair that holds a frame's image and the previous one.
 
 use crate::error::Result;
 use crate::vk::{Context, Image, ImageDesc};
@@ -18,7 +19,7 @@ pub const RSM_COLOR_FORMATS: [vk::Format; 3] = [
     vk::Format::R16G16B16A16_SFLOAT,
 ];
 pub const DIRECT_FORMAT: vk::Format = vk::Format::R16G16B16A16_SFLOAT;
-/// AO value (r) and number of accumulated estimates (g, exact in fp16 up to 2048).
+/// AO value (r) and number of accumulated estimates (a, exact in fp16 up to 2048).
 pub const AO_FORMAT: vk::Format = vk::Format::R16G16B16A16_SFLOAT;
 pub const STATE_FORMAT: vk::Format = vk::Format::R32_UINT;
 pub const OUTPUT_FORMAT: vk::Format = vk::Format::R8G8B8A8_UNORM;
@@ -58,10 +59,31 @@ fn image(
     )
 }
 
+/// Two images that swap roles every frame: one written this frame, the other holding last
+/// frame's (a history, or the G-buffer position of eq 2). `parity` is the frame index mod 2.
+pub struct PingPong {
+    images: [Image; 2],
+}
+
+impl PingPong {
+    pub fn new(images: [Image; 2]) -> Self {
+        Self { images }
+    }
+
+    /// The image written in the frame of `parity`.
+    pub fn current(&self, parity: usize) -> &Image {
+        &self.images[parity & 1]
+    }
+
+    /// The image written the frame before.
+    pub fn previous(&self, parity: usize) -> &Image {
+        &self.images[(parity + 1) & 1]
+    }
+}
+
 pub struct GBuffer {
-    /// Ping-ponged: this frame's is `position[parity]`, last frame's (the world-position
-    /// history of eq 2) is `position[1 - parity]`.
-    pub position: [Image; 2],
+    /// This frame's world position, and last frame's (the world-position history of eq 2).
+    pub position: PingPong,
     pub normal: Image,
     pub albedo: Image,
     pub depth: Image,
@@ -80,13 +102,7 @@ pub struct Targets {
     pub height: u32,
     pub gbuffer: GBuffer,
     pub rsm: Rsm,
-    pub direct: Image,
     pub output: Image,
-    /// Shadow visibility computed every frame (grid PCF, or a disc without reuse).
-    pub shadow: Image,
-    /// Without reuse: this frame's AO and its 5x5 blur.
-    pub ao_raw: Image,
-    pub ao_blurred: Image,
 }
 
 /// Which target to read back or dump.
@@ -168,10 +184,10 @@ impl Targets {
             width,
             height,
             gbuffer: GBuffer {
-                position: [
+                position: PingPong::new([
                     image(ctx, "gbuffer.position.0", s, gp, ATTACHMENT_READ)?,
                     image(ctx, "gbuffer.position.1", s, gp, ATTACHMENT_READ)?,
-                ],
+                ]),
                 normal: image(ctx, "gbuffer.normal", s, gn, ATTACHMENT_READ)?,
                 albedo: image(ctx, "gbuffer.albedo", s, ga, ATTACHMENT_READ)?,
                 depth: image(ctx, "gbuffer.depth", s, DEPTH_FORMAT, DEPTH_READ)?,
@@ -183,22 +199,17 @@ impl Targets {
                 depth: image(ctx, "rsm.depth", r, DEPTH_FORMAT, DEPTH_READ)?,
                 size: rsm_size,
             },
-            direct: image(ctx, "direct", s, DIRECT_FORMAT, STORAGE_READ)?,
             output: image(ctx, "output", s, OUTPUT_FORMAT, STORAGE_READ)?,
-            shadow: image(ctx, "shadow", s, AO_FORMAT, STORAGE_READ)?,
-            ao_raw: image(ctx, "ao.raw", s, AO_FORMAT, STORAGE_READ)?,
-            ao_blurred: image(ctx, "ao.blurred", s, AO_FORMAT, STORAGE_READ)?,
         })
     }
 
-    /// The image behind a size-dependent target for frame parity `parity` (`None` for the
-    /// targets owned by temporal effects: AO, shadow, state).
+    /// The image behind a shared target for frame parity `parity` (`None` for the targets the
+    /// effects own: direct light, AO, shadow, indirect light, masks and state).
     pub fn get(&self, target: Target, parity: usize) -> Option<&Image> {
         Some(match target {
             Target::Output => &self.output,
-            Target::Direct => &self.direct,
-            Target::GPosition => &self.gbuffer.position[parity],
-            Target::GPositionHistory => &self.gbuffer.position[1 - parity],
+            Target::GPosition => self.gbuffer.position.current(parity),
+            Target::GPositionHistory => self.gbuffer.position.previous(parity),
             Target::GNormal => &self.gbuffer.normal,
             Target::GAlbedo => &self.gbuffer.albedo,
             Target::GDepth => &self.gbuffer.depth,
@@ -206,22 +217,12 @@ impl Targets {
             Target::RsmNormal => &self.rsm.normal,
             Target::RsmFlux => &self.rsm.flux,
             Target::RsmDepth => &self.rsm.depth,
-            Target::Ao
+            Target::Direct
+            | Target::Ao
             | Target::Shadow
             | Target::Indirect
             | Target::DiscardMask
             | Target::State => return None,
         })
     }
-}
-
-/// Where the composited AO comes from.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum AoSource {
-    /// Temporal reuse: the accumulated history.
-    History,
-    /// No reuse, the thesis's baseline: this frame's AO blurred 5x5.
-    Blurred,
-    /// No reuse, no blur (references).
-    Raw,
 }

@@ -20,6 +20,7 @@ mod serde_vec3;
 mod spec;
 mod texture;
 mod validate;
+mod world;
 
 pub use builder::MeshBuilder;
 pub use camera::{pixel_to_ndc, Camera};
@@ -39,16 +40,4 @@ pub use procedural::{
 pub use raycast::Hit;
 pub use spec::{asset_dir_from_env, list_assets, load_scene, ASSETS_ENV, BUILTIN_SCENES};
 pub use validate::HUGE_COORDINATE;
-
-use glam::Vec3;
-
-/// Everything the renderer needs for one scene.
-#[derive(Clone, Debug, PartialEq)]
-pub struct Scene {
-    pub name: String,
-    pub mesh: Mesh,
-    pub camera: Camera,
-    pub light: SpotLight,
-    /// Constant ambient radiance added in composite (RGB).
-    pub ambient: Vec3,
-}
+pub use world::Scene;

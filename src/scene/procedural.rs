@@ -5,7 +5,7 @@ use super::builder::MeshBuilder;
 use super::camera::Camera;
 use super::light::SpotLight;
 use super::mesh::{Material, Mesh};
-use super::Scene;
+use super::world::Scene;
 use glam::Vec3;
 
 /// McGuire's Cornell box albedos.

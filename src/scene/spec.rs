@@ -6,7 +6,7 @@ use super::light::SpotLight;
 use super::mesh::Mesh;
 use super::obj::load_obj;
 use super::procedural::{box_room, cornell_box, pyramids, DEFAULT_AMBIENT};
-use super::Scene;
+use super::world::Scene;
 use glam::Vec3;
 use std::path::{Path, PathBuf};
 

@@ -1,7 +1,7 @@
 //! Descriptor pool and set writes.
 
 use super::context::{Context, Garbage};
-use super::{Buffer, Image};
+use super::memory::{Buffer, Image};
 use crate::error::{Result, VkContext};
 use ash::vk;
 use std::sync::Arc;

@@ -2,7 +2,7 @@
 //! queue once the GPU is done with them, and followed by the sync tracker.
 
 use super::context::{Context, Garbage};
-use super::sync::{ResourceState, Tracked, TrackedImage};
+use super::sync::{ResourceState, Tracked, TrackedBuffer, TrackedImage};
 use crate::error::{Error, Result, VkContext};
 use ash::vk;
 use gpu_allocator::vulkan::{Allocation, AllocationCreateDesc, AllocationScheme};
@@ -112,6 +112,12 @@ impl Buffer {
 impl Tracked for Buffer {
     fn state(&self) -> &Cell<ResourceState> {
         &self.state
+    }
+}
+
+impl TrackedBuffer for Buffer {
+    fn handle(&self) -> vk::Buffer {
+        self.raw
     }
 }
 

@@ -20,9 +20,10 @@
 
 use super::cmd::Recorder;
 use super::context::{Context, SubmitSync};
+use super::memory::{Buffer, Image};
+use super::readback::ImageData;
 use super::surface::Surface;
 use super::sync::{Access, ResourceState, Tracked, TrackedImage, Tracker};
-use super::{Buffer, Image, ImageData};
 use crate::error::{Error, Result, VkContext};
 use ash::{khr, vk};
 use gpu_allocator::MemoryLocation;

@@ -239,6 +239,11 @@ pub trait Tracked {
     fn state(&self) -> &Cell<ResourceState>;
 }
 
+/// A buffer the tracker can follow.
+pub trait TrackedBuffer: Tracked {
+    fn handle(&self) -> vk::Buffer;
+}
+
 /// An image the tracker can follow (owned images and swapchain images alike).
 pub trait TrackedImage: Tracked {
     fn handle(&self) -> vk::Image;
@@ -277,7 +282,7 @@ impl Tracker {
         image.state().set(state);
     }
 
-    pub fn buffer(&mut self, buffer: &super::Buffer, next: Access) {
+    pub fn buffer(&mut self, buffer: &impl TrackedBuffer, next: Access) {
         let mut state = buffer.state().get();
         if let Some(d) = transition(&mut state, next, false) {
             self.buffers.push(
@@ -288,7 +293,7 @@ impl Tracker {
                     .dst_access_mask(d.dst_access)
                     .src_queue_family_index(vk::QUEUE_FAMILY_IGNORED)
                     .dst_queue_family_index(vk::QUEUE_FAMILY_IGNORED)
-                    .buffer(buffer.raw)
+                    .buffer(buffer.handle())
                     .offset(0)
                     .size(vk::WHOLE_SIZE),
             );

@@ -2,8 +2,8 @@
 
 use super::commands::one_shot;
 use super::context::Context;
+use super::memory::{Buffer, Image};
 use super::sync::{Access, Tracker};
-use super::{Buffer, Image};
 use crate::error::Result;
 use ash::vk;
 use gpu_allocator::MemoryLocation;

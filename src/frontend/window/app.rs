@@ -1,8 +1,5 @@
-//! Window frontend: `ssgi view` (interactive fly camera). winit 0.30 `ApplicationHandler` + a
-//! Vulkan swapchain; the same `Renderer` as the headless frontend, whose output (or another
-//! target, for the buffer display) is blitted into the acquired swapchain image in the
-//! renderer's frame hook. Scripted runs (`bench --window`, `table --window`) present through
-//! `presenter.rs` instead, which shares the frame steps in `present.rs`.
+//! The viewer application: opening the window and swapchain, winit's event loop
+//! (`ApplicationHandler`), the frame loop, and the viewer's actions on the renderer.
 //!
 //! Frame loop (one `RedrawRequested`):
 //! 1. if the swapchain is stale (resize, OUT_OF_DATE, SUBOPTIMAL): recreate it and resize the
@@ -12,14 +9,15 @@
 //! 3. acquire an image; render the frame with a hook that blits into it and moves it to
 //!    PRESENT_SRC; the submission waits on the acquire semaphore and signals the image's
 //!    render-finished semaphore; present.
-//!
-//! Viewer keys: see [`HELP`] (`view_state.rs`).
 
-use super::display::{new_event_loop, presenting_context};
-use super::present::{recreate, render_and_present, Presented, Recreated};
-use super::view_state::needs_rebuild;
-pub use super::view_state::{Action, ViewState, DISPLAY_CYCLE, HELP};
+use super::fly_camera;
+use super::keys;
+use super::script::{self, ScriptOp, ScriptStep};
+use super::stats::Stats;
 use crate::error::{Error, Result};
+use crate::frontend::display::{new_event_loop, presenting_context};
+use crate::frontend::present::{recreate, render_and_present, Presented, Recreated};
+use crate::frontend::view_state::{needs_rebuild, Action, ViewState, DISPLAY_CYCLE, HELP};
 use crate::renderer::targets::Target;
 use crate::renderer::{Renderer, FRAMES_IN_FLIGHT};
 use crate::scene::Camera;
@@ -29,7 +27,6 @@ use crate::vk::{
     SwapchainOptions,
 };
 use glam::Vec3;
-use std::collections::BTreeMap;
 use std::path::PathBuf;
 use std::sync::Arc;
 use std::time::{Duration, Instant};
@@ -37,75 +34,10 @@ use winit::application::ApplicationHandler;
 use winit::dpi::PhysicalSize;
 use winit::event::{ElementState, KeyEvent, MouseButton, WindowEvent};
 use winit::event_loop::{ActiveEventLoop, ControlFlow};
-use winit::keyboard::{KeyCode, ModifiersState, PhysicalKey};
+use winit::keyboard::PhysicalKey;
 use winit::window::{Window, WindowId};
 
-/// One step of a scripted run (hidden `--script` flag, for tests under Xvfb): before
-/// presented frame `frame`, do `op`.
-#[derive(Clone, Debug, PartialEq)]
-pub struct ScriptStep {
-    pub frame: u64,
-    pub op: ScriptOp,
-}
-
-#[derive(Clone, Debug, PartialEq)]
-pub enum ScriptOp {
-    /// Ask the window system for this inner size.
-    Resize(u32, u32),
-    /// Behave as if the window had a zero extent (minimised) for this many event-loop
-    /// iterations: X11 windows never have one (a minimised X11 window keeps its size, and a
-    /// zero-sized X window is invalid), so under Xvfb the path is exercised this way.
-    ZeroExtent(u32),
-    /// A viewer key action by name (cycle, pcf, ao, indirect, ssdo, filter, reuse, camera, help,
-    /// quit).
-    Key(String),
-    /// Show this buffer of [`DISPLAY_CYCLE`] by name.
-    Display(String),
-}
-
-/// Parse `FRAME:OP[,FRAME:OP...]` with OP one of `resize=WxH`, `zero=N`, `key=NAME`,
-/// `display=NAME`.
-pub fn parse_script(s: &str) -> std::result::Result<Vec<ScriptStep>, String> {
-    let mut steps = Vec::new();
-    for part in s.split(',').map(str::trim).filter(|p| !p.is_empty()) {
-        let bad = || {
-            format!("bad script step {part:?}: expected FRAME:resize=WxH, FRAME:zero=N, FRAME:key=NAME or FRAME:display=NAME")
-        };
-        let (frame, op) = part.split_once(':').ok_or_else(bad)?;
-        let frame: u64 = frame.trim().parse().map_err(|_| bad())?;
-        let (name, value) = op.split_once('=').ok_or_else(bad)?;
-        let op = match name.trim() {
-            "resize" => {
-                let (w, h) = value.split_once(['x', 'X']).ok_or_else(bad)?;
-                let w: u32 = w.trim().parse().map_err(|_| bad())?;
-                let h: u32 = h.trim().parse().map_err(|_| bad())?;
-                if w == 0 || h == 0 {
-                    return Err(format!("{part:?}: use zero=N for a zero extent"));
-                }
-                ScriptOp::Resize(w, h)
-            }
-            "zero" => ScriptOp::ZeroExtent(value.trim().parse().map_err(|_| bad())?),
-            "key" => {
-                let key = value.trim();
-                if Action::from_name(key).is_none() {
-                    return Err(format!("{part:?}: unknown key action {key:?}"));
-                }
-                ScriptOp::Key(key.to_string())
-            }
-            "display" => {
-                let name = value.trim();
-                if !DISPLAY_CYCLE.iter().any(|(_, n)| *n == name) {
-                    return Err(format!("{part:?}: unknown buffer {name:?}"));
-                }
-                ScriptOp::Display(name.to_string())
-            }
-            _ => return Err(bad()),
-        };
-        steps.push(ScriptStep { frame, op });
-    }
-    Ok(steps)
-}
-
+/// What the viewer opens and how a scripted run ends.
 pub struct WindowOptions {
     pub title: String,
     /// Initial inner size of the window.
@@ -152,7 +84,7 @@ pub fn run(
         timings: Vec::new(),
         presented: 0,
         captured: None,
-        input: Input::default(),
+        input: keys::Input::default(),
         stats: Stats::new(),
         zero_ticks: 0,
         minimised: false,
@@ -191,87 +123,6 @@ struct Live {
     displayable: Vec<bool>,
 }
 
-#[derive(Default)]
-struct Input {
-    forward: f32,
-    back: f32,
-    left: f32,
-    right: f32,
-    up: f32,
-    down: f32,
-    mods: ModifiersState,
-    dragging: bool,
-    cursor: Option<(f64, f64)>,
-    /// Mouse movement (pixels) since the last frame.
-    look: (f64, f64),
-}
-
-/// Frame-time and per-pass GPU averages for the window title, refreshed ~4x per second.
-struct Stats {
-    since: Instant,
-    frames: u32,
-    wall_ms: f64,
-    gpu: BTreeMap<&'static str, (f64, u32)>,
-    order: Vec<&'static str>,
-}
-
-impl Stats {
-    fn new() -> Self {
-        Self {
-            since: Instant::now(),
-            frames: 0,
-            wall_ms: 0.0,
-            gpu: BTreeMap::new(),
-            order: Vec::new(),
-        }
-    }
-
-    fn add_wall(&mut self, ms: f64) {
-        self.frames += 1;
-        self.wall_ms += ms;
-    }
-
-    fn add_gpu(&mut self, t: &FrameTiming) {
-        for (name, ms) in &t.passes {
-            if let Some(ms) = ms {
-                if !self.order.contains(name) {
-                    self.order.push(name);
-                }
-                let e = self.gpu.entry(name).or_insert((0.0, 0));
-                e.0 += ms;
-                e.1 += 1;
-            }
-        }
-    }
-
-    /// The title text when a refresh is due (then the averages start over).
-    fn title(&mut self, prefix: &str) -> Option<String> {
-        if self.since.elapsed() < Duration::from_millis(250) || self.frames == 0 {
-            return None;
-        }
-        let frame_ms = self.wall_ms / self.frames as f64;
-        let mut total = 0.0;
-        let mut passes = Vec::new();
-        for name in &self.order {
-            if let Some((sum, n)) = self.gpu.get(name) {
-                let ms = sum / *n as f64;
-                total += ms;
-                passes.push(format!("{name} {ms:.2}"));
-            }
-        }
-        let title = format!(
-            "{prefix} | {frame_ms:.1} ms ({:.0} fps) | GPU {total:.2} ms: {}",
-            1000.0 / frame_ms.max(1e-3),
-            passes.join(", ")
-        );
-        *self = Stats {
-            order: std::mem::take(&mut self.order),
-            ..Stats::new()
-        };
-        Some(title)
-    }
-}
-
 struct App {
     options: WindowOptions,
     ctx: Arc<Context>,
@@ -281,7 +132,7 @@ struct App {
     timings: Vec<FrameTiming>,
     presented: u64,
     captured: Option<ImageData>,
-    input: Input,
+    input: keys::Input,
     stats: Stats,
     /// Event-loop iterations left of a scripted zero extent.
     zero_ticks: u32,
@@ -473,15 +324,7 @@ impl App {
     }
 
     fn run_script(&mut self, event_loop: &ActiveEventLoop) {
-        let due: Vec<ScriptOp> = self
-            .options
-            .script
-            .iter()
-            .filter(|s| s.frame == self.presented)
-            .map(|s| s.op.clone())
-            .collect();
-        self.options.script.retain(|s| s.frame != self.presented);
-        for op in due {
+        for op in script::take_due(&mut self.options.script, self.presented) {
             match op {
                 ScriptOp::Resize(w, h) => {
                     if let Some(live) = &self.live {
@@ -521,41 +364,12 @@ impl App {
             (None, Some(r)) => r.scene.camera,
             (None, None) => return Camera::new(Vec3::Z, Vec3::ZERO, 60.0, 0.1, 100.0),
         };
-        let i = &mut self.input;
-        let moving = i.forward + i.back + i.left + i.right + i.up + i.down;
-        if moving == 0.0 && i.look == (0.0, 0.0) {
+        if self.input.fly.is_idle() {
             return base; // unchanged, bit for bit (the screenshot test relies on it)
         }
-        let mut cam = base;
-        let dist = (cam.target - cam.position).length().max(1e-6);
-        let (f, _, _) = cam.frame();
-        let mut yaw = f.x.atan2(-f.z);
-        let mut pitch = f.y.clamp(-1.0, 1.0).asin();
-        const SENSITIVITY: f64 = 0.003;
-        yaw += (i.look.0 * SENSITIVITY) as f32;
-        pitch -= (i.look.1 * SENSITIVITY) as f32;
-        let limit = 89f32.to_radians();
-        pitch = pitch.clamp(-limit, limit);
-        i.look = (0.0, 0.0);
-        let forward = Vec3::new(
-            yaw.sin() * pitch.cos(),
-            pitch.sin(),
-            -yaw.cos() * pitch.cos(),
-        );
-        let right = forward.cross(Vec3::Y).normalize_or(Vec3::X);
         let radius = renderer.map_or(1.0, |r| r.scene.mesh.bounds.radius().max(1e-3));
-        let mut speed = 0.6 * radius;
-        if i.mods.shift_key() {
-            speed *= 4.0;
-        }
-        if i.mods.control_key() {
-            speed *= 0.25;
-        }
-        let dir =
-            forward * (i.forward - i.back) + right * (i.right - i.left) + Vec3::Y * (i.up - i.down);
-        cam.position += dir * speed * dt;
-        cam.target = cam.position + forward * dist;
-        cam.up = Vec3::Y;
+        let cam = fly_camera::step(base, &self.input.fly, dt, fly_camera::base_speed(radius));
+        self.input.fly.look = (0.0, 0.0);
         self.camera = Some(cam);
         cam
     }
@@ -748,7 +562,7 @@ impl ApplicationHandler for App {
                     live.swapchain.invalidate();
                 }
             }
-            WindowEvent::ModifiersChanged(m) => self.input.mods = m.state(),
+            WindowEvent::ModifiersChanged(m) => self.input.set_modifiers(m.state()),
             WindowEvent::KeyboardInput {
                 event:
                     KeyEvent {
@@ -759,48 +573,19 @@ impl ApplicationHandler for App {
                     },
                 ..
             } => {
-                let pressed = state == ElementState::Pressed;
-                let v = if pressed { 1.0 } else { 0.0 };
-                let i = &mut self.input;
-                match key {
-                    KeyCode::KeyW => i.forward = v,
-                    KeyCode::KeyS => i.back = v,
-                    KeyCode::KeyA => i.left = v,
-                    KeyCode::KeyD => i.right = v,
-                    KeyCode::KeyQ => i.down = v,
-                    KeyCode::KeyE => i.up = v,
-                    _ => {
-                        if pressed && !repeat {
-                            if let Some(a) = Action::from_key(key, i.mods) {
-                                self.act(event_loop, a);
-                            }
-                        }
-                    }
+                if let Some(a) = self.input.key(key, state == ElementState::Pressed, repeat) {
+                    self.act(event_loop, a);
                 }
             }
             WindowEvent::MouseInput {
                 state,
                 button: MouseButton::Left,
                 ..
-            } => {
-                self.input.dragging = state == ElementState::Pressed;
-            }
+            } => self.input.left_button(state == ElementState::Pressed),
             WindowEvent::CursorMoved { position, .. } => {
-                let p = (position.x, position.y);
-                if let (true, Some(last)) = (self.input.dragging, self.input.cursor) {
-                    self.input.look.0 += p.0 - last.0;
-                    self.input.look.1 += p.1 - last.1;
-                }
-                self.input.cursor = Some(p);
+                self.input.cursor_moved((position.x, position.y));
             }
-            WindowEvent::Focused(false) => {
-                // Keys released while unfocused never arrive: stop moving.
-                let mods = self.input.mods;
-                self.input = Input {
-                    mods,
-                    ..Input::default()
-                };
-            }
+            WindowEvent::Focused(false) => self.input.focus_lost(),
             WindowEvent::RedrawRequested => {
                 if let Err(e) = self.frame(event_loop) {
                     self.fail(event_loop, e);
@@ -844,54 +629,5 @@ impl ApplicationHandler for App {
 
     fn exiting(&mut self, _event_loop: &ActiveEventLoop) {
         self.shutdown();
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn script_parses_and_rejects_nonsense() {
-        let s = parse_script("10:resize=96x72, 20:zero=5,30:key=cycle").unwrap();
-        assert_eq!(
-            s,
-            vec![
-                ScriptStep {
-                    frame: 10,
-                    op: ScriptOp::Resize(96, 72)
-                },
-                ScriptStep {
-                    frame: 20,
-                    op: ScriptOp::ZeroExtent(5)
-                },
-                ScriptStep {
-                    frame: 30,
-                    op: ScriptOp::Key("cycle".into())
-                },
-            ]
-        );
-        assert!(parse_script("10:resize=0x5").is_err());
-        assert!(parse_script("x:zero=1").is_err());
-        assert!(parse_script("1:key=explode").is_err());
-        assert!(parse_script("1:fly=1").is_err());
-    }
-
-    #[test]
-    fn title_averages_frame_time_and_passes() {
-        let mut stats = Stats::new();
-        assert_eq!(stats.title("x"), None, "nothing measured yet");
-        for ms in [10.0, 30.0] {
-            stats.add_wall(ms);
-            stats.add_gpu(&FrameTiming {
-                frame: 0,
-                passes: vec![("gbuffer", Some(ms / 10.0)), ("direct", None)],
-                ..Default::default()
-            });
-        }
-        stats.since -= Duration::from_secs(1);
-        let title = stats.title("ssgi").unwrap();
-        assert_eq!(title, "ssgi | 20.0 ms (50 fps) | GPU 2.00 ms: gbuffer 2.00");
-        assert_eq!(stats.frames, 0, "averages start over");
     }
 }

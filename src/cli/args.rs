@@ -1,22 +1,13 @@
-//! Command-line definitions and the `render` / `bench` jobs (the binary only dispatches).
+//! What the command line accepts: the clap definitions of every subcommand and their value
+//! parsers. Checks that need more than one flag, or the scene, happen in the jobs.
 
-use crate::bench::compare::Comparison;
-use crate::bench::Report;
-use crate::error::{Error, Result};
-use crate::frontend::headless;
-use crate::frontend::sink::{self, FrameSink, Offscreen};
-use crate::frontend::window::{self, WindowOptions, WindowRun};
-use crate::passes::PassId;
 use crate::renderer::config::{
     Accumulate, AoConfig, AoEstimator, Effects, Epsilon, IndirectConfig, TemporalConfig,
 };
 use crate::renderer::frame::Pcf;
-use crate::renderer::{RenderConfig, Renderer, MAX_SIZE};
-use crate::scene::{asset_dir_from_env, load_scene, CameraPath, Scene};
-use crate::vk::{Context, ContextOptions};
+use crate::renderer::{RenderConfig, MAX_SIZE};
 use clap::{Args, Parser, Subcommand};
 use std::path::PathBuf;
-use std::sync::Arc;
 
 #[derive(Parser, Debug)]
 #[command(
@@ -48,7 +39,7 @@ pub enum Command {
     /// Open a window with a fly camera (press H in the window for the keys).
     View(ViewArgs),
     /// Reproduce a thesis table: report.md, report.json, CSV and PNG plots in --out.
-    Table(crate::bench::cli::TableArgs),
+    Table(TableArgs),
 }
 
 #[derive(Args, Debug, Clone)]
@@ -261,10 +252,70 @@ pub struct ViewArgs {
     pub capture: Option<PathBuf>,
 }
 
-/// Frame counts above this are almost certainly a typo (a day at 1000 fps is 8.6e7).
-const MAX_FRAMES: u32 = 10_000_000;
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+pub enum TableName {
+    /// Venus, Dragon, Bunny, Buddha in a box: reuse vs no reuse (thesis Table 4.1).
+    #[value(name = "thesis-4.1")]
+    Thesis41,
+    /// Sponza, Sibenik, Conference walkthroughs, per-frame (thesis Tables 4.2-4.4, Fig. 4.10).
+    #[value(name = "thesis-walkthroughs")]
+    ThesisWalkthroughs,
+}
 
-pub(crate) fn parse_size(s: &str) -> std::result::Result<(u32, u32), String> {
+impl TableName {
+    pub fn name(self) -> &'static str {
+        match self {
+            TableName::Thesis41 => "thesis-4.1",
+            TableName::ThesisWalkthroughs => "thesis-walkthroughs",
+        }
+    }
+
+    /// The report heading.
+    pub fn title(self) -> &'static str {
+        match self {
+            TableName::Thesis41 => {
+                "Thesis Table 4.1: reuse vs no reuse (Venus, Dragon, Bunny, Buddha in a box)"
+            }
+            TableName::ThesisWalkthroughs => {
+                "Thesis Tables 4.2-4.4 and Figure 4.10: Sponza, Sibenik and Conference walkthroughs"
+            }
+        }
+    }
+}
+
+#[derive(Args, Debug)]
+pub struct TableArgs {
+    /// Which table.
+    #[arg(value_enum)]
+    pub table: TableName,
+    /// Output directory for report.md, report.json, CSV and PNG files (default out/<table>).
+    #[arg(long, value_name = "DIR")]
+    pub out: Option<PathBuf>,
+    /// Image size, WIDTHxHEIGHT.
+    #[arg(long, default_value = "512x512", value_parser = parse_size)]
+    pub size: (u32, u32),
+    /// Frames measured per row along the camera path.
+    #[arg(long, default_value_t = 120)]
+    pub frames: u32,
+    /// Frames rendered first at the path's first camera and left out of the statistics.
+    #[arg(long, default_value_t = 10)]
+    pub warmup: u32,
+    /// thesis-4.1: static, orbit, dolly, or a keyframe file, for all four scenes (default:
+    /// paths/box.json, compiled in). thesis-walkthroughs: a directory holding sponza.json,
+    /// sibenik.json and conference.json (default: those of paths/, compiled in).
+    #[arg(long, value_name = "P")]
+    pub path: Option<String>,
+    /// Effects to render, comma-separated: direct, ao, indirect (or all). Leaving one out drops
+    /// its columns (e.g. `direct,ao` on a slow device).
+    #[arg(long, default_value = "all", value_parser = Effects::parse)]
+    pub effects: Effects,
+    /// Present every frame to a window (present mode immediate, else mailbox, else fifo) and
+    /// time that; Escape or closing the window aborts the table.
+    #[arg(long)]
+    pub window: bool,
+}
+
+fn parse_size(s: &str) -> std::result::Result<(u32, u32), String> {
     let (w, h) = s
         .split_once(['x', 'X'])
         .ok_or_else(|| format!("expected WIDTHxHEIGHT like 512x512, got {s:?}"))?;
@@ -286,252 +337,4 @@ pub(crate) fn parse_size(s: &str) -> std::result::Result<(u32, u32), String> {
 
 fn parse_pcf(s: &str) -> std::result::Result<Pcf, String> {
     Pcf::parse(s)
-}
-
-fn check_frames(frames: u32, what: &str) -> Result<()> {
-    if frames > MAX_FRAMES {
-        return Err(Error::Config(format!(
-            "{what} {frames} is more than {MAX_FRAMES}"
-        )));
-    }
-    Ok(())
-}
-
-struct Setup {
-    ctx: std::sync::Arc<Context>,
-    renderer: Renderer,
-    path: CameraPath,
-}
-
-/// The scene and camera path of a run: everything before the GPU.
-fn load(cli: &Cli, args: &SceneArgs) -> Result<(Scene, CameraPath)> {
-    let assets = cli.assets.clone().or_else(asset_dir_from_env);
-    let scene = load_scene(&args.scene, assets.as_deref())?;
-    for w in &scene.mesh.stats.warnings {
-        eprintln!("warning: {w}");
-    }
-    if scene.mesh.stats.dropped_degenerate > 0 {
-        eprintln!(
-            "note: dropped {} zero-area triangles",
-            scene.mesh.stats.dropped_degenerate
-        );
-    }
-    let path = CameraPath::parse(&args.path)?;
-    Ok((scene, path))
-}
-
-/// The context every command starts from: `--validation`, `--device`, the device printed.
-pub(crate) fn context_options(cli: &Cli) -> ContextOptions {
-    ContextOptions {
-        validation: cli.validation,
-        device: cli.device.clone(),
-        verbose: true,
-        ..Default::default()
-    }
-}
-
-fn setup(cli: &Cli, args: &SceneArgs) -> Result<Setup> {
-    let (scene, path) = load(cli, args)?;
-    let ctx = Context::new(&context_options(cli))?;
-    let config = args.render_config();
-    let renderer = Renderer::new(&ctx, scene, config)?;
-    Ok(Setup {
-        ctx,
-        renderer,
-        path,
-    })
-}
-
-fn finish(ctx: &Context) -> Result<()> {
-    ctx.wait_idle()?;
-    match ctx.validation() {
-        Some(log) => log.check(),
-        None => Ok(()),
-    }
-}
-
-pub fn render(cli: &Cli, args: &RenderArgs) -> Result<()> {
-    check_frames(args.frames, "--frames")?;
-    let frames = args.frames.max(1);
-    let Setup {
-        ctx,
-        mut renderer,
-        path,
-    } = setup(cli, &args.scene)?;
-    headless::run(&mut renderer, &mut Offscreen, &path, frames, true)?;
-    headless::write_output(&mut renderer, &args.out)?;
-    eprintln!("wrote {}", args.out.display());
-    if let Some(dir) = &args.dump_gbuffer {
-        let files = headless::dump_targets(&mut renderer, dir)?;
-        eprintln!("wrote {} targets to {}", files.len(), dir.display());
-    }
-    drop(renderer);
-    finish(&ctx)
-}
-
-fn write_json(path: &std::path::Path, value: &impl serde::Serialize) -> Result<()> {
-    if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty()) {
-        std::fs::create_dir_all(dir).map_err(|source| Error::Io {
-            path: dir.to_path_buf(),
-            source,
-        })?;
-    }
-    let text = serde_json::to_string_pretty(value)
-        .map_err(|e| Error::Config(format!("JSON encoding failed: {e}")))?;
-    std::fs::write(path, text).map_err(|source| Error::Io {
-        path: path.to_path_buf(),
-        source,
-    })?;
-    eprintln!("wrote {}", path.display());
-    Ok(())
-}
-
-/// The report's `config` object for a headless or windowed bench run.
-fn bench_config(
-    args: &BenchArgs,
-    ctx: &Context,
-    renderer: &Renderer,
-    path: &CameraPath,
-    sink: &dyn FrameSink,
-) -> serde_json::Value {
-    serde_json::json!({
-        "scene": args.scene.scene,
-        "path": path.name(),
-        "frames": args.frames,
-        "warmup": args.warmup,
-        "rsm_size": args.scene.rsm_size,
-        "pcf_samples": args.scene.pcf.samples(),
-        "pcf_radius_texels": args.scene.pcf.radius_texels,
-        "render": renderer.config,
-        "device_type": ctx.info.device_type,
-        "api_version": ctx.info.api_version,
-        "triangles": renderer.scene.mesh.indices.len() / 3,
-        "window": sink.present_mode().is_some(),
-        "present_mode": sink.present_mode(),
-    })
-}
-
-/// `bench --compare-reuse`: both configurations on one context, one after the other.
-fn bench_compare_reuse(
-    args: &BenchArgs,
-    ctx: &Arc<Context>,
-    sink: &mut dyn FrameSink,
-    scene: Scene,
-    path: CameraPath,
-) -> Result<()> {
-    let names: Vec<&str> = PassId::ALL.iter().map(|p| p.name()).collect();
-    let mut reports = Vec::new();
-    for reuse in [true, false] {
-        let mut config = args.scene.render_config();
-        config.temporal.reuse = reuse;
-        let mut renderer = Renderer::new(ctx, scene.clone(), config)?;
-        let timings = headless::run(&mut renderer, sink, &path, args.frames + args.warmup, true)?;
-        let report = Report::new(
-            &ctx.info,
-            args.scene.size.0,
-            args.scene.size.1,
-            bench_config(args, ctx, &renderer, &path, sink),
-            &names,
-            &timings,
-            args.warmup as u64,
-        );
-        println!("reuse {}:", if reuse { "on" } else { "off" });
-        print!("{}", report.table());
-        if let (Some(out), true) = (&args.out, reuse) {
-            headless::write_output(&mut renderer, out)?;
-            eprintln!("wrote {}", out.display());
-        }
-        reports.push(report);
-    }
-    let [on, off]: [Report; 2] = reports
-        .try_into()
-        .map_err(|_| Error::Config("comparison needs two runs".into()))?;
-    let comparison = Comparison::new("reuse", ["reuse on", "reuse off"], [on, off]);
-    print!("{}", comparison.table());
-    if let Some(json) = &args.json {
-        write_json(json, &comparison)?;
-    }
-    Ok(())
-}
-
-pub fn bench(cli: &Cli, args: &BenchArgs) -> Result<()> {
-    check_frames(args.frames, "--frames")?;
-    check_frames(args.warmup, "--warmup")?;
-    if args.frames == 0 {
-        return Err(Error::Config("--frames must be at least 1".into()));
-    }
-    let (scene, path) = load(cli, &args.scene)?;
-    let window = args.window.then(|| format!("ssgi bench: {}", scene.name));
-    let (ctx, mut sink) = sink::open(window, args.scene.size, context_options(cli))?;
-    if args.compare_reuse {
-        bench_compare_reuse(args, &ctx, sink.as_mut(), scene, path)?;
-        drop(sink);
-        return finish(&ctx);
-    }
-    let total = args.frames + args.warmup;
-    let mut renderer = Renderer::new(&ctx, scene, args.scene.render_config())?;
-    let timings = headless::run(&mut renderer, sink.as_mut(), &path, total, true)?;
-    let config = bench_config(args, &ctx, &renderer, &path, sink.as_ref());
-    let names: Vec<&str> = PassId::ALL.iter().map(|p| p.name()).collect();
-    let report = Report::new(
-        &ctx.info,
-        args.scene.size.0,
-        args.scene.size.1,
-        config,
-        &names,
-        &timings,
-        args.warmup as u64,
-    );
-    print!("{}", report.table());
-    if let Some(json) = &args.json {
-        write_json(json, &report)?;
-    }
-    if let Some(out) = &args.out {
-        headless::write_output(&mut renderer, out)?;
-        eprintln!("wrote {}", out.display());
-    }
-    drop(renderer);
-    drop(sink);
-    finish(&ctx)
-}
-
-pub fn view(cli: &Cli, args: &ViewArgs) -> Result<()> {
-    if let Some(frames) = args.frames {
-        check_frames(frames.min(u32::MAX as u64 + 1) as u32, "--frames")?;
-    }
-    let script = match &args.script {
-        Some(s) => window::parse_script(s).map_err(Error::Config)?,
-        None => Vec::new(),
-    };
-    let (scene, _path) = load(cli, &args.scene)?;
-    let config = args.scene.render_config();
-    let run = window::run(
-        WindowOptions {
-            title: format!("ssgi view: {}", scene.name),
-            size: args.scene.size,
-            frames: args.frames,
-            script,
-            capture: args.capture.clone(),
-        },
-        context_options(cli),
-        move |ctx| Renderer::new(ctx, scene, config),
-    )?;
-    eprintln!("presented {} frames", run.frames_presented);
-    if let Some(path) = &args.capture {
-        let data = run
-            .captured
-            .as_ref()
-            .ok_or_else(|| Error::Window("no frame was captured".into()))?;
-        let rgba = data.rgba8().ok_or_else(|| {
-            Error::Window(format!(
-                "cannot write a {:?} swapchain image as PNG",
-                data.format
-            ))
-        })?;
-        crate::frontend::png::write_rgba8(path, data.width, data.height, &rgba)?;
-        eprintln!("wrote {}", path.display());
-    }
-    let WindowRun { ctx, renderer, .. } = run;
-    drop(renderer);
-    finish(&ctx)
 }

@@ -1,0 +1,142 @@
+//! `ssgi bench`: per-pass GPU times along a camera path, offscreen or presented, as a table
+//! and JSON; `--compare-reuse` runs the path with reuse on and off and adds the speed-ups.
+
+use super::common::{check_frames, context_options, finish, load};
+use crate::bench::compare::Comparison;
+use crate::bench::Report;
+use crate::cli::args::{BenchArgs, Cli};
+use crate::error::{Error, Result};
+use crate::frontend::headless;
+use crate::frontend::presenter::open_sink;
+use crate::frontend::sink::FrameSink;
+use crate::passes::PassId;
+use crate::renderer::Renderer;
+use crate::scene::{CameraPath, Scene};
+use crate::vk::Context;
+use std::sync::Arc;
+
+fn write_json(path: &std::path::Path, value: &impl serde::Serialize) -> Result<()> {
+    if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty()) {
+        std::fs::create_dir_all(dir).map_err(|source| Error::Io {
+            path: dir.to_path_buf(),
+            source,
+        })?;
+    }
+    let text = serde_json::to_string_pretty(value)
+        .map_err(|e| Error::Config(format!("JSON encoding failed: {e}")))?;
+    std::fs::write(path, text).map_err(|source| Error::Io {
+        path: path.to_path_buf(),
+        source,
+    })?;
+    eprintln!("wrote {}", path.display());
+    Ok(())
+}
+
+/// The report's `config` object for a headless or windowed bench run.
+fn bench_config(
+    args: &BenchArgs,
+    ctx: &Context,
+    renderer: &Renderer,
+    path: &CameraPath,
+    sink: &dyn FrameSink,
+) -> serde_json::Value {
+    serde_json::json!({
+        "scene": args.scene.scene,
+        "path": path.name(),
+        "frames": args.frames,
+        "warmup": args.warmup,
+        "rsm_size": args.scene.rsm_size,
+        "pcf_samples": args.scene.pcf.samples(),
+        "pcf_radius_texels": args.scene.pcf.radius_texels,
+        "render": renderer.config,
+        "device_type": ctx.info.device_type,
+        "api_version": ctx.info.api_version,
+        "triangles": renderer.scene.mesh.indices.len() / 3,
+        "window": sink.present_mode().is_some(),
+        "present_mode": sink.present_mode(),
+    })
+}
+
+/// `bench --compare-reuse`: both configurations on one context, one after the other.
+fn bench_compare_reuse(
+    args: &BenchArgs,
+    ctx: &Arc<Context>,
+    sink: &mut dyn FrameSink,
+    scene: Scene,
+    path: CameraPath,
+) -> Result<()> {
+    let names: Vec<&str> = PassId::ALL.iter().map(|p| p.name()).collect();
+    let mut reports = Vec::new();
+    for reuse in [true, false] {
+        let mut config = args.scene.render_config();
+        config.temporal.reuse = reuse;
+        let mut renderer = Renderer::new(ctx, scene.clone(), config)?;
+        let timings = headless::run(&mut renderer, sink, &path, args.frames + args.warmup, true)?;
+        let report = Report::new(
+            &ctx.info,
+            args.scene.size.0,
+            args.scene.size.1,
+            bench_config(args, ctx, &renderer, &path, sink),
+            &names,
+            &timings,
+            args.warmup as u64,
+        );
+        println!("reuse {}:", if reuse { "on" } else { "off" });
+        print!("{}", report.table());
+        if let (Some(out), true) = (&args.out, reuse) {
+            headless::write_output(&mut renderer, out)?;
+            eprintln!("wrote {}", out.display());
+        }
+        reports.push(report);
+    }
+    let [on, off]: [Report; 2] = reports
+        .try_into()
+        .map_err(|_| Error::Config("comparison needs two runs".into()))?;
+    let comparison = Comparison::new("reuse", ["reuse on", "reuse off"], [on, off]);
+    print!("{}", comparison.table());
+    if let Some(json) = &args.json {
+        write_json(json, &comparison)?;
+    }
+    Ok(())
+}
+
+pub fn bench(cli: &Cli, args: &BenchArgs) -> Result<()> {
+    check_frames(args.frames, "--frames")?;
+    check_frames(args.warmup, "--warmup")?;
+    if args.frames == 0 {
+        return Err(Error::Config("--frames must be at least 1".into()));
+    }
+    let (scene, path) = load(cli, &args.scene)?;
+    let window = args.window.then(|| format!("ssgi bench: {}", scene.name));
+    let (ctx, mut sink) = open_sink(window, args.scene.size, context_options(cli))?;
+    if args.compare_reuse {
+        bench_compare_reuse(args, &ctx, sink.as_mut(), scene, path)?;
+        drop(sink);
+        return finish(&ctx);
+    }
+    let total = args.frames + args.warmup;
+    let mut renderer = Renderer::new(&ctx, scene, args.scene.render_config())?;
+    let timings = headless::run(&mut renderer, sink.as_mut(), &path, total, true)?;
+    let config = bench_config(args, &ctx, &renderer, &path, sink.as_ref());
+    let names: Vec<&str> = PassId::ALL.iter().map(|p| p.name()).collect();
+    let report = Report::new(
+        &ctx.info,
+        args.scene.size.0,
+        args.scene.size.1,
+        config,
+        &names,
+        &timings,
+        args.warmup as u64,
+    );
+    print!("{}", report.table());
+    if let Some(json) = &args.json {
+        write_json(json, &report)?;
+    }
+    if let Some(out) = &args.out {
+        headless::write_output(&mut renderer, out)?;
+        eprintln!("wrote {}", out.display());
+    }
+    drop(renderer);
+    drop(sink);
+    finish(&ctx)
+}

@@ -1,0 +1,73 @@
+//! `ssgi table <thesis-4.1|thesis-walkthroughs>`: measure a thesis table's rows, offscreen or
+//! presented, and write its report, CSV and plots.
+
+use super::common::{context_options, finish};
+use crate::bench::markdown::WALKTHROUGH_LEGEND;
+use crate::bench::{output, table41, walkthrough, TableOptions};
+use crate::cli::args::{Cli, TableArgs, TableName};
+use crate::error::{Error, Result};
+use crate::frontend::presenter::open_sink;
+use crate::scene::asset_dir_from_env;
+use std::path::PathBuf;
+
+/// Most frames a table accepts per row (a typo guard, as for `bench`).
+const MAX_FRAMES: u32 = 1_000_000;
+
+/// The command line as typed (arguments with spaces quoted).
+fn command_line() -> String {
+    std::env::args()
+        .map(|a| {
+            if a.contains(char::is_whitespace) {
+                format!("'{a}'")
+            } else {
+                a
+            }
+        })
+        .collect::<Vec<_>>()
+        .join(" ")
+}
+
+pub fn table(cli: &Cli, args: &TableArgs) -> Result<()> {
+    if args.frames == 0 || args.frames > MAX_FRAMES || args.warmup > MAX_FRAMES {
+        return Err(Error::Config(format!(
+            "--frames must be in 1..={MAX_FRAMES} and --warmup at most {MAX_FRAMES}"
+        )));
+    }
+    let out = args
+        .out
+        .clone()
+        .unwrap_or_else(|| PathBuf::from("out").join(args.table.name()));
+    let opts = TableOptions {
+        size: args.size,
+        frames: args.frames,
+        warmup: args.warmup,
+        path: args.path.clone(),
+        effects: args.effects,
+        assets: cli.assets.clone().or_else(asset_dir_from_env),
+        progress: true,
+        command: command_line(),
+    };
+    let window = args
+        .window
+        .then(|| format!("ssgi table {}", args.table.name()));
+    let (ctx, mut sink) = open_sink(window, args.size, context_options(cli))?;
+    let (mut report, extra_md) = match args.table {
+        TableName::Thesis41 => (table41::run(&ctx, sink.as_mut(), &opts)?, ""),
+        TableName::ThesisWalkthroughs => (
+            walkthrough::run(&ctx, sink.as_mut(), &opts, &out)?,
+            WALKTHROUGH_LEGEND,
+        ),
+    };
+    if sink.present_mode().is_some() {
+        eprintln!("presented {} frames to the window", sink.frames_presented());
+    }
+    drop(sink);
+    let images = output::write_last_frames(&out, &report)?;
+    for (scene, names) in report.scenes.iter_mut().zip(images) {
+        scene.files.extend(names);
+    }
+    for path in output::write_report(&out, &report, args.table.title(), extra_md)? {
+        eprintln!("wrote {}", path.display());
+    }
+    finish(&ctx)
+}

@@ -1,0 +1,10 @@
+//! The `ssgi` command line: [`args`] says what was asked (clap), [`jobs`] does it. The binary
+//! only parses and dispatches.
+
+pub mod args;
+pub mod jobs;
+
+pub use args::{
+    AccumulateMode, BenchArgs, Cli, Command, RenderArgs, SceneArgs, TableArgs, TableName, ViewArgs,
+};
+pub use jobs::{bench, render, table, view};

@@ -1,0 +1,298 @@
+//! Direct light from the spot light with PCF shadows from the light view's depth. Shadow
+//! visibility every frame over all pixels for grid kernels (hard, 49 samples) and for disc
+//! kernels without reuse; with reuse and a disc, the thesis's 9-sample PCF rotated and scaled
+//! per frame and accumulated over the blocks that need work. Then the direct pass:
+//! rgb = outgoing diffuse radiance albedo/pi * E * V, a = V.
+
+use super::effect::{
+    every_pixel, reprojection, Effect, EffectId, FrameInfo, Recording, Registration, Setup,
+    TermKind,
+};
+use super::resolve::EffectResources;
+use crate::error::Result;
+use crate::passes::compute::{ComputePass, Dispatch};
+use crate::passes::decl::{Bind, Slot, Use};
+use crate::passes::{PassId, PassLayout};
+use crate::renderer::config::RenderConfig;
+use crate::renderer::effect::{self, TemporalEffect};
+use crate::renderer::pcf::PcfKernel;
+use crate::renderer::targets::{Target, Targets, AO_FORMAT, DIRECT_FORMAT};
+use crate::shaders::{self, EffectPush};
+use crate::vk::cmd::Recorder;
+use crate::vk::{Context, Image, ImageDesc, Tracker};
+use ash::vk;
+use std::sync::Arc;
+
+/// Shadow visibility computed every frame.
+const SHADOW: Slot = Slot::Own(0);
+/// The visibility the direct pass reads: `SHADOW`, or the accumulated history.
+const VISIBILITY: Slot = Slot::Own(1);
+const DIRECT: Slot = Slot::Own(2);
+
+const SHADOW_FULL: &[Bind] = &[
+    Bind::new(0, Slot::GPosition, Use::Sampled),
+    Bind::new(1, Slot::GNormal, Use::Sampled),
+    Bind::new(2, Slot::RsmDepth, Use::Sampled),
+    Bind::new(3, SHADOW, Use::StorageWrite),
+];
+
+const SHADOW_ACCUMULATE: &[Bind] = &[
+    Bind::new(0, Slot::GPosition, Use::Sampled),
+    Bind::new(1, Slot::GNormal, Use::Sampled),
+    Bind::new(2, Slot::RsmDepth, Use::Sampled),
+    Bind::new(3, Slot::State, Use::StorageRead),
+    Bind::new(4, Slot::History, Use::StorageReadWrite),
+    Bind::new(5, Slot::Counters, Use::WorkList),
+];
+
+const DIRECT_LIGHT: &[Bind] = &[
+    Bind::new(0, Slot::GPosition, Use::Sampled),
+    Bind::new(1, Slot::GNormal, Use::Sampled),
+    Bind::new(2, Slot::GAlbedo, Use::Sampled),
+    Bind::new(3, VISIBILITY, Use::Sampled),
+    Bind::new(4, DIRECT, Use::StorageWrite),
+];
+
+pub const REGISTRATION: Registration = Registration {
+    id: EffectId::Direct,
+    enabled: |c| c.effects.direct,
+    create: |s| Ok(Box::new(DirectEffect::new(s)?)),
+    layouts,
+};
+
+fn layouts() -> Vec<PassLayout> {
+    vec![
+        ComputePass::layout(PassId::Shadow, &shaders::SHADOW_FULL_COMP, SHADOW_FULL),
+        ComputePass::layout(
+            PassId::Shadow,
+            &shaders::SHADOW_ACCUMULATE_COMP,
+            SHADOW_ACCUMULATE,
+        ),
+        ComputePass::layout(PassId::Direct, &shaders::DIRECT_COMP, DIRECT_LIGHT),
+    ]
+}
+
+/// What reuse adds: the accumulating shadow pass, its reprojection, and a direct pass whose
+/// sets read the history.
+struct Reuse {
+    accumulate: ComputePass,
+    reproject: ComputePass,
+    direct_from_history: ComputePass,
+}
+
+struct Sized {
+    shadow: Image,
+    direct: Image,
+    /// With reuse (used while the kernel is a disc).
+    temporal: Option<TemporalEffect>,
+}
+
+pub struct DirectEffect {
+    shadow_full: ComputePass,
+    direct: ComputePass,
+    reuse: Option<Reuse>,
+    sized: Sized,
+    push: EffectPush,
+}
+
+/// Whether shadows come from the accumulated history this frame: reuse on and a disc kernel
+/// (the thesis's rotated and scaled 9-sample PCF). Grids run every frame. The viewer changes
+/// the kernel in place, so this is decided per frame.
+fn shadow_reuse(config: &RenderConfig) -> bool {
+    config.temporal.reuse && matches!(config.pcf.kernel, PcfKernel::Disc { .. })
+}
+
+impl DirectEffect {
+    pub fn new(s: &mut Setup<'_>) -> Result<Self> {
+        let direct = ComputePass::new(
+            s.ctx,
+            s.pool,
+            PassId::Direct,
+            &shaders::DIRECT_COMP,
+            DIRECT_LIGHT,
+        )?;
+        let reuse = if s.config.temporal.reuse {
+            Some(Reuse {
+                accumulate: ComputePass::new(
+                    s.ctx,
+                    s.pool,
+                    PassId::Shadow,
+                    &shaders::SHADOW_ACCUMULATE_COMP,
+                    SHADOW_ACCUMULATE,
+                )?,
+                reproject: reprojection(s, "shadow")?,
+                direct_from_history: direct.instance(s.pool, "direct from shadow history")?,
+            })
+        } else {
+            None
+        };
+        Ok(Self {
+            shadow_full: ComputePass::new(
+                s.ctx,
+                s.pool,
+                PassId::Shadow,
+                &shaders::SHADOW_FULL_COMP,
+                SHADOW_FULL,
+            )?,
+            direct,
+            reuse,
+            sized: Self::create_sized(s.ctx, s.config)?,
+            push: EffectPush::default(),
+        })
+    }
+
+    fn create_sized(ctx: &Arc<Context>, c: &RenderConfig) -> Result<Sized> {
+        let image = |name: &str, format| {
+            Image::new(
+                ctx,
+                name,
+                ImageDesc {
+                    width: c.width,
+                    height: c.height,
+                    format,
+                    usage: vk::ImageUsageFlags::STORAGE
+                        | vk::ImageUsageFlags::SAMPLED
+                        | vk::ImageUsageFlags::TRANSFER_SRC,
+                },
+            )
+        };
+        Ok(Sized {
+            shadow: image("shadow", AO_FORMAT)?,
+            direct: image("direct", DIRECT_FORMAT)?,
+            temporal: if c.temporal.reuse {
+                Some(TemporalEffect::new(ctx, effect::SHADOW, c.width, c.height)?)
+            } else {
+                None
+            },
+        })
+    }
+
+    /// The effect's images; `VISIBILITY` is the history when `from_history`.
+    fn own(&self, from_history: bool) -> [[&Image; 2]; 3] {
+        let s = &self.sized;
+        let visibility = match (&s.temporal, from_history) {
+            (Some(t), true) => [t.history.current(0), t.history.current(1)],
+            _ => [&s.shadow, &s.shadow],
+        };
+        [[&s.shadow, &s.shadow], visibility, [&s.direct, &s.direct]]
+    }
+
+    fn resources<'a>(
+        &'a self,
+        targets: &'a Targets,
+        own: &'a [[&'a Image; 2]; 3],
+    ) -> EffectResources<'a> {
+        EffectResources {
+            targets,
+            temporal: self.sized.temporal.as_ref(),
+            own,
+            own_buffers: &[],
+        }
+    }
+
+    /// The shadow visibility the direct pass reads this frame.
+    fn visibility(&self, config: &RenderConfig, parity: usize) -> &Image {
+        match (&self.sized.temporal, shadow_reuse(config)) {
+            (Some(t), true) => t.history.current(parity),
+            _ => &self.sized.shadow,
+        }
+    }
+}
+
+impl Effect for DirectEffect {
+    fn id(&self) -> EffectId {
+        EffectId::Direct
+    }
+
+    fn resize(&mut self, ctx: &Arc<Context>, config: &RenderConfig) -> Result<()> {
+        self.sized = Self::create_sized(ctx, config)?;
+        Ok(())
+    }
+
+    fn bind(&self, ctx: &Context, targets: &Targets) -> Result<()> {
+        let own = self.own(false);
+        let res = self.resources(targets, &own);
+        self.shadow_full.bind(ctx, &res)?;
+        self.direct.bind(ctx, &res)?;
+        if let Some(r) = &self.reuse {
+            r.accumulate.bind(ctx, &res)?;
+            r.reproject.bind(ctx, &res)?;
+            let own = self.own(true);
+            r.direct_from_history
+                .bind(ctx, &self.resources(targets, &own))?;
+        }
+        Ok(())
+    }
+
+    fn temporal(&self) -> Option<&TemporalEffect> {
+        self.sized.temporal.as_ref()
+    }
+
+    fn temporal_mut(&mut self) -> Option<&mut TemporalEffect> {
+        self.sized.temporal.as_mut()
+    }
+
+    fn counts(&self, config: &RenderConfig) -> bool {
+        shadow_reuse(config) && self.sized.temporal.is_some()
+    }
+
+    fn prepare(&mut self, info: &FrameInfo<'_>) {
+        if !self.counts(info.config) {
+            return;
+        }
+        let refresh = info.config.temporal.refresh;
+        if let Some(t) = &mut self.sized.temporal {
+            self.push = t.frame_push(info.reusing(), refresh, 0);
+        }
+    }
+
+    fn reprojects(&self, info: &FrameInfo<'_>) -> bool {
+        self.counts(info.config)
+    }
+
+    fn record_reprojection(&self, info: &FrameInfo<'_>, rec: &Recorder<'_>, tracker: &mut Tracker) {
+        if let Some(r) = &self.reuse {
+            let own = self.own(false);
+            let res = self.resources(info.targets, &own);
+            let push = self.push.to_bytes();
+            let all = every_pixel(info);
+            r.reproject
+                .record(rec, tracker, info.frame, &res, &push, all);
+        }
+    }
+
+    fn record(&self, info: &FrameInfo<'_>, r: &mut Recording<'_>) {
+        let accumulated = self.reuse.as_ref().filter(|_| self.counts(info.config));
+        let own = self.own(accumulated.is_some());
+        let res = self.resources(info.targets, &own);
+        let push = self.push.to_bytes();
+        let (shadow, direct, push, dispatch): (_, _, &[u8], _) = match accumulated {
+            Some(reuse) => (
+                &reuse.accumulate,
+                &reuse.direct_from_history,
+                &push,
+                Dispatch::Indirect { offset: 0 },
+            ),
+            None => (&self.shadow_full, &self.direct, &[], every_pixel(info)),
+        };
+        r.timed(PassId::Shadow, |rec, tr| {
+            shadow.record(rec, tr, info.frame, &res, push, dispatch)
+        });
+        r.timed(PassId::Direct, |rec, tr| {
+            direct.record(rec, tr, info.frame, &res, &[], every_pixel(info))
+        });
+    }
+
+    fn term(&self, _parity: usize) -> (TermKind, &Image) {
+        (TermKind::Radiance, &self.sized.direct)
+    }
+
+    fn target(&self, target: Target, parity: usize, config: &RenderConfig) -> Option<&Image> {
+        match target {
+            Target::Direct => Some(&self.sized.direct),
+            Target::Shadow => Some(self.visibility(config, parity)),
+            Target::State => self.sized.temporal.as_ref().map(|t| &t.state),
+            _ => None,
+        }
+    }
+}

@@ -1,0 +1,153 @@
+//! What an effect is to the renderer: the [`Effect`] trait, its registration, and what it is
+//! given to create itself and to record a frame.
+
+use crate::error::Result;
+use crate::passes::compute::{ComputePass, Dispatch, FrameSet};
+use crate::passes::{PassId, PassLayout};
+use crate::renderer::config::RenderConfig;
+use crate::renderer::effect::TemporalEffect;
+use crate::renderer::targets::{Target, Targets};
+use crate::vk::cmd::Recorder;
+use crate::vk::{Context, DescriptorPool, GpuTimer, Image, Tracker};
+use std::sync::Arc;
+
+/// Which effect (typed, for lookups that must not depend on strings).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum EffectId {
+    Direct,
+    Ao,
+    Indirect,
+}
+
+/// How the composite adds an effect's image (the `kind` codes of shaders/composite.comp).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum TermKind {
+    /// Outgoing radiance, added as is (direct light).
+    Radiance = 0,
+    /// Visibility of the ambient light, multiplied into it (AO, r channel).
+    AmbientVisibility = 1,
+    /// Eq 9's one-bounce irradiance from VPL flux: the receiver reflects albedo/pi of it, and a
+    /// VPL of flux Phi has intensity Phi cos / pi (eq 9 leaves that 1/pi out).
+    VplIrradiance = 2,
+}
+
+/// What every effect sees of the frame being recorded.
+pub struct FrameInfo<'a> {
+    pub config: &'a RenderConfig,
+    pub targets: &'a Targets,
+    pub frame: FrameSet,
+    pub frame_index: u64,
+    /// Last frame's data is in the histories (false on the first frame, after a resize or a
+    /// camera cut).
+    pub history_valid: bool,
+}
+
+impl FrameInfo<'_> {
+    /// Reuse is on and the histories hold last frame's data.
+    pub fn reusing(&self) -> bool {
+        self.config.temporal.reuse && self.history_valid
+    }
+}
+
+/// The command buffer being recorded: passes run inside [`Recording::timed`], which puts each
+/// in its command label and between its timestamps.
+pub struct Recording<'a> {
+    pub rec: Recorder<'a>,
+    pub tracker: &'a mut Tracker,
+    pub timer: &'a mut GpuTimer,
+    pub slot: usize,
+    /// The last pass recorded (device-loss reports name it).
+    pub last_pass: Option<PassId>,
+}
+
+impl Recording<'_> {
+    pub fn timed(&mut self, pass: PassId, f: impl FnOnce(&Recorder<'_>, &mut Tracker)) {
+        self.rec.begin_label(pass.name());
+        let began = self.timer.begin_pass(self.rec.cmd, self.slot, pass.name());
+        f(&self.rec, self.tracker);
+        if began {
+            self.timer.end_pass(self.rec.cmd, self.slot);
+        }
+        self.rec.end_label();
+        self.last_pass = Some(pass);
+    }
+}
+
+/// Passes several effects share, created once by the renderer.
+pub struct SharedPasses {
+    /// Reverse reprojection (each temporal effect gets its own instance's descriptor sets).
+    pub reproject: ComputePass,
+}
+
+/// Everything an effect needs to create itself.
+pub struct Setup<'a> {
+    pub ctx: &'a Arc<Context>,
+    pub pool: &'a DescriptorPool,
+    pub config: &'a RenderConfig,
+    pub shared: &'a SharedPasses,
+    pub tracker: &'a mut Tracker,
+}
+
+pub trait Effect {
+    fn id(&self) -> EffectId;
+
+    /// (Re)create the size-dependent images and history for `config`'s size (the device is
+    /// idle; histories start over).
+    fn resize(&mut self, ctx: &Arc<Context>, config: &RenderConfig) -> Result<()>;
+
+    /// Point every descriptor set at this size's images.
+    fn bind(&self, ctx: &Context, targets: &Targets) -> Result<()>;
+
+    /// The effect's temporal machinery (history, state, work lists, counters), if it has one.
+    fn temporal(&self) -> Option<&TemporalEffect>;
+    fn temporal_mut(&mut self) -> Option<&mut TemporalEffect>;
+
+    /// Whether this frame uses the temporal machinery (its counters are reset, filled and read
+    /// back). The viewer changes the PCF kernel in place, so it is asked per frame.
+    fn counts(&self, _config: &RenderConfig) -> bool {
+        self.temporal().is_some()
+    }
+
+    /// Before recording: draw the frame's refresh tile and push constants.
+    fn prepare(&mut self, info: &FrameInfo<'_>);
+
+    /// Whether this frame reprojects the effect's history.
+    fn reprojects(&self, info: &FrameInfo<'_>) -> bool;
+
+    /// Record that reprojection (inside the frame's one `reproject` region).
+    fn record_reprojection(&self, info: &FrameInfo<'_>, rec: &Recorder<'_>, tracker: &mut Tracker);
+
+    /// Record the effect's passes.
+    fn record(&self, info: &FrameInfo<'_>, r: &mut Recording<'_>);
+
+    /// The image the composite adds for frame parity `parity`, and how.
+    fn term(&self, parity: usize) -> (TermKind, &Image);
+
+    /// The image behind a debug/readback target this effect owns, for frame parity `parity`
+    /// under `config` (the configuration the frame was rendered with).
+    fn target(&self, target: Target, parity: usize, config: &RenderConfig) -> Option<&Image>;
+}
+
+/// How an effect plugs in: when the configuration turns it on, how to create it, and its
+/// pipelines for the up-front reflection check.
+pub struct Registration {
+    pub id: EffectId,
+    pub enabled: fn(&RenderConfig) -> bool,
+    pub create: fn(&mut Setup<'_>) -> Result<Box<dyn Effect>>,
+    pub layouts: fn() -> Vec<PassLayout>,
+}
+
+/// The reprojection instance of a temporal effect (its own descriptor sets).
+pub fn reprojection(s: &Setup<'_>, effect: &str) -> Result<ComputePass> {
+    s.shared
+        .reproject
+        .instance(s.pool, &format!("reproject {effect}"))
+}
+
+/// A dispatch over every pixel of the frame.
+pub fn every_pixel(info: &FrameInfo<'_>) -> Dispatch {
+    Dispatch::Pixels {
+        width: info.targets.width,
+        height: info.targets.height,
+    }
+}

@@ -1,0 +1,45 @@
+//! Effects: direct light with PCF shadows, SSAO, one-bounce indirect light. Each is one module
+//! that owns its passes, its size-dependent images, its temporal history and counters, its
+//! debug views and its contribution to the composite, and is registered in [`create`] with one
+//! line. The renderer only walks the list (see docs/ARCHITECTURE.md).
+
+pub mod ao;
+pub mod direct;
+pub mod effect;
+pub mod indirect;
+pub mod resolve;
+
+pub use effect::{
+    every_pixel, reprojection, Effect, EffectId, FrameInfo, Recording, Registration, Setup,
+    SharedPasses, TermKind,
+};
+
+use crate::error::Result;
+use crate::passes::PassLayout;
+
+/// The registry, in recording order (also the composite's term order). Adding an effect is its
+/// module and one line here.
+pub const REGISTRY: &[Registration] = &[
+    direct::REGISTRATION,
+    ao::REGISTRATION,
+    indirect::REGISTRATION,
+];
+
+/// Every effect the configuration turns on, in registry order.
+pub fn create(s: &mut Setup<'_>) -> Result<Vec<Box<dyn Effect>>> {
+    REGISTRY
+        .iter()
+        .filter(|r| (r.enabled)(s.config))
+        .map(|r| (r.create)(s))
+        .collect()
+}
+
+/// Every pipeline of every pass, shared and per effect, for the reflection check (also done
+/// when each pipeline is built).
+pub fn all_layouts() -> Vec<PassLayout> {
+    let mut v = crate::passes::frame_layouts();
+    for r in REGISTRY {
+        v.extend((r.layouts)());
+    }
+    v
+}

@@ -1,0 +1,54 @@
+//! The one place slots become images: shared targets (G-buffer, RSM, output) from `Targets`,
+//! the temporal history/state/counters from the effect's `TemporalEffect`, and the images and
+//! buffers the effect owns by index.
+
+use crate::passes::decl::{Resolve, Slot};
+use crate::renderer::effect::TemporalEffect;
+use crate::renderer::targets::Targets;
+use crate::vk::{Buffer, Image};
+
+/// An effect's view of the frame's resources.
+pub struct EffectResources<'a> {
+    pub targets: &'a Targets,
+    pub temporal: Option<&'a TemporalEffect>,
+    /// `Slot::Own(i)`: per parity (most effect images are not ping-ponged: both the same).
+    pub own: &'a [[&'a Image; 2]],
+    /// `Slot::OwnBuffer(i)`.
+    pub own_buffers: &'a [&'a Buffer],
+}
+
+/// The shared targets every pass may read, for a parity.
+pub fn shared(t: &Targets, slot: Slot, parity: usize) -> Option<&Image> {
+    Some(match slot {
+        Slot::GPosition => t.gbuffer.position.current(parity),
+        Slot::GPositionPrev => t.gbuffer.position.previous(parity),
+        Slot::GNormal => &t.gbuffer.normal,
+        Slot::GAlbedo => &t.gbuffer.albedo,
+        Slot::RsmPosition => &t.rsm.position,
+        Slot::RsmNormal => &t.rsm.normal,
+        Slot::RsmFlux => &t.rsm.flux,
+        Slot::RsmDepth => &t.rsm.depth,
+        Slot::Output => &t.output,
+        _ => return None,
+    })
+}
+
+impl Resolve for EffectResources<'_> {
+    fn image(&self, slot: Slot, parity: usize) -> Option<&Image> {
+        match slot {
+            Slot::History => self.temporal.map(|e| e.history.current(parity)),
+            Slot::HistoryPrev => self.temporal.map(|e| e.history.previous(parity)),
+            Slot::State => self.temporal.map(|e| &e.state),
+            Slot::Own(i) => self.own.get(i as usize).map(|pair| pair[parity]),
+            _ => shared(self.targets, slot, parity),
+        }
+    }
+
+    fn buffer(&self, slot: Slot) -> Option<&Buffer> {
+        match slot {
+            Slot::Counters => self.temporal.map(|e| &e.counters),
+            Slot::OwnBuffer(i) => self.own_buffers.get(i as usize).copied(),
+            _ => None,
+        }
+    }
+}

@@ -1,0 +1,19 @@
+//! Window frontend: `ssgi view` (interactive fly camera). winit 0.30 `ApplicationHandler` + a
+//! Vulkan swapchain; the same `Renderer` as the headless frontend, whose output (or another
+//! target, for the buffer display) is blitted into the acquired swapchain image in the
+//! renderer's frame hook. Scripted runs (`bench --window`, `table --window`) present through
+//! `presenter.rs` instead, which shares the frame steps in `present.rs`.
+//!
+//! Files: `app.rs` the application and frame loop, `keys.rs` window input to viewer input,
+//! `fly_camera.rs` the camera step, `script.rs` the test script, `stats.rs` the title's
+//! timings. Viewer keys: see [`HELP`] (`view_state.rs`).
+
+mod app;
+pub mod fly_camera;
+pub mod keys;
+pub mod script;
+mod stats;
+
+pub use super::view_state::{Action, ViewState, DISPLAY_CYCLE, HELP};
+pub use app::{run, WindowOptions, WindowRun};
+pub use script::{parse_script, ScriptOp, ScriptStep};

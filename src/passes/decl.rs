@@ -1,0 +1,211 @@
+//! A pass's resources, declared once: for each binding, which resource (a [`Slot`]) and how the
+//! pass uses it (a [`Use`]). From that one table come the descriptor-set layout (checked
+//! against the shader's reflection when the pipeline is built), the descriptor writes, and the
+//! tracker accesses that produce the barriers, so the three cannot disagree.
+
+use super::layout::FRAME_BINDING;
+use crate::error::{Error, Result};
+use crate::shaders::{DescriptorKind, ReflectedBinding};
+use crate::vk::{Access, Buffer, Image, SetWriter, Tracker};
+
+/// A resource as a pass names it; the renderer resolves it to an image or buffer for the
+/// frame's parity (the one place that knows which image backs what).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Slot {
+    /// This frame's G-buffer world position (ping-ponged).
+    GPosition,
+    /// Last frame's G-buffer world position: the world-position history of eq 2.
+    GPositionPrev,
+    GNormal,
+    GAlbedo,
+    RsmPosition,
+    RsmNormal,
+    RsmFlux,
+    /// The light view's depth: the shadow map.
+    RsmDepth,
+    /// The composite's RGBA8 output.
+    Output,
+    /// The temporal effect's history written this frame (rgb value, a = estimates).
+    History,
+    /// Last frame's history of the same effect.
+    HistoryPrev,
+    /// The effect's per-pixel reprojection state.
+    State,
+    /// The effect's counters and work lists (indirect dispatch arguments first).
+    Counters,
+    /// The `n`-th image the effect owns (see the effect's `image` resolver).
+    Own(u8),
+    /// The `n`-th buffer the effect owns.
+    OwnBuffer(u8),
+    /// The `n`-th composite input (the effects' contributions, in registration order).
+    Term(u8),
+}
+
+/// How a pass uses a resource at one binding.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Use {
+    /// Sampled image, read with texelFetch.
+    Sampled,
+    StorageRead,
+    /// Storage image the pass overwrites wherever it is read later: the old contents are
+    /// discarded (transition from UNDEFINED).
+    StorageWrite,
+    StorageReadWrite,
+    BufferRead,
+    BufferWrite,
+    BufferReadWrite,
+    /// Counters whose header holds the pass's indirect dispatch arguments, also updated by it.
+    WorkList,
+}
+
+impl Use {
+    pub fn kind(self) -> DescriptorKind {
+        match self {
+            Use::Sampled => DescriptorKind::SampledImage,
+            Use::StorageRead | Use::StorageWrite | Use::StorageReadWrite => {
+                DescriptorKind::StorageImage
+            }
+            Use::BufferRead | Use::BufferWrite | Use::BufferReadWrite | Use::WorkList => {
+                DescriptorKind::StorageBuffer
+            }
+        }
+    }
+
+    fn is_buffer(self) -> bool {
+        self.kind() == DescriptorKind::StorageBuffer
+    }
+
+    /// The tracker accesses, in order (a discard first for overwritten images).
+    fn accesses(self) -> &'static [Access] {
+        match self {
+            Use::Sampled => &[Access::ComputeSampledRead],
+            Use::StorageRead | Use::BufferRead => &[Access::ComputeStorageRead],
+            Use::StorageWrite => &[Access::Undefined, Access::ComputeStorageWrite],
+            Use::BufferWrite => &[Access::ComputeStorageWrite],
+            Use::StorageReadWrite | Use::BufferReadWrite => &[Access::ComputeStorageReadWrite],
+            Use::WorkList => &[Access::IndirectCommandRead, Access::ComputeStorageReadWrite],
+        }
+    }
+}
+
+/// One binding of set 1: `layout(set = 1, binding = N)` in the shader.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Bind {
+    pub binding: u32,
+    pub slot: Slot,
+    pub usage: Use,
+}
+
+impl Bind {
+    pub const fn new(binding: u32, slot: Slot, usage: Use) -> Self {
+        Self {
+            binding,
+            slot,
+            usage,
+        }
+    }
+}
+
+/// Resolves slots to this run's resources.
+pub trait Resolve {
+    /// The image behind `slot` for frame parity `parity`; `None` when the run has none.
+    fn image(&self, slot: Slot, parity: usize) -> Option<&Image>;
+    fn buffer(&self, slot: Slot) -> Option<&Buffer>;
+}
+
+/// The pipeline layout a declaration implies: the frame block at set 0, then set 1.
+pub fn layout(binds: &[Bind]) -> Vec<ReflectedBinding> {
+    let mut out = vec![FRAME_BINDING];
+    out.extend(binds.iter().map(|b| ReflectedBinding {
+        set: 1,
+        binding: b.binding,
+        kind: b.usage.kind(),
+        count: 1,
+    }));
+    out
+}
+
+/// A slot the resolver could not provide: a mistake in an effect's registration, reported with
+/// the pass and the slot instead of a bad descriptor.
+fn missing(pass: &str, b: &Bind) -> Error {
+    Error::Reflection(format!(
+        "{pass}: binding {} ({:?}) has no resource in this configuration",
+        b.binding, b.slot
+    ))
+}
+
+/// The descriptor writes of set 1 for `parity`.
+pub fn writes(pass: &str, binds: &[Bind], res: &dyn Resolve, parity: usize) -> Result<SetWriter> {
+    let mut w = SetWriter::new();
+    for b in binds {
+        w = if b.usage.is_buffer() {
+            let buffer = res.buffer(b.slot).ok_or_else(|| missing(pass, b))?;
+            w.storage_buffer(b.binding, buffer)
+        } else {
+            let image = res.image(b.slot, parity).ok_or_else(|| missing(pass, b))?;
+            match b.usage {
+                Use::Sampled => w.sampled(b.binding, image),
+                _ => w.storage(b.binding, image),
+            }
+        };
+    }
+    Ok(w)
+}
+
+/// Declare every access of the pass to the tracker (the caller flushes). Every slot resolved
+/// when the sets were written ([`writes`]), so a missing one here is a broken invariant.
+pub fn access(pass: &str, binds: &[Bind], res: &dyn Resolve, parity: usize, t: &mut Tracker) {
+    let unresolved = |b: &Bind| -> ! { panic!("{}", missing(pass, b)) };
+    for b in binds {
+        for &a in b.usage.accesses() {
+            if b.usage.is_buffer() {
+                t.buffer(res.buffer(b.slot).unwrap_or_else(|| unresolved(b)), a);
+            } else {
+                t.image(
+                    res.image(b.slot, parity).unwrap_or_else(|| unresolved(b)),
+                    a,
+                );
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn layout_follows_the_declaration() {
+        let binds = [
+            Bind::new(0, Slot::GPosition, Use::Sampled),
+            Bind::new(1, Slot::History, Use::StorageReadWrite),
+            Bind::new(2, Slot::Counters, Use::WorkList),
+        ];
+        let l = layout(&binds);
+        assert_eq!(l[0], FRAME_BINDING);
+        assert_eq!(
+            l[1..]
+                .iter()
+                .map(|b| (b.set, b.binding, b.kind))
+                .collect::<Vec<_>>(),
+            vec![
+                (1, 0, DescriptorKind::SampledImage),
+                (1, 1, DescriptorKind::StorageImage),
+                (1, 2, DescriptorKind::StorageBuffer),
+            ]
+        );
+    }
+
+    #[test]
+    fn overwritten_images_are_discarded_and_work_lists_feed_the_dispatch() {
+        assert_eq!(
+            Use::StorageWrite.accesses(),
+            &[Access::Undefined, Access::ComputeStorageWrite]
+        );
+        assert_eq!(
+            Use::WorkList.accesses(),
+            &[Access::IndirectCommandRead, Access::ComputeStorageReadWrite]
+        );
+        assert!(Use::WorkList.is_buffer() && !Use::StorageRead.is_buffer());
+    }
+}

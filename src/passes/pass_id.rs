@@ -1,0 +1,61 @@
+//! `PassId`: the typed name of every pass (timing rows, command labels, debug names).
+
+/// The passes of one frame, in recording order (`ALL` lists them in the same order). Their
+/// names are the timing report's rows, the command labels and the pipelines' debug names.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum PassId {
+    /// Reflective shadow map + shadow depth from the spot light (only when light/geometry change).
+    LightView,
+    /// Camera G-buffer MRT.
+    GBuffer,
+    /// Reverse reprojection: disocclusion test, history resampling, work list.
+    Reproject,
+    /// PCF shadow visibility (every frame, or accumulated with the cache).
+    Shadow,
+    /// Direct spot light times the shadow visibility.
+    Direct,
+    /// Screen-space ambient occlusion.
+    Ssao,
+    /// 5x5 Gaussian blur of the AO (no-reuse baseline only).
+    Blur,
+    /// RSM gather (half resolution, or full resolution without half-res).
+    IndirectGather,
+    /// Geometry-aware upsampling of the half-resolution gather.
+    IndirectUpsample,
+    /// Full-resolution gather of the pixels the upsampling discarded.
+    IndirectFixup,
+    /// Composite + tonemap into the output image.
+    Composite,
+}
+
+impl PassId {
+    pub const ALL: [PassId; 11] = [
+        PassId::LightView,
+        PassId::GBuffer,
+        PassId::Reproject,
+        PassId::Shadow,
+        PassId::Direct,
+        PassId::Ssao,
+        PassId::Blur,
+        PassId::IndirectGather,
+        PassId::IndirectUpsample,
+        PassId::IndirectFixup,
+        PassId::Composite,
+    ];
+
+    pub fn name(self) -> &'static str {
+        match self {
+            PassId::LightView => "light_view",
+            PassId::GBuffer => "gbuffer",
+            PassId::Shadow => "shadow",
+            PassId::Direct => "direct",
+            PassId::Reproject => "reproject",
+            PassId::Ssao => "ssao",
+            PassId::Blur => "blur",
+            PassId::IndirectGather => "indirect_gather",
+            PassId::IndirectUpsample => "indirect_upsample",
+            PassId::IndirectFixup => "indirect_fixup",
+            PassId::Composite => "composite",
+        }
+    }
+}

@@ -1,0 +1,158 @@
+//! No two modules of the crate use each other: the arrows of docs/ARCHITECTURE.md point one
+//! way. Reads `src/` and follows `crate::` / `super::` / `self::` paths (and a parent's use of
+//! its child modules); unit-test modules at the end of a file are not counted.
+
+use std::collections::{BTreeMap, BTreeSet};
+use std::path::Path;
+
+/// Module path of a source file (`src/vk/mod.rs` -> `vk`, `src/lib.rs` -> ``).
+fn module_of(rel: &Path) -> String {
+    let mut parts: Vec<String> = rel
+        .with_extension("")
+        .iter()
+        .map(|p| p.to_string_lossy().into_owned())
+        .collect();
+    if parts.last().is_some_and(|p| p == "mod") {
+        parts.pop();
+    }
+    if parts == ["lib"] || parts == ["main"] {
+        parts.clear();
+    }
+    parts.join("::")
+}
+
+fn sources(dir: &Path, root: &Path, out: &mut BTreeMap<String, String>) {
+    for entry in std::fs::read_dir(dir).unwrap().flatten() {
+        let path = entry.path();
+        if path.is_dir() {
+            sources(&path, root, out);
+        } else if path.extension().is_some_and(|e| e == "rs") {
+            let text = std::fs::read_to_string(&path).unwrap();
+            let text = match text.find("#[cfg(test)]\nmod tests") {
+                Some(i) => text[..i].to_string(),
+                None => text,
+            };
+            out.insert(module_of(path.strip_prefix(root).unwrap()), text);
+        }
+    }
+}
+
+/// Every `crate::a::b`, `super::x`, `self::y` path in `text` (a path before `::{` too).
+fn paths(text: &str) -> Vec<Vec<&str>> {
+    let mut out = Vec::new();
+    let bytes = text.as_bytes();
+    for start in ["crate::", "super::", "self::"] {
+        for (i, _) in text.match_indices(start) {
+            if i > 0 && (bytes[i - 1].is_ascii_alphanumeric() || bytes[i - 1] == b'_') {
+                continue;
+            }
+            let end = text[i..]
+                .find(|c: char| !(c.is_ascii_alphanumeric() || c == '_' || c == ':'))
+                .map_or(text.len(), |n| i + n);
+            let path: Vec<&str> = text[i..end].split("::").filter(|s| !s.is_empty()).collect();
+            out.push(path);
+        }
+    }
+    out
+}
+
+fn resolve(
+    modules: &BTreeMap<String, String>,
+    current: &str,
+    is_dir: bool,
+    path: &[&str],
+) -> Option<String> {
+    let mut base: Vec<&str> = if current.is_empty() {
+        Vec::new()
+    } else {
+        current.split("::").collect()
+    };
+    let mut rest = path;
+    match rest.first() {
+        Some(&"crate") => base.clear(),
+        Some(&"self") if !is_dir => {
+            base.pop();
+        }
+        Some(&"self") => {}
+        _ => {}
+    }
+    if rest.first() == Some(&"crate") || rest.first() == Some(&"self") {
+        rest = &rest[1..];
+    }
+    while rest.first() == Some(&"super") {
+        base.pop();
+        rest = &rest[1..];
+    }
+    let full: Vec<&str> = base.iter().chain(rest).copied().collect();
+    (0..=full.len())
+        .rev()
+        .map(|n| full[..n].join("::"))
+        .find(|m| modules.contains_key(m))
+}
+
+#[test]
+fn no_two_modules_use_each_other() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("src");
+    let mut modules = BTreeMap::new();
+    sources(&root, &root, &mut modules);
+    assert!(modules.len() > 50, "read only {} modules", modules.len());
+    let mut uses: BTreeMap<String, BTreeSet<String>> = BTreeMap::new();
+    for (m, text) in &modules {
+        let dir_module = m.is_empty() || root.join(m.replace("::", "/")).is_dir();
+        let mut deps = BTreeSet::new();
+        for p in paths(text) {
+            if let Some(d) = resolve(&modules, m, dir_module, &p) {
+                deps.insert(d);
+            }
+        }
+        // A parent that uses items of its declared child modules.
+        for line in text.lines() {
+            let line = line.trim_start().trim_start_matches("pub ");
+            if let Some(child) = line.strip_prefix("mod ").and_then(|l| l.strip_suffix(';')) {
+                let used = text.contains(&format!("{child}::"));
+                let child = if m.is_empty() {
+                    child.to_string()
+                } else {
+                    format!("{m}::{child}")
+                };
+                if used {
+                    deps.insert(child);
+                }
+            }
+        }
+        deps.remove(m);
+        uses.insert(m.clone(), deps);
+    }
+    let mut circles = Vec::new();
+    for (a, deps) in &uses {
+        for b in deps {
+            if a < b && uses.get(b).is_some_and(|d| d.contains(a)) {
+                circles.push(format!("{a} <-> {b}"));
+            }
+        }
+    }
+    assert!(
+        circles.is_empty(),
+        "modules that use each other:\n{}",
+        circles.join("\n")
+    );
+}
+
+#[test]
+fn paths_resolve_to_modules() {
+    let mut modules = BTreeMap::new();
+    modules.insert("a".to_string(), String::new());
+    modules.insert("a::b".to_string(), String::new());
+    assert_eq!(
+        resolve(&modules, "a::c", false, &["super", "b", "Thing"]),
+        Some("a::b".into())
+    );
+    assert_eq!(
+        resolve(&modules, "a::b", false, &["crate", "a", "X"]),
+        Some("a".into())
+    );
+    assert_eq!(
+        paths("use super::{x, y};\nlet v = crate::a::b::C;"),
+        vec![vec!["crate", "a", "b", "C"], vec!["super"]]
+    );
+}
