@@ -129,7 +129,7 @@ fn compile(
         let log = match &e {
             glslang::error::GlslangError::ParseError(l)
             | glslang::error::GlslangError::PreprocessError(l)
-            | glslang::error::GlslangError::LinkError(l) => l.clone(),
+            | glslang::error::GlslangError::LinkError(l) => l.log.clone(),
             other => other.to_string(),
         };
         locate_errors(file, &log)
@@ -206,7 +206,7 @@ fn reflect(
     let mut bindings = Vec::new();
     let mut push_constant_bytes = 0u32;
     for (_, var) in module.global_variables.iter() {
-        if var.space == naga::AddressSpace::PushConstant {
+        if var.space == naga::AddressSpace::Immediate {
             push_constant_bytes = layouter[var.ty].size;
             continue;
         }

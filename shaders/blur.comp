@@ -15,13 +15,13 @@ const float W[5] = float[5](1.0, 4.0, 6.0, 4.0, 1.0);
 
 void main() {
     ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
-    if (any(greaterThanEqual(uvec2(pixel), frame.size))) return;
+    if (outside_frame(pixel)) return;
     vec4 sum = vec4(0.0);
     float weight = 0.0;
     for (int j = -2; j <= 2; ++j) {
         for (int i = -2; i <= 2; ++i) {
             ivec2 q = pixel + ivec2(i, j);
-            if (any(lessThan(q, ivec2(0))) || any(greaterThanEqual(uvec2(q), frame.size))) continue;
+            if (outside_frame(q)) continue;
             if (texelFetch(g_position, q, 0).w == 0.0) continue;
             float w = W[i + 2] * W[j + 2];
             sum += w * texelFetch(ao_in, q, 0);

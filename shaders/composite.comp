@@ -43,7 +43,7 @@ vec3 srgb_encode(vec3 linear) {
 
 void main() {
     ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
-    if (any(greaterThanEqual(uvec2(pixel), frame.size))) return;
+    if (outside_frame(pixel)) return;
     vec3 color = vec3(0.0);
     uint count = min(composite.term_count, 4u);
     if (texelFetch(g_position, pixel, 0).w != 0.0) {

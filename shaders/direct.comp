@@ -15,7 +15,7 @@ layout(set = 1, binding = 4, rgba16f) uniform writeonly image2D direct_out;
 
 void main() {
     ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
-    if (any(greaterThanEqual(uvec2(pixel), frame.size))) return;
+    if (outside_frame(pixel)) return;
     vec4 position = texelFetch(g_position, pixel, 0);
     if (position.w == 0.0) { // background
         imageStore(direct_out, pixel, vec4(0.0, 0.0, 0.0, 1.0));

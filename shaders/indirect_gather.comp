@@ -35,7 +35,7 @@ void main() {
     ivec2 pixel = ivec2(packed & 0xffffu, packed >> 16);
 #else
     ivec2 pixel = block_pixel(gl_WorkGroupID.x, gl_LocalInvocationID.xy);
-    bool in_range = all(lessThan(uvec2(pixel), frame.size));
+    bool in_range = !outside_frame(pixel);
 #endif
     if (in_range) {
         uint state = imageLoad(state_in, pixel).r;

@@ -31,7 +31,7 @@ void main() {
     uint packed = counters.data[gl_WorkGroupID.x];
     ivec2 block = ivec2(packed & 0xffffu, packed >> 16);
     ivec2 pixel = block * 16 + ivec2(gl_LocalInvocationID.xy);
-    if (any(greaterThanEqual(uvec2(pixel), frame.size))) return;
+    if (outside_frame(pixel)) return;
     uint state = imageLoad(state_in, pixel).r;
     if (state != STATE_NEW && state != STATE_ACCUMULATING && state != STATE_REFRESH) return;
     vec3 p = texelFetch(g_position, pixel, 0).xyz;

@@ -25,7 +25,7 @@ shared uint quadrant_needs_work[4];
 shared uint group_disoccluded;
 
 bool tap_valid(ivec2 t, vec3 p, float eps) {
-    if (any(lessThan(t, ivec2(0))) || any(greaterThanEqual(uvec2(t), frame.size))) return false;
+    if (outside_frame(t)) return false;
     vec4 h = texelFetch(prev_position, t, 0);
     return h.w != 0.0 && distance(h.xyz, p) <= eps; // eq 3
 }
@@ -58,7 +58,7 @@ void main() {
     barrier();
     ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
     uint state = STATE_BACKGROUND;
-    if (all(lessThan(uvec2(pixel), frame.size))) {
+    if (!outside_frame(pixel)) {
         vec4 history = vec4(0.0);
         vec4 position = texelFetch(g_position, pixel, 0);
         if (position.w != 0.0) {
@@ -80,11 +80,7 @@ void main() {
                 history = vec4(0.0);
                 atomicAdd(group_disoccluded, 1u);
             }
-            uvec2 tile = effect.refresh_origin;
-            if (tile.x != 0xffffffffu && all(greaterThanEqual(uvec2(pixel), tile)) &&
-                all(lessThan(uvec2(pixel), tile + effect.refresh_tile))) {
-                state = STATE_REFRESH;
-            }
+            if (in_refresh_tile(pixel)) state = STATE_REFRESH;
         }
         imageStore(history_cur, pixel, history);
         imageStore(state_out, pixel, uvec4(state));

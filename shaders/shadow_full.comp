@@ -16,7 +16,7 @@ layout(set = 1, binding = 3, rgba16f) uniform writeonly image2D visibility_out;
 
 void main() {
     ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
-    if (any(greaterThanEqual(uvec2(pixel), frame.size))) return;
+    if (outside_frame(pixel)) return;
     vec4 position = texelFetch(g_position, pixel, 0);
     float v = 1.0;
     if (position.w != 0.0)

@@ -27,7 +27,7 @@ void main() {
     if (gl_LocalInvocationIndex == 0u) group_computed = 0u;
     barrier();
     ivec2 pixel = block_pixel(gl_WorkGroupID.x, gl_LocalInvocationID.xy);
-    if (all(lessThan(uvec2(pixel), frame.size))) {
+    if (!outside_frame(pixel)) {
         uint state = imageLoad(state_in, pixel).r;
         if (state == STATE_NEW || state == STATE_ACCUMULATING || state == STATE_REFRESH) {
             vec3 p = texelFetch(g_position, pixel, 0).xyz;

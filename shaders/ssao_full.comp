@@ -22,7 +22,7 @@ void main() {
     if (gl_LocalInvocationIndex == 0u) block_computed = 0u;
     barrier();
     ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
-    if (all(lessThan(uvec2(pixel), frame.size))) {
+    if (!outside_frame(pixel)) {
         vec4 position = texelFetch(g_position, pixel, 0);
         float visibility = 1.0;
         if (position.w != 0.0) {

@@ -6,7 +6,7 @@ mod common;
 use glam::Vec3;
 use ssgi::renderer::pcf::Pcf;
 use ssgi::renderer::targets::Target;
-use ssgi::scene::{cornell_box, pixel_to_ndc, Camera, Scene};
+use ssgi::scene::{cornell_box, pixel_to_ndc, Scene};
 use std::f32::consts::PI;
 
 const SIZE: u32 = 128;
@@ -189,16 +189,7 @@ fn lit_surfaces_do_not_shadow_themselves() {
 
 /// Top view of the floor left of the tall block, where its shadow falls.
 fn shadow_view() -> Scene {
-    let mut scene = cornell_box();
-    scene.camera = Camera::new(
-        Vec3::new(-0.7, 1.9, -0.3),
-        Vec3::new(-0.7, 0.0, -0.3),
-        40.0,
-        0.05,
-        20.0,
-    );
-    scene.camera.up = Vec3::NEG_Z;
-    scene
+    common::cornell_from_above(-0.7, -0.3, 40.0)
 }
 
 /// Visibility of `n` pixels starting at (x, y) stepping by (dx, dy).

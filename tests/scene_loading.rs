@@ -567,7 +567,7 @@ fn raycasts_in_the_cornell_box() {
         hit.position.abs_diff_eq(Vec3::new(0.0, 1.0, z), 1e-5),
         "{hit:?}"
     );
-    assert!((hit.t - (3.4 - z)).abs() < 1e-5);
+    assert!((hit.t - (s.camera.position.z - z)).abs() < 1e-5);
     assert!(hit.normal.z > 0.9 && hit.normal.dot(d) < 0.0);
 
     let down = s

@@ -3,28 +3,18 @@
 
 mod common;
 
-use glam::Vec3;
 use ssgi::renderer::config::{Effects, RenderConfig, TemporalConfig};
 use ssgi::renderer::pcf::{Pcf, PcfKernel};
 use ssgi::renderer::targets::Target;
 use ssgi::renderer::Renderer;
-use ssgi::scene::{cornell_box, Camera, Scene};
+use ssgi::scene::Scene;
 use ssgi::vk::FrameTiming;
 
 const SIZE: u32 = 128;
 
 /// Top view of the floor left of the tall block, where its shadow falls.
 fn shadow_view() -> Scene {
-    let mut scene = cornell_box();
-    scene.camera = Camera::new(
-        Vec3::new(-0.5, 1.9, -0.2),
-        Vec3::new(-0.5, 0.0, -0.2),
-        50.0,
-        0.05,
-        20.0,
-    );
-    scene.camera.up = Vec3::NEG_Z;
-    scene
+    common::cornell_from_above(-0.5, -0.2, 50.0)
 }
 
 fn config(pcf: Pcf, reuse: bool) -> RenderConfig {

@@ -1,10 +1,14 @@
 // SSAO estimators. Both return occlusion in [0, 1] for one sampling pattern; `pattern` indexes
 // the per-frame rotation (theta per pattern) and range scale. Requires g_position and
 // random_vectors to be declared by the including shader.
+#ifndef AO_GLSL
+#define AO_GLSL
+
+#include "frame.glsl"
 
 // Range scale of pattern j: 1 for pattern 0, then a low-discrepancy spread of +-10%.
 float pattern_scale(float pattern) {
-    return 1.0 + 0.2 * (fract(pattern * 0.6180339887 + 0.5) - 0.5);
+    return 1.0 + 0.2 * (fract(pattern * INV_GOLDEN_RATIO + 0.5) - 0.5);
 }
 
 // Per-pixel rotation from the 4x4 random-vector texture (unit 2D vectors).
@@ -33,12 +37,12 @@ float ao_thesis(ivec2 pixel, vec3 p, vec3 n, float pattern) {
     vec2 center = vec2(pixel) + 0.5;
     float sum = 0.0;
     for (uint d = 0u; d < dirs; ++d) {
-        float a = 6.28318530718 * float(d) / float(dirs);
+        float a = TWO_PI * float(d) / float(dirs);
         vec2 dir = rotate2(vec2(cos(a), sin(a)), rot);
         for (uint i = 1u; i <= steps; ++i) {
             float s = near_px * pow(far_px / near_px, float(i) / float(steps)) * scale; // eq 8
             ivec2 q_pixel = ivec2(floor(center + dir * s));
-            if (any(lessThan(q_pixel, ivec2(0))) || any(greaterThanEqual(uvec2(q_pixel), frame.size)))
+            if (outside_frame(q_pixel))
                 continue;
             vec4 q = texelFetch(g_position, q_pixel, 0);
             if (q.w == 0.0) continue;
@@ -70,7 +74,7 @@ float ao_crytek(ivec2 pixel, vec3 p, float pattern) {
         // Fibonacci sphere directions, radii spread so the points fill the ball uniformly.
         float z = 1.0 - 2.0 * (float(k) + 0.5) / float(count);
         float r_xy = sqrt(max(1.0 - z * z, 0.0));
-        float phi = 2.39996322973 * float(k);
+        float phi = GOLDEN_ANGLE * float(k);
         vec2 xy = rotate2(vec2(cos(phi), sin(phi)) * r_xy, rot);
         float r = radius * pow((float(k) + 0.5) / float(count), 1.0 / 3.0);
         vec3 s = p + r * (xy.x * t + xy.y * b + z * view_dir);
@@ -78,7 +82,7 @@ float ao_crytek(ivec2 pixel, vec3 p, float pattern) {
         if (clip.w <= 0.0) continue;
         vec2 uv = clip.xy / clip.w * 0.5 + 0.5;
         ivec2 q_pixel = ivec2(floor(uv * vec2(frame.size)));
-        if (any(lessThan(q_pixel, ivec2(0))) || any(greaterThanEqual(uvec2(q_pixel), frame.size)))
+        if (outside_frame(q_pixel))
             continue;
         vec4 q = texelFetch(g_position, q_pixel, 0);
         if (q.w == 0.0) continue;
@@ -101,3 +105,5 @@ float ao_estimate(ivec2 pixel, vec3 p, vec3 n, float first, uint patterns) {
     }
     return sum / float(max(patterns, 1u));
 }
+
+#endif // AO_GLSL

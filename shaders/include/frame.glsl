@@ -1,6 +1,11 @@
 // Per-frame constants shared by every pass (set 0, binding 0), std140. build.rs generates the
 // Rust struct `FrameBlock` from this declaration (src/renderer/frame.rs fills it by name), so
 // the two sides cannot drift. One parameter per member.
+#ifndef FRAME_GLSL
+#define FRAME_GLSL
+
+#include "common.glsl"
+
 layout(set = 0, binding = 0, std140) uniform Frame {
     mat4 view_proj;            // camera, world -> clip (Vulkan: y down, depth 0..1)
     mat4 prev_view_proj;       // last frame's camera (eq 1)
@@ -43,15 +48,6 @@ layout(set = 0, binding = 0, std140) uniform Frame {
     float vpl_march_near_px;   // nearest step of that visibility march [px]
 } frame;
 
-const float PI = 3.14159265358979;
-
-// Normalise with a fallback: |v|^2 below 1e-20 means a degenerate direction (interpolated
-// normals and light vectors are O(1) or scene-scale, never legitimately that small).
-vec3 safe_normalize(vec3 v, vec3 fallback) {
-    float len2 = dot(v, v);
-    return len2 > 1e-20 ? v * inversesqrt(len2) : fallback;
-}
-
 // Smooth spot cone: 1 inside the inner angle, 0 outside the outer, Hermite in between.
 float spot_factor(vec3 to_point_unit) {
     float c = dot(frame.light_dir, to_point_unit);
@@ -65,3 +61,11 @@ float light_linear_depth(float ndc_depth) {
     float f = frame.light_far;
     return n * f / max(f - ndc_depth * (f - n), 1e-30);
 }
+
+// Whether `pixel` lies outside the render target (negative coordinates wrap to huge unsigned
+// values, so one comparison covers both sides).
+bool outside_frame(ivec2 pixel) {
+    return any(greaterThanEqual(uvec2(pixel), frame.size));
+}
+
+#endif // FRAME_GLSL

@@ -1,6 +1,10 @@
 // One-bounce indirect light from the reflective shadow map (Lin 2013 eqs 9-10, Dachsbacher &
 // Stamminger 2005). Requires rsm_position, rsm_normal, rsm_flux, g_position (for the visibility
 // test) to be declared by the including shader.
+#ifndef RSM_GATHER_GLSL
+#define RSM_GATHER_GLSL
+
+#include "frame.glsl"
 
 // Eq 9 for one VPL q at receiver p (normal n): Phi_q max(0, n.D) max(0, n_q.(-D)) / |q-p|^2.
 // |q-p|^2 is floored at the squared world size of one RSM texel at q: a VPL stands for a
@@ -28,7 +32,7 @@ bool march_point_visible(vec3 p, vec3 q, float t) {
     vec4 cs = frame.view_proj * vec4(mix(p, q, t), 1.0);
     if (cs.w <= 0.0) return true;
     ivec2 px = ivec2(floor((cs.xy / cs.w * 0.5 + 0.5) * vec2(frame.size)));
-    if (any(lessThan(px, ivec2(0))) || any(greaterThanEqual(uvec2(px), frame.size))) return true;
+    if (outside_frame(px)) return true;
     vec4 g = texelFetch(g_position, px, 0);
     if (g.w == 0.0) return true;
     float zg = (frame.view_proj * vec4(g.xyz, 1.0)).w;
@@ -97,16 +101,16 @@ vec3 rsm_gather_sampled(vec3 p, vec3 n, float pattern, uint count, float seed) {
     float R = max(length(far_corner), 2.0 * r0);
     float log_ratio = log(R / r0);
     float p_inner = 1.0 / (1.0 + 2.0 * log_ratio);  // probability of the inner disc
-    float density = p_inner / (3.14159265358979 * r0 * r0); // C in p(x) = C / max(r, r0)^2
-    float angle = frame.pattern_rotation * pattern + 6.28318530718 * seed;
-    float shift = fract(pattern * 0.6180339887);
+    float density = p_inner / (PI * r0 * r0); // C in p(x) = C / max(r, r0)^2
+    float angle = frame.pattern_rotation * pattern + TWO_PI * seed;
+    float shift = fract(pattern * INV_GOLDEN_RATIO);
     vec3 sum = vec3(0.0);
     for (uint i = 0u; i < count; ++i) {
         vec2 u = r2_point(i);
         float u1 = fract(u.x + shift);
         float u2 = u.y;
         float r = u1 < p_inner ? r0 * sqrt(u1 / p_inner) : r0 * exp(log_ratio * (u1 - p_inner) / (1.0 - p_inner));
-        float phi = 6.28318530718 * u2 + angle;
+        float phi = TWO_PI * u2 + angle;
         vec2 x = c + r * vec2(cos(phi), sin(phi));
         if (any(lessThan(x, vec2(0.0))) || any(greaterThanEqual(x, vec2(size)))) continue;
         float weight = max(r, r0) * max(r, r0) / (density * r0 * r0);
@@ -125,3 +129,5 @@ vec3 rsm_gather(vec3 p, vec3 n, float first, uint patterns, ivec2 pixel) {
     for (uint j = 0u; j < patterns; ++j) sum += rsm_gather_sampled(p, n, first + float(j), vpls, seed);
     return sum / float(max(patterns, 1u));
 }
+
+#endif // RSM_GATHER_GLSL

@@ -1,5 +1,9 @@
 // Percentage-closer filtering (Reeves et al. 1987) against the light view's depth. Requires
 // `shadow_depth` to be declared by the including shader.
+#ifndef SHADOW_GLSL
+#define SHADOW_GLSL
+
+#include "frame.glsl"
 
 // Receiver in light space: shadow-map uv, view distance along the light axis (clip w), and the
 // receiver's tangent plane in light clip space (point + two tangents), so each PCF tap can
@@ -91,7 +95,7 @@ float pcf_disc(Receiver r, uint count, float angle, float scale) {
     float lit = 0.0;
     for (uint j = 0u; j < count; ++j) {
         float rho = radius * sqrt((float(j) + 0.5) / float(count));
-        float phi = float(j) * 2.39996322973 + angle;
+        float phi = float(j) * GOLDEN_ANGLE + angle;
         lit += shadow_test(r, rho * vec2(cos(phi), sin(phi)));
     }
     return lit / float(max(count, 1u));
@@ -99,7 +103,7 @@ float pcf_disc(Receiver r, uint count, float angle, float scale) {
 
 // Range scale of shadow pattern j (1 for pattern 0, then +-10%).
 float shadow_pattern_scale(float pattern) {
-    return 1.0 + 0.2 * (fract(pattern * 0.6180339887 + 0.5) - 0.5);
+    return 1.0 + 0.2 * (fract(pattern * INV_GOLDEN_RATIO + 0.5) - 0.5);
 }
 
 // Visibility of world point p (normal n) with the configured kernel; `pattern` picks the disc's
@@ -113,3 +117,5 @@ float shadow_visibility(vec3 p, vec3 n, float pattern) {
         return pcf_disc(r, frame.pcf_count, frame.pattern_rotation * pattern, shadow_pattern_scale(pattern));
     return pcf_grid(r, int(frame.pcf_count));
 }
+
+#endif // SHADOW_GLSL

@@ -1,5 +1,9 @@
 // Reverse reprojection (Lin 2013 eqs 1-3) and accumulation (eqs 4-5 and alternatives),
 // shared by every effect with a history.
+#ifndef TEMPORAL_GLSL
+#define TEMPORAL_GLSL
+
+#include "frame.glsl"
 
 // Per-pixel state written by the reprojection pass.
 const uint STATE_CONVERGED = 0u;    // reused as is
@@ -51,3 +55,5 @@ vec3 accumulate3(vec3 old, vec3 fresh, float n) {
     if (mode == 1u) return mix(old, fresh, k);
     return old + (fresh - old) / min(n + 1.0, max(k, 1.0));
 }
+
+#endif // TEMPORAL_GLSL

@@ -50,19 +50,18 @@ pub fn orthonormal_frame(forward: Vec3, up: Vec3) -> (Vec3, Vec3, Vec3) {
     (f, right, right.cross(f))
 }
 
-/// Right-handed view matrix from a repaired frame (same layout as `Mat4::look_to_rh`).
+/// Right-handed view matrix from a repaired frame.
 pub fn view_matrix(eye: Vec3, forward: Vec3, up: Vec3) -> Mat4 {
     let (f, _, u) = orthonormal_frame(forward, up);
-    Mat4::look_to_rh(eye, f, u)
+    glam::camera::rh::view::look_to_mat4(eye, f, u)
 }
 
 /// Vulkan-style perspective: clip depth 0..1, Y flipped. Inputs are clamped to usable values
 /// (fov in [0.01°, 179°], aspect > 0, 0 < near < far) so the matrix is always finite.
 pub fn vulkan_perspective(vfov_deg: f32, aspect: f32, near: f32, far: f32) -> Mat4 {
     let (fov, aspect, near, far) = sanitize_projection(vfov_deg, aspect, near, far);
-    let mut m = Mat4::perspective_rh(fov.to_radians(), aspect, near, far);
-    m.y_axis.y *= -1.0;
-    m
+    // glam's Vulkan projection: right-handed view space, clip depth 0..1, NDC y down.
+    glam::camera::rh::proj::vulkan::perspective(fov.to_radians(), aspect, near, far)
 }
 
 fn sanitize_projection(vfov_deg: f32, aspect: f32, near: f32, far: f32) -> (f32, f32, f32, f32) {

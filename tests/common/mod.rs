@@ -48,6 +48,21 @@ pub fn render(ctx: &Arc<Context>, scene: Scene, size: u32, pcf: Pcf, frames: u32
     r
 }
 
+/// The Cornell box seen straight down from 1.9 m above (`x`, `z`) with a `vfov_deg` lens, the
+/// image's up along -z: the floor and the tall block's shadow fill the view.
+pub fn cornell_from_above(x: f32, z: f32, vfov_deg: f32) -> Scene {
+    let mut scene = ssgi::scene::cornell_box();
+    scene.camera = Camera::new(
+        glam::Vec3::new(x, 1.9, z),
+        glam::Vec3::new(x, 0.0, z),
+        vfov_deg,
+        0.05,
+        20.0,
+    );
+    scene.camera.up = glam::Vec3::NEG_Z;
+    scene
+}
+
 pub fn read(r: &mut Renderer, t: Target) -> ImageData {
     r.read(t).expect("readback")
 }
