@@ -28,6 +28,7 @@ pub fn shared(t: &Targets, slot: Slot, parity: usize) -> Option<&Image> {
         Slot::RsmNormal => &t.rsm.normal,
         Slot::RsmFlux => &t.rsm.flux,
         Slot::RsmDepth => &t.rsm.depth,
+        Slot::GDepth => &t.gbuffer.depth,
         Slot::Output => &t.output,
         _ => return None,
     })

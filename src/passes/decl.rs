@@ -23,6 +23,7 @@ pub enum Slot {
     RsmFlux,
     /// The light view's depth: the shadow map.
     RsmDepth,
+    GDepth,
     /// The composite's RGBA8 output.
     Output,
     /// The temporal effect's history written this frame (rgb value, a = estimates).
@@ -56,11 +57,16 @@ pub enum Use {
     BufferReadWrite,
     /// Counters whose header holds the pass's indirect dispatch arguments, also updated by it.
     WorkList,
+    /// Colour attachment `binding` of a raster pass, cleared and written (not a descriptor).
+    ColorAttachment,
+    /// The raster pass's depth attachment, cleared and written (not a descriptor).
+    DepthAttachment,
 }
 
 impl Use {
-    pub fn kind(self) -> DescriptorKind {
-        match self {
+    /// The descriptor type, `None` for attachments.
+    pub fn kind(self) -> Option<DescriptorKind> {
+        Some(match self {
             Use::Sampled => DescriptorKind::SampledImage,
             Use::StorageRead | Use::StorageWrite | Use::StorageReadWrite => {
                 DescriptorKind::StorageImage
@@ -68,11 +74,12 @@ impl Use {
             Use::BufferRead | Use::BufferWrite | Use::BufferReadWrite | Use::WorkList => {
                 DescriptorKind::StorageBuffer
             }
-        }
+            Use::ColorAttachment | Use::DepthAttachment => return None,
+        })
     }
 
     fn is_buffer(self) -> bool {
-        self.kind() == DescriptorKind::StorageBuffer
+        self.kind() == Some(DescriptorKind::StorageBuffer)
     }
 
     /// The tracker accesses, in order (a discard first for overwritten images).
@@ -84,6 +91,8 @@ impl Use {
             Use::BufferWrite => &[Access::ComputeStorageWrite],
             Use::StorageReadWrite | Use::BufferReadWrite => &[Access::ComputeStorageReadWrite],
             Use::WorkList => &[Access::IndirectCommandRead, Access::ComputeStorageReadWrite],
+            Use::ColorAttachment => &[Access::Undefined, Access::ColorAttachmentWrite],
+            Use::DepthAttachment => &[Access::Undefined, Access::DepthAttachmentWrite],
         }
     }
 }
@@ -116,11 +125,13 @@ pub trait Resolve {
 /// The pipeline layout a declaration implies: the frame block at set 0, then set 1.
 pub fn layout(binds: &[Bind]) -> Vec<ReflectedBinding> {
     let mut out = vec![FRAME_BINDING];
-    out.extend(binds.iter().map(|b| ReflectedBinding {
-        set: 1,
-        binding: b.binding,
-        kind: b.usage.kind(),
-        count: 1,
+    out.extend(binds.iter().filter_map(|b| {
+        Some(ReflectedBinding {
+            set: 1,
+            binding: b.binding,
+            kind: b.usage.kind()?,
+            count: 1,
+        })
     }));
     out
 }
@@ -137,7 +148,7 @@ fn missing(pass: &str, b: &Bind) -> Error {
 /// The descriptor writes of set 1 for `parity`.
 pub fn writes(pass: &str, binds: &[Bind], res: &dyn Resolve, parity: usize) -> Result<SetWriter> {
     let mut w = SetWriter::new();
-    for b in binds {
+    for b in binds.iter().filter(|b| b.usage.kind().is_some()) {
         w = if b.usage.is_buffer() {
             let buffer = res.buffer(b.slot).ok_or_else(|| missing(pass, b))?;
             w.storage_buffer(b.binding, buffer)
@@ -150,6 +161,28 @@ pub fn writes(pass: &str, binds: &[Bind], res: &dyn Resolve, parity: usize) -> R
         };
     }
     Ok(w)
+}
+
+/// The colour attachments (in binding order) and the depth attachment a raster pass declares,
+/// for parity `parity`.
+pub fn attachments<'a>(
+    pass: &str,
+    binds: &[Bind],
+    res: &'a dyn Resolve,
+    parity: usize,
+) -> Result<(Vec<&'a Image>, Option<&'a Image>)> {
+    let mut colors: Vec<(u32, &Image)> = Vec::new();
+    let mut depth = None;
+    for b in binds {
+        let image = || res.image(b.slot, parity).ok_or_else(|| missing(pass, b));
+        match b.usage {
+            Use::ColorAttachment => colors.push((b.binding, image()?)),
+            Use::DepthAttachment => depth = Some(image()?),
+            _ => {}
+        }
+    }
+    colors.sort_by_key(|(binding, _)| *binding);
+    Ok((colors.into_iter().map(|(_, i)| i).collect(), depth))
 }
 
 /// Declare every access of the pass to the tracker (the caller flushes). Every slot resolved
@@ -194,6 +227,9 @@ mod tests {
                 (1, 2, DescriptorKind::StorageBuffer),
             ]
         );
+        // Attachments are not descriptors.
+        let raster = [Bind::new(0, Slot::GNormal, Use::ColorAttachment)];
+        assert_eq!(layout(&raster), vec![FRAME_BINDING]);
     }
 
     #[test]

@@ -1,17 +1,26 @@
 //! G-buffer: world position (w = 1 on geometry, 0 on background), world normal (facing the
 //! eye), albedo, and depth, from the camera.
 
+use super::compute::FrameSet;
+use super::decl::{Bind, Resolve, Slot, Use};
 use super::layout::PassLayout;
 use super::pass_id::PassId;
 use super::raster::{MaterialPipelines, RasterModules, FLAT_BINDINGS, TEXTURED_BINDINGS};
 use crate::error::Result;
 use crate::renderer::scene_gpu::SceneGpu;
-use crate::renderer::targets::{GBuffer, DEPTH_FORMAT, GBUFFER_COLOR_FORMATS};
+use crate::renderer::targets::{DEPTH_FORMAT, GBUFFER_COLOR_FORMATS};
 use crate::shaders;
 use crate::vk::cmd::Recorder;
-use crate::vk::{Access, Context, Tracker};
-use ash::vk;
+use crate::vk::{Context, Tracker};
 use std::sync::Arc;
+
+/// Colour attachments in the order of gbuffer.frag's outputs, then depth.
+const TARGETS: &[Bind] = &[
+    Bind::new(0, Slot::GPosition, Use::ColorAttachment),
+    Bind::new(1, Slot::GNormal, Use::ColorAttachment),
+    Bind::new(2, Slot::GAlbedo, Use::ColorAttachment),
+    Bind::new(0, Slot::GDepth, Use::DepthAttachment),
+];
 
 const MODULES: RasterModules = RasterModules {
     vertex: &shaders::MESH_VERT_CAMERA,
@@ -55,25 +64,11 @@ impl GBufferPass {
         &self,
         rec: &Recorder<'_>,
         tracker: &mut Tracker,
-        frame_set: vk::DescriptorSet,
+        frame: FrameSet,
         scene: &SceneGpu,
-        g: &GBuffer,
-        parity: usize,
+        res: &dyn Resolve,
     ) {
-        let position = g.position.current(parity);
-        for target in [position, &g.normal, &g.albedo] {
-            tracker.image(target, Access::Undefined);
-            tracker.image(target, Access::ColorAttachmentWrite);
-        }
-        tracker.image(&g.depth, Access::Undefined);
-        tracker.image(&g.depth, Access::DepthAttachmentWrite);
-        tracker.flush(rec.device, rec.cmd);
-        let zero = [0.0; 4];
-        rec.begin_rendering(
-            &[(position, zero), (&g.normal, zero), (&g.albedo, zero)],
-            &g.depth,
-        );
-        self.pipelines.draw(rec, frame_set, scene);
-        rec.end_rendering();
+        self.pipelines
+            .render(rec, tracker, frame, scene, (TARGETS, res));
     }
 }

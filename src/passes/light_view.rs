@@ -1,17 +1,27 @@
 //! Light view: the reflective shadow map (world position, normal, reflected flux) and its
 //! depth, which is also the shadow map. Rendered only when the light or geometry changed.
 
+use super::compute::FrameSet;
+use super::decl::{Bind, Resolve, Slot, Use};
 use super::layout::PassLayout;
 use super::pass_id::PassId;
 use super::raster::{MaterialPipelines, RasterModules, FLAT_BINDINGS, TEXTURED_BINDINGS};
 use crate::error::Result;
 use crate::renderer::scene_gpu::SceneGpu;
-use crate::renderer::targets::{Rsm, DEPTH_FORMAT, RSM_COLOR_FORMATS};
+use crate::renderer::targets::{DEPTH_FORMAT, RSM_COLOR_FORMATS};
 use crate::shaders;
 use crate::vk::cmd::Recorder;
-use crate::vk::{Access, Context, Tracker};
+use crate::vk::{Context, Tracker};
 use ash::vk;
 use std::sync::Arc;
+
+/// Colour attachments in the order of rsm.frag's outputs, then depth (the shadow map).
+const TARGETS: &[Bind] = &[
+    Bind::new(0, Slot::RsmPosition, Use::ColorAttachment),
+    Bind::new(1, Slot::RsmNormal, Use::ColorAttachment),
+    Bind::new(2, Slot::RsmFlux, Use::ColorAttachment),
+    Bind::new(0, Slot::RsmDepth, Use::DepthAttachment),
+];
 
 const MODULES: RasterModules = RasterModules {
     vertex: &shaders::MESH_VERT_LIGHT,
@@ -60,27 +70,11 @@ impl LightViewPass {
         &self,
         rec: &Recorder<'_>,
         tracker: &mut Tracker,
-        frame_set: vk::DescriptorSet,
+        frame: FrameSet,
         scene: &SceneGpu,
-        rsm: &Rsm,
+        res: &dyn Resolve,
     ) {
-        for target in [&rsm.position, &rsm.normal, &rsm.flux] {
-            tracker.image(target, Access::Undefined);
-            tracker.image(target, Access::ColorAttachmentWrite);
-        }
-        tracker.image(&rsm.depth, Access::Undefined);
-        tracker.image(&rsm.depth, Access::DepthAttachmentWrite);
-        tracker.flush(rec.device, rec.cmd);
-        let zero = [0.0; 4];
-        rec.begin_rendering(
-            &[
-                (&rsm.position, zero),
-                (&rsm.normal, zero),
-                (&rsm.flux, zero),
-            ],
-            &rsm.depth,
-        );
-        self.pipelines.draw(rec, frame_set, scene);
-        rec.end_rendering();
+        self.pipelines
+            .render(rec, tracker, frame, scene, (TARGETS, res));
     }
 }

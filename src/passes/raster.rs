@@ -1,11 +1,14 @@
 //! What the two raster passes (light view and G-buffer) share: the vertex layout, the two
 //! material permutations (flat colour / textured) and the draw loop over material ranges.
 
+use super::compute::FrameSet;
+use super::decl::{self, Bind, Resolve};
 use super::pass_id::PassId;
 use crate::error::Result;
 use crate::renderer::scene_gpu::SceneGpu;
 use crate::shaders::{DescriptorKind, ReflectedBinding, ShaderModuleInfo};
 use crate::vk::cmd::Recorder;
+use crate::vk::Tracker;
 use crate::vk::{Context, GraphicsDesc, Pipeline};
 use ash::vk;
 use std::sync::Arc;
@@ -91,6 +94,32 @@ impl MaterialPipelines {
             None
         };
         Ok(Self { flat, textured })
+    }
+
+    /// Clear and render into the attachments `targets` declares: barriers from the
+    /// declaration, then every material range.
+    pub fn render(
+        &self,
+        rec: &Recorder<'_>,
+        tracker: &mut Tracker,
+        frame: FrameSet,
+        scene: &SceneGpu,
+        targets: (&[Bind], &dyn Resolve),
+    ) {
+        let (binds, res) = targets;
+        let name = self.flat.name;
+        // The slots are the shared targets, which always exist: a miss is a broken invariant.
+        let (colors, depth) = match decl::attachments(name, binds, res, frame.parity) {
+            Ok((colors, Some(depth))) => (colors, depth),
+            Ok((_, None)) => panic!("{name}: a raster pass needs a depth attachment"),
+            Err(e) => panic!("{e}"),
+        };
+        decl::access(name, binds, res, frame.parity, tracker);
+        tracker.flush(rec.device, rec.cmd);
+        let clear: Vec<_> = colors.iter().map(|c| (*c, [0.0; 4])).collect();
+        rec.begin_rendering(&clear, depth);
+        self.draw(rec, frame.set, scene);
+        rec.end_rendering();
     }
 
     /// Draw every material range: flat materials first, then textured ones (one pipeline bind

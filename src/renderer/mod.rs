@@ -245,44 +245,32 @@ impl Renderer {
             last_pass: None,
         };
         let (frame, t, scene) = (info.frame, &self.targets, &self.scene_gpu);
+        let shared = SharedTargets(t);
         // 2. Light view, only when the light changed (geometry is static for the renderer).
         if light_changed {
             r.timed(PassId::LightView, |rec, tr| {
-                self.light_view.record(rec, tr, frame.set, scene, &t.rsm)
+                self.light_view.record(rec, tr, frame, scene, &shared)
             });
         } else {
             r.timer.skip(slot, PassId::LightView.name());
         }
         // 3. G-buffer.
         r.timed(PassId::GBuffer, |rec, tr| {
-            self.gbuffer
-                .record(rec, tr, frame.set, scene, &t.gbuffer, frame.parity)
+            self.gbuffer.record(rec, tr, frame, scene, &shared)
         });
         // 4. Reprojection of every temporal effect that reuses its history this frame.
-        let config = &self.config;
-        for e in self.effects.iter().filter(|e| e.counts(config)) {
-            if let Some(temporal) = e.temporal() {
-                temporal.reset_counters(&r.rec, r.tracker);
-            }
-        }
-        if self.effects.iter().any(|e| e.reprojects(&info)) {
-            r.timed(PassId::Reproject, |rec, tr| {
-                for e in self.effects.iter().filter(|e| e.reprojects(&info)) {
-                    e.record_reprojection(&info, rec, tr);
-                }
-            });
-        }
+        record_reprojections(&self.effects, &info, &mut r);
         // 5. Effects, in registry order.
         for e in &self.effects {
             e.record(&info, &mut r);
         }
         // 6-7. Composite + tonemap.
-        let shared = SharedTargets(t);
         let terms = terms(&shared, &self.effects);
         r.timed(PassId::Composite, |rec, tr| {
             self.composite
                 .record(rec, tr, frame, &terms, t.width, t.height)
         });
+        let config = &self.config;
         let source = |target| resolve_target(t, &self.effects, config, target, frame.parity);
         let hook_sync = record_hook(&mut r, &mut hook, source, &t.output);
         let last_pass = r.last_pass;
@@ -434,6 +422,23 @@ fn resolve_target<'a>(
                 .iter()
                 .find_map(|e| e.target(target, parity, config))
         }),
+    }
+}
+
+/// Reset the counters of every effect that counts this frame, then one `reproject` region
+/// with the reprojection of every effect that reuses its history.
+fn record_reprojections(effects: &[Box<dyn Effect>], info: &FrameInfo<'_>, r: &mut Recording<'_>) {
+    for e in effects.iter().filter(|e| e.counts(info.config)) {
+        if let Some(temporal) = e.temporal() {
+            temporal.reset_counters(&r.rec, r.tracker);
+        }
+    }
+    if effects.iter().any(|e| e.reprojects(info)) {
+        r.timed(PassId::Reproject, |rec, tr| {
+            for e in effects.iter().filter(|e| e.reprojects(info)) {
+                e.record_reprojection(info, rec, tr);
+            }
+        });
     }
 }
 
