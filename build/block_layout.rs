@@ -13,7 +13,6 @@ pub const GENERATED: &[(&str, &str)] = &[
     ("Effect", "EffectPush"),
     ("Counters", "CountersHeader"),
     ("Material", "MaterialPush"),
-    ("Composite", "CompositePush"),
 ];
 
 #[derive(Clone, Debug, PartialEq)]

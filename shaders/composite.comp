@@ -1,18 +1,20 @@
 #version 460
 // Composite and tonemap: ambient x albedo x the product of the visibility terms, plus the
 // radiance terms, Reinhard tonemap, sRGB encode. The effects' images arrive as numbered terms
-// with a kind each (src/effects/mod.rs `TermKind`), so no effect combination needs a variant.
+// with a kind each (src/effects/effect.rs `TermKind`), so no effect combination needs a variant.
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_samplerless_texture_functions : require
 #include "frame.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
 
-// build.rs generates the Rust struct `CompositePush` from this block.
-layout(push_constant) uniform Composite {
-    uvec4 term_kinds; // per term: 0 radiance, 1 ambient visibility (r), 2 VPL irradiance (eq 9)
-    uint term_count;
-} composite;
+// The terms, fixed when the pipeline is built (specialization constants): how many, and the
+// kind of each, so the driver compiles the unused fetches and branches away.
+layout(constant_id = 0) const uint TERM_COUNT = 1u;
+layout(constant_id = 1) const uint KIND0 = 0u;
+layout(constant_id = 2) const uint KIND1 = 0u;
+layout(constant_id = 3) const uint KIND2 = 0u;
+layout(constant_id = 4) const uint KIND3 = 0u;
 
 const uint TERM_RADIANCE = 0u;
 const uint TERM_AMBIENT_VISIBILITY = 1u;
@@ -26,13 +28,18 @@ layout(set = 1, binding = 4) uniform texture2D term1;
 layout(set = 1, binding = 5) uniform texture2D term2;
 layout(set = 1, binding = 6) uniform texture2D term3;
 
-vec4 fetch_term(uint i, ivec2 pixel) {
-    switch (i) {
-    case 0u: return texelFetch(term0, pixel, 0);
-    case 1u: return texelFetch(term1, pixel, 0);
-    case 2u: return texelFetch(term2, pixel, 0);
-    default: return texelFetch(term3, pixel, 0);
-    }
+// Ambient visibility factor of a term (1 unless it is a visibility term).
+float visibility_of(uint kind, vec4 t) {
+    return kind == TERM_AMBIENT_VISIBILITY ? t.r : 1.0;
+}
+
+// Radiance a term adds for a receiver of albedo `albedo`.
+vec3 radiance_of(uint kind, vec4 t, vec3 albedo) {
+    if (kind == TERM_RADIANCE) return t.rgb;
+    // Eq 9 treats a VPL as emitting Phi cos / d^2; a diffuse emitter of flux Phi has intensity
+    // Phi cos / pi, hence the 1/pi, and the receiver reflects albedo / pi of it.
+    if (kind == TERM_VPL_IRRADIANCE) return albedo / PI * t.rgb / PI;
+    return vec3(0.0);
 }
 
 vec3 srgb_encode(vec3 linear) {
@@ -45,26 +52,24 @@ void main() {
     ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
     if (outside_frame(pixel)) return;
     vec3 color = vec3(0.0);
-    uint count = min(composite.term_count, 4u);
+    // Through a variable: glslang would turn `TERM_COUNT > 1u` into OpSpecConstantOp, which
+    // naga's reflection cannot read; the driver still folds it once specialized.
+    uint count = TERM_COUNT;
     if (texelFetch(g_position, pixel, 0).w != 0.0) {
         vec3 albedo = texelFetch(g_albedo, pixel, 0).rgb;
-        float visibility = 1.0;
-        for (uint i = 0u; i < count; ++i) {
-            if (composite.term_kinds[i] == TERM_AMBIENT_VISIBILITY)
-                visibility *= fetch_term(i, pixel).r;
-        }
+        vec4 t0 = texelFetch(term0, pixel, 0);
+        vec4 t1 = count > 1u ? texelFetch(term1, pixel, 0) : vec4(0.0);
+        vec4 t2 = count > 2u ? texelFetch(term2, pixel, 0) : vec4(0.0);
+        vec4 t3 = count > 3u ? texelFetch(term3, pixel, 0) : vec4(0.0);
+        float visibility = visibility_of(KIND0, t0);
+        if (count > 1u) visibility *= visibility_of(KIND1, t1);
+        if (count > 2u) visibility *= visibility_of(KIND2, t2);
+        if (count > 3u) visibility *= visibility_of(KIND3, t3);
         color = frame.ambient * albedo * visibility;
-        for (uint i = 0u; i < count; ++i) {
-            uint kind = composite.term_kinds[i];
-            if (kind == TERM_RADIANCE) {
-                color += fetch_term(i, pixel).rgb;
-            } else if (kind == TERM_VPL_IRRADIANCE) {
-                // Eq 9 treats a VPL as emitting Phi cos / d^2; a diffuse emitter of flux Phi
-                // has intensity Phi cos / pi, hence the 1/pi, and the receiver reflects
-                // albedo / pi of it.
-                color += albedo / PI * fetch_term(i, pixel).rgb / PI;
-            }
-        }
+        color += radiance_of(KIND0, t0, albedo);
+        if (count > 1u) color += radiance_of(KIND1, t1, albedo);
+        if (count > 2u) color += radiance_of(KIND2, t2, albedo);
+        if (count > 3u) color += radiance_of(KIND3, t3, albedo);
     }
     // Non-finite input must not reach the image as garbage: show it as black.
     if (any(isnan(color)) || any(isinf(color))) color = vec3(0.0);

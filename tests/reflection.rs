@@ -63,9 +63,7 @@ fn compute_modules_have_workgroups_and_graphics_do_not() {
 #[allow(dead_code)]
 mod block_layout;
 
-use ssgi::shaders::{
-    BlockMember, CompositePush, CountersHeader, EffectPush, FrameBlock, MaterialPush,
-};
+use ssgi::shaders::{BlockMember, CountersHeader, EffectPush, FrameBlock, MaterialPush};
 
 /// The generated struct of a GLSL block: its members and size.
 fn generated(name: &str) -> (&'static [BlockMember], usize) {
@@ -74,7 +72,6 @@ fn generated(name: &str) -> (&'static [BlockMember], usize) {
         "Effect" => (EffectPush::MEMBERS, EffectPush::SIZE),
         "Counters" => (CountersHeader::MEMBERS, CountersHeader::SIZE),
         "Material" => (MaterialPush::MEMBERS, MaterialPush::SIZE),
-        "Composite" => (CompositePush::MEMBERS, CompositePush::SIZE),
         other => panic!("block {other} has no generated struct"),
     }
 }

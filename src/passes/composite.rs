@@ -1,14 +1,14 @@
 //! Composite: ambient x albedo x the product of the visibility terms, plus every radiance term
 //! the effects contribute, Reinhard tonemap, sRGB encode into the RGBA8 output. The effects'
-//! images come in as numbered terms with a kind each (push constants), so a new effect needs no
-//! new shader variant.
+//! images come in as numbered terms; their count and kinds are specialization constants of the
+//! pipeline, so a new effect needs no new shader variant and unused terms cost nothing.
 
 use super::compute::{ComputePass, Dispatch, FrameSet};
 use super::decl::{Bind, Resolve, Slot, Use};
 use super::layout::PassLayout;
 use super::pass_id::PassId;
 use crate::error::{Error, Result};
-use crate::shaders::{self, CompositePush};
+use crate::shaders;
 use crate::vk::cmd::Recorder;
 use crate::vk::{Buffer, Context, DescriptorPool, Image, Tracker};
 use std::sync::Arc;
@@ -30,24 +30,12 @@ pub fn layout() -> PassLayout {
     ComputePass::layout(PassId::Composite, &shaders::COMPOSITE_COMP, BINDS)
 }
 
-/// The composite's inputs: the shared targets, and each term's image per parity with the
-/// code of its kind. Bindings past the last term repeat the first image (never read).
+/// The composite's inputs: the shared targets, and each term's image per parity (in the order
+/// of the kinds the pass was built with). Bindings past the last term repeat the first image
+/// (never read).
 pub struct Terms<'a> {
     pub shared: &'a dyn Resolve,
-    pub images: Vec<([&'a Image; 2], u32)>,
-}
-
-impl Terms<'_> {
-    fn push(&self) -> CompositePush {
-        let mut kinds = [0; 4];
-        for (k, (_, kind)) in kinds.iter_mut().zip(&self.images) {
-            *k = *kind;
-        }
-        CompositePush {
-            term_kinds: kinds,
-            term_count: self.images.len() as u32,
-        }
-    }
+    pub images: Vec<[&'a Image; 2]>,
 }
 
 impl Resolve for Terms<'_> {
@@ -57,7 +45,7 @@ impl Resolve for Terms<'_> {
                 .images
                 .get(i as usize)
                 .or(self.images.first())
-                .map(|(pair, _)| pair[parity]),
+                .map(|pair| pair[parity]),
             other => self.shared.image(other, parity),
         }
     }
@@ -69,25 +57,33 @@ impl Resolve for Terms<'_> {
 
 pub struct CompositePass {
     pass: ComputePass,
+    terms: usize,
 }
 
 impl CompositePass {
-    pub fn new(ctx: &Arc<Context>, pool: &DescriptorPool) -> Result<Self> {
+    /// For terms of the kinds `kinds` (the shader's codes), in order.
+    pub fn new(ctx: &Arc<Context>, pool: &DescriptorPool, kinds: &[u32]) -> Result<Self> {
+        if kinds.is_empty() || kinds.len() > MAX_TERMS {
+            return Err(Error::Config(format!(
+                "the composite takes 1 to {MAX_TERMS} effect terms, not {}",
+                kinds.len()
+            )));
+        }
+        let mut constants = vec![kinds.len() as u32];
+        constants.extend(kinds);
+        constants.resize(1 + MAX_TERMS, 0);
+        let module = (&shaders::COMPOSITE_COMP, BINDS);
         Ok(Self {
-            pass: ComputePass::new(
-                ctx,
-                pool,
-                PassId::Composite,
-                &shaders::COMPOSITE_COMP,
-                BINDS,
-            )?,
+            pass: ComputePass::specialized(ctx, pool, PassId::Composite, module, &constants)?,
+            terms: kinds.len(),
         })
     }
 
     pub fn bind(&self, ctx: &Context, terms: &Terms<'_>) -> Result<()> {
-        if terms.images.is_empty() || terms.images.len() > MAX_TERMS {
+        if terms.images.len() != self.terms {
             return Err(Error::Config(format!(
-                "the composite takes 1 to {MAX_TERMS} effect terms, not {}",
+                "the composite was built for {} terms, not {}",
+                self.terms,
                 terms.images.len()
             )));
         }
@@ -103,13 +99,12 @@ impl CompositePass {
         width: u32,
         height: u32,
     ) {
-        let push = terms.push().to_bytes();
         self.pass.record(
             rec,
             tracker,
             frame,
             terms,
-            &push,
+            &[],
             Dispatch::Pixels { width, height },
         );
     }

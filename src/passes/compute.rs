@@ -56,7 +56,19 @@ impl ComputePass {
         module: &ShaderModuleInfo,
         binds: &'static [Bind],
     ) -> Result<Self> {
-        let pipeline = Pipeline::compute(ctx, id.name(), module, &decl::layout(binds))?;
+        Self::specialized(ctx, pool, id, (module, binds), &[])
+    }
+
+    /// With specialization constants (`constant_id = i` takes `constants[i]`).
+    pub fn specialized(
+        ctx: &Arc<Context>,
+        pool: &DescriptorPool,
+        id: PassId,
+        (module, binds): (&ShaderModuleInfo, &'static [Bind]),
+        constants: &[u32],
+    ) -> Result<Self> {
+        let layout = decl::layout(binds);
+        let pipeline = Pipeline::compute_specialized(ctx, id.name(), module, &layout, constants)?;
         Self::with_pipeline(pool, id, Arc::new(pipeline), binds, id.name())
     }
 

@@ -102,7 +102,8 @@ impl Renderer {
             shared: &shared,
             tracker: &mut tracker,
         })?;
-        let composite = CompositePass::new(ctx, &pool)?;
+        let kinds: Vec<u32> = effects.iter().map(|e| e.term(0).0 as u32).collect();
+        let composite = CompositePass::new(ctx, &pool, &kinds)?;
         // Set 0 layout: every pipeline declares the same frame binding, so any of them works.
         let frame_layout = composite.frame_layout();
         let mut frames = Vec::new();
@@ -446,13 +447,7 @@ fn record_reprojections(effects: &[Box<dyn Effect>], info: &FrameInfo<'_>, r: &m
 fn terms<'a>(shared: &'a SharedTargets<'a>, effects: &'a [Box<dyn Effect>]) -> Terms<'a> {
     Terms {
         shared,
-        images: effects
-            .iter()
-            .map(|e| {
-                let (kind, current) = e.term(0);
-                ([current, e.term(1).1], kind as u32)
-            })
-            .collect(),
+        images: effects.iter().map(|e| [e.term(0).1, e.term(1).1]).collect(),
     }
 }
 

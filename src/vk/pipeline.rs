@@ -183,6 +183,18 @@ impl Pipeline {
         module: &ShaderModuleInfo,
         declared: &[ReflectedBinding],
     ) -> Result<Self> {
+        Self::compute_specialized(ctx, name, module, declared, &[])
+    }
+
+    /// A compute pipeline whose specialization constants `constant_id = i` take `constants[i]`
+    /// (32-bit each), so the driver compiles branches on them away.
+    pub fn compute_specialized(
+        ctx: &Arc<Context>,
+        name: &'static str,
+        module: &ShaderModuleInfo,
+        declared: &[ReflectedBinding],
+        constants: &[u32],
+    ) -> Result<Self> {
         let (set_layouts, layout, push_stages) = layout_for(ctx, name, &[module], declared)?;
         let mut pipeline = Pipeline {
             ctx: ctx.clone(),
@@ -195,10 +207,24 @@ impl Pipeline {
             name,
         };
         let sm = shader_module(ctx, module)?;
-        let stage = vk::PipelineShaderStageCreateInfo::default()
+        let entries: Vec<vk::SpecializationMapEntry> = (0..constants.len() as u32)
+            .map(|i| vk::SpecializationMapEntry {
+                constant_id: i,
+                offset: 4 * i,
+                size: 4,
+            })
+            .collect();
+        let data: Vec<u8> = constants.iter().flat_map(|c| c.to_le_bytes()).collect();
+        let specialization = vk::SpecializationInfo::default()
+            .map_entries(&entries)
+            .data(&data);
+        let mut stage = vk::PipelineShaderStageCreateInfo::default()
             .stage(vk::ShaderStageFlags::COMPUTE)
             .module(sm)
             .name(c"main");
+        if !constants.is_empty() {
+            stage = stage.specialization_info(&specialization);
+        }
         let info = [vk::ComputePipelineCreateInfo::default()
             .stage(stage)
             .layout(layout)];
