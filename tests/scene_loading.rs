@@ -409,13 +409,9 @@ fn cornell_box_defaults() {
 
 // ---------------------------------------------------------------- real assets
 
-/// The asset directory, or None (with a message) when SSGI_ASSETS is not set.
-fn assets() -> Option<PathBuf> {
-    let dir = ssgi::scene::asset_dir_from_env();
-    if dir.is_none() {
-        println!("skipped: SSGI_ASSETS not set");
-    }
-    dir
+/// The asset directory; a test that needs it fails (never skips) when SSGI_ASSETS is not set.
+fn assets() -> PathBuf {
+    ssgi::scene::asset_dir_from_env().unwrap_or_else(|| panic!("SSGI_ASSETS is not set: this test needs the papers' models (the shared scenes directory, ../shared/scenes in this workspace); tools/test sets it"))
 }
 
 fn load_asset(name: &str, dir: &Path) -> Mesh {
@@ -427,7 +423,7 @@ fn load_asset(name: &str, dir: &Path) -> Mesh {
 
 #[test]
 fn asset_face_counts_match_sources_md() {
-    let Some(dir) = assets() else { return };
+    let dir = assets();
     // Face counts from shared/scenes/SOURCES.md (all-triangle files: faces = triangles).
     for (name, faces) in [
         ("bunny", 69_451),
@@ -455,14 +451,14 @@ fn asset_face_counts_match_sources_md() {
 
 #[test]
 fn conference_loads() {
-    let Some(dir) = assets() else { return };
+    let dir = assets();
     let m = load_asset("conference", &dir);
     assert_eq!(m.stats.triangles, 331_179);
 }
 
 #[test]
 fn cornell_box_obj_quads_with_relative_indices() {
-    let Some(dir) = assets() else { return };
+    let dir = assets();
     let s = load_scene("cornell-box/CornellBox-Original.obj", Some(&dir)).unwrap();
     assert_eq!(s.mesh.stats.faces, 18);
     assert_eq!(s.mesh.stats.triangles, 36);
@@ -471,7 +467,7 @@ fn cornell_box_obj_quads_with_relative_indices() {
 
 #[test]
 fn sponza_materials_and_textures() {
-    let Some(dir) = assets() else { return };
+    let dir = assets();
     let m = load_asset("sponza", &dir);
     assert!(m.stats.warnings.is_empty(), "{:#?}", m.stats.warnings);
     assert_eq!(m.materials.len(), 20);
@@ -498,7 +494,7 @@ fn sponza_materials_and_textures() {
 
 #[test]
 fn bunny_in_a_box() {
-    let Some(dir) = assets() else { return };
+    let dir = assets();
     let s = load_scene("box:bunny", Some(&dir)).unwrap();
     assert_eq!(s.name, "box:stanford-bunny");
     // The model is centred on the floor, ~0.9 m tall, inside the 2 m room.
