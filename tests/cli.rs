@@ -149,6 +149,10 @@ fn bad_flags_get_clear_errors() {
     fails_with(&["render", "--vpls", "0"], "--vpls");
     fails_with(&["render", "--effects", "ssdo"], "unknown effect");
     fails_with(&["render", "--epsilon", "abs:-1"], "--epsilon");
+    fails_with(&["render", "--ema-alpha", "2"], "--ema-alpha");
+    fails_with(&["render", "--bias", "nan"], "--bias");
+    fails_with(&["render", "--rotation-limit", "4096"], "1..=2048");
+    fails_with(&["render", "--mean-cap", "100000"], "1..=2048");
 }
 
 #[test]

@@ -30,7 +30,9 @@ float ao_thesis(ivec2 pixel, vec3 p, vec3 n, float pattern) {
     // The world radius projected to pixels at this depth; eq 8's far.
     float px_per_world = float(frame.size.y) / (2.0 * frame.tan_half_fov * dist);
     float near_px = frame.ao_near_px;
-    float far_px = clamp(radius * px_per_world, near_px * 1.5, 0.25 * float(frame.size.y));
+    // At most a quarter of the image, at least 1.5 near steps; on images under 9 px the lower
+    // bound wins (clamp with min > max is undefined in GLSL).
+    float far_px = max(min(radius * px_per_world, 0.25 * float(frame.size.y)), near_px * 1.5);
     float scale = pattern_scale(pattern);
     float angle = frame.pattern_rotation * pattern;
     vec2 rot = rotate2(pixel_rotation(pixel), vec2(cos(angle), sin(angle)));

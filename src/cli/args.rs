@@ -76,17 +76,18 @@ pub struct SceneArgs {
     /// How fresh estimates merge into the history: confidence (eqs 4-5), ema, mean.
     #[arg(long, value_enum, default_value = "confidence")]
     pub accumulate: AccumulateMode,
-    /// Bias of eq 4 (confidence mode).
-    #[arg(long, default_value_t = 0.1)]
+    /// Bias of eq 4 (confidence mode), finite and >= 0.
+    #[arg(long, default_value_t = 0.1, value_parser = parse_bias)]
     pub bias: f32,
-    /// Weight of the new estimate (ema mode).
-    #[arg(long, default_value_t = 0.1)]
+    /// Weight of the new estimate (ema mode), in (0, 1].
+    #[arg(long, default_value_t = 0.1, value_parser = parse_ema_alpha)]
     pub ema_alpha: f32,
-    /// Most estimates averaged (mean mode; default: the rotation limit).
-    #[arg(long)]
+    /// Most estimates averaged (mean mode; default: the rotation limit), 1..=2048.
+    #[arg(long, value_parser = parse_pattern_count)]
     pub mean_cap: Option<u32>,
-    /// Patterns per pixel before it counts as converged (thesis: 36 = 360 / 10 degrees).
-    #[arg(long, default_value_t = 36)]
+    /// Patterns per pixel before it counts as converged (thesis: 36 = 360 / 10 degrees),
+    /// 1..=2048.
+    #[arg(long, default_value_t = 36, value_parser = parse_pattern_count)]
     pub rotation_limit: u32,
     /// Disocclusion threshold of eq 3: a number = multiples of the pixel footprint
     /// (scale-free, default 2), or abs:<world units> for the thesis's absolute epsilon.
@@ -151,6 +152,35 @@ impl SceneArgs {
                 ..TemporalConfig::default()
             },
         }
+    }
+}
+
+fn parse_bias(s: &str) -> std::result::Result<f32, String> {
+    match s.parse::<f32>() {
+        Ok(b) if b.is_finite() && b >= 0.0 => Ok(b),
+        _ => Err(format!("--bias takes a finite number >= 0, not {s:?}")),
+    }
+}
+
+fn parse_ema_alpha(s: &str) -> std::result::Result<f32, String> {
+    match s.parse::<f32>() {
+        Ok(a) if a > 0.0 && a <= 1.0 => Ok(a),
+        _ => Err(format!(
+            "--ema-alpha takes the new estimate's weight in (0, 1], not {s:?}"
+        )),
+    }
+}
+
+/// A count of patterns or estimates: the history stores it in an fp16 channel, exact for
+/// integers up to 2048 (`config::MAX_PATTERNS`).
+fn parse_pattern_count(s: &str) -> std::result::Result<u32, String> {
+    let max = crate::renderer::config::MAX_PATTERNS;
+    match s.parse::<u32>() {
+        Ok(n) if (1..=max).contains(&n) => Ok(n),
+        _ => Err(format!(
+            "{s:?} is not a count in 1..={max} (the history stores it in fp16, exact up to \
+             {max})"
+        )),
     }
 }
 

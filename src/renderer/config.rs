@@ -5,6 +5,11 @@ use super::pcf::Pcf;
 use crate::error::{Error, Result};
 use serde::Serialize;
 
+/// Most patterns per pixel (rotation limit) and most estimates in a capped mean: the history
+/// keeps the count in an fp16 channel, whose integers are exact up to 2048. Past it a pixel
+/// would never reach "converged" and a capped mean would stop moving.
+pub const MAX_PATTERNS: u32 = 2048;
+
 /// Frames the CPU may record ahead of the GPU.
 pub const FRAMES_IN_FLIGHT: usize = 2;
 
@@ -265,6 +270,13 @@ impl RenderConfig {
         if ao.attenuation.iter().any(|c| !c.is_finite() || *c < 0.0) {
             return bad("AO attenuation coefficients must be finite and >= 0".into());
         }
+        // A divisor in the step spacing (eq 8): positive, and well inside the image.
+        if !(ao.near_px.is_finite() && ao.near_px > 0.0 && ao.near_px <= 64.0) {
+            return bad(format!(
+                "AO nearest step {} px must be in (0, 64]",
+                ao.near_px
+            ));
+        }
         // Per-invocation loop lengths: llvmpipe stops loops after ~2^16 iterations per
         // invocation (the result is then silently wrong) and GPU drivers reset the device on
         // very long dispatches, so gathers are bounded.
@@ -291,9 +303,9 @@ impl RenderConfig {
             ));
         }
         let t = &self.temporal;
-        if !(1..=4096).contains(&t.rotation_limit) {
+        if !(1..=MAX_PATTERNS).contains(&t.rotation_limit) {
             return bad(format!(
-                "rotation limit {} outside 1..=4096",
+                "rotation limit {} outside 1..={MAX_PATTERNS} (the count is kept in fp16)",
                 t.rotation_limit
             ));
         }
@@ -307,7 +319,11 @@ impl RenderConfig {
             Accumulate::Ema { alpha } if !(alpha > 0.0 && alpha <= 1.0) => {
                 return bad(format!("EMA alpha {alpha} must be in (0, 1]"))
             }
-            Accumulate::Mean { cap: 0 } => return bad("mean cap must be at least 1".into()),
+            Accumulate::Mean { cap } if !(1..=MAX_PATTERNS).contains(&cap) => {
+                return bad(format!(
+                    "mean cap {cap} outside 1..={MAX_PATTERNS} (the count is kept in fp16)"
+                ))
+            }
             _ => {}
         }
         match t.epsilon {
@@ -318,6 +334,32 @@ impl RenderConfig {
                 bad(format!("absolute epsilon {epsilon} must be finite and > 0"))
             }
             _ => Ok(()),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn counts_past_fp16_exactness_and_bad_step_sizes_are_rejected() {
+        let ok = RenderConfig::default();
+        assert!(ok.validate().is_ok());
+        let mut c = ok;
+        c.temporal.rotation_limit = MAX_PATTERNS;
+        assert!(c.validate().is_ok());
+        c.temporal.rotation_limit = MAX_PATTERNS + 1;
+        assert!(c.validate().unwrap_err().to_string().contains("fp16"));
+        let mut c = ok;
+        c.temporal.accumulate = Accumulate::Mean { cap: 100_000 };
+        assert!(c.validate().is_err());
+        c.temporal.accumulate = Accumulate::Mean { cap: 0 };
+        assert!(c.validate().is_err());
+        for near in [0.0, -1.0, f32::NAN, f32::INFINITY, 1000.0] {
+            let mut c = ok;
+            c.ao.near_px = near;
+            assert!(c.validate().is_err(), "near_px {near}");
         }
     }
 }
