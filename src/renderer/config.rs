@@ -347,6 +347,8 @@ mod tests {
         let ok = RenderConfig::default();
         assert!(ok.validate().is_ok());
         let mut c = ok;
+        // (Indirect light also bounds VPLs x rotation limit; leave it out here.)
+        c.effects.indirect = false;
         c.temporal.rotation_limit = MAX_PATTERNS;
         assert!(c.validate().is_ok());
         c.temporal.rotation_limit = MAX_PATTERNS + 1;
