@@ -5,6 +5,7 @@ pub mod bench;
 pub mod cli;
 pub mod effects;
 pub mod error;
+pub mod files;
 pub mod frontend;
 pub mod passes;
 pub mod renderer;

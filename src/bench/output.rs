@@ -4,18 +4,9 @@ use super::table_report::TableReport;
 use crate::error::{Error, Result};
 use std::path::{Path, PathBuf};
 
-/// Write `text` to `path`, creating its directory.
+/// Write `text` to `path` atomically, creating its directory.
 pub fn write_text(path: &Path, text: &str) -> Result<()> {
-    if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty()) {
-        std::fs::create_dir_all(dir).map_err(|source| Error::Io {
-            path: dir.to_path_buf(),
-            source,
-        })?;
-    }
-    std::fs::write(path, text).map_err(|source| Error::Io {
-        path: path.to_path_buf(),
-        source,
-    })
+    crate::files::write_atomic(path, text.as_bytes())
 }
 
 /// The last frame of every row as `<scene>-<row>.png` in `dir`; returns the file names,

@@ -6,19 +6,22 @@ use crate::scene::Aabb;
 use crate::vk::ImageData;
 use std::path::Path;
 
+/// Encode `rgba` as PNG and write it atomically (see `crate::files`).
 pub fn write_rgba8(path: &Path, width: u32, height: u32, rgba: &[u8]) -> Result<()> {
-    if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty()) {
-        std::fs::create_dir_all(dir).map_err(|source| Error::Io {
-            path: dir.to_path_buf(),
-            source,
-        })?;
-    }
-    image::save_buffer(path, rgba, width, height, image::ColorType::Rgba8).map_err(|e| {
-        Error::ImageWrite {
-            path: path.to_path_buf(),
-            message: e.to_string(),
-        }
-    })
+    let mut png = std::io::Cursor::new(Vec::new());
+    image::write_buffer_with_format(
+        &mut png,
+        rgba,
+        width,
+        height,
+        image::ColorType::Rgba8,
+        image::ImageFormat::Png,
+    )
+    .map_err(|e| Error::ImageWrite {
+        path: path.to_path_buf(),
+        message: e.to_string(),
+    })?;
+    crate::files::write_atomic(path, &png.into_inner())
 }
 
 fn to_u8(v: f32) -> u8 {

@@ -16,18 +16,9 @@ use crate::vk::Context;
 use std::sync::Arc;
 
 fn write_json(path: &std::path::Path, value: &impl serde::Serialize) -> Result<()> {
-    if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty()) {
-        std::fs::create_dir_all(dir).map_err(|source| Error::Io {
-            path: dir.to_path_buf(),
-            source,
-        })?;
-    }
     let text = serde_json::to_string_pretty(value)
         .map_err(|e| Error::Config(format!("JSON encoding failed: {e}")))?;
-    std::fs::write(path, text).map_err(|source| Error::Io {
-        path: path.to_path_buf(),
-        source,
-    })?;
+    crate::files::write_atomic(path, text.as_bytes())?;
     eprintln!("wrote {}", path.display());
     Ok(())
 }
