@@ -38,6 +38,8 @@ pub use procedural::{
     CORNELL_WHITE,
 };
 pub use raycast::Hit;
-pub use spec::{asset_dir_from_env, list_assets, load_scene, ASSETS_ENV, BUILTIN_SCENES};
+pub use spec::{
+    asset_dir_from_env, list_assets, load_scene, resolve_model, ASSETS_ENV, BUILTIN_SCENES,
+};
 pub use validate::HUGE_COORDINATE;
 pub use world::Scene;
