@@ -35,7 +35,14 @@ pub fn layout() -> PassLayout {
 /// (never read).
 pub struct Terms<'a> {
     pub shared: &'a dyn Resolve,
-    pub images: Vec<[&'a Image; 2]>,
+    /// The first `n` filled; a fixed array, so building it every frame allocates nothing.
+    pub images: [Option<[&'a Image; 2]>; MAX_TERMS],
+}
+
+impl Terms<'_> {
+    fn count(&self) -> usize {
+        self.images.iter().take_while(|i| i.is_some()).count()
+    }
 }
 
 impl Resolve for Terms<'_> {
@@ -44,7 +51,9 @@ impl Resolve for Terms<'_> {
             Slot::Term(i) => self
                 .images
                 .get(i as usize)
-                .or(self.images.first())
+                .copied()
+                .flatten()
+                .or(self.images[0])
                 .map(|pair| pair[parity]),
             other => self.shared.image(other, parity),
         }
@@ -80,11 +89,11 @@ impl CompositePass {
     }
 
     pub fn bind(&self, ctx: &Context, terms: &Terms<'_>) -> Result<()> {
-        if terms.images.len() != self.terms {
+        if terms.count() != self.terms {
             return Err(Error::Config(format!(
                 "the composite was built for {} terms, not {}",
                 self.terms,
-                terms.images.len()
+                terms.count()
             )));
         }
         self.pass.bind(ctx, terms)

@@ -447,7 +447,7 @@ fn record_reprojections(effects: &[Box<dyn Effect>], info: &FrameInfo<'_>, r: &m
 fn terms<'a>(shared: &'a SharedTargets<'a>, effects: &'a [Box<dyn Effect>]) -> Terms<'a> {
     Terms {
         shared,
-        images: effects.iter().map(|e| [e.term(0).1, e.term(1).1]).collect(),
+        images: std::array::from_fn(|i| effects.get(i).map(|e| [e.term(0).1, e.term(1).1])),
     }
 }
 
