@@ -140,6 +140,8 @@ fn bad_flags_get_clear_errors() {
     fails_with(&["render", "--pcf", "50"], "square");
     fails_with(&["render", "--pcf", "soft"], "--pcf");
     fails_with(&["bench", "--frames", "0"], "at least 1");
+    fails_with(&["render", "--frames", "0"], "at least 1");
+    fails_with(&["view", "--frames", "0"], "at least 1");
     fails_with(&["render", "--rsm-size", "0"], "shadow map size");
     fails_with(&["render", "--path", "/nonexistent/path.json"], "path.json");
     fails_with(

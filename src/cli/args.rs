@@ -20,7 +20,8 @@ pub struct Cli {
     /// message makes the command exit non-zero.
     #[arg(long, global = true)]
     pub validation: bool,
-    /// Use the first Vulkan device whose name contains this text (case-insensitive).
+    /// Use the first Vulkan device whose name contains this text (case-insensitive). Default:
+    /// a discrete GPU, else integrated, virtual, CPU; the choice is printed.
     #[arg(long, global = true, value_name = "NAME")]
     pub device: Option<String>,
     /// Directory holding the scene models (default: $SSGI_ASSETS).
@@ -54,13 +55,15 @@ pub struct SceneArgs {
     /// Camera path: static, orbit, dolly, or a keyframe file (.json / .toml).
     #[arg(long, default_value = "static")]
     pub path: String,
-    /// Shadow filtering: `hard` or a square PCF sample count (9, 25, 49, ...).
+    /// Shadow filtering: `hard`; 9 = the thesis's 9-sample disc, rotated and scaled every frame
+    /// and accumulated with reuse; another square (25, 49, ...) = a regular grid every frame;
+    /// disc:N = an N-sample disc.
     #[arg(long, default_value = "49", value_parser = parse_pcf)]
     pub pcf: Pcf,
     /// Side of the reflective shadow map / shadow map in texels.
     #[arg(long, default_value_t = 512)]
     pub rsm_size: u32,
-    /// Effects to render, comma-separated: direct, ao (or all).
+    /// Effects to render, comma-separated: direct, ao, indirect (or all).
     #[arg(long, default_value = "all", value_parser = parse_effects)]
     pub effects: Effects,
     /// Temporal reuse (reverse reprojection cache): on, or off for the no-reuse baseline
@@ -102,7 +105,8 @@ pub struct SceneArgs {
     /// Gather indirect light at half resolution with geometry-aware upsampling.
     #[arg(long, default_value = "on", value_parser = parse_on_off, action = clap::ArgAction::Set)]
     pub half_res: bool,
-    /// Tiled refresh (one 64x64 tile recomputed from scratch per frame).
+    /// Tiled refresh: one tile per frame (64x64 for AO and shadows, 16x16 for indirect light)
+    /// recomputed from scratch.
     #[arg(long, default_value = "on", value_parser = parse_on_off, action = clap::ArgAction::Set)]
     pub refresh: bool,
 }
@@ -152,6 +156,18 @@ impl SceneArgs {
                 ..TemporalConfig::default()
             },
         }
+    }
+}
+
+fn parse_frame_count_u64(s: &str) -> std::result::Result<u64, String> {
+    parse_frame_count(s).map(u64::from)
+}
+
+/// A frame count of a run: at least 1 (a run of no frames has nothing to write or report).
+fn parse_frame_count(s: &str) -> std::result::Result<u32, String> {
+    match s.parse::<u32>() {
+        Ok(n) if n >= 1 => Ok(n),
+        _ => Err(format!("--frames must be at least 1, not {s:?}")),
     }
 }
 
@@ -230,8 +246,8 @@ fn parse_epsilon(s: &str) -> std::result::Result<Epsilon, String> {
 pub struct RenderArgs {
     #[command(flatten)]
     pub scene: SceneArgs,
-    /// Frames to render (the last one is written).
-    #[arg(long, default_value_t = 1)]
+    /// Frames to render (the last one is written), at least 1.
+    #[arg(long, default_value_t = 1, value_parser = parse_frame_count)]
     pub frames: u32,
     /// Output PNG.
     #[arg(long, default_value = "out/render.png")]
@@ -245,8 +261,8 @@ pub struct RenderArgs {
 pub struct BenchArgs {
     #[command(flatten)]
     pub scene: SceneArgs,
-    /// Frames measured after warmup.
-    #[arg(long, default_value_t = 200)]
+    /// Frames measured after warmup, at least 1.
+    #[arg(long, default_value_t = 200, value_parser = parse_frame_count)]
     pub frames: u32,
     /// Frames rendered first and left out of the statistics.
     #[arg(long, default_value_t = 10)]
@@ -271,8 +287,8 @@ pub struct ViewArgs {
     /// Scene and renderer options; `--size` is the initial window size, `--path` is unused.
     #[command(flatten)]
     pub scene: SceneArgs,
-    /// Exit by itself after this many presented frames.
-    #[arg(long)]
+    /// Exit by itself after this many presented frames (at least 1).
+    #[arg(long, value_parser = parse_frame_count_u64)]
     pub frames: Option<u64>,
     /// Test script: FRAME:resize=WxH, FRAME:zero=N, FRAME:key=NAME, comma-separated.
     #[arg(long, hide = true)]

@@ -120,7 +120,10 @@ impl WindowPresenter {
         let window = loop {
             let status = event_loop.pump_app_events(Some(Duration::from_millis(10)), &mut events);
             if let Some(e) = events.create_error.take() {
-                return Err(Error::Window(format!("cannot create the window: {e}")));
+                return Err(Error::Window(format!(
+                    "cannot create the window: {}",
+                    super::display::user_text(&e)
+                )));
             }
             if let Some(w) = events.window.take() {
                 break w;

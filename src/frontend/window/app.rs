@@ -162,11 +162,12 @@ impl App {
             .with_title(self.options.title.clone())
             .with_inner_size(PhysicalSize::new(w, h))
             .with_resizable(true);
-        let window = Arc::new(
-            event_loop
-                .create_window(attributes)
-                .map_err(|e| Error::Window(format!("cannot create the window: {e}")))?,
-        );
+        let window = Arc::new(event_loop.create_window(attributes).map_err(|e| {
+            Error::Window(format!(
+                "cannot create the window: {}",
+                crate::frontend::display::user_text(&e)
+            ))
+        })?);
         let surface = Surface::new(&self.ctx, window.clone())?;
         let size = window.inner_size();
         let swapchain = Swapchain::new(
