@@ -4,7 +4,7 @@
 
 use crate::passes::decl::{Resolve, Slot};
 use crate::renderer::effect::TemporalEffect;
-use crate::renderer::targets::Targets;
+use crate::renderer::targets::{Target, Targets};
 use crate::vk::{Buffer, Image};
 
 /// An effect's view of the frame's resources.
@@ -17,21 +17,23 @@ pub struct EffectResources<'a> {
     pub own_buffers: &'a [&'a Buffer],
 }
 
-/// The shared targets every pass may read, for a parity.
+/// The shared targets every pass may read, for a parity (the images come from `Targets::get`,
+/// the one place that knows which image backs a shared target).
 pub fn shared(t: &Targets, slot: Slot, parity: usize) -> Option<&Image> {
-    Some(match slot {
-        Slot::GPosition => t.gbuffer.position.current(parity),
-        Slot::GPositionPrev => t.gbuffer.position.previous(parity),
-        Slot::GNormal => &t.gbuffer.normal,
-        Slot::GAlbedo => &t.gbuffer.albedo,
-        Slot::RsmPosition => &t.rsm.position,
-        Slot::RsmNormal => &t.rsm.normal,
-        Slot::RsmFlux => &t.rsm.flux,
-        Slot::RsmDepth => &t.rsm.depth,
-        Slot::GDepth => &t.gbuffer.depth,
-        Slot::Output => &t.output,
+    let target = match slot {
+        Slot::GPosition => Target::GPosition,
+        Slot::GPositionPrev => Target::GPositionHistory,
+        Slot::GNormal => Target::GNormal,
+        Slot::GAlbedo => Target::GAlbedo,
+        Slot::GDepth => Target::GDepth,
+        Slot::RsmPosition => Target::RsmPosition,
+        Slot::RsmNormal => Target::RsmNormal,
+        Slot::RsmFlux => Target::RsmFlux,
+        Slot::RsmDepth => Target::RsmDepth,
+        Slot::Output => Target::Output,
         _ => return None,
-    })
+    };
+    t.get(target, parity)
 }
 
 impl Resolve for EffectResources<'_> {
