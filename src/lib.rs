@@ -8,6 +8,7 @@ pub mod error;
 pub mod files;
 pub mod frontend;
 pub mod passes;
+pub mod reference;
 pub mod renderer;
 pub mod scene;
 pub mod shaders;

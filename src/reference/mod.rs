@@ -1,0 +1,18 @@
+//! Ground truth: a CPU ray tracer, independent of Vulkan and of the rasterizer, computing per
+//! pixel what each screen-space effect approximates (docs/REFERENCE.md has the definitions):
+//! world-space AO, direct light with exact visibility, one diffuse bounce with full
+//! visibility, and the composited final image.
+
+pub mod accel;
+pub mod estimate;
+pub mod estimators;
+pub mod sampling;
+pub mod surface;
+pub mod trace;
+
+pub use accel::Accel;
+pub use estimators::AoDefinition;
+pub use trace::{RefBuffer, Reference, Settings};
+
+#[cfg(test)]
+mod tests;
