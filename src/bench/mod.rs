@@ -4,6 +4,7 @@
 pub mod compare;
 pub mod csv;
 pub mod decimate;
+pub mod error_metrics;
 pub mod markdown;
 pub mod measure;
 pub mod metrics;
