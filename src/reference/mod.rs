@@ -4,9 +4,13 @@
 //! visibility, and the composited final image.
 
 pub mod accel;
+pub mod compose;
 pub mod estimate;
 pub mod estimators;
+pub mod output;
+pub mod run;
 pub mod sampling;
+pub mod store;
 pub mod surface;
 pub mod trace;
 
