@@ -15,6 +15,7 @@ pub mod plot;
 pub mod report;
 pub mod rows;
 pub mod stats;
+pub mod sweep_keys;
 pub mod table41;
 pub mod table_report;
 pub mod thesis;

@@ -83,7 +83,7 @@ pub struct SceneArgs {
     #[arg(long, default_value_t = 0.1, value_parser = parse_bias)]
     pub bias: f32,
     /// Weight of the new estimate (ema mode), in (0, 1].
-    #[arg(long, default_value_t = 0.1, value_parser = parse_ema_alpha)]
+    #[arg(long, default_value_t = Accumulate::EMA_ALPHA, value_parser = parse_ema_alpha)]
     pub ema_alpha: f32,
     /// Most estimates averaged (mean mode; default: the rotation limit), 1..=2048.
     #[arg(long, value_parser = parse_pattern_count)]
@@ -171,14 +171,14 @@ fn parse_frame_count(s: &str) -> std::result::Result<u32, String> {
     }
 }
 
-fn parse_bias(s: &str) -> std::result::Result<f32, String> {
+pub fn parse_bias(s: &str) -> std::result::Result<f32, String> {
     match s.parse::<f32>() {
         Ok(b) if b.is_finite() && b >= 0.0 => Ok(b),
         _ => Err(format!("--bias takes a finite number >= 0, not {s:?}")),
     }
 }
 
-fn parse_ema_alpha(s: &str) -> std::result::Result<f32, String> {
+pub fn parse_ema_alpha(s: &str) -> std::result::Result<f32, String> {
     match s.parse::<f32>() {
         Ok(a) if a > 0.0 && a <= 1.0 => Ok(a),
         _ => Err(format!(
@@ -189,7 +189,7 @@ fn parse_ema_alpha(s: &str) -> std::result::Result<f32, String> {
 
 /// A count of patterns or estimates: the history stores it in an fp16 channel, exact for
 /// integers up to 2048 (`config::MAX_PATTERNS`).
-fn parse_pattern_count(s: &str) -> std::result::Result<u32, String> {
+pub fn parse_pattern_count(s: &str) -> std::result::Result<u32, String> {
     let max = crate::renderer::config::MAX_PATTERNS;
     match s.parse::<u32>() {
         Ok(n) if (1..=max).contains(&n) => Ok(n),
@@ -200,7 +200,7 @@ fn parse_pattern_count(s: &str) -> std::result::Result<u32, String> {
     }
 }
 
-fn parse_vpls(s: &str) -> std::result::Result<u32, String> {
+pub fn parse_vpls(s: &str) -> std::result::Result<u32, String> {
     if s == "all" {
         return Ok(0);
     }
@@ -216,7 +216,8 @@ fn parse_effects(s: &str) -> std::result::Result<Effects, String> {
     Effects::parse(s)
 }
 
-fn parse_on_off(s: &str) -> std::result::Result<bool, String> {
+/// `on`/`off` (also yes/no, true/false); shared with `ssgi sweep --vary`.
+pub fn parse_on_off(s: &str) -> std::result::Result<bool, String> {
     match s {
         "on" | "yes" | "true" => Ok(true),
         "off" | "no" | "false" => Ok(false),
@@ -224,7 +225,7 @@ fn parse_on_off(s: &str) -> std::result::Result<bool, String> {
     }
 }
 
-fn parse_epsilon(s: &str) -> std::result::Result<Epsilon, String> {
+pub fn parse_epsilon(s: &str) -> std::result::Result<Epsilon, String> {
     let (abs, number) = match s.strip_prefix("abs:") {
         Some(rest) => (true, rest),
         None => (false, s),

@@ -115,6 +115,8 @@ impl Accumulate {
     /// Default bias of eq 4. The thesis leaves it to the user; 0.1 keeps confidence <= 0.91 for
     /// a full-range difference and ~1 for small ones.
     pub const CONFIDENCE: Accumulate = Accumulate::Confidence { bias: 0.1 };
+    /// Default weight of the new estimate in ema mode (`--ema-alpha`, `ema` in a sweep).
+    pub const EMA_ALPHA: f32 = 0.1;
 
     pub fn code(&self) -> u32 {
         match self {
@@ -214,7 +216,7 @@ impl AoConfig {
     }
 }
 
-#[derive(Clone, Copy, Debug, Serialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
 pub struct RenderConfig {
     pub width: u32,
     pub height: u32,
