@@ -10,6 +10,8 @@ fn main() -> std::process::ExitCode {
         Command::Bench(args) => ssgi::cli::bench(&cli, args),
         Command::View(args) => ssgi::cli::view(&cli, args),
         Command::Table(args) => ssgi::cli::table(&cli, args),
+        Command::Reference(args) => ssgi::cli::reference(&cli, args),
+        Command::Sweep(args) => ssgi::cli::sweep(&cli, args),
     };
     match result {
         Ok(()) => std::process::ExitCode::SUCCESS,

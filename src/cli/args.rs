@@ -41,6 +41,12 @@ pub enum Command {
     View(ViewArgs),
     /// Reproduce a thesis table: report.md, report.json, CSV and PNG plots in --out.
     Table(TableArgs),
+    /// Ray-trace the ground truth of one frame on the CPU (no GPU): AO, direct light, shadow,
+    /// one-bounce indirect light and the final image, as OpenEXR + PNG previews in --out.
+    Reference(ReferenceArgs),
+    /// Run every combination of --vary values in one process and put run time against error
+    /// (ground truth and converged estimator): sweep.csv/json/md and scatter plots in --out.
+    Sweep(SweepArgs),
 }
 
 #[derive(Args, Debug, Clone)]
@@ -384,4 +390,119 @@ fn parse_size(s: &str) -> std::result::Result<(u32, u32), String> {
 
 fn parse_pcf(s: &str) -> std::result::Result<Pcf, String> {
     Pcf::parse(s)
+}
+
+#[derive(Args, Debug)]
+pub struct ReferenceArgs {
+    /// Built-in scene, OBJ path, asset name or box:<model>, as for render.
+    #[arg(long, default_value = "cornell-box")]
+    pub scene: String,
+    /// Image size, WIDTHxHEIGHT.
+    #[arg(long, default_value = "256x256", value_parser = parse_size)]
+    pub size: (u32, u32),
+    /// Camera path: static, orbit, dolly, or a keyframe file (.json / .toml).
+    #[arg(long, default_value = "static")]
+    pub path: String,
+    /// Frames of the run the reference belongs to (the path's timing), at least 1.
+    #[arg(long, default_value_t = 1, value_parser = parse_frame_count)]
+    pub frames: u32,
+    /// Frame of the path to trace, 0-based (default: the last of --frames).
+    #[arg(long)]
+    pub frame: Option<u32>,
+    /// AO radius as a fraction of the scene's bounding radius (the renderer's --ao radius).
+    #[arg(long, default_value_t = AoConfig::default().radius, value_parser = parse_ao_radius)]
+    pub ao_radius: f32,
+    /// AO attenuation D(x) = 1 + a x + b x^2 as A,B (eq 7; the renderer's default 0,1).
+    #[arg(long, default_value = "0,1", value_parser = parse_attenuation)]
+    pub ao_attenuation: [f32; 2],
+    /// Radius of a spherical light for soft shadows, world units (0: the point light).
+    #[arg(long, default_value_t = 0.0, value_parser = parse_light_radius)]
+    pub light_radius: f32,
+    /// AO rays per pixel (split into two halves for the standard error), 2..=131072.
+    #[arg(long, default_value_t = 2 * crate::reference::trace::DEFAULT_AO_SAMPLES, value_parser = parse_reference_samples)]
+    pub ao_samples: u32,
+    /// Indirect-light paths per pixel (two rays each), 2..=131072.
+    #[arg(long, default_value_t = 2 * crate::reference::trace::DEFAULT_INDIRECT_SAMPLES, value_parser = parse_reference_samples)]
+    pub indirect_samples: u32,
+    /// Shadow rays per pixel towards the spherical light (ignored for the point light).
+    #[arg(long, default_value_t = 2 * crate::reference::trace::DEFAULT_SOFT_SHADOW_SAMPLES, value_parser = parse_reference_samples)]
+    pub shadow_samples: u32,
+    /// Output directory.
+    #[arg(long, default_value = "out/reference")]
+    pub out: PathBuf,
+    /// Reference cache directory (default: $SSGI_CACHE/reference, else
+    /// $XDG_CACHE_HOME/ssgi/reference, else ~/.cache/ssgi/reference).
+    #[arg(long, value_name = "DIR")]
+    pub cache_dir: Option<PathBuf>,
+    /// Trace from scratch and do not read or write the cache.
+    #[arg(long)]
+    pub no_cache: bool,
+}
+
+fn parse_ao_radius(s: &str) -> std::result::Result<f32, String> {
+    match s.parse::<f32>() {
+        Ok(r) if r.is_finite() && r > 0.0 && r <= 10.0 => Ok(r),
+        _ => Err(format!(
+            "--ao-radius takes a fraction of the scene radius in (0, 10], not {s:?}"
+        )),
+    }
+}
+
+fn parse_attenuation(s: &str) -> std::result::Result<[f32; 2], String> {
+    let parts: Vec<Option<f32>> = s.split(',').map(|p| p.trim().parse().ok()).collect();
+    match parts[..] {
+        [Some(a), Some(b)] if a.is_finite() && b.is_finite() && a >= 0.0 && b >= 0.0 => Ok([a, b]),
+        _ => Err(format!(
+            "--ao-attenuation takes A,B (finite, >= 0) for D(x) = 1 + A x + B x^2, not {s:?}"
+        )),
+    }
+}
+
+fn parse_light_radius(s: &str) -> std::result::Result<f32, String> {
+    match s.parse::<f32>() {
+        Ok(r) if r.is_finite() && r >= 0.0 => Ok(r),
+        _ => Err(format!(
+            "--light-radius takes a finite radius >= 0, not {s:?}"
+        )),
+    }
+}
+
+fn parse_reference_samples(s: &str) -> std::result::Result<u32, String> {
+    let max = 2 * crate::reference::run::MAX_SAMPLES_PER_HALF;
+    match s.parse::<u32>() {
+        Ok(n) if (2..=max).contains(&n) => Ok(n),
+        _ => Err(format!(
+            "a reference sample count is in 2..={max} (two halves), not {s:?}"
+        )),
+    }
+}
+
+#[derive(Args, Debug)]
+pub struct SweepArgs {
+    /// The base configuration; --vary overrides its keys.
+    #[command(flatten)]
+    pub scene: SceneArgs,
+    /// Frames measured per combination along the path, at least 1.
+    #[arg(long, default_value_t = 60, value_parser = parse_frame_count)]
+    pub frames: u32,
+    /// Frames at the path's first camera before measuring, so the cache reaches steady state
+    /// (default: the rotation limit + 4, every pattern accumulated once).
+    #[arg(long)]
+    pub warmup: Option<u32>,
+    /// KEY=V1,V2,...: a configuration key and its values (repeatable; every combination runs,
+    /// the first --vary outermost). `ssgi sweep --list-keys` lists the keys.
+    #[arg(long = "vary", value_name = "KEY=VALUES")]
+    pub vary: Vec<String>,
+    /// Print the keys --vary accepts and exit.
+    #[arg(long)]
+    pub list_keys: bool,
+    /// Output directory.
+    #[arg(long, default_value = "out/sweep")]
+    pub out: PathBuf,
+    /// Reference cache directory (as for `ssgi reference`).
+    #[arg(long, value_name = "DIR")]
+    pub cache_dir: Option<PathBuf>,
+    /// Trace the ground truth from scratch and do not read or write the cache.
+    #[arg(long)]
+    pub no_cache: bool,
 }

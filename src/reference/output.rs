@@ -84,3 +84,56 @@ pub fn write_final_png(path: &Path, values: &[f32], width: u32, height: u32) -> 
         .collect();
     crate::frontend::png::write_rgba8(path, width, height, &rgba)
 }
+
+/// Everything `ssgi reference` writes into `out`: reference.json, `<buffer>.exr` and
+/// `<buffer>.png` for each buffer, `final.exr`/`final.png` (all effects composited).
+/// Returns the JSON written.
+pub fn write_all(session: &super::run::Session<'_>, out: &Path) -> Result<serde_json::Value> {
+    use super::trace::RefBuffer;
+    let r = &session.reference;
+    let (w, h) = (r.width, r.height);
+    let mask = r.geometry();
+    let mut buffers = serde_json::Map::new();
+    for b in RefBuffer::ALL {
+        let e = r.estimate(b);
+        let mean = e.mean();
+        write_exr(&out.join(format!("{}.exr", b.name())), &mean, e.channels, w, h)?;
+        let unit = matches!(b, RefBuffer::Ao | RefBuffer::Shadow);
+        write_preview(&out.join(format!("{}.png", b.name())), &mean, e.channels, &mask, w, h, unit)?;
+        let se = e.standard_error(&mask);
+        let rms = e.rms(&mask);
+        buffers.insert(
+            b.name().into(),
+            serde_json::json!({
+                "samples_per_pixel": 2 * e.per_half as u64,
+                "standard_error": se,
+                "relative_standard_error": if rms > 0.0 { Some(se / rms) } else { None },
+                "rms": rms,
+            }),
+        );
+    }
+    let effects = crate::renderer::config::Effects::ALL;
+    let final_rgb = super::compose::final_image(r, session.scene.ambient, effects);
+    write_exr(&out.join("final.exr"), &final_rgb, 3, w, h)?;
+    write_final_png(&out.join("final.png"), &final_rgb, w, h)?;
+    let json = serde_json::json!({
+        "scene": session.scene.name,
+        "size": [w, h],
+        "camera": r.camera,
+        "light": session.scene.light,
+        "ambient": session.scene.ambient.to_array(),
+        "settings": r.settings,
+        "primary_hits": "traced through pixel centres (the G-buffer's rasterization samples), view depth in the camera's near..far",
+        "covered_pixels": mask.iter().filter(|m| **m).count(),
+        "buffers": buffers,
+        "rays": r.rays,
+        "seconds": r.seconds,
+        "rays_per_second": r.rays_per_second(),
+        "threads": rayon::current_num_threads(),
+        "cache_key": session.key,
+        "from_cache": session.from_cache,
+    });
+    let text = serde_json::to_string_pretty(&json).map_err(|e| Error::Config(e.to_string()))?;
+    write_atomic(&out.join("reference.json"), text.as_bytes())?;
+    Ok(json)
+}

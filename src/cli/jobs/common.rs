@@ -20,8 +20,13 @@ pub(super) fn check_frames(frames: u32, what: &str) -> Result<()> {
 
 /// The scene and camera path of a run: everything before the GPU.
 pub(super) fn load(cli: &Cli, args: &SceneArgs) -> Result<(Scene, CameraPath)> {
+    load_spec(cli, &args.scene, &args.path)
+}
+
+/// The scene `spec` and camera path `path` (warnings about the model printed).
+pub(super) fn load_spec(cli: &Cli, spec: &str, path: &str) -> Result<(Scene, CameraPath)> {
     let assets = cli.assets.clone().or_else(asset_dir_from_env);
-    let scene = load_scene(&args.scene, assets.as_deref())?;
+    let scene = load_scene(spec, assets.as_deref())?;
     for w in &scene.mesh.stats.warnings {
         eprintln!("warning: {w}");
     }
@@ -31,7 +36,7 @@ pub(super) fn load(cli: &Cli, args: &SceneArgs) -> Result<(Scene, CameraPath)> {
             scene.mesh.stats.dropped_degenerate
         );
     }
-    let path = CameraPath::parse(&args.path)?;
+    let path = CameraPath::parse(path)?;
     Ok((scene, path))
 }
 

@@ -2,11 +2,15 @@
 
 mod bench;
 mod common;
+mod reference;
 mod render;
+mod sweep;
 mod table;
 mod view;
 
 pub use bench::bench;
+pub use reference::reference;
 pub use render::render;
+pub use sweep::sweep;
 pub use table::table;
 pub use view::view;

@@ -1,0 +1,132 @@
+//! Errors of a rendered frame against the CPU ground truth (`crate::reference`): per buffer
+//! RMSE, relative MSE, maximum and PSNR over the pixels both cover, and FLIP for the final
+//! image. The shadow buffer is compared only where the light reaches (inside the cone, facing
+//! it): elsewhere the direct light is zero whatever the visibility says.
+
+use super::error_metrics::{buffer_error, flip_ldr, masked_mean, BufferError};
+use super::measure::{Buffer, LastFrame};
+use crate::error::{Error, Result};
+use crate::reference::compose::{final_image, to_rgb8};
+use crate::reference::{RefBuffer, Reference};
+use crate::renderer::config::Effects;
+use crate::scene::Scene;
+use crate::vk::ImageData;
+use serde::Serialize;
+use std::collections::BTreeMap;
+
+/// One buffer's error against the ground truth.
+#[derive(Clone, Copy, Debug, Serialize)]
+pub struct TruthError {
+    #[serde(flatten)]
+    pub error: BufferError,
+    /// Mean FLIP over covered pixels (final image only).
+    pub flip: Option<f64>,
+}
+
+/// The reference buffer a rendered buffer estimates (`None` for the final image).
+pub fn reference_buffer(b: Buffer) -> Option<RefBuffer> {
+    match b {
+        Buffer::Final => None,
+        Buffer::Ao => Some(RefBuffer::Ao),
+        Buffer::Direct => Some(RefBuffer::Direct),
+        Buffer::Shadow => Some(RefBuffer::Shadow),
+        Buffer::Indirect => Some(RefBuffer::Indirect),
+    }
+}
+
+/// Values per pixel a buffer is compared with: 1 for visibilities, 3 for colours.
+pub fn channels(b: Buffer) -> usize {
+    match b {
+        Buffer::Ao | Buffer::Shadow => 1,
+        Buffer::Final | Buffer::Direct | Buffer::Indirect => 3,
+    }
+}
+
+/// The first `channels` values of every texel, row order.
+pub fn values(image: &ImageData, channels: usize) -> Vec<f32> {
+    let mut out = Vec::with_capacity(image.width as usize * image.height as usize * channels);
+    for y in 0..image.height {
+        for x in 0..image.width {
+            out.extend_from_slice(&image.texel(x, y)[..channels]);
+        }
+    }
+    out
+}
+
+/// The pixels a buffer is compared over: covered by both the G-buffer (`gpu_geometry`) and
+/// the traced primary hits; for shadows, also lit by the cone and facing the light.
+pub fn mask(b: Buffer, reference: &Reference, scene: &Scene, gpu_geometry: &[bool]) -> Vec<bool> {
+    reference
+        .primary
+        .iter()
+        .zip(gpu_geometry)
+        .map(|(p, &g)| match p {
+            Some(p) if g => {
+                b != Buffer::Shadow
+                    || scene.light.irradiance(p.surface.position, p.normal) != glam::Vec3::ZERO
+            }
+            _ => false,
+        })
+        .collect()
+}
+
+/// The ground-truth values of `b` for a run with `effects` (the final image composited from
+/// the reference buffers of those effects).
+pub fn truth_values(b: Buffer, reference: &Reference, scene: &Scene, effects: Effects) -> Vec<f32> {
+    match reference_buffer(b) {
+        Some(rb) => reference.estimate(rb).mean(),
+        None => final_image(reference, scene.ambient, effects),
+    }
+}
+
+/// Every buffer of `last` against the ground truth.
+pub fn errors(
+    last: &LastFrame,
+    reference: &Reference,
+    scene: &Scene,
+    effects: Effects,
+) -> Result<BTreeMap<Buffer, TruthError>> {
+    if last.geometry.len() != reference.primary.len() {
+        return Err(Error::Config(format!(
+            "the ground truth has {} pixels, the frame {}",
+            reference.primary.len(),
+            last.geometry.len()
+        )));
+    }
+    let mut out = BTreeMap::new();
+    for (b, image) in &last.buffers {
+        let ch = channels(*b);
+        let m = mask(*b, reference, scene, &last.geometry);
+        let got = values(image, ch);
+        let truth = truth_values(*b, reference, scene, effects);
+        let error = buffer_error(&got, &truth, ch, &m)?;
+        let flip = if *b == Buffer::Final {
+            let f = flip_ldr(&to_rgb8(&got), &to_rgb8(&truth), image.width, image.height)?;
+            masked_mean(&f.per_pixel, &m)?
+        } else {
+            None
+        };
+        out.insert(*b, TruthError { error, flip });
+    }
+    Ok(out)
+}
+
+/// Every buffer of `last` against the same buffers of `converged` (the estimator with many
+/// samples), over the pixels both cover.
+pub fn errors_against(last: &LastFrame, converged: &LastFrame) -> Result<BTreeMap<Buffer, BufferError>> {
+    let mut out = BTreeMap::new();
+    for (b, image) in &last.buffers {
+        let Some(c) = converged.buffer(*b) else {
+            continue;
+        };
+        let ch = channels(*b);
+        let m: Vec<bool> = last
+            .geometry
+            .iter()
+            .zip(&converged.geometry)
+            .map(|(a, b)| *a && *b)
+            .collect();
+        out.insert(*b, buffer_error(&values(image, ch), &values(c, ch), ch, &m)?);
+    }
+    Ok(out)
+}

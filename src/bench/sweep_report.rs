@@ -1,0 +1,224 @@
+//! What `ssgi sweep` writes: sweep.csv (one row per combination), sweep.json (everything),
+//! sweep.md (tables with Pareto-optimal rows marked, per buffer), and one scatter plot per
+//! buffer (time on x, ground-truth error on y, one series per technique, the front drawn).
+
+use super::measure::Buffer;
+use super::output::write_text;
+use super::pareto::front_polyline;
+use super::scatter::{write_scatter_plot, ScatterPlot, ScatterSeries};
+use super::sweep::{error_of, time_group, time_of, SweepRow, TruthQuality};
+use crate::error::Result;
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
+
+/// Where and on what the sweep ran, for the reports' headers.
+#[derive(Clone, Debug, serde::Serialize)]
+pub struct SweepHeader {
+    pub command: String,
+    pub scene: String,
+    pub path: String,
+    pub size: [u32; 2],
+    pub frames: u32,
+    pub warmup: u32,
+    pub device: String,
+    pub driver: String,
+    pub reference_rays_per_second: f64,
+}
+
+fn buffers_in(rows: &[SweepRow]) -> Vec<Buffer> {
+    Buffer::ALL
+        .into_iter()
+        .filter(|b| rows.iter().any(|r| r.truth.contains_key(b.name())))
+        .collect()
+}
+
+fn fmt(v: Option<f64>) -> String {
+    v.map_or(String::new(), |v| format!("{v:.6}"))
+}
+
+/// sweep.csv: keys, group times, and per buffer the ground-truth and converged errors.
+pub fn csv(rows: &[SweepRow]) -> String {
+    let keys: Vec<String> = rows.first().map_or(Vec::new(), |r| {
+        r.label.iter().map(|(k, _)| k.clone()).collect()
+    });
+    let groups: Vec<String> = rows.first().map_or(Vec::new(), |r| r.ms.keys().cloned().collect());
+    let buffers = buffers_in(rows);
+    let mut head: Vec<String> = keys.clone();
+    head.extend(groups.iter().map(|g| format!("{g}_ms")));
+    for b in &buffers {
+        let n = b.name();
+        head.extend([
+            format!("{n}_rmse"),
+            format!("{n}_rel_mse"),
+            format!("{n}_max_abs"),
+            format!("{n}_psnr"),
+            format!("{n}_rmse_vs_converged"),
+            format!("{n}_pareto"),
+        ]);
+        if *b == Buffer::Final {
+            head.push("final_flip".into());
+        }
+    }
+    let mut out = head.join(",") + "\n";
+    for r in rows {
+        let mut cells: Vec<String> = r.label.iter().map(|(_, v)| v.replace(',', ";")).collect();
+        cells.extend(groups.iter().map(|g| fmt(r.ms.get(g).copied().flatten())));
+        for b in &buffers {
+            let t = r.truth.get(b.name());
+            cells.push(fmt(t.map(|t| t.error.rmse)));
+            cells.push(fmt(t.map(|t| t.error.rel_mse)));
+            cells.push(fmt(t.map(|t| t.error.max_abs)));
+            cells.push(fmt(t.map(|t| t.error.psnr).filter(|p| p.is_finite())));
+            cells.push(fmt(r.converged.get(b.name()).map(|e| e.rmse)));
+            cells.push(r.pareto.get(b.name()).map_or(String::new(), |p| p.to_string()));
+            if *b == Buffer::Final {
+                cells.push(fmt(t.and_then(|t| t.flip)));
+            }
+        }
+        out += &(cells.join(",") + "\n");
+    }
+    out
+}
+
+/// sweep.md: one table per buffer, rows sorted by time, Pareto-optimal rows marked ★.
+pub fn markdown(header: &SweepHeader, rows: &[SweepRow], quality: &BTreeMap<String, TruthQuality>) -> String {
+    let mut s = format!(
+        "# Sweep: {} along `{}`\n\n`{}`\n\n{}x{}, {} measured frames after {} warmup frames; \
+         device {} (driver {}). Times are medians of per-frame GPU time over the measured \
+         frames, all measured in this one process. Errors are of the last frame, against the \
+         CPU ground truth (`ssgi reference`) and against the converged estimator of the same \
+         technique. ★ = Pareto-optimal in (time, error) for that buffer.\n\n",
+        header.scene,
+        header.path,
+        header.command,
+        header.size[0],
+        header.size[1],
+        header.frames,
+        header.warmup,
+        header.device,
+        header.driver
+    );
+    s += "## Ground truth\n\n| buffer | samples/pixel | standard error | bound (1/10 of smallest error) | met |\n|---|---|---|---|---|\n";
+    for (b, q) in quality {
+        s += &format!(
+            "| {b} | {} | {:.2e} | {} | {} |\n",
+            q.samples_per_pixel,
+            q.standard_error,
+            q.bound.map_or("-".into(), |v| format!("{v:.2e}")),
+            if q.bound_met { "yes" } else { "**no**" }
+        );
+    }
+    s += &format!(
+        "\nReference tracing: {:.2} Mrays/s.\n",
+        header.reference_rays_per_second / 1e6
+    );
+    for b in buffers_in(rows) {
+        let metric = if b == Buffer::Final { "FLIP" } else { "RMSE" };
+        s += &format!(
+            "\n## {} (time: {})\n\n| | configuration | ms | {metric} vs truth | rel. MSE | PSNR | RMSE vs converged |\n|---|---|---|---|---|---|---|\n",
+            b.name(),
+            time_group(b).join(" + ")
+        );
+        let mut order: Vec<&SweepRow> = rows.iter().collect();
+        order.sort_by(|a, c| {
+            time_of(a, b)
+                .unwrap_or(f64::INFINITY)
+                .total_cmp(&time_of(c, b).unwrap_or(f64::INFINITY))
+        });
+        for r in order {
+            let Some(t) = r.truth.get(b.name()) else { continue };
+            let star = if r.pareto.get(b.name()) == Some(&true) { "★" } else { "" };
+            let label: Vec<String> = r.label.iter().map(|(k, v)| format!("{k}={v}")).collect();
+            s += &format!(
+                "| {star} | {} | {} | {} | {:.4} | {} | {} |\n",
+                if label.is_empty() { "base".into() } else { label.join(", ") },
+                time_of(r, b).map_or("-".into(), |v| format!("{v:.3}")),
+                error_of(r, b).map_or("-".into(), |v| format!("{v:.5}")),
+                t.error.rel_mse,
+                if t.error.psnr.is_finite() { format!("{:.1}", t.error.psnr) } else { "∞".into() },
+                r.converged.get(b.name()).map_or("-".into(), |e| format!("{:.5}", e.rmse)),
+            );
+        }
+    }
+    s
+}
+
+/// The series a row belongs to: every varied key but the last (the last is the swept axis).
+fn series_name(r: &SweepRow) -> String {
+    let n = r.label.len().saturating_sub(1);
+    let parts: Vec<String> = r.label[..n].iter().map(|(k, v)| format!("{k}={v}")).collect();
+    if parts.is_empty() {
+        "all".into()
+    } else {
+        parts.join(", ")
+    }
+}
+
+/// One scatter plot per buffer; returns the files written.
+pub fn plots(dir: &Path, header: &SweepHeader, rows: &[SweepRow]) -> Result<Vec<PathBuf>> {
+    let mut written = Vec::new();
+    for b in buffers_in(rows) {
+        let mut names: Vec<String> = Vec::new();
+        for r in rows {
+            let n = series_name(r);
+            if !names.contains(&n) {
+                names.push(n);
+            }
+        }
+        let series: Vec<ScatterSeries<'_>> = names
+            .iter()
+            .map(|n| ScatterSeries {
+                name: n,
+                points: rows
+                    .iter()
+                    .filter(|r| series_name(r) == *n)
+                    .filter_map(|r| Some((time_of(r, b)?, error_of(r, b)?)))
+                    .collect(),
+            })
+            .collect();
+        let points: Vec<(f64, f64)> = rows
+            .iter()
+            .map(|r| (time_of(r, b).unwrap_or(f64::NAN), error_of(r, b).unwrap_or(f64::NAN)))
+            .collect();
+        let optimal: Vec<bool> = rows.iter().map(|r| r.pareto.get(b.name()) == Some(&true)).collect();
+        let title = format!("{}: {} ({}x{})", header.scene, b.name(), header.size[0], header.size[1]);
+        let x_label = format!("GPU ms ({})", time_group(b).join(" + "));
+        let y_label = if b == Buffer::Final { "FLIP vs ground truth" } else { "RMSE vs ground truth" };
+        let plot = ScatterPlot {
+            title: &title,
+            x_label: &x_label,
+            y_label,
+            series,
+            front: front_polyline(&points, &optimal),
+            log_y: false,
+            size: (900, 600),
+        };
+        let path = dir.join(format!("sweep_{}.png", b.name()));
+        write_scatter_plot(&plot, &path)?;
+        written.push(path);
+    }
+    Ok(written)
+}
+
+/// Write sweep.csv, sweep.json, sweep.md and the plots into `dir`.
+pub fn write(
+    dir: &Path,
+    header: &SweepHeader,
+    rows: &[SweepRow],
+    quality: &BTreeMap<String, TruthQuality>,
+) -> Result<Vec<PathBuf>> {
+    let mut files = vec![dir.join("sweep.csv"), dir.join("sweep.json"), dir.join("sweep.md")];
+    write_text(&files[0], &csv(rows))?;
+    let json = serde_json::json!({
+        "version": 1,
+        "header": header,
+        "ground_truth": quality,
+        "rows": rows,
+    });
+    let text = serde_json::to_string_pretty(&json)
+        .map_err(|e| crate::error::Error::Config(e.to_string()))?;
+    write_text(&files[1], &text)?;
+    write_text(&files[2], &markdown(header, rows, quality))?;
+    files.extend(plots(dir, header, rows)?);
+    Ok(files)
+}

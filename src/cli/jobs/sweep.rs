@@ -1,0 +1,90 @@
+//! `ssgi sweep`: combinations of configuration keys, time against error.
+
+use super::common::{context_options, finish, load};
+use crate::bench::measure::last_camera;
+use crate::bench::sweep::{run, SweepSpec};
+use crate::bench::sweep_keys::{combinations, help_table, parse_vary};
+use crate::bench::sweep_report::{write, SweepHeader};
+use crate::cli::args::{Cli, SweepArgs};
+use crate::error::Result;
+use crate::reference::run::Session;
+use crate::reference::store::default_dir;
+use crate::reference::trace::{DEFAULT_AO_SAMPLES, DEFAULT_INDIRECT_SAMPLES};
+use crate::reference::{AoDefinition, RefBuffer, Settings};
+use crate::vk::Context;
+
+pub fn sweep(cli: &Cli, args: &SweepArgs) -> Result<()> {
+    if args.list_keys {
+        print!("{}", help_table());
+        return Ok(());
+    }
+    let varies = args
+        .vary
+        .iter()
+        .map(|v| parse_vary(v))
+        .collect::<Result<Vec<_>>>()?;
+    let base = args.scene.render_config();
+    let combos = combinations(&base, &varies)?;
+    let (scene, path) = load(cli, &args.scene)?;
+    let warmup = args
+        .warmup
+        .unwrap_or_else(|| combos.iter().map(|(_, c)| c.temporal.rotation_limit).max().unwrap_or(36) + 4);
+    // The ground truth of the last frame, with the AO definition of the base configuration
+    // (radius and attenuation are not sweep keys' business unless varied: see below).
+    let camera = last_camera(&scene, &path, args.frames);
+    if combos
+        .iter()
+        .any(|(_, c)| (c.ao.radius, c.ao.attenuation) != (base.ao.radius, base.ao.attenuation))
+    {
+        return Err(crate::error::Error::Config(
+            "sweeping ao.radius would need one ground truth per radius; sweep it in separate runs"
+                .into(),
+        ));
+    }
+    let settings = Settings {
+        ao: AoDefinition {
+            radius: base.ao.radius * scene.mesh.bounds.radius().max(f32::MIN_POSITIVE),
+            attenuation: base.ao.attenuation,
+        },
+        light_radius: 0.0,
+        seed: 1,
+    };
+    let cache = (!args.no_cache).then(|| args.cache_dir.clone().unwrap_or_else(default_dir));
+    let (w, h) = args.scene.size;
+    let mut truth = Session::start(&scene, camera, w, h, settings, cache, true)?;
+    truth.ensure(RefBuffer::Ao, DEFAULT_AO_SAMPLES);
+    truth.ensure(RefBuffer::Direct, 1);
+    truth.ensure(RefBuffer::Indirect, DEFAULT_INDIRECT_SAMPLES);
+    truth.save()?;
+    let ctx = Context::new(&context_options(cli))?;
+    eprintln!(
+        "sweep: {} combination(s) x {} frames (+{warmup} warmup) on {}",
+        combos.len(),
+        args.frames,
+        ctx.info.name
+    );
+    let spec = SweepSpec {
+        scene: &scene,
+        path: &path,
+        frames: args.frames,
+        warmup,
+        combinations: combos,
+        progress: true,
+    };
+    let (rows, quality) = run(&ctx, &spec, &mut truth)?;
+    truth.save()?;
+    let header = SweepHeader {
+        command: std::env::args().collect::<Vec<_>>().join(" "),
+        scene: scene.name.clone(),
+        path: path.name(),
+        size: [w, h],
+        frames: args.frames,
+        warmup,
+        device: ctx.info.name.clone(),
+        driver: ctx.info.driver.clone(),
+        reference_rays_per_second: truth.reference.rays_per_second(),
+    };
+    let files = write(&args.out, &header, &rows, &quality)?;
+    eprintln!("wrote {} files to {}", files.len(), args.out.display());
+    finish(&ctx)
+}
