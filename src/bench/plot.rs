@@ -29,9 +29,11 @@ pub const NO_REUSE_AO_COLOR: RGBColor = RGBColor(0xfc, 0x92, 0x72);
 pub const REUSE_INDIRECT_COLOR: RGBColor = RGBColor(0x2c, 0xa0, 0x2c);
 pub const NO_REUSE_INDIRECT_COLOR: RGBColor = RGBColor(0xff, 0x7f, 0x0e);
 
-const FONT: &str = "sans-serif";
+/// Family name the embedded font is registered under; call [`font_ready`] before drawing text.
+pub(crate) const FONT: &str = "sans-serif";
 
-fn font_ready() -> std::result::Result<(), String> {
+/// Registers the embedded font once per process; the result is cached.
+pub(crate) fn font_ready() -> std::result::Result<(), String> {
     static REGISTERED: OnceLock<std::result::Result<(), String>> = OnceLock::new();
     REGISTERED
         .get_or_init(|| {
