@@ -54,9 +54,18 @@ fn check_primary_hits(scene: Scene) {
     }
     let pixels = (SIZE * SIZE) as usize;
     // Silhouettes may round either way; 1 % of the pixels allows for them, not for a shift.
-    assert!(coverage_differs * 100 <= pixels, "{coverage_differs} pixels covered by only one");
-    assert!(far * 100 <= both, "{far} of {both} positions differ by more than a footprint");
-    assert!(normal_differs * 100 <= both, "{normal_differs} of {both} normals differ");
+    assert!(
+        coverage_differs * 100 <= pixels,
+        "{coverage_differs} pixels covered by only one"
+    );
+    assert!(
+        far * 100 <= both,
+        "{far} of {both} positions differ by more than a footprint"
+    );
+    assert!(
+        normal_differs * 100 <= both,
+        "{normal_differs} of {both} normals differ"
+    );
     assert!(both > pixels / 4);
     drop(r);
     common::assert_clean(&ctx);

@@ -19,8 +19,24 @@ fn sweep_two_keys_by_two_values() {
     let out = tmp("sweep");
     let cache = tmp("cache");
     let run = ssgi()
-        .args(["--validation", "sweep", "--scene", "cornell-box", "--size", "32x32"])
-        .args(["--path", "orbit", "--frames", "4", "--warmup", "2", "--rsm-size", "64"])
+        .args([
+            "--validation",
+            "sweep",
+            "--scene",
+            "cornell-box",
+            "--size",
+            "32x32",
+        ])
+        .args([
+            "--path",
+            "static",
+            "--frames",
+            "4",
+            "--warmup",
+            "2",
+            "--rsm-size",
+            "64",
+        ])
         .args(["--effects", "direct,ao", "--vary", "temporal.reuse=on,off"])
         .args(["--vary", "ao.samples=8,16", "--out"])
         .arg(&out)
@@ -30,7 +46,13 @@ fn sweep_two_keys_by_two_values() {
         .unwrap();
     let stderr = String::from_utf8_lossy(&run.stderr);
     assert!(run.status.success(), "sweep failed:\n{stderr}");
-    for f in ["sweep.csv", "sweep.json", "sweep.md", "sweep_final.png", "sweep_ao.png"] {
+    for f in [
+        "sweep.csv",
+        "sweep.json",
+        "sweep.md",
+        "sweep_final.png",
+        "sweep_ao.png",
+    ] {
         assert!(out.join(f).is_file(), "{f} missing; stderr:\n{stderr}");
     }
     let json: serde_json::Value =
@@ -39,28 +61,55 @@ fn sweep_two_keys_by_two_values() {
     assert_eq!(rows.len(), 4);
     // First --vary outermost.
     let label = |i: usize| rows[i]["label"].to_string();
-    assert!(label(0).contains("\"on\"") && label(0).contains("\"8\""), "{}", label(0));
-    assert!(label(1).contains("\"on\"") && label(1).contains("\"16\""), "{}", label(1));
+    assert!(
+        label(0).contains("\"on\"") && label(0).contains("\"8\""),
+        "{}",
+        label(0)
+    );
+    assert!(
+        label(1).contains("\"on\"") && label(1).contains("\"16\""),
+        "{}",
+        label(1)
+    );
     assert!(label(2).contains("\"off\""), "{}", label(2));
     for row in rows {
         for b in ["final", "ao", "direct", "shadow"] {
             let rmse = row["truth"][b]["rmse"].as_f64();
-            assert!(rmse.is_some_and(|e| e.is_finite() && e >= 0.0), "{b}: {row}");
+            assert!(
+                rmse.is_some_and(|e| e.is_finite() && e >= 0.0),
+                "{b}: {row}"
+            );
         }
-        assert!(row["truth"]["final"]["flip"].as_f64().is_some_and(|f| f > 0.0 && f < 1.0));
+        assert!(row["truth"]["final"]["flip"]
+            .as_f64()
+            .is_some_and(|f| f > 0.0 && f < 1.0));
         assert!(row["converged"]["ao"]["rmse"].as_f64().is_some());
         assert!(row["ms"]["total"].as_f64().is_some_and(|t| t > 0.0));
-        assert!(row["truth"].get("indirect").is_none(), "indirect was not enabled");
+        assert!(
+            row["truth"].get("indirect").is_none(),
+            "indirect was not enabled"
+        );
     }
     // At least one row is optimal for every buffer.
     for b in ["final", "ao"] {
-        assert!(rows.iter().any(|r| r["pareto"][b] == true), "no front for {b}");
+        assert!(
+            rows.iter().any(|r| r["pareto"][b] == true),
+            "no front for {b}"
+        );
     }
     let quality = &json["ground_truth"]["ao"];
     assert!(quality["standard_error"].as_f64().unwrap() <= quality["bound"].as_f64().unwrap());
     // The cached ground truth is reused by a second run.
     let again = ssgi()
-        .args(["reference", "--scene", "cornell-box", "--size", "32x32", "--path", "orbit"])
+        .args([
+            "reference",
+            "--scene",
+            "cornell-box",
+            "--size",
+            "32x32",
+            "--path",
+            "static",
+        ])
         .args(["--frames", "4", "--out"])
         .arg(tmp("reference"))
         .arg("--cache-dir")
@@ -75,7 +124,14 @@ fn sweep_two_keys_by_two_values() {
     )
     .unwrap();
     assert_eq!(reference["covered_pixels"], 32 * 32);
-    for f in ["ao.exr", "direct.exr", "shadow.exr", "indirect.exr", "final.exr", "final.png"] {
+    for f in [
+        "ao.exr",
+        "direct.exr",
+        "shadow.exr",
+        "indirect.exr",
+        "final.exr",
+        "final.png",
+    ] {
         assert!(tmp("reference").join(f).is_file(), "{f}");
     }
 }
@@ -88,12 +144,18 @@ fn unknown_keys_and_values_list_the_valid_ones() {
         .unwrap();
     let stderr = String::from_utf8_lossy(&run.stderr);
     assert!(!run.status.success());
-    assert!(stderr.contains("ao.samples") && stderr.contains("temporal.reuse"), "{stderr}");
+    assert!(
+        stderr.contains("ao.samples") && stderr.contains("temporal.reuse"),
+        "{stderr}"
+    );
     let run = ssgi()
         .args(["sweep", "--size", "32x32", "--vary", "temporal.reuse=maybe"])
         .output()
         .unwrap();
     let stderr = String::from_utf8_lossy(&run.stderr);
     assert!(!run.status.success());
-    assert!(stderr.contains("maybe") && stderr.contains("on"), "{stderr}");
+    assert!(
+        stderr.contains("maybe") && stderr.contains("on"),
+        "{stderr}"
+    );
 }

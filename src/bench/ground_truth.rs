@@ -113,7 +113,10 @@ pub fn errors(
 
 /// Every buffer of `last` against the same buffers of `converged` (the estimator with many
 /// samples), over the pixels both cover.
-pub fn errors_against(last: &LastFrame, converged: &LastFrame) -> Result<BTreeMap<Buffer, BufferError>> {
+pub fn errors_against(
+    last: &LastFrame,
+    converged: &LastFrame,
+) -> Result<BTreeMap<Buffer, BufferError>> {
     let mut out = BTreeMap::new();
     for (b, image) in &last.buffers {
         let Some(c) = converged.buffer(*b) else {
@@ -126,7 +129,10 @@ pub fn errors_against(last: &LastFrame, converged: &LastFrame) -> Result<BTreeMa
             .zip(&converged.geometry)
             .map(|(a, b)| *a && *b)
             .collect();
-        out.insert(*b, buffer_error(&values(image, ch), &values(c, ch), ch, &m)?);
+        out.insert(
+            *b,
+            buffer_error(&values(image, ch), &values(c, ch), ch, &m)?,
+        );
     }
     Ok(out)
 }

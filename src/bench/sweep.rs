@@ -21,7 +21,7 @@ use std::collections::BTreeMap;
 use std::sync::Arc;
 
 /// One combination's result.
-#[derive(Clone, Debug, Serialize)]
+#[derive(Serialize)]
 pub struct SweepRow {
     /// The varied keys and values, in --vary order.
     pub label: Vec<(String, String)>,
@@ -103,7 +103,11 @@ pub fn run(
     let mut converged: Vec<(RenderConfig, LastFrame)> = Vec::new();
     for (label, config) in &spec.combinations {
         let text = describe(label);
-        bar.set_message(if text.is_empty() { "base".into() } else { text.clone() });
+        bar.set_message(if text.is_empty() {
+            "base".into()
+        } else {
+            text.clone()
+        });
         let measured = measure(
             ctx,
             &mut Offscreen,
@@ -146,7 +150,11 @@ pub fn run(
             .iter()
             .map(|(name, passes)| (name.to_string(), group_median(&measured.report, passes)))
             .collect();
-        let conv = &converged.iter().find(|(c, _)| *c == cc).expect("inserted above").1;
+        let conv = &converged
+            .iter()
+            .find(|(c, _)| *c == cc)
+            .expect("inserted above")
+            .1;
         rows.push(SweepRow {
             label: label
                 .iter()
@@ -192,7 +200,9 @@ fn refine_truth(
 ) -> Result<BTreeMap<String, TruthQuality>> {
     let mut quality = BTreeMap::new();
     for b in [Buffer::Ao, Buffer::Shadow, Buffer::Direct, Buffer::Indirect] {
-        let Some(rb) = reference_buffer(b) else { continue };
+        let Some(rb) = reference_buffer(b) else {
+            continue;
+        };
         let smallest = rows
             .iter()
             .filter_map(|r| r.truth.get(b.name()))
@@ -230,7 +240,12 @@ pub fn mark_pareto(rows: &mut [SweepRow]) {
     for b in Buffer::ALL {
         let points: Vec<(f64, f64)> = rows
             .iter()
-            .map(|r| (time_of(r, b).unwrap_or(f64::NAN), error_of(r, b).unwrap_or(f64::NAN)))
+            .map(|r| {
+                (
+                    time_of(r, b).unwrap_or(f64::NAN),
+                    error_of(r, b).unwrap_or(f64::NAN),
+                )
+            })
             .collect();
         let front = super::pareto::pareto_front(&points);
         for (row, (on, p)) in rows.iter_mut().zip(front.into_iter().zip(&points)) {
@@ -248,9 +263,9 @@ fn progress_bar(total: u64, enabled: bool) -> ProgressBar {
         ProgressDrawTarget::hidden()
     };
     let bar = ProgressBar::with_draw_target(Some(total), target);
-    if let Ok(style) = ProgressStyle::with_template(
-        "sweep [{bar:30}] {pos}/{len} combinations (eta {eta}): {msg}",
-    ) {
+    if let Ok(style) =
+        ProgressStyle::with_template("sweep [{bar:30}] {pos}/{len} combinations (eta {eta}): {msg}")
+    {
         bar.set_style(style.progress_chars("=> "));
     }
     bar

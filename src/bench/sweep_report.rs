@@ -41,7 +41,9 @@ pub fn csv(rows: &[SweepRow]) -> String {
     let keys: Vec<String> = rows.first().map_or(Vec::new(), |r| {
         r.label.iter().map(|(k, _)| k.clone()).collect()
     });
-    let groups: Vec<String> = rows.first().map_or(Vec::new(), |r| r.ms.keys().cloned().collect());
+    let groups: Vec<String> = rows
+        .first()
+        .map_or(Vec::new(), |r| r.ms.keys().cloned().collect());
     let buffers = buffers_in(rows);
     let mut head: Vec<String> = keys.clone();
     head.extend(groups.iter().map(|g| format!("{g}_ms")));
@@ -70,7 +72,11 @@ pub fn csv(rows: &[SweepRow]) -> String {
             cells.push(fmt(t.map(|t| t.error.max_abs)));
             cells.push(fmt(t.map(|t| t.error.psnr).filter(|p| p.is_finite())));
             cells.push(fmt(r.converged.get(b.name()).map(|e| e.rmse)));
-            cells.push(r.pareto.get(b.name()).map_or(String::new(), |p| p.to_string()));
+            cells.push(
+                r.pareto
+                    .get(b.name())
+                    .map_or(String::new(), |p| p.to_string()),
+            );
             if *b == Buffer::Final {
                 cells.push(fmt(t.and_then(|t| t.flip)));
             }
@@ -81,7 +87,11 @@ pub fn csv(rows: &[SweepRow]) -> String {
 }
 
 /// sweep.md: one table per buffer, rows sorted by time, Pareto-optimal rows marked ★.
-pub fn markdown(header: &SweepHeader, rows: &[SweepRow], quality: &BTreeMap<String, TruthQuality>) -> String {
+pub fn markdown(
+    header: &SweepHeader,
+    rows: &[SweepRow],
+    quality: &BTreeMap<String, TruthQuality>,
+) -> String {
     let mut s = format!(
         "# Sweep: {} along `{}`\n\n`{}`\n\n{}x{}, {} measured frames after {} warmup frames; \
          device {} (driver {}). Times are medians of per-frame GPU time over the measured \
@@ -126,17 +136,33 @@ pub fn markdown(header: &SweepHeader, rows: &[SweepRow], quality: &BTreeMap<Stri
                 .total_cmp(&time_of(c, b).unwrap_or(f64::INFINITY))
         });
         for r in order {
-            let Some(t) = r.truth.get(b.name()) else { continue };
-            let star = if r.pareto.get(b.name()) == Some(&true) { "★" } else { "" };
+            let Some(t) = r.truth.get(b.name()) else {
+                continue;
+            };
+            let star = if r.pareto.get(b.name()) == Some(&true) {
+                "★"
+            } else {
+                ""
+            };
             let label: Vec<String> = r.label.iter().map(|(k, v)| format!("{k}={v}")).collect();
             s += &format!(
                 "| {star} | {} | {} | {} | {:.4} | {} | {} |\n",
-                if label.is_empty() { "base".into() } else { label.join(", ") },
+                if label.is_empty() {
+                    "base".into()
+                } else {
+                    label.join(", ")
+                },
                 time_of(r, b).map_or("-".into(), |v| format!("{v:.3}")),
                 error_of(r, b).map_or("-".into(), |v| format!("{v:.5}")),
                 t.error.rel_mse,
-                if t.error.psnr.is_finite() { format!("{:.1}", t.error.psnr) } else { "∞".into() },
-                r.converged.get(b.name()).map_or("-".into(), |e| format!("{:.5}", e.rmse)),
+                if t.error.psnr.is_finite() {
+                    format!("{:.1}", t.error.psnr)
+                } else {
+                    "∞".into()
+                },
+                r.converged
+                    .get(b.name())
+                    .map_or("-".into(), |e| format!("{:.5}", e.rmse)),
             );
         }
     }
@@ -146,7 +172,10 @@ pub fn markdown(header: &SweepHeader, rows: &[SweepRow], quality: &BTreeMap<Stri
 /// The series a row belongs to: every varied key but the last (the last is the swept axis).
 fn series_name(r: &SweepRow) -> String {
     let n = r.label.len().saturating_sub(1);
-    let parts: Vec<String> = r.label[..n].iter().map(|(k, v)| format!("{k}={v}")).collect();
+    let parts: Vec<String> = r.label[..n]
+        .iter()
+        .map(|(k, v)| format!("{k}={v}"))
+        .collect();
     if parts.is_empty() {
         "all".into()
     } else {
@@ -178,12 +207,30 @@ pub fn plots(dir: &Path, header: &SweepHeader, rows: &[SweepRow]) -> Result<Vec<
             .collect();
         let points: Vec<(f64, f64)> = rows
             .iter()
-            .map(|r| (time_of(r, b).unwrap_or(f64::NAN), error_of(r, b).unwrap_or(f64::NAN)))
+            .map(|r| {
+                (
+                    time_of(r, b).unwrap_or(f64::NAN),
+                    error_of(r, b).unwrap_or(f64::NAN),
+                )
+            })
             .collect();
-        let optimal: Vec<bool> = rows.iter().map(|r| r.pareto.get(b.name()) == Some(&true)).collect();
-        let title = format!("{}: {} ({}x{})", header.scene, b.name(), header.size[0], header.size[1]);
+        let optimal: Vec<bool> = rows
+            .iter()
+            .map(|r| r.pareto.get(b.name()) == Some(&true))
+            .collect();
+        let title = format!(
+            "{}: {} ({}x{})",
+            header.scene,
+            b.name(),
+            header.size[0],
+            header.size[1]
+        );
         let x_label = format!("GPU ms ({})", time_group(b).join(" + "));
-        let y_label = if b == Buffer::Final { "FLIP vs ground truth" } else { "RMSE vs ground truth" };
+        let y_label = if b == Buffer::Final {
+            "FLIP vs ground truth"
+        } else {
+            "RMSE vs ground truth"
+        };
         let plot = ScatterPlot {
             title: &title,
             x_label: &x_label,
@@ -207,7 +254,11 @@ pub fn write(
     rows: &[SweepRow],
     quality: &BTreeMap<String, TruthQuality>,
 ) -> Result<Vec<PathBuf>> {
-    let mut files = vec![dir.join("sweep.csv"), dir.join("sweep.json"), dir.join("sweep.md")];
+    let mut files = vec![
+        dir.join("sweep.csv"),
+        dir.join("sweep.json"),
+        dir.join("sweep.md"),
+    ];
     write_text(&files[0], &csv(rows))?;
     let json = serde_json::json!({
         "version": 1,

@@ -97,9 +97,23 @@ pub fn write_all(session: &super::run::Session<'_>, out: &Path) -> Result<serde_
     for b in RefBuffer::ALL {
         let e = r.estimate(b);
         let mean = e.mean();
-        write_exr(&out.join(format!("{}.exr", b.name())), &mean, e.channels, w, h)?;
+        write_exr(
+            &out.join(format!("{}.exr", b.name())),
+            &mean,
+            e.channels,
+            w,
+            h,
+        )?;
         let unit = matches!(b, RefBuffer::Ao | RefBuffer::Shadow);
-        write_preview(&out.join(format!("{}.png", b.name())), &mean, e.channels, &mask, w, h, unit)?;
+        write_preview(
+            &out.join(format!("{}.png", b.name())),
+            &mean,
+            e.channels,
+            &mask,
+            w,
+            h,
+            unit,
+        )?;
         let se = e.standard_error(&mask);
         let rms = e.rms(&mask);
         buffers.insert(

@@ -45,8 +45,12 @@ pub fn reference(cli: &Cli, args: &ReferenceArgs) -> Result<()> {
         start.elapsed().as_secs_f64(),
         session.reference.rays_per_second() / 1e6,
         rayon::current_num_threads(),
-        json["buffers"]["ao"]["standard_error"].as_f64().unwrap_or(f64::NAN),
-        json["buffers"]["indirect"]["standard_error"].as_f64().unwrap_or(f64::NAN),
+        json["buffers"]["ao"]["standard_error"]
+            .as_f64()
+            .unwrap_or(f64::NAN),
+        json["buffers"]["indirect"]["standard_error"]
+            .as_f64()
+            .unwrap_or(f64::NAN),
         json["buffers"]["indirect"]["relative_standard_error"]
             .as_f64()
             .unwrap_or(f64::NAN),

@@ -26,9 +26,14 @@ pub fn sweep(cli: &Cli, args: &SweepArgs) -> Result<()> {
     let base = args.scene.render_config();
     let combos = combinations(&base, &varies)?;
     let (scene, path) = load(cli, &args.scene)?;
-    let warmup = args
-        .warmup
-        .unwrap_or_else(|| combos.iter().map(|(_, c)| c.temporal.rotation_limit).max().unwrap_or(36) + 4);
+    let warmup = args.warmup.unwrap_or_else(|| {
+        combos
+            .iter()
+            .map(|(_, c)| c.temporal.rotation_limit)
+            .max()
+            .unwrap_or(36)
+            + 4
+    });
     // The ground truth of the last frame, with the AO definition of the base configuration
     // (radius and attenuation are not sweep keys' business unless varied: see below).
     let camera = last_camera(&scene, &path, args.frames);
