@@ -126,9 +126,21 @@ fn check_report(report: &Value, out: &Path, run: &Run<'_>, names: &[&str]) -> Ve
         let rows = s["rows"].as_array().unwrap();
         let kinds: Vec<&str> = rows.iter().map(|r| r["kind"].as_str().unwrap()).collect();
         assert_eq!(kinds, ["reuse", "no_reuse", "reference"], "{name}");
+        // The ground truth's quality is reported for every compared buffer.
+        let quality = &s["ground_truth"];
+        for b in ["ao", "direct", "shadow"] {
+            assert!(quality[b]["samples_per_pixel"].as_u64().is_some(), "{name} {b}: {quality}");
+        }
         for row in rows {
             let kind = row["kind"].as_str().unwrap();
             let what = format!("{name} {kind}");
+            // Every row is scored against the CPU ground truth, the final image with FLIP.
+            for b in ["final", "ao", "direct", "shadow"] {
+                let rmse = row["truth"][b]["rmse"].as_f64();
+                assert!(rmse.is_some_and(|e| e.is_finite() && e >= 0.0), "{what} {b}");
+            }
+            let flip = row["truth"]["final"]["flip"].as_f64();
+            assert!(flip.is_some_and(|f| (0.0..=1.0).contains(&f)), "{what}");
             let groups: &[&str] = if indirect {
                 &["ao", "indirect", "total"]
             } else {
@@ -205,7 +217,9 @@ fn check_report(report: &Value, out: &Path, run: &Run<'_>, names: &[&str]) -> Ve
         assert!(md.contains(name), "report.md lacks {name}");
     }
     assert!(md.contains(report["device"].as_str().unwrap()));
+    assert!(md.contains("## Error against the ground truth"), "{md}");
     let csv = std::fs::read_to_string(out.join(format!("{table}.csv"))).unwrap();
+    assert!(csv.lines().next().unwrap().contains("final_truth_flip"));
     assert_eq!(csv.lines().count(), 1 + 3 * names.len(), "{csv}");
     scenes
 }

@@ -31,6 +31,10 @@ pub fn summary(r: &TableReport) -> String {
         header.push(format!("{}_rmse", b.name()));
         header.push(format!("{}_max_abs", b.name()));
     }
+    for b in Buffer::ALL {
+        header.push(format!("{}_truth_rmse", b.name()));
+    }
+    header.push("final_truth_flip".into());
     header.extend(["thesis_ssao_fps", "thesis_indirect_fps", "thesis_total_fps"].map(String::from));
     let mut out = header.join(",") + "\n";
     for s in &r.scenes {
@@ -47,6 +51,10 @@ pub fn summary(r: &TableReport) -> String {
                 f.push(opt(e.and_then(|e| e.rmse)));
                 f.push(opt(e.and_then(|e| e.max_abs)));
             }
+            for b in Buffer::ALL {
+                f.push(opt(row.truth.get(b.name()).map(|t| t.error.rmse)));
+            }
+            f.push(opt(row.truth.get("final").and_then(|t| t.flip)));
             let thesis = s.thesis.and_then(|t| match row.kind {
                 RowKind::Reuse => Some(t.reuse),
                 RowKind::NoReuse => Some(t.no_reuse),

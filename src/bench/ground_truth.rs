@@ -136,3 +136,59 @@ pub fn errors_against(
     }
     Ok(out)
 }
+
+/// Scale of the error maps: visibilities and the final image are in 0..1 (a difference of
+/// 0.5 is the top colour); radiance buffers are scaled by the ground truth's RMS over the
+/// compared pixels, so maps of different scenes and lights read alike.
+fn map_scale(b: Buffer, truth: &[f32], mask: &[bool]) -> f32 {
+    match b {
+        Buffer::Ao | Buffer::Shadow | Buffer::Final => 0.5,
+        Buffer::Direct | Buffer::Indirect => {
+            let (mut sum, mut n) = (0.0f64, 0usize);
+            for (v, m) in truth.chunks_exact(3).zip(mask) {
+                if *m {
+                    sum += v.iter().map(|x| (*x as f64).powi(2)).sum::<f64>() / 3.0;
+                    n += 1;
+                }
+            }
+            ((sum / n.max(1) as f64).sqrt() as f32).max(f32::MIN_POSITIVE)
+        }
+    }
+}
+
+/// Error maps of `last` against the ground truth: `<stem>-<buffer>.png` (absolute error per
+/// pixel, magma ramp, see `map_scale`) and `<stem>-final-flip.png` (FLIP per pixel, 0..1).
+pub fn write_error_maps(
+    last: &LastFrame,
+    reference: &Reference,
+    scene: &Scene,
+    effects: Effects,
+    dir: &std::path::Path,
+    stem: &str,
+) -> Result<Vec<std::path::PathBuf>> {
+    use super::error_metrics::{abs_error_per_pixel, write_error_map};
+    let mut written = Vec::new();
+    for (b, image) in &last.buffers {
+        let ch = channels(*b);
+        let m = mask(*b, reference, scene, &last.geometry);
+        let got = values(image, ch);
+        let truth = truth_values(*b, reference, scene, effects);
+        let per_pixel = abs_error_per_pixel(&got, &truth, ch, &m)?;
+        let path = dir.join(format!("{stem}-{}.png", b.name()));
+        write_error_map(
+            &path,
+            &per_pixel,
+            image.width,
+            image.height,
+            map_scale(*b, &truth, &m),
+        )?;
+        written.push(path);
+        if *b == Buffer::Final {
+            let f = flip_ldr(&to_rgb8(&got), &to_rgb8(&truth), image.width, image.height)?;
+            let path = dir.join(format!("{stem}-final-flip.png"));
+            write_error_map(&path, &f.per_pixel, image.width, image.height, 1.0)?;
+            written.push(path);
+        }
+    }
+    Ok(written)
+}

@@ -30,6 +30,7 @@ pub fn render(r: &TableReport, title: &str) -> String {
     md += &timing_table(r);
     md += &speedup_table(r);
     md += &error_table(r);
+    md += &truth_table(r);
     md += &files_section(r);
     md += "## Notes\n\n";
     for note in r
@@ -222,6 +223,55 @@ fn error_table(r: &TableReport) -> String {
             }
             md += &format!(" {} |\n", pixels.map_or("-".into(), |p| p.to_string()));
         }
+    }
+    md += "\n";
+    md
+}
+
+fn truth_table(r: &TableReport) -> String {
+    let mut md = "## Error against the ground truth\n\nLast frame of each row vs the CPU \
+                  ray-traced ground truth of the same camera (`ssgi reference`; \
+                  docs/REFERENCE.md), over the pixels both cover: RMSE per buffer, FLIP for \
+                  the final image.\n\n| Scene | Row |"
+        .to_string();
+    let buffers = error_buffers(r);
+    for b in &buffers {
+        md += &format!(" {} RMSE |", b.name());
+    }
+    md += " final FLIP |\n|---|---|";
+    md += &"---:|".repeat(buffers.len() + 1);
+    md += "\n";
+    for s in &r.scenes {
+        for row in &s.rows {
+            md += &format!("| {} | {} |", s.name, row.label);
+            for b in &buffers {
+                let e = row.truth.get(b.name()).map(|t| t.error.rmse);
+                md += &format!(" {} |", num(e, 5));
+            }
+            let flip = row.truth.get("final").and_then(|t| t.flip);
+            md += &format!(" {} |\n", num(flip, 4));
+        }
+    }
+    md += "\nGround truth per scene (samples per pixel, standard error; the bound is a tenth \
+           of the smallest error measured against it):\n\n";
+    for s in &r.scenes {
+        let parts: Vec<String> = s
+            .ground_truth
+            .iter()
+            .map(|(b, q)| {
+                format!(
+                    "{b} {} spp, se {:.1e}{}",
+                    q.samples_per_pixel,
+                    q.standard_error,
+                    if q.bound_met {
+                        ""
+                    } else {
+                        " (above the bound)"
+                    }
+                )
+            })
+            .collect();
+        md += &format!("- {}: {}\n", s.name, parts.join("; "));
     }
     md += "\n";
     md

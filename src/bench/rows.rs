@@ -3,13 +3,17 @@
 //! last frame against the reference rendered from the same camera.
 
 use super::compare::{group_median, in_group, GROUPS};
+use super::ground_truth::{self, TruthError};
 use super::measure::{held_at, last_camera, measure, Buffer, LastFrame, Measured, RunSpec};
 use super::metrics::{image_error, ImageError};
 use super::report::FrameRow;
+use super::sweep::TruthQuality;
 use super::Report;
 use crate::error::{Error, Result};
 use crate::frontend::sink::FrameSink;
 use crate::passes::PassId;
+use crate::reference::run::Session;
+use crate::reference::trace::RefBuffer;
 use crate::renderer::config::Effects;
 use crate::renderer::pcf::{Pcf, PcfKernel};
 use crate::renderer::RenderConfig;
@@ -35,6 +39,11 @@ pub const REFERENCE_PCF: Pcf = Pcf {
 /// VPLs per pixel of the reference: 32 x the rows' 512, the most the renderer gathers in one
 /// pass (the full gather of every texel is only allowed for RSMs up to 128x128).
 pub const REFERENCE_VPLS: u32 = 16384;
+
+/// Samples per half and pixel of the tables' ground truth (AO and indirect light): 512 per
+/// pixel keeps a 512x512 walkthrough's reference within minutes on a CPU; its standard error
+/// is reported beside the errors (and the cache keeps it for the next run).
+pub const TABLE_TRUTH_SAMPLES: u32 = 256;
 
 /// Report names of the GPU counters read here (see the renderer's effect kinds).
 pub const SSAO_COMPUTED_PIXELS: &str = "ssao_computed_pixels";
@@ -137,6 +146,8 @@ pub struct RowResult {
     pub recomputed_fraction: Option<f64>,
     /// Error of the last frame against the reference, per buffer.
     pub error: BTreeMap<String, ImageError>,
+    /// Error of the last frame against the CPU ground truth, per buffer.
+    pub truth: BTreeMap<String, TruthError>,
     pub report: Report,
     /// The last frame's output image (written as PNG beside the report, not into JSON).
     #[serde(skip)]
@@ -208,9 +219,11 @@ pub fn measure_rows(
     sink: &mut dyn FrameSink,
     scene: &Scene,
     run: &SceneRun<'_>,
-) -> Result<Vec<RowResult>> {
+) -> Result<(Vec<RowResult>, BTreeMap<String, TruthQuality>)> {
     let frames = run.frames.max(1);
-    let held = held_at(&last_camera(scene, run.path, frames));
+    let camera = last_camera(scene, run.path, frames);
+    let held = held_at(&camera);
+    let truth = ground_truth_of(scene, run, camera)?;
     let mut reference = measure(
         ctx,
         sink,
@@ -251,6 +264,7 @@ pub fn measure_rows(
             config,
             measured,
             &reference_frame,
+            &truth,
             run.path,
             run.warmup,
         )?);
@@ -261,10 +275,79 @@ pub fn measure_rows(
         config,
         reference,
         &reference_frame,
+        &truth,
         &held,
         1,
     )?);
-    Ok(rows)
+    let quality = truth_quality(&truth, &rows, scene, &reference_frame);
+    Ok((rows, quality))
+}
+
+/// The ground truth of the table's last camera, from the cache when it has it.
+fn ground_truth_of<'a>(
+    scene: &'a Scene,
+    run: &SceneRun<'_>,
+    camera: crate::scene::Camera,
+) -> Result<Session<'a>> {
+    let settings = crate::reference::Settings::for_render(&run.base, scene);
+    let cache = Some(crate::reference::store::default_dir());
+    let (w, h) = (run.base.width, run.base.height);
+    let mut truth = Session::start(scene, camera, w, h, settings, cache, run.progress)?;
+    let effects = run.base.effects;
+    if effects.ao {
+        truth.ensure(RefBuffer::Ao, TABLE_TRUTH_SAMPLES);
+    }
+    if effects.direct {
+        truth.ensure(RefBuffer::Direct, 1);
+    }
+    if effects.indirect {
+        truth.ensure(RefBuffer::Indirect, TABLE_TRUTH_SAMPLES);
+    }
+    truth.save()?;
+    Ok(truth)
+}
+
+/// Samples and standard error of each ground-truth buffer the rows were compared with, with
+/// the bound a tenth of the smallest error sets.
+fn truth_quality(
+    truth: &Session<'_>,
+    rows: &[RowResult],
+    scene: &Scene,
+    frame: &LastFrame,
+) -> BTreeMap<String, TruthQuality> {
+    let mut out = BTreeMap::new();
+    for b in [Buffer::Ao, Buffer::Shadow, Buffer::Direct, Buffer::Indirect] {
+        let Some(rb) = ground_truth::reference_buffer(b) else {
+            continue;
+        };
+        if !rows.iter().any(|r| r.truth.contains_key(b.name())) {
+            continue;
+        }
+        let e = truth.reference.estimate(rb);
+        let se = e.standard_error(&ground_truth::mask(
+            b,
+            &truth.reference,
+            scene,
+            &frame.geometry,
+        ));
+        let smallest = rows
+            .iter()
+            .filter_map(|r| r.truth.get(b.name()))
+            .map(|t| t.error.rmse)
+            .filter(|e| *e > 0.0)
+            .fold(f64::INFINITY, f64::min);
+        let bound = smallest.is_finite().then_some(smallest / 10.0);
+        out.insert(
+            b.name().to_string(),
+            TruthQuality {
+                samples_per_pixel: 2 * e.per_half as u64,
+                standard_error: se,
+                bound,
+                bound_met: bound.is_none_or(|b| se <= b),
+            },
+        );
+    }
+    out
 }
 
 fn summarize(
@@ -272,6 +355,7 @@ fn summarize(
     config: RenderConfig,
     measured: Measured,
     reference: &LastFrame,
+    truth: &Session<'_>,
     path: &CameraPath,
     warmup: u32,
 ) -> Result<RowResult> {
@@ -306,6 +390,10 @@ fn summarize(
         )?;
         error.insert(buffer.name().to_string(), e);
     }
+    let truth = ground_truth::errors(&last, &truth.reference, truth.scene, config.effects)?
+        .into_iter()
+        .map(|(b, e)| (b.name().to_string(), e))
+        .collect();
     Ok(RowResult {
         kind,
         label: kind.label(config.effects),
@@ -318,6 +406,7 @@ fn summarize(
         recomputed_fraction: ssao_pixels_per_frame.map(|p| p / area),
         ssao_pixels_per_frame,
         error,
+        truth,
         report,
         image: last.buffer(Buffer::Final).cloned(),
     })

@@ -8,16 +8,21 @@
 //!   "base_config", "reference",
 //!   "thesis_setup", "notes": [str],
 //!   "scenes": [ { "spec", "name", "path", "triangles", "note", "thesis", "thesis_speedups",
+//!                 "ground_truth": { buffer: { "samples_per_pixel", "standard_error", "bound",
+//!                                             "bound_met" } },
 //!                 "speedups": { group: no-reuse ms / reuse ms }, "files": [str],
 //!                 "rows": [ { "kind", "label", "config", "path", "measured_frames", "warmup",
 //!                             "ms": { group: ms }, "fps": { group: fps },
 //!                             "ssao_pixels_per_frame", "recomputed_fraction",
 //!                             "error": { buffer: { "rmse", "max_abs", "pixels", "non_finite" } },
+//!                             "truth": { buffer: { "rmse", "rel_mse", "max_abs", "psnr",
+//!                                                  "pixels", "non_finite", "flip" } },
 //!                             "report": <bench report, see report.rs> } ] } ] }
 //! ```
 
 use super::compare::GROUPS;
 use super::rows::{RowKind, RowResult};
+use super::sweep::TruthQuality;
 use super::thesis::{Fps, Scene41};
 use crate::renderer::RenderConfig;
 use crate::vk::DeviceInfo;
@@ -44,6 +49,8 @@ pub struct SceneResult {
     /// Extra files written for this scene (CSV, PNG), relative to the output directory.
     pub files: Vec<String>,
     pub rows: Vec<RowResult>,
+    /// The CPU ground truth's samples and standard error per buffer (`rows[].truth`).
+    pub ground_truth: BTreeMap<String, TruthQuality>,
 }
 
 impl SceneResult {
@@ -53,7 +60,7 @@ impl SceneResult {
         path: String,
         triangles: usize,
         thesis: Option<&Scene41>,
-        rows: Vec<RowResult>,
+        (rows, ground_truth): (Vec<RowResult>, BTreeMap<String, TruthQuality>),
     ) -> Self {
         let ms = |kind: RowKind, group: &str| {
             rows.iter()
@@ -81,6 +88,7 @@ impl SceneResult {
             speedups,
             files: Vec::new(),
             rows,
+            ground_truth,
         }
     }
 

@@ -31,6 +31,21 @@ pub struct Settings {
     pub seed: u32,
 }
 
+impl Settings {
+    /// The definition a renderer configuration's AO estimates (radius relative to the scene's
+    /// bounding radius, eq 7's attenuation), with the point light.
+    pub fn for_render(config: &crate::renderer::RenderConfig, scene: &Scene) -> Self {
+        Settings {
+            ao: AoDefinition {
+                radius: config.ao.radius * scene.mesh.bounds.radius().max(f32::MIN_POSITIVE),
+                attenuation: config.ao.attenuation,
+            },
+            light_radius: 0.0,
+            seed: 1,
+        }
+    }
+}
+
 /// The buffers a reference holds.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash, Serialize, Deserialize)]
 #[serde(rename_all = "lowercase")]

@@ -10,7 +10,7 @@ use crate::error::Result;
 use crate::reference::run::Session;
 use crate::reference::store::default_dir;
 use crate::reference::trace::{DEFAULT_AO_SAMPLES, DEFAULT_INDIRECT_SAMPLES};
-use crate::reference::{AoDefinition, RefBuffer, Settings};
+use crate::reference::{RefBuffer, Settings};
 use crate::vk::Context;
 
 pub fn sweep(cli: &Cli, args: &SweepArgs) -> Result<()> {
@@ -34,8 +34,8 @@ pub fn sweep(cli: &Cli, args: &SweepArgs) -> Result<()> {
             .unwrap_or(36)
             + 4
     });
-    // The ground truth of the last frame, with the AO definition of the base configuration
-    // (radius and attenuation are not sweep keys' business unless varied: see below).
+    // The ground truth of the last frame, with the base configuration's AO definition (one
+    // ground truth serves every combination, so the radius cannot vary).
     let camera = last_camera(&scene, &path, args.frames);
     if combos
         .iter()
@@ -46,14 +46,7 @@ pub fn sweep(cli: &Cli, args: &SweepArgs) -> Result<()> {
                 .into(),
         ));
     }
-    let settings = Settings {
-        ao: AoDefinition {
-            radius: base.ao.radius * scene.mesh.bounds.radius().max(f32::MIN_POSITIVE),
-            attenuation: base.ao.attenuation,
-        },
-        light_radius: 0.0,
-        seed: 1,
-    };
+    let settings = Settings::for_render(&base, &scene);
     let cache = (!args.no_cache).then(|| args.cache_dir.clone().unwrap_or_else(default_dir));
     let (w, h) = args.scene.size;
     let mut truth = Session::start(&scene, camera, w, h, settings, cache, true)?;
@@ -89,7 +82,20 @@ pub fn sweep(cli: &Cli, args: &SweepArgs) -> Result<()> {
         driver: ctx.info.driver.clone(),
         reference_rays_per_second: truth.reference.rays_per_second(),
     };
-    let files = write(&args.out, &header, &rows, &quality)?;
+    let mut files = write(&args.out, &header, &rows, &quality)?;
+    // Error maps of every combination's last frame against the ground truth.
+    for (i, row) in rows.iter().enumerate() {
+        if let Some(last) = &row.last {
+            files.extend(crate::bench::ground_truth::write_error_maps(
+                last,
+                &truth.reference,
+                &scene,
+                row.config.effects,
+                &args.out.join("maps"),
+                &format!("{i:02}"),
+            )?);
+        }
+    }
     eprintln!("wrote {} files to {}", files.len(), args.out.display());
     finish(&ctx)
 }
