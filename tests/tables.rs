@@ -129,7 +129,10 @@ fn check_report(report: &Value, out: &Path, run: &Run<'_>, names: &[&str]) -> Ve
         // The ground truth's quality is reported for every compared buffer.
         let quality = &s["ground_truth"];
         for b in ["ao", "direct", "shadow"] {
-            assert!(quality[b]["samples_per_pixel"].as_u64().is_some(), "{name} {b}: {quality}");
+            assert!(
+                quality[b]["samples_per_pixel"].as_u64().is_some(),
+                "{name} {b}: {quality}"
+            );
         }
         for row in rows {
             let kind = row["kind"].as_str().unwrap();
@@ -137,7 +140,10 @@ fn check_report(report: &Value, out: &Path, run: &Run<'_>, names: &[&str]) -> Ve
             // Every row is scored against the CPU ground truth, the final image with FLIP.
             for b in ["final", "ao", "direct", "shadow"] {
                 let rmse = row["truth"][b]["rmse"].as_f64();
-                assert!(rmse.is_some_and(|e| e.is_finite() && e >= 0.0), "{what} {b}");
+                assert!(
+                    rmse.is_some_and(|e| e.is_finite() && e >= 0.0),
+                    "{what} {b}"
+                );
             }
             let flip = row["truth"]["final"]["flip"].as_f64();
             assert!(flip.is_some_and(|f| (0.0..=1.0).contains(&f)), "{what}");

@@ -242,7 +242,7 @@ pub fn measure_rows(
         .after_warmup
         .take()
         .ok_or_else(|| Error::Config("the reference run kept no first frame".into()))?;
-    let mut rows = Vec::new();
+    let mut runs = Vec::new();
     for kind in [RowKind::Reuse, RowKind::NoReuse] {
         let config = kind.config(&run.base);
         let measured = measure(
@@ -259,28 +259,63 @@ pub fn measure_rows(
                 progress: run.progress,
             },
         )?;
+        runs.push((kind, config, measured, run.path, run.warmup));
+    }
+    runs.push((
+        RowKind::Reference,
+        RowKind::Reference.config(&run.base),
+        reference,
+        &held,
+        1,
+    ));
+    // The ground truth's standard error must stay under a tenth of the smallest error it is
+    // compared with: refine it (from the cache's samples) before scoring the rows.
+    let mut truth = truth;
+    let frames_last: Vec<&LastFrame> = runs.iter().map(|r| &r.2.last).collect();
+    refine_truth_for(&mut truth, scene, &frames_last, run.base.effects)?;
+    let mut rows = Vec::new();
+    for (kind, config, measured, path, warmup) in runs {
         rows.push(summarize(
             kind,
             config,
             measured,
             &reference_frame,
             &truth,
-            run.path,
-            run.warmup,
+            path,
+            warmup,
         )?);
     }
-    let config = RowKind::Reference.config(&run.base);
-    rows.push(summarize(
-        RowKind::Reference,
-        config,
-        reference,
-        &reference_frame,
-        &truth,
-        &held,
-        1,
-    )?);
     let quality = truth_quality(&truth, &rows, scene, &reference_frame);
     Ok((rows, quality))
+}
+
+/// Refine each ground-truth buffer until its standard error is at most a tenth of the
+/// smallest RMSE any of `frames` has against it (capped: `run::MAX_SAMPLES_PER_HALF`).
+pub fn refine_truth_for(
+    truth: &mut Session<'_>,
+    scene: &Scene,
+    frames: &[&LastFrame],
+    effects: Effects,
+) -> Result<()> {
+    let mut smallest: BTreeMap<Buffer, f64> = BTreeMap::new();
+    for f in frames {
+        for (b, e) in ground_truth::errors(f, &truth.reference, scene, effects)? {
+            if e.error.rmse > 0.0 {
+                let s = smallest.entry(b).or_insert(f64::INFINITY);
+                *s = s.min(e.error.rmse);
+            }
+        }
+    }
+    let Some(first) = frames.first() else {
+        return Ok(());
+    };
+    for (b, min) in smallest {
+        if let Some(rb) = ground_truth::reference_buffer(b) {
+            let mask = ground_truth::mask(b, &truth.reference, scene, &first.geometry);
+            truth.refine_to(rb, min / 10.0, &mask);
+        }
+    }
+    truth.save()
 }
 
 /// The ground truth of the table's last camera, from the cache when it has it.

@@ -28,6 +28,8 @@ pub struct SweepRow {
     pub config: RenderConfig,
     /// Median per-frame GPU milliseconds of each pass group (`compare::GROUPS`).
     pub ms: BTreeMap<String, Option<f64>>,
+    /// Median GPU milliseconds of each pass over the measured frames in which it ran.
+    pub passes: BTreeMap<String, Option<f64>>,
     /// Per buffer: error against the ground truth.
     pub truth: BTreeMap<String, TruthError>,
     /// Per buffer: error against the converged estimator (same technique, many samples).
@@ -150,6 +152,12 @@ pub fn run(
             .iter()
             .map(|(name, passes)| (name.to_string(), group_median(&measured.report, passes)))
             .collect();
+        let passes = measured
+            .report
+            .passes
+            .iter()
+            .map(|p| (p.name.clone(), p.median_ms))
+            .collect();
         let conv = &converged
             .iter()
             .find(|(c, _)| *c == cc)
@@ -162,6 +170,7 @@ pub fn run(
                 .collect(),
             config: *config,
             ms,
+            passes,
             truth: BTreeMap::new(),
             converged: ground_truth::errors_against(&measured.last, conv)?
                 .into_iter()
