@@ -23,6 +23,15 @@ pub struct TruthError {
     pub flip: Option<f64>,
 }
 
+/// The smallest non-zero RMSE of `errors`: a tenth of it bounds the ground truth's standard
+/// error (a zero error is an exact match and sets no bound).
+pub fn smallest_rmse<'a>(errors: impl Iterator<Item = &'a TruthError>) -> Option<f64> {
+    errors
+        .map(|e| e.error.rmse)
+        .filter(|e| *e > 0.0)
+        .min_by(f64::total_cmp)
+}
+
 /// The reference buffer a rendered buffer estimates (`None` for the final image).
 pub fn reference_buffer(b: Buffer) -> Option<RefBuffer> {
     match b {

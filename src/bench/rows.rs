@@ -365,13 +365,8 @@ fn truth_quality(
             scene,
             &frame.geometry,
         ));
-        let smallest = rows
-            .iter()
-            .filter_map(|r| r.truth.get(b.name()))
-            .map(|t| t.error.rmse)
-            .filter(|e| *e > 0.0)
-            .fold(f64::INFINITY, f64::min);
-        let bound = smallest.is_finite().then_some(smallest / 10.0);
+        let bound = ground_truth::smallest_rmse(rows.iter().filter_map(|r| r.truth.get(b.name())))
+            .map(|e| e / 10.0);
         out.insert(
             b.name().to_string(),
             TruthQuality {

@@ -212,18 +212,14 @@ fn refine_truth(
         let Some(rb) = reference_buffer(b) else {
             continue;
         };
-        let smallest = rows
-            .iter()
-            .filter_map(|r| r.truth.get(b.name()))
-            .map(|e| e.error.rmse)
-            .filter(|e| *e > 0.0)
-            .fold(f64::INFINITY, f64::min);
+        let smallest =
+            ground_truth::smallest_rmse(rows.iter().filter_map(|r| r.truth.get(b.name())));
         let geometry = rows
             .iter()
             .find_map(|r| r.last.as_ref())
             .map(|l| ground_truth::mask(b, &truth.reference, scene, &l.geometry));
-        let (bound, met) = match (smallest.is_finite(), &geometry) {
-            (true, Some(m)) => {
+        let (bound, met) = match (smallest, &geometry) {
+            (Some(smallest), Some(m)) => {
                 let bound = smallest / 10.0;
                 (Some(bound), truth.refine_to(rb, bound, m))
             }
@@ -244,18 +240,22 @@ fn refine_truth(
     Ok(quality)
 }
 
+/// Every row's (time axis, error) for buffer `b`; NaN where a row lacks one.
+pub fn points(rows: &[SweepRow], b: Buffer) -> Vec<(f64, f64)> {
+    rows.iter()
+        .map(|r| {
+            (
+                time_of(r, b).unwrap_or(f64::NAN),
+                error_of(r, b).unwrap_or(f64::NAN),
+            )
+        })
+        .collect()
+}
+
 /// Mark each row's Pareto optimality per buffer over (time axis, ground-truth error).
 pub fn mark_pareto(rows: &mut [SweepRow]) {
     for b in Buffer::ALL {
-        let points: Vec<(f64, f64)> = rows
-            .iter()
-            .map(|r| {
-                (
-                    time_of(r, b).unwrap_or(f64::NAN),
-                    error_of(r, b).unwrap_or(f64::NAN),
-                )
-            })
-            .collect();
+        let points = points(rows, b);
         let front = super::pareto::pareto_front(&points);
         for (row, (on, p)) in rows.iter_mut().zip(front.into_iter().zip(&points)) {
             if p.0.is_finite() && p.1.is_finite() {

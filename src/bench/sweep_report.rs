@@ -6,7 +6,7 @@ use super::measure::Buffer;
 use super::output::write_text;
 use super::pareto::front_polyline;
 use super::scatter::{write_scatter_plot, ScatterPlot, ScatterSeries};
-use super::sweep::{error_of, time_group, time_of, SweepRow, TruthQuality};
+use super::sweep::{error_of, points, time_group, time_of, SweepRow, TruthQuality};
 use crate::error::Result;
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
@@ -205,15 +205,7 @@ pub fn plots(dir: &Path, header: &SweepHeader, rows: &[SweepRow]) -> Result<Vec<
                     .collect(),
             })
             .collect();
-        let points: Vec<(f64, f64)> = rows
-            .iter()
-            .map(|r| {
-                (
-                    time_of(r, b).unwrap_or(f64::NAN),
-                    error_of(r, b).unwrap_or(f64::NAN),
-                )
-            })
-            .collect();
+        let points = points(rows, b);
         let optimal: Vec<bool> = rows
             .iter()
             .map(|r| r.pareto.get(b.name()) == Some(&true))

@@ -2,8 +2,8 @@
 //! the `bvh` crate was made by rays per second, see docs/REFERENCE.md) with the two queries
 //! the reference needs: the closest hit with its shading attributes, and segment occlusion.
 
+use crate::scene::occlusion_span;
 use crate::scene::Mesh;
-use crate::scene::{OCCLUSION_RELATIVE_OFFSET, OCCLUSION_ULPS};
 use glam::{Vec2, Vec3, Vec3A};
 use obvhs::cwbvh::{builder::build_cwbvh_from_tris, CwBvh};
 use obvhs::ray::{Ray, RayHit};
@@ -102,17 +102,15 @@ impl Accel {
         let Some(bvh) = self.bvh.as_ref() else {
             return false;
         };
-        let d = to - from;
-        let len = d.length();
-        if len == 0.0 || !len.is_finite() {
+        let Some((len, offset)) = occlusion_span(from, to) else {
             return false;
-        }
-        let magnitude = from.abs().max(to.abs()).max_element();
-        let offset = OCCLUSION_RELATIVE_OFFSET * len + OCCLUSION_ULPS * f32::EPSILON * magnitude;
-        if offset >= 0.5 * len {
-            return false;
-        }
-        let ray = Ray::new(from.into(), (d / len).into(), offset, len - offset);
+        };
+        let ray = Ray::new(
+            from.into(),
+            ((to - from) / len).into(),
+            offset,
+            len - offset,
+        );
         let skip = skip.map(|s| s as u32);
         !bvh.ray_traverse_miss(ray, |ray, id| {
             if Some(self.mesh_index[id]) == skip {

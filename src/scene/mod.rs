@@ -37,7 +37,7 @@ pub use procedural::{
     box_room, cornell_box, cornell_camera, cornell_light, pyramids, CORNELL_GREEN, CORNELL_RED,
     CORNELL_WHITE,
 };
-pub use raycast::{Hit, OCCLUSION_RELATIVE_OFFSET, OCCLUSION_ULPS};
+pub use raycast::{occlusion_span, Hit, OCCLUSION_RELATIVE_OFFSET, OCCLUSION_ULPS};
 pub use spec::{
     asset_dir_from_env, list_assets, load_scene, resolve_model, ASSETS_ENV, BUILTIN_SCENES,
 };

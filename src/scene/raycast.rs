@@ -23,6 +23,19 @@ pub const OCCLUSION_RELATIVE_OFFSET: f32 = 1e-4;
 /// surface they lie on.
 pub const OCCLUSION_ULPS: f32 = 8.0;
 
+/// Length of the segment `from → to` and the stretch at each end an occlusion test ignores
+/// (`OCCLUSION_RELATIVE_OFFSET × length + OCCLUSION_ULPS × EPSILON × max |coordinate|`); None
+/// when the segment is empty, not finite, or too short to tell apart from its end surfaces.
+pub fn occlusion_span(from: Vec3, to: Vec3) -> Option<(f32, f32)> {
+    let len = (to - from).length();
+    if len == 0.0 || !len.is_finite() {
+        return None;
+    }
+    let magnitude = from.abs().max(to.abs()).max_element();
+    let offset = OCCLUSION_RELATIVE_OFFSET * len + OCCLUSION_ULPS * f32::EPSILON * magnitude;
+    (offset < 0.5 * len).then_some((len, offset))
+}
+
 /// Möller–Trumbore. Returns (t, u, v) in units of `dir` for t in (t_min, t_max).
 /// Edges are inclusive (u, v ≥ 0, u + v ≤ 1) so a ray through a shared edge hits a triangle.
 /// No epsilon on the determinant: degenerate triangles are removed at load, an exactly
@@ -79,19 +92,12 @@ impl Mesh {
     /// relative to the segment and to the float precision of the endpoints, never a fixed
     /// world-space distance.
     pub fn occluded(&self, from: Vec3, to: Vec3) -> bool {
-        let d = to - from;
-        let len = d.length();
-        if len == 0.0 || !len.is_finite() {
+        let Some((len, offset)) = occlusion_span(from, to) else {
             return false;
-        }
-        let magnitude = from.abs().max(to.abs()).max_element();
-        let offset = OCCLUSION_RELATIVE_OFFSET * len + OCCLUSION_ULPS * f32::EPSILON * magnitude;
+        };
         let eps = offset / len;
-        if eps >= 0.5 {
-            return false; // Too short to tell apart from the surfaces at its ends.
-        }
         (0..self.triangle_count())
-            .any(|tri| intersect(from, d, self.triangle(tri), eps, 1.0 - eps).is_some())
+            .any(|tri| intersect(from, to - from, self.triangle(tri), eps, 1.0 - eps).is_some())
     }
 }
 
