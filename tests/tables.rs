@@ -225,7 +225,15 @@ fn check_report(report: &Value, out: &Path, run: &Run<'_>, names: &[&str]) -> Ve
     assert!(md.contains(report["device"].as_str().unwrap()));
     assert!(md.contains("## Error against the ground truth"), "{md}");
     let csv = std::fs::read_to_string(out.join(format!("{table}.csv"))).unwrap();
-    assert!(csv.lines().next().unwrap().contains("final_truth_flip"));
+    let csv_header = csv.lines().next().unwrap();
+    assert!(csv_header.contains("final_truth_flip"));
+    // Columns of effects the run left out are dropped, not printed empty.
+    assert_eq!(csv_header.contains("indirect"), indirect, "{csv_header}");
+    assert_eq!(md.contains("ours Indirect"), indirect);
+    assert_eq!(
+        md.contains("thesis indirect fps"),
+        indirect && table == "thesis-4.1"
+    );
     assert_eq!(csv.lines().count(), 1 + 3 * names.len(), "{csv}");
     scenes
 }

@@ -4,7 +4,7 @@
 use super::compare::GROUPS;
 use super::measure::Buffer;
 use super::rows::{FrameSample, RowKind};
-use super::table_report::TableReport;
+use super::table_report::{group_present, TableReport};
 use std::collections::BTreeMap;
 
 fn opt(v: Option<f64>) -> String {
@@ -21,37 +21,51 @@ fn field(s: &str) -> String {
 
 /// Every row of every scene: timings per group, pixels, errors, the thesis's fps.
 pub fn summary(r: &TableReport) -> String {
+    let effects = r.base_config.effects;
+    let groups: Vec<&str> = GROUPS
+        .iter()
+        .map(|(g, _)| *g)
+        .filter(|g| group_present(g, &effects))
+        .collect();
+    let buffers: Vec<Buffer> = Buffer::ALL
+        .into_iter()
+        .filter(|b| b.present(&effects))
+        .collect();
     let mut header = vec!["scene".to_string(), "row".to_string()];
-    for (g, _) in GROUPS {
+    for g in &groups {
         header.push(format!("{g}_ms"));
         header.push(format!("{g}_fps"));
     }
     header.extend(["ssao_pixels_per_frame", "recomputed_fraction"].map(String::from));
-    for b in Buffer::ALL {
+    for b in &buffers {
         header.push(format!("{}_rmse", b.name()));
         header.push(format!("{}_max_abs", b.name()));
     }
-    for b in Buffer::ALL {
+    for b in &buffers {
         header.push(format!("{}_truth_rmse", b.name()));
     }
     header.push("final_truth_flip".into());
-    header.extend(["thesis_ssao_fps", "thesis_indirect_fps", "thesis_total_fps"].map(String::from));
+    header.push("thesis_ssao_fps".into());
+    if effects.indirect {
+        header.push("thesis_indirect_fps".into());
+    }
+    header.push("thesis_total_fps".into());
     let mut out = header.join(",") + "\n";
     for s in &r.scenes {
         for row in &s.rows {
             let mut f = vec![field(&s.spec), row.kind.short().to_string()];
-            for (g, _) in GROUPS {
+            for g in &groups {
                 f.push(opt(row.ms.get(*g).copied().flatten()));
                 f.push(opt(row.fps.get(*g).copied().flatten()));
             }
             f.push(opt(row.ssao_pixels_per_frame));
             f.push(opt(row.recomputed_fraction));
-            for b in Buffer::ALL {
+            for b in &buffers {
                 let e = row.error.get(b.name());
                 f.push(opt(e.and_then(|e| e.rmse)));
                 f.push(opt(e.and_then(|e| e.max_abs)));
             }
-            for b in Buffer::ALL {
+            for b in &buffers {
                 f.push(opt(row.truth.get(b.name()).map(|t| t.error.rmse)));
             }
             f.push(opt(row.truth.get("final").and_then(|t| t.flip)));
@@ -61,7 +75,9 @@ pub fn summary(r: &TableReport) -> String {
                 RowKind::Reference => None,
             });
             f.push(opt(thesis.map(|t| t.ssao)));
-            f.push(opt(thesis.map(|t| t.indirect)));
+            if effects.indirect {
+                f.push(opt(thesis.map(|t| t.indirect)));
+            }
             f.push(opt(thesis.map(|t| t.total)));
             out += &(f.join(",") + "\n");
         }

@@ -23,6 +23,17 @@ pub struct TruthError {
     pub flip: Option<f64>,
 }
 
+/// The ground truth's own accuracy, per buffer.
+#[derive(Clone, Debug, Serialize)]
+pub struct TruthQuality {
+    pub samples_per_pixel: u64,
+    pub standard_error: f64,
+    /// One tenth of the smallest error measured against this buffer: the bound the standard
+    /// error must stay under.
+    pub bound: Option<f64>,
+    pub bound_met: bool,
+}
+
 /// The smallest non-zero RMSE of `errors`: a tenth of it bounds the ground truth's standard
 /// error (a zero error is an exact match and sets no bound).
 pub fn smallest_rmse<'a>(errors: impl Iterator<Item = &'a TruthError>) -> Option<f64> {

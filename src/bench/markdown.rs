@@ -3,7 +3,7 @@
 
 use super::measure::Buffer;
 use super::rows::{RowKind, COLUMNS};
-use super::table_report::TableReport;
+use super::table_report::{group_present, TableReport};
 
 fn num(v: Option<f64>, decimals: usize) -> String {
     v.map_or_else(|| "-".to_string(), |v| format!("{v:.decimals$}"))
@@ -122,11 +122,21 @@ fn timing_table(r: &TableReport) -> String {
         md += &format!(" {} ms | {} fps |", heading(g), heading(g));
     }
     md += " SSAO pixels / frame | recomputed |";
+    let indirect = r.base_config.effects.indirect;
+    let thesis_columns = match (thesis, indirect) {
+        (false, _) => 0,
+        (true, true) => 3,
+        (true, false) => 2,
+    };
     if thesis {
-        md += " thesis SSAO fps | thesis indirect fps | thesis total fps |";
+        md += " thesis SSAO fps |";
+        if indirect {
+            md += " thesis indirect fps |";
+        }
+        md += " thesis total fps |";
     }
     md += "\n|---|---|";
-    md += &"---:|".repeat(columns.len() * 2 + 2 + if thesis { 3 } else { 0 });
+    md += &"---:|".repeat(columns.len() * 2 + 2 + thesis_columns);
     md += "\n";
     for s in &r.scenes {
         for row in &s.rows {
@@ -148,8 +158,11 @@ fn timing_table(r: &TableReport) -> String {
                     RowKind::Reference => None,
                 });
                 match fps {
-                    Some(f) => md += &format!(" {} | {} | {} |", f.ssao, f.indirect, f.total),
-                    None => md += " | | |",
+                    Some(f) if indirect => {
+                        md += &format!(" {} | {} | {} |", f.ssao, f.indirect, f.total)
+                    }
+                    Some(f) => md += &format!(" {} | {} |", f.ssao, f.total),
+                    None => md += &" |".repeat(thesis_columns),
                 }
             }
             md += "\n";
@@ -168,15 +181,20 @@ fn speedup_table(r: &TableReport) -> String {
                   measured in one process on one device. Thesis: reuse fps / no-reuse fps.\n\n\
                   | Scene |"
         .to_string();
-    for (_, name) in SPEEDUP_COLUMNS {
+    let effects = r.base_config.effects;
+    let columns: Vec<(&str, &str)> = SPEEDUP_COLUMNS
+        .into_iter()
+        .filter(|(g, _)| group_present(g, &effects))
+        .collect();
+    for (_, name) in &columns {
         md += &format!(" ours {name} | thesis {name} |");
     }
     md += "\n|---|";
-    md += &"---:|".repeat(2 * SPEEDUP_COLUMNS.len());
+    md += &"---:|".repeat(2 * columns.len());
     md += "\n";
     for s in &r.scenes {
         md += &format!("| {} |", s.name);
-        for (group, _) in SPEEDUP_COLUMNS {
+        for &(group, _) in &columns {
             let thesis = s.thesis_speedups.map(|t| match group {
                 "ao" => t.ssao,
                 "indirect" => t.indirect,

@@ -3,11 +3,10 @@
 //! last frame against the reference rendered from the same camera.
 
 use super::compare::{group_median, in_group, GROUPS};
-use super::ground_truth::{self, TruthError};
+use super::ground_truth::{self, TruthError, TruthQuality};
 use super::measure::{held_at, last_camera, measure, Buffer, LastFrame, Measured, RunSpec};
 use super::metrics::{image_error, ImageError};
 use super::report::FrameRow;
-use super::sweep::TruthQuality;
 use super::Report;
 use crate::error::{Error, Result};
 use crate::frontend::sink::FrameSink;

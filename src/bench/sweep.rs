@@ -5,7 +5,7 @@
 
 use super::compare::{group_median, GROUPS};
 use super::error_metrics::BufferError;
-use super::ground_truth::{self, reference_buffer, TruthError};
+use super::ground_truth::{self, reference_buffer, TruthError, TruthQuality};
 use super::measure::{held_at, last_camera, measure, Buffer, LastFrame, RunSpec};
 use super::rows::{RowKind, REFERENCE_FRAMES};
 use super::sweep_keys::{describe, Label};
@@ -38,17 +38,6 @@ pub struct SweepRow {
     pub pareto: BTreeMap<String, bool>,
     #[serde(skip)]
     pub last: Option<LastFrame>,
-}
-
-/// The ground truth's own accuracy, per buffer.
-#[derive(Clone, Debug, Serialize)]
-pub struct TruthQuality {
-    pub samples_per_pixel: u64,
-    pub standard_error: f64,
-    /// One tenth of the smallest error measured against this buffer: the bound the standard
-    /// error must stay under.
-    pub bound: Option<f64>,
-    pub bound_met: bool,
 }
 
 pub struct SweepSpec<'a> {

@@ -2,11 +2,12 @@
 //! sweep.md (tables with Pareto-optimal rows marked, per buffer), and one scatter plot per
 //! buffer (time on x, ground-truth error on y, one series per technique, the front drawn).
 
+use super::ground_truth::TruthQuality;
 use super::measure::Buffer;
 use super::output::write_text;
 use super::pareto::front_polyline;
 use super::scatter::{write_scatter_plot, ScatterPlot, ScatterSeries};
-use super::sweep::{error_of, points, time_group, time_of, SweepRow, TruthQuality};
+use super::sweep::{error_of, points, time_group, time_of, SweepRow};
 use crate::error::Result;
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};

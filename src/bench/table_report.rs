@@ -21,8 +21,8 @@
 //! ```
 
 use super::compare::GROUPS;
+use super::ground_truth::TruthQuality;
 use super::rows::{RowKind, RowResult};
-use super::sweep::TruthQuality;
 use super::thesis::{Fps, Scene41};
 use crate::renderer::RenderConfig;
 use crate::vk::DeviceInfo;
@@ -120,6 +120,17 @@ impl SceneResult {
             ms(RowKind::NoReuse, "total"),
             speedup("total"),
         )
+    }
+}
+
+/// Whether a timing group (`compare::GROUPS`) belongs to a run with `effects`: columns of
+/// effects a table left out are dropped, not printed empty.
+pub fn group_present(group: &str, effects: &crate::renderer::config::Effects) -> bool {
+    match group {
+        "ao" => effects.ao,
+        "indirect" => effects.indirect,
+        "shadow" | "direct" => effects.direct,
+        _ => true,
     }
 }
 
