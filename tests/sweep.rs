@@ -50,11 +50,14 @@ fn sweep_two_keys_by_two_values() {
         "sweep.csv",
         "sweep.json",
         "sweep.md",
+        "README.md",
         "sweep_final.png",
         "sweep_ao.png",
     ] {
         assert!(out.join(f).is_file(), "{f} missing; stderr:\n{stderr}");
     }
+    let readme = std::fs::read_to_string(out.join("README.md")).unwrap();
+    assert!(readme.contains("--vary ao.samples=8,16"), "{readme}");
     let json: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(out.join("sweep.json")).unwrap()).unwrap();
     let rows = json["rows"].as_array().unwrap();

@@ -240,7 +240,22 @@ pub fn plots(dir: &Path, header: &SweepHeader, rows: &[SweepRow]) -> Result<Vec<
     Ok(written)
 }
 
-/// Write sweep.csv, sweep.json, sweep.md and the plots into `dir`.
+/// README.md of a sweep's directory: the exact command, the machine, and what each file is,
+/// so a results folder explains itself when committed.
+fn readme_text(h: &SweepHeader) -> String {
+    format!(
+        "# Sweep: {} along `{}`, {}x{}\n\nDevice {} (driver {}).\n\n```sh\n{}\n```\n\n\
+         `sweep.md`: per buffer, every combination's median GPU time and its error against \
+         the CPU ground truth and the converged estimator (Pareto-optimal rows ★); \
+         `sweep.csv` / `sweep.json`: the same data (JSON with per-pass medians and the ground \
+         truth's standard errors); `sweep_<buffer>.png`: time against ground-truth error with \
+         the Pareto front; `maps/NN-<buffer>.png`: absolute error of combination NN's last \
+         frame against the ground truth (FLIP for `NN-final-flip.png`).\n",
+        h.scene, h.path, h.size[0], h.size[1], h.device, h.driver, h.command
+    )
+}
+
+/// Write sweep.csv, sweep.json, sweep.md, README.md and the plots into `dir`.
 pub fn write(
     dir: &Path,
     header: &SweepHeader,
@@ -263,6 +278,9 @@ pub fn write(
         .map_err(|e| crate::error::Error::Config(e.to_string()))?;
     write_text(&files[1], &text)?;
     write_text(&files[2], &markdown(header, rows, quality))?;
+    let readme = dir.join("README.md");
+    write_text(&readme, &readme_text(header))?;
+    files.push(readme);
     files.extend(plots(dir, header, rows)?);
     Ok(files)
 }
