@@ -99,6 +99,32 @@ pub fn truth_values(b: Buffer, reference: &Reference, scene: &Scene, effects: Ef
     }
 }
 
+/// One rendered buffer and its ground truth, as compared: values per pixel, the values, the
+/// truth and the pixels compared.
+struct Compared {
+    ch: usize,
+    mask: Vec<bool>,
+    got: Vec<f32>,
+    truth: Vec<f32>,
+}
+
+fn compared(
+    b: Buffer,
+    image: &ImageData,
+    last: &LastFrame,
+    reference: &Reference,
+    scene: &Scene,
+    effects: Effects,
+) -> Compared {
+    let ch = channels(b);
+    Compared {
+        ch,
+        mask: mask(b, reference, scene, &last.geometry),
+        got: values(image, ch),
+        truth: truth_values(b, reference, scene, effects),
+    }
+}
+
 /// Every buffer of `last` against the ground truth.
 pub fn errors(
     last: &LastFrame,
@@ -115,10 +141,12 @@ pub fn errors(
     }
     let mut out = BTreeMap::new();
     for (b, image) in &last.buffers {
-        let ch = channels(*b);
-        let m = mask(*b, reference, scene, &last.geometry);
-        let got = values(image, ch);
-        let truth = truth_values(*b, reference, scene, effects);
+        let Compared {
+            ch,
+            mask: m,
+            got,
+            truth,
+        } = compared(*b, image, last, reference, scene, effects);
         let error = buffer_error(&got, &truth, ch, &m)?;
         let flip = if *b == Buffer::Final {
             let f = flip_ldr(&to_rgb8(&got), &to_rgb8(&truth), image.width, image.height)?;
@@ -189,10 +217,12 @@ pub fn write_error_maps(
     use super::error_metrics::{abs_error_per_pixel, write_error_map};
     let mut written = Vec::new();
     for (b, image) in &last.buffers {
-        let ch = channels(*b);
-        let m = mask(*b, reference, scene, &last.geometry);
-        let got = values(image, ch);
-        let truth = truth_values(*b, reference, scene, effects);
+        let Compared {
+            ch,
+            mask: m,
+            got,
+            truth,
+        } = compared(*b, image, last, reference, scene, effects);
         let per_pixel = abs_error_per_pixel(&got, &truth, ch, &m)?;
         let path = dir.join(format!("{stem}-{}.png", b.name()));
         write_error_map(
