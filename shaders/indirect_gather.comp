@@ -17,8 +17,9 @@ layout(local_size_x = 64) in;
 layout(local_size_x = 16, local_size_y = 16) in;
 #endif
 
-layout(set = 1, binding = 6, rgba16f) uniform image2D history;
+layout(set = 1, binding = 6, rgba32f) uniform image2D history;
 layout(set = 1, binding = 7, r32ui) uniform readonly uimage2D state_in;
+layout(set = 1, binding = 8, rgba32f) uniform image2D moments;
 
 #include "indirect_common.glsl"
 #include "indirect_merge.glsl"
@@ -43,7 +44,7 @@ void main() {
         if (position.w != 0.0 &&
             (state == STATE_NEW || state == STATE_ACCUMULATING || state == STATE_REFRESH)) {
             bool refresh = state == STATE_REFRESH;
-            vec3 fresh = fresh_gather(position.xyz, texelFetch(g_normal, pixel, 0).xyz, refresh, pixel);
+            vec4 fresh = fresh_gather(position.xyz, texelFetch(g_normal, pixel, 0).xyz, refresh, pixel);
             merge(pixel, imageLoad(history, pixel), fresh, refresh);
 #ifndef FIXUP
             atomicAdd(group_computed, 1u);

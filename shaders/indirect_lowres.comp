@@ -34,7 +34,7 @@ void main() {
         if (position.w != 0.0) {
             bool refresh = in_refresh_tile(block * 16);
             vec3 n = texelFetch(g_normal, full, 0).xyz;
-            value = vec4(fresh_gather(position.xyz, n, refresh, low), 1.0);
+            value = fresh_gather(position.xyz, n, refresh, low);
             atomicAdd(group_computed, 1u);
         }
     }

@@ -15,9 +15,10 @@
 layout(local_size_x = 16, local_size_y = 16) in;
 
 layout(set = 1, binding = 6, std430) readonly buffer LowRes { vec4 lowres[]; };
-layout(set = 1, binding = 7, rgba16f) uniform image2D history;
+layout(set = 1, binding = 7, rgba32f) uniform image2D history;
 layout(set = 1, binding = 8, r32ui) uniform readonly uimage2D state_in;
 layout(set = 1, binding = 9, r32ui) uniform writeonly uimage2D discard_mask;
+layout(set = 1, binding = 10, rgba32f) uniform image2D moments;
 
 #include "indirect_common.glsl"
 #include "indirect_merge.glsl"
@@ -42,7 +43,7 @@ void main() {
     vec2 w = f - vec2(base);
     ivec2 low_size = ivec2((frame.size + 1u) / 2u);
     ivec2 apron_origin = block * 8 - 1;
-    vec3 sum = vec3(0.0);
+    vec4 sum = vec4(0.0);
     float weight_sum = 0.0;
     for (int k = 0; k < 4; ++k) {
         ivec2 o = ivec2(k & 1, k >> 1);
@@ -54,7 +55,7 @@ void main() {
         if (abs(dot(n, g.xyz - p)) > PLANE_ACCEPT * footprint) continue;
         float weight = (o.x == 1 ? w.x : 1.0 - w.x) * (o.y == 1 ? w.y : 1.0 - w.y);
         ivec2 local = low - apron_origin;
-        sum += weight * lowres[gl_WorkGroupID.x * 100u + uint(local.y * 10 + local.x)].rgb;
+        sum += weight * lowres[gl_WorkGroupID.x * 100u + uint(local.y * 10 + local.x)];
         weight_sum += weight;
     }
     bool discarded = weight_sum <= 0.0;

@@ -2,7 +2,7 @@
 // Reverse reprojection (Lin 2013 eqs 1-3) for one temporal effect: previous texture coordinate
 // of every pixel from its world position and last frame's view-projection, disocclusion test
 // against the world-position history, resampling of the effect's history (rgb value, a =
-// estimates), per-pixel state, and the list of work blocks that hold pixels needing work (the
+// estimates) and of its second moment, per-pixel state, and the list of work blocks that hold pixels needing work (the
 // effect pass's indirect dispatch). Run once per effect with its push constants.
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_samplerless_texture_functions : require
@@ -18,8 +18,10 @@ layout(set = 1, binding = 0) uniform texture2D g_position;
 layout(set = 1, binding = 1) uniform texture2D g_normal;
 layout(set = 1, binding = 2) uniform texture2D prev_position; // last frame's G-buffer position
 layout(set = 1, binding = 3) uniform texture2D history_prev;
-layout(set = 1, binding = 4, rgba16f) uniform writeonly image2D history_cur;
+layout(set = 1, binding = 4, rgba32f) uniform writeonly image2D history_cur;
 layout(set = 1, binding = 5, r32ui) uniform writeonly uimage2D state_out;
+layout(set = 1, binding = 7) uniform texture2D moments_prev;
+layout(set = 1, binding = 8, rgba32f) uniform writeonly image2D moments_cur;
 
 shared uint quadrant_needs_work[4];
 shared uint group_disoccluded;
@@ -31,9 +33,11 @@ bool tap_valid(ivec2 t, vec3 p, float eps) {
 }
 
 // History at the reprojected point: bilinear over the four taps around it when all hold this
-// surface, the nearest texel otherwise. Sub-1/1000-pixel motion is rounding noise of eq 1 (a
-// static camera): the texel itself is reused, or fp16 history would drift by blending.
-vec4 resample(vec2 f, ivec2 nearest, vec3 p, float eps) {
+// surface, the nearest texel otherwise; the moments (mean squared luminance, pending gate
+// crossing) with the same weights.
+// Sub-1/1000-pixel motion is rounding noise of eq 1 (a static camera): the texel itself is
+// reused, or the history would drift by blending.
+vec4 resample(vec2 f, ivec2 nearest, vec3 p, float eps, out vec2 m2) {
     vec2 g = f - 0.5;
     ivec2 base = ivec2(floor(g));
     vec2 w = g - vec2(base);
@@ -41,7 +45,15 @@ vec4 resample(vec2 f, ivec2 nearest, vec3 p, float eps) {
     bool all_valid = !still;
     for (int k = 0; k < 4 && all_valid; ++k)
         all_valid = tap_valid(base + ivec2(k & 1, k >> 1), p, eps);
-    if (!all_valid) return texelFetch(history_prev, nearest, 0);
+    if (!all_valid) {
+        m2 = texelFetch(moments_prev, nearest, 0).rg;
+        return texelFetch(history_prev, nearest, 0);
+    }
+    vec2 m00 = texelFetch(moments_prev, base, 0).rg;
+    vec2 m10 = texelFetch(moments_prev, base + ivec2(1, 0), 0).rg;
+    vec2 m01 = texelFetch(moments_prev, base + ivec2(0, 1), 0).rg;
+    vec2 m11 = texelFetch(moments_prev, base + ivec2(1, 1), 0).rg;
+    m2 = mix(mix(m00, m10, w.x), mix(m01, m11, w.x), w.y);
     vec4 h00 = texelFetch(history_prev, base, 0);
     vec4 h10 = texelFetch(history_prev, base + ivec2(1, 0), 0);
     vec4 h01 = texelFetch(history_prev, base + ivec2(0, 1), 0);
@@ -60,6 +72,7 @@ void main() {
     uint state = STATE_BACKGROUND;
     if (!outside_frame(pixel)) {
         vec4 history = vec4(0.0);
+        vec2 m2 = vec2(0.0);
         vec4 position = texelFetch(g_position, pixel, 0);
         if (position.w != 0.0) {
             vec3 p = position.xyz;
@@ -71,18 +84,20 @@ void main() {
                     ivec2 nearest = ivec2(floor(f));
                     float eps = disocclusion_epsilon(p, texelFetch(g_normal, pixel, 0).xyz);
                     if (tap_valid(nearest, p, eps)) { // eqs 2-3 on the nearest texel
-                        history = resample(f, nearest, p, eps);
+                        history = resample(f, nearest, p, eps, m2);
                         state = history.a >= float(frame.rotation_limit) ? STATE_CONVERGED : STATE_ACCUMULATING;
                     }
                 }
             }
             if (state == STATE_NEW) {
                 history = vec4(0.0);
+                m2 = vec2(0.0);
                 atomicAdd(group_disoccluded, 1u);
             }
             if (in_refresh_tile(pixel)) state = STATE_REFRESH;
         }
         imageStore(history_cur, pixel, history);
+        imageStore(moments_cur, pixel, vec4(m2, 0.0, 0.0));
         imageStore(state_out, pixel, uvec4(state));
         if (state == STATE_NEW || state == STATE_ACCUMULATING || state == STATE_REFRESH) {
             uvec2 q = gl_LocalInvocationID.xy / 8u;

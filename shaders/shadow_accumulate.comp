@@ -1,8 +1,8 @@
 #version 460
 // PCF soft shadows with temporal reuse (Lin 2013 section 3.4): over the 8x8 blocks the
 // reprojection listed, one rotated and scaled disc pattern per pixel that is new or
-// accumulating, merged with eqs 4-5 (or EMA / mean); the refresh tile is recomputed with every
-// pattern up to the rotation limit.
+// accumulating, merged into the history (temporal.glsl); the refresh tile is recomputed as the
+// mean of every pattern up to the rotation limit, the estimator accumulation converges to.
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_samplerless_texture_functions : require
 #include "frame.glsl"
@@ -17,7 +17,8 @@ layout(set = 1, binding = 0) uniform texture2D g_position;
 layout(set = 1, binding = 1) uniform texture2D g_normal;
 layout(set = 1, binding = 2) uniform texture2D shadow_depth;
 layout(set = 1, binding = 3, r32ui) uniform readonly uimage2D state_in;
-layout(set = 1, binding = 4, rgba16f) uniform image2D history;
+layout(set = 1, binding = 4, rgba32f) uniform image2D history;
+layout(set = 1, binding = 6, rgba32f) uniform image2D moments;
 
 #include "shadow.glsl"
 
@@ -35,15 +36,23 @@ void main() {
             vec4 h = imageLoad(history, pixel);
             uint limit = frame.rotation_limit;
             vec2 result;
+            vec2 m = imageLoad(moments, pixel).rg;
             if (state == STATE_REFRESH) {
                 float sum = 0.0;
-                for (uint j = 0u; j < limit; ++j) sum += shadow_visibility(p, n, float(j));
+                float sum2 = 0.0;
+                for (uint j = 0u; j < limit; ++j) {
+                    float x = shadow_visibility(p, n, float(j));
+                    sum += x;
+                    sum2 += x * x;
+                }
                 result = vec2(sum / float(limit), float(limit));
+                m = vec2(sum2 / float(limit), 0.0);
             } else {
                 float fresh = shadow_visibility(p, n, h.a);
-                result = vec2(accumulate(h.r, fresh, h.a), h.a + 1.0);
+                result = accumulate(h.r, h.a, fresh, m);
             }
             imageStore(history, pixel, vec4(clamp(result.x, 0.0, 1.0), 0.0, 0.0, result.y));
+            imageStore(moments, pixel, vec4(m, 0.0, 0.0));
             atomicAdd(group_computed, 1u);
         }
     }

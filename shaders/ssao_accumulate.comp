@@ -1,8 +1,9 @@
 #version 460
 // SSAO with temporal reuse: dispatched indirectly over the 8x8 blocks the reprojection listed;
-// evaluates one rotated pattern per pixel that is new or accumulating and merges it with eqs
-// 4-5 (or EMA / mean); pixels of the refresh tile are recomputed from scratch with every
-// pattern up to the rotation limit. Converged pixels are left alone.
+// evaluates one rotated pattern per pixel that is new or accumulating and merges it into the
+// history (temporal.glsl: the gated running mean, eqs 4-5, EMA or capped mean); pixels of the
+// refresh tile are recomputed from scratch as the mean of every pattern up to the rotation
+// limit, the estimator accumulation converges to. Converged pixels are left alone.
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_samplerless_texture_functions : require
 #include "frame.glsl"
@@ -17,7 +18,8 @@ layout(set = 1, binding = 0) uniform texture2D g_position;
 layout(set = 1, binding = 1) uniform texture2D g_normal;
 layout(set = 1, binding = 2) uniform texture2D random_vectors;
 layout(set = 1, binding = 3, r32ui) uniform readonly uimage2D state_in;
-layout(set = 1, binding = 4, rgba16f) uniform image2D history;
+layout(set = 1, binding = 4, rgba32f) uniform image2D history;
+layout(set = 1, binding = 6, rgba32f) uniform image2D moments;
 
 #include "ao.glsl"
 
@@ -35,14 +37,25 @@ void main() {
             vec4 h = imageLoad(history, pixel);
             uint limit = frame.rotation_limit;
             vec2 result;
+            vec2 m = imageLoad(moments, pixel).rg;
             if (state == STATE_REFRESH) {
-                result = vec2(1.0 - ao_estimate(pixel, p, n, 0.0, limit), float(limit));
+                // The mean of every pattern and of its square: what accumulation converges to.
+                float sum = 0.0;
+                float sum2 = 0.0;
+                for (uint j = 0u; j < limit; ++j) {
+                    float x = 1.0 - ao_estimate(pixel, p, n, float(j), 1u);
+                    sum += x;
+                    sum2 += x * x;
+                }
+                result = vec2(sum / float(limit), float(limit));
+                m = vec2(sum2 / float(limit), 0.0);
             } else {
                 // Each pixel walks through patterns 0, 1, ... in the order it accumulates them.
                 float fresh = 1.0 - ao_estimate(pixel, p, n, h.a, 1u);
-                result = vec2(accumulate(h.r, fresh, h.a), h.a + 1.0);
+                result = accumulate(h.r, h.a, fresh, m);
             }
             imageStore(history, pixel, vec4(clamp(result.x, 0.0, 1.0), 0.0, 0.0, result.y));
+            imageStore(moments, pixel, vec4(m, 0.0, 0.0));
             atomicAdd(group_computed, 1u);
         }
     }

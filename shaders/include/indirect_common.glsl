@@ -4,6 +4,7 @@
 
 #include "frame.glsl"
 #include "effect.glsl"
+#include "temporal.glsl"
 
 layout(set = 1, binding = 0) uniform texture2D g_position;
 layout(set = 1, binding = 1) uniform texture2D g_normal;
@@ -14,11 +15,21 @@ layout(set = 1, binding = 4) uniform texture2D rsm_flux;
 // After the bindings it reads.
 #include "rsm_gather.glsl"
 
-// Fresh estimate for a pixel: every pattern up to the rotation limit in the refresh tile (a
-// recompute from scratch), else this frame's pattern.
-vec3 fresh_gather(vec3 p, vec3 n, bool refresh, ivec2 seed_pixel) {
-    return refresh ? rsm_gather(p, n, 0.0, frame.rotation_limit, seed_pixel)
-                   : rsm_gather(p, n, float(effect.pattern), 1u, seed_pixel);
+// Fresh estimate for a pixel (rgb) and the mean squared luminance of its patterns (a): in the
+// refresh tile the mean of every pattern up to the rotation limit (a recompute from scratch,
+// the estimator accumulation converges to), else this frame's pattern.
+vec4 fresh_gather(vec3 p, vec3 n, bool refresh, ivec2 seed_pixel) {
+    uint first = refresh ? 0u : effect.pattern;
+    uint patterns = refresh ? frame.rotation_limit : 1u;
+    vec3 sum = vec3(0.0);
+    float sum2 = 0.0;
+    for (uint j = 0u; j < patterns; ++j) {
+        vec3 x = rsm_gather(p, n, float(first + j), 1u, seed_pixel);
+        float l = dot(x, LUMA);
+        sum += x;
+        sum2 += l * l;
+    }
+    return vec4(sum, sum2) / float(patterns);
 }
 
 #endif // INDIRECT_COMMON_GLSL

@@ -1,15 +1,25 @@
-// Requires `history` (rgba16f storage image) declared by the including shader.
+// Requires `history` (rgba32f) and `moments` (rgba32f) storage images declared by the including
+// shader.
 #ifndef INDIRECT_MERGE_GLSL
 #define INDIRECT_MERGE_GLSL
 
 #include "temporal.glsl"
 
-// Merge into the history at `pixel` (rgb value, a = estimates).
-void merge(ivec2 pixel, vec4 h, vec3 fresh, bool refresh) {
-    vec4 result = refresh ? vec4(fresh, float(frame.rotation_limit))
-                          : vec4(accumulate3(h.rgb, fresh, h.a), h.a + 1.0);
-    // fp16 history: clamp to its range so an extreme VPL cannot store infinity.
-    imageStore(history, pixel, vec4(clamp(result.rgb, vec3(0.0), vec3(65000.0)), result.a));
+// Merge a fresh estimate (rgb, a = mean squared luminance of its patterns) into the history at
+// `pixel` (rgb value, a = estimates) and its second moment.
+void merge(ivec2 pixel, vec4 h, vec4 fresh, bool refresh) {
+    vec2 m = imageLoad(moments, pixel).rg;
+    vec4 result;
+    if (refresh) {
+        result = vec4(fresh.rgb, float(frame.rotation_limit));
+        m = vec2(fresh.a, 0.0);
+    } else {
+        result = accumulate3(h.rgb, h.a, fresh.rgb, m);
+    }
+    // Finite and non-negative, whatever a degenerate VPL produced.
+    imageStore(history, pixel, vec4(clamp(result.rgb, vec3(0.0), vec3(HISTORY_MAX)), result.a));
+    m.x = clamp(m.x, 0.0, HISTORY_MAX * HISTORY_MAX);
+    imageStore(moments, pixel, vec4(m, 0.0, 0.0));
 }
 
 #endif // INDIRECT_MERGE_GLSL

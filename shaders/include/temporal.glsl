@@ -25,35 +25,78 @@ float disocclusion_epsilon(vec3 p, vec3 n) {
     return frame.epsilon * footprint / max(cos_view, 0.1);
 }
 
-// Merge a fresh estimate into the reprojected history `old` that holds `n` estimates.
-float accumulate(float old, float fresh, float n) {
-    if (n < 0.5) return fresh;
+// Gate of the default mode (Accumulate::Gated, config.rs). The running mean restarts from the
+// fresh estimate only when two consecutive estimates differ from the mean, on the same side, by
+// more than `sigmas` standard deviations of the patterns so far AND by more than GATE_RELATIVE
+// of the larger of the two luminances. One outlier is merged like any estimate (the mean stays
+// unbiased: importance-sampled VPL gathers have heavy tails), a change of the lighting persists
+// and restarts the mean one frame later. The relative floor is scale-free (HDR radiance and
+// [0, 1] visibilities alike) and keeps one flipped PCF tap (1/9) or AO sample from counting as
+// a change where every earlier pattern agreed (zero variance).
+const float GATE_RELATIVE = 0.25;
+// Estimates before the gate may act: with fewer the patterns' variance is not known yet.
+const float GATE_MIN_COUNT = 4.0;
+// Largest stored value: the squared luminance of the second moment stays finite in fp32.
+const float HISTORY_MAX = 1.0e18;
+
+const vec3 LUMA = vec3(0.2126, 0.7152, 0.0722);
+
+// Weight of a fresh estimate in the merge with a history of `n` estimates (n >= 1); `change`
+// is the thesis's |V_old - V_new| on the effect's own scale, `l_old` / `l_fresh` the
+// luminances (the value itself for scalar effects). `moments` holds the mean squared luminance
+// (x) and the side of a pending gate crossing (y: +-1, 0 none), updated here for the gate. A
+// weight of 1 restarts the history from the fresh estimate.
+float fresh_weight(float n, float change, float l_old, float l_fresh, inout vec2 moments) {
     uint mode = frame.accumulate_mode;
     float k = frame.accumulate_param;
-    if (mode == 0u) {
-        // Eqs 4-5; values are in [0, 1], so saturate() keeps the difference's meaning.
-        float confidence = 1.0 - clamp(abs(old - fresh), 0.0, 1.0) / (1.0 + k);
-        return confidence * old + (1.0 - confidence) * fresh;
-    }
-    if (mode == 1u) return mix(old, fresh, k);
-    return old + (fresh - old) / min(n + 1.0, max(k, 1.0));
+    if (mode == 0u) return clamp(change, 0.0, 1.0) / (1.0 + k); // eqs 4-5
+    if (mode == 1u) return k;
+    if (mode == 2u) return 1.0 / min(n + 1.0, max(k, 1.0));
+    float sigma = sqrt(max(moments.x - l_old * l_old, 0.0));
+    float gate = max(k * sigma, GATE_RELATIVE * max(abs(l_old), abs(l_fresh)));
+    float diff = l_fresh - l_old;
+    float side = n >= GATE_MIN_COUNT && abs(diff) > gate ? sign(diff) : 0.0;
+    // A resampled history blends the flags of its taps: a crossing counts where most agree.
+    bool persists = side * moments.y > 0.5;
+    moments.y = persists ? 0.0 : side;
+    return persists ? 1.0 : 1.0 / (n + 1.0);
 }
 
-// Eqs 4-5 for radiance: the difference is taken on values divided by the larger luminance of
-// the two, so the confidence measures relative change and does not depend on the light's
-// intensity (HDR values would otherwise always saturate eq 4).
-vec3 accumulate3(vec3 old, vec3 fresh, float n) {
-    if (n < 0.5) return fresh;
-    uint mode = frame.accumulate_mode;
-    float k = frame.accumulate_param;
-    if (mode == 0u) {
-        const vec3 LUMA = vec3(0.2126, 0.7152, 0.0722);
-        float scale = max(max(dot(old, LUMA), dot(fresh, LUMA)), 1e-30);
-        float confidence = 1.0 - clamp(length(old - fresh) / scale, 0.0, 1.0) / (1.0 + k);
-        return confidence * old + (1.0 - confidence) * fresh;
+// Count after a merge with weight `w`: a restart of the gated mean counts one estimate.
+float merged_count(float n, float w) {
+    return frame.accumulate_mode == 3u && w >= 1.0 ? 1.0 : n + 1.0;
+}
+
+// Merge a fresh scalar estimate into the history value `old` that holds `n` estimates;
+// `moments` (mean squared value, pending gate crossing) is updated in place. Returns (value,
+// count).
+vec2 accumulate(float old, float n, float fresh, inout vec2 moments) {
+    fresh = clamp(fresh, -HISTORY_MAX, HISTORY_MAX);
+    if (n < 0.5) {
+        moments = vec2(fresh * fresh, 0.0);
+        return vec2(fresh, 1.0);
     }
-    if (mode == 1u) return mix(old, fresh, k);
-    return old + (fresh - old) / min(n + 1.0, max(k, 1.0));
+    float w = fresh_weight(n, abs(old - fresh), old, fresh, moments);
+    moments.x += w * (fresh * fresh - moments.x);
+    return vec2(old + w * (fresh - old), merged_count(n, w));
+}
+
+// The same for radiance. The thesis's difference is taken relative to the larger of the two
+// values' norms, so confidence measures relative change for any colour and any intensity (a
+// difference over luminance would be 14x larger for pure blue than for grey). Returns
+// (value, count).
+vec4 accumulate3(vec3 old, float n, vec3 fresh, inout vec2 moments) {
+    fresh = clamp(fresh, vec3(-HISTORY_MAX), vec3(HISTORY_MAX));
+    float l_fresh = dot(fresh, LUMA);
+    if (n < 0.5) {
+        moments = vec2(l_fresh * l_fresh, 0.0);
+        return vec4(fresh, 1.0);
+    }
+    float norm = max(length(old), length(fresh));
+    float change = norm > 0.0 ? length(old - fresh) / norm : 0.0;
+    float w = fresh_weight(n, change, dot(old, LUMA), l_fresh, moments);
+    moments.x += w * (l_fresh * l_fresh - moments.x);
+    return vec4(old + w * (fresh - old), merged_count(n, w));
 }
 
 #endif // TEMPORAL_GLSL

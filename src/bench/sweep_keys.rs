@@ -3,8 +3,8 @@
 //! `--reuse`, ...), so a sweep accepts exactly what a single run accepts.
 
 use crate::cli::args::{
-    parse_bias, parse_ema_alpha, parse_epsilon, parse_on_off, parse_pattern_count, parse_vpls,
-    AccumulateMode,
+    parse_bias, parse_ema_alpha, parse_epsilon, parse_gate, parse_on_off, parse_pattern_count,
+    parse_vpls, AccumulateMode,
 };
 use crate::error::{Error, Result};
 use crate::renderer::config::{Accumulate, AoEstimator};
@@ -104,7 +104,7 @@ impl Key {
             Key::AoRadius => "number in (0, 10]",
             Key::AoPatterns => "integer 1..=1024",
             Key::Reuse | Key::Refresh | Key::Visibility | Key::HalfRes => "on|off",
-            Key::Accumulate => "confidence[:BIAS]|ema[:ALPHA]|mean[:CAP]",
+            Key::Accumulate => "gated[:SIGMAS]|confidence[:BIAS]|ema[:ALPHA]|mean[:CAP]",
             Key::RotationLimit => "integer 1..=2048",
             Key::Epsilon => "NUMBER|abs:NUMBER",
             Key::Vpls => "integer 1..=16384|all",
@@ -353,8 +353,8 @@ impl Setting {
     }
 }
 
-/// `MODE[:PARAMETER]`: the mode as `--accumulate` takes it, the parameter as `--bias`,
-/// `--ema-alpha` or `--mean-cap` takes it; without one, the command line's default.
+/// `MODE[:PARAMETER]`: the mode as `--accumulate` takes it, the parameter as `--gate`,
+/// `--bias`, `--ema-alpha` or `--mean-cap` takes it; without one, the command line's default.
 fn parse_accumulate(v: &str) -> std::result::Result<Setting, String> {
     let (mode, parameter) = match v.split_once(':') {
         Some((m, p)) => (m, Some(p)),
@@ -362,6 +362,10 @@ fn parse_accumulate(v: &str) -> std::result::Result<Setting, String> {
     };
     let mode = AccumulateMode::from_str(mode, false)?;
     Ok(match (mode, parameter) {
+        (AccumulateMode::Gated, None) => Setting::Accumulate(Accumulate::GATED),
+        (AccumulateMode::Gated, Some(p)) => Setting::Accumulate(Accumulate::Gated {
+            sigmas: parse_gate(p)?,
+        }),
         (AccumulateMode::Confidence, None) => Setting::Accumulate(Accumulate::CONFIDENCE),
         (AccumulateMode::Confidence, Some(p)) => Setting::Accumulate(Accumulate::Confidence {
             bias: parse_bias(p)?,
@@ -433,6 +437,8 @@ mod tests {
             c.temporal.rotation_limit = 20;
             apply(&mut c, Key::Accumulate, v).map(|_| c.temporal.accumulate)
         };
+        assert_eq!(set("gated").unwrap(), Accumulate::GATED);
+        assert_eq!(set("gated:3").unwrap(), Accumulate::Gated { sigmas: 3.0 });
         assert_eq!(set("confidence").unwrap(), Accumulate::CONFIDENCE);
         assert_eq!(
             set("confidence:0.5").unwrap(),
@@ -452,12 +458,13 @@ mod tests {
             "mean:0",
             "mean:5000",
             "confidence:-1",
+            "gated:0",
             "median",
         ] {
             let e = err(set(bad));
             assert!(e.contains("temporal.accumulate") && e.contains(bad), "{e}");
             assert!(
-                e.contains("confidence[:BIAS]|ema[:ALPHA]|mean[:CAP]"),
+                e.contains("gated[:SIGMAS]|confidence[:BIAS]|ema[:ALPHA]|mean[:CAP]"),
                 "{e}"
             );
         }

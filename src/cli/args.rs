@@ -82,9 +82,14 @@ pub struct SceneArgs {
     /// SSAO samples per pattern (thesis: 8 directions x 4 steps for 32).
     #[arg(long, default_value_t = 32)]
     pub ao_samples: u32,
-    /// How fresh estimates merge into the history: confidence (eqs 4-5), ema, mean.
-    #[arg(long, value_enum, default_value = "confidence")]
+    /// How fresh estimates merge into the history: gated (running mean of the patterns,
+    /// restarted on a change beyond --gate standard deviations), confidence (eqs 4-5 as the
+    /// thesis writes them), ema, mean.
+    #[arg(long, value_enum, default_value = "gated")]
     pub accumulate: AccumulateMode,
+    /// Restart threshold of the gated mean, in standard deviations of the patterns (> 0).
+    #[arg(long, default_value_t = 4.0, value_parser = parse_gate)]
+    pub gate: f32,
     /// Bias of eq 4 (confidence mode), finite and >= 0.
     #[arg(long, default_value_t = 0.1, value_parser = parse_bias)]
     pub bias: f32,
@@ -120,6 +125,7 @@ pub struct SceneArgs {
 /// `--accumulate` choices.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
 pub enum AccumulateMode {
+    Gated,
     Confidence,
     Ema,
     Mean,
@@ -129,6 +135,7 @@ impl SceneArgs {
     /// The renderer configuration these flags describe (validated by the renderer).
     pub fn render_config(&self) -> RenderConfig {
         let accumulate = match self.accumulate {
+            AccumulateMode::Gated => Accumulate::Gated { sigmas: self.gate },
             AccumulateMode::Confidence => Accumulate::Confidence { bias: self.bias },
             AccumulateMode::Ema => Accumulate::Ema {
                 alpha: self.ema_alpha,
@@ -184,6 +191,15 @@ pub fn parse_bias(s: &str) -> std::result::Result<f32, String> {
     }
 }
 
+pub fn parse_gate(s: &str) -> std::result::Result<f32, String> {
+    match s.parse::<f32>() {
+        Ok(g) if g.is_finite() && g > 0.0 => Ok(g),
+        _ => Err(format!(
+            "--gate takes a number of standard deviations > 0, not {s:?}"
+        )),
+    }
+}
+
 pub fn parse_ema_alpha(s: &str) -> std::result::Result<f32, String> {
     match s.parse::<f32>() {
         Ok(a) if a > 0.0 && a <= 1.0 => Ok(a),
@@ -193,15 +209,15 @@ pub fn parse_ema_alpha(s: &str) -> std::result::Result<f32, String> {
     }
 }
 
-/// A count of patterns or estimates: the history stores it in an fp16 channel, exact for
-/// integers up to 2048 (`config::MAX_PATTERNS`).
+/// A count of patterns or estimates, up to `config::MAX_PATTERNS` (the refresh evaluates
+/// every pattern of a pixel at once).
 pub fn parse_pattern_count(s: &str) -> std::result::Result<u32, String> {
     let max = crate::renderer::config::MAX_PATTERNS;
     match s.parse::<u32>() {
         Ok(n) if (1..=max).contains(&n) => Ok(n),
         _ => Err(format!(
-            "{s:?} is not a count in 1..={max} (the history stores it in fp16, exact up to \
-             {max})"
+            "{s:?} is not a count in 1..={max} (the refresh evaluates every pattern of a pixel \
+             at once)"
         )),
     }
 }

@@ -35,6 +35,7 @@ const ACCUMULATE: &[Bind] = &[
     Bind::new(3, Slot::State, Use::StorageRead),
     Bind::new(4, Slot::History, Use::StorageReadWrite),
     Bind::new(5, Slot::Counters, Use::WorkList),
+    Bind::new(6, Slot::Moments, Use::StorageReadWrite),
 ];
 
 const FULL: &[Bind] = &[

@@ -43,6 +43,7 @@ const SHADOW_ACCUMULATE: &[Bind] = &[
     Bind::new(3, Slot::State, Use::StorageRead),
     Bind::new(4, Slot::History, Use::StorageReadWrite),
     Bind::new(5, Slot::Counters, Use::WorkList),
+    Bind::new(6, Slot::Moments, Use::StorageReadWrite),
 ];
 
 const DIRECT_LIGHT: &[Bind] = &[

@@ -53,12 +53,14 @@ const UPSAMPLE: &[Bind] = gather_inputs![
     Bind::new(7, Slot::History, Use::StorageReadWrite),
     Bind::new(8, Slot::State, Use::StorageRead),
     Bind::new(9, DISCARD, Use::StorageReadWrite),
+    Bind::new(10, Slot::Moments, Use::StorageReadWrite),
 ];
 
 /// The full-resolution gather over listed blocks, and the fix-up over discarded pixels.
 const GATHER: &[Bind] = gather_inputs![
     Bind::new(6, Slot::History, Use::StorageReadWrite),
     Bind::new(7, Slot::State, Use::StorageRead),
+    Bind::new(8, Slot::Moments, Use::StorageReadWrite),
 ];
 
 pub const REGISTRATION: Registration = Registration {

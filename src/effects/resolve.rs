@@ -41,6 +41,8 @@ impl Resolve for EffectResources<'_> {
         match slot {
             Slot::History => self.temporal.map(|e| e.history.current(parity)),
             Slot::HistoryPrev => self.temporal.map(|e| e.history.previous(parity)),
+            Slot::Moments => self.temporal.map(|e| e.moments.current(parity)),
+            Slot::MomentsPrev => self.temporal.map(|e| e.moments.previous(parity)),
             Slot::State => self.temporal.map(|e| &e.state),
             Slot::Own(i) => self.own.get(i as usize).map(|pair| pair[parity]),
             _ => shared(self.targets, slot, parity),

@@ -30,6 +30,11 @@ pub enum Slot {
     History,
     /// Last frame's history of the same effect.
     HistoryPrev,
+    /// The effect's moments history written this frame (mean squared luminance of the
+    /// estimates, pending gate crossing): the gated mean's variance and change test.
+    Moments,
+    /// Last frame's second-moment history.
+    MomentsPrev,
     /// The effect's per-pixel reprojection state.
     State,
     /// The effect's counters and work lists (indirect dispatch arguments first).

@@ -19,6 +19,8 @@ const BINDS: &[Bind] = &[
     Bind::new(4, Slot::History, Use::StorageWrite),
     Bind::new(5, Slot::State, Use::StorageWrite),
     Bind::new(6, Slot::Counters, Use::BufferReadWrite),
+    Bind::new(7, Slot::MomentsPrev, Use::Sampled),
+    Bind::new(8, Slot::Moments, Use::StorageWrite),
 ];
 
 pub fn layout() -> PassLayout {

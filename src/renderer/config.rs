@@ -5,9 +5,10 @@ use super::pcf::Pcf;
 use crate::error::{Error, Result};
 use serde::Serialize;
 
-/// Most patterns per pixel (rotation limit) and most estimates in a capped mean: the history
-/// keeps the count in an fp16 channel, whose integers are exact up to 2048. Past it a pixel
-/// would never reach "converged" and a capped mean would stop moving.
+/// Most patterns per pixel (rotation limit) and most estimates in a capped mean. The fp32
+/// history counts exactly far beyond it; the bound is the refresh, which evaluates every
+/// pattern of a pixel in one invocation (llvmpipe caps loop iterations per invocation and GPU
+/// drivers reset devices on long dispatches).
 pub const MAX_PATTERNS: u32 = 2048;
 
 /// Frames the CPU may record ahead of the GPU.
@@ -103,7 +104,15 @@ pub enum AoEstimator {
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
 #[serde(tag = "mode", rename_all = "lowercase")]
 pub enum Accumulate {
-    /// Lin 2013 eqs 4-5: confidence = 1 - saturate(|V_old - V_new|) / (1 + bias).
+    /// The default: the running mean of every pattern (what the refresh computes, so refreshed
+    /// tiles and accumulated pixels hold the same estimator), restarted from the fresh estimate
+    /// when it differs from the mean by more than `sigmas` standard deviations of the patterns
+    /// seen so far and by more than `Accumulate::GATE_RELATIVE` of the larger value: a change
+    /// of the lighting, not noise. Converges to the mean of the patterns in a static view.
+    Gated { sigmas: f32 },
+    /// Lin 2013 eqs 4-5 as written: confidence = 1 - saturate(|V_old - V_new|) / (1 + bias)
+    /// (for RGB, the difference relative to the larger of the two values' norms). Its fixed
+    /// point is where E[|X - V| (X - V)] = 0, not the mean: biased towards early patterns.
     Confidence { bias: f32 },
     /// Exponential moving average with a fixed weight on the new estimate.
     Ema { alpha: f32 },
@@ -112,6 +121,12 @@ pub enum Accumulate {
 }
 
 impl Accumulate {
+    /// Default gate of the running mean: 4 standard deviations of the patterns.
+    pub const GATED: Accumulate = Accumulate::Gated { sigmas: 4.0 };
+    /// Relative floor of the gate (shaders/include/temporal.glsl `GATE_RELATIVE`): changes
+    /// below a quarter of the value never restart the mean, so one PCF tap in nine (0.11) or
+    /// an AO sample flipping cannot, even where every earlier pattern agreed (zero variance).
+    pub const GATE_RELATIVE: f32 = 0.25;
     /// Default bias of eq 4. The thesis leaves it to the user; 0.1 keeps confidence <= 0.91 for
     /// a full-range difference and ~1 for small ones.
     pub const CONFIDENCE: Accumulate = Accumulate::Confidence { bias: 0.1 };
@@ -123,11 +138,13 @@ impl Accumulate {
             Accumulate::Confidence { .. } => 0,
             Accumulate::Ema { .. } => 1,
             Accumulate::Mean { .. } => 2,
+            Accumulate::Gated { .. } => 3,
         }
     }
 
     pub fn parameter(&self) -> f32 {
         match *self {
+            Accumulate::Gated { sigmas } => sigmas,
             Accumulate::Confidence { bias } => bias,
             Accumulate::Ema { alpha } => alpha,
             Accumulate::Mean { cap } => cap as f32,
@@ -171,7 +188,7 @@ impl Default for TemporalConfig {
     fn default() -> Self {
         Self {
             reuse: true,
-            accumulate: Accumulate::CONFIDENCE,
+            accumulate: Accumulate::GATED,
             rotation_limit: 36,
             rotation_deg: 10.0,
             epsilon: Epsilon::DEFAULT,
@@ -296,6 +313,7 @@ impl RenderConfig {
         }
         if self.effects.indirect
             && self.temporal.reuse
+            && self.temporal.refresh
             && self.indirect.vpls as u64 * self.temporal.rotation_limit as u64 > 32768
         {
             return bad(format!(
@@ -307,7 +325,8 @@ impl RenderConfig {
         let t = &self.temporal;
         if !(1..=MAX_PATTERNS).contains(&t.rotation_limit) {
             return bad(format!(
-                "rotation limit {} outside 1..={MAX_PATTERNS} (the count is kept in fp16)",
+                "rotation limit {} outside 1..={MAX_PATTERNS} (the refresh evaluates every \
+                 pattern of a pixel at once)",
                 t.rotation_limit
             ));
         }
@@ -315,6 +334,11 @@ impl RenderConfig {
             return bad("rotation angle must be finite".into());
         }
         match t.accumulate {
+            Accumulate::Gated { sigmas } if !(sigmas.is_finite() && sigmas > 0.0) => {
+                return bad(format!(
+                    "gate {sigmas} must be finite and > 0 standard deviations"
+                ))
+            }
             Accumulate::Confidence { bias } if !(bias.is_finite() && bias >= 0.0) => {
                 return bad(format!("confidence bias {bias} must be finite and >= 0"))
             }
@@ -323,7 +347,7 @@ impl RenderConfig {
             }
             Accumulate::Mean { cap } if !(1..=MAX_PATTERNS).contains(&cap) => {
                 return bad(format!(
-                    "mean cap {cap} outside 1..={MAX_PATTERNS} (the count is kept in fp16)"
+                    "mean cap {cap} outside 1..={MAX_PATTERNS} (the rotation limit's bound)"
                 ))
             }
             _ => {}
@@ -345,7 +369,7 @@ mod tests {
     use super::*;
 
     #[test]
-    fn counts_past_fp16_exactness_and_bad_step_sizes_are_rejected() {
+    fn absurd_counts_gates_and_step_sizes_are_rejected() {
         let ok = RenderConfig::default();
         assert!(ok.validate().is_ok());
         let mut c = ok;
@@ -354,12 +378,16 @@ mod tests {
         c.temporal.rotation_limit = MAX_PATTERNS;
         assert!(c.validate().is_ok());
         c.temporal.rotation_limit = MAX_PATTERNS + 1;
-        assert!(c.validate().unwrap_err().to_string().contains("fp16"));
+        assert!(c.validate().unwrap_err().to_string().contains("refresh"));
         let mut c = ok;
         c.temporal.accumulate = Accumulate::Mean { cap: 100_000 };
         assert!(c.validate().is_err());
         c.temporal.accumulate = Accumulate::Mean { cap: 0 };
         assert!(c.validate().is_err());
+        for sigmas in [0.0, -1.0, f32::NAN, f32::INFINITY] {
+            c.temporal.accumulate = Accumulate::Gated { sigmas };
+            assert!(c.validate().is_err(), "gate {sigmas}");
+        }
         for near in [0.0, -1.0, f32::NAN, f32::INFINITY, 1000.0] {
             let mut c = ok;
             c.ao.near_px = near;

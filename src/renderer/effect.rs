@@ -4,7 +4,7 @@
 
 use super::config::FRAMES_IN_FLIGHT;
 use super::counters::{self, Counter, CounterReadback};
-use super::targets::{PingPong, AO_FORMAT, STATE_FORMAT};
+use super::targets::{PingPong, HISTORY_FORMAT, MOMENTS_FORMAT, STATE_FORMAT};
 use super::temporal::RefreshSchedule;
 use crate::error::Result;
 use crate::shaders::EffectPush;
@@ -67,6 +67,8 @@ pub struct TemporalEffect {
     pub kind: EffectKind,
     /// rgb = value, a = estimates accumulated.
     pub history: PingPong,
+    /// r = mean squared luminance of the estimates, g = pending gate crossing (gated mean).
+    pub moments: PingPong,
     pub state: Image,
     pub counters: Buffer,
     pub max_blocks: u32,
@@ -95,8 +97,12 @@ impl TemporalEffect {
         Ok(Self {
             kind,
             history: PingPong::new([
-                image("history.0", AO_FORMAT)?,
-                image("history.1", AO_FORMAT)?,
+                image("history.0", HISTORY_FORMAT)?,
+                image("history.1", HISTORY_FORMAT)?,
+            ]),
+            moments: PingPong::new([
+                image("moments.0", MOMENTS_FORMAT)?,
+                image("moments.1", MOMENTS_FORMAT)?,
             ]),
             state: image("state", STATE_FORMAT)?,
             counters: counters::create_gpu_buffer(

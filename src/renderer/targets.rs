@@ -19,8 +19,17 @@ pub const RSM_COLOR_FORMATS: [vk::Format; 3] = [
     vk::Format::R16G16B16A16_SFLOAT,
 ];
 pub const DIRECT_FORMAT: vk::Format = vk::Format::R16G16B16A16_SFLOAT;
-/// AO value (r) and number of accumulated estimates (a, exact in fp16 up to 2048).
+/// AO / visibility images of the effects without history (value in r).
 pub const AO_FORMAT: vk::Format = vk::Format::R16G16B16A16_SFLOAT;
+/// A temporal effect's history: rgb value, a = estimates accumulated. fp32 so that every
+/// update of a running mean counts: in fp16 a value in [0.5, 1) ignores changes below 2.4e-4,
+/// which the 36th pattern of a mean (1/37 of a difference of 0.01) already is.
+pub const HISTORY_FORMAT: vk::Format = vk::Format::R32G32B32A32_SFLOAT;
+/// The moments history beside it (r: mean squared luminance of the estimates, g: the side of
+/// a pending gate crossing of the gated mean, see shaders/include/temporal.glsl).
+/// rgba32f rather than rg32f: a storage format every Vulkan device supports without
+/// shaderStorageImageExtendedFormats.
+pub const MOMENTS_FORMAT: vk::Format = vk::Format::R32G32B32A32_SFLOAT;
 pub const STATE_FORMAT: vk::Format = vk::Format::R32_UINT;
 pub const OUTPUT_FORMAT: vk::Format = vk::Format::R8G8B8A8_UNORM;
 
