@@ -31,14 +31,14 @@ bool tap_valid(ivec2 t, vec3 p, float eps) {
 }
 
 // History at the reprojected point: bilinear over the four taps around it when all hold this
-// surface, the nearest texel otherwise. Sub-1/1000-pixel motion is rounding noise of eq 1 (a
-// static camera): the texel itself is reused, or fp16 history would drift by blending.
+// surface, the nearest texel otherwise. A static camera (decided on the CPU) reuses the
+// texel itself: eq 1's rounding noise would otherwise blend neighbours into a converged value
+// every frame, and that noise grows with the coordinates' distance from the origin.
 vec4 resample(vec2 f, ivec2 nearest, vec3 p, float eps) {
     vec2 g = f - 0.5;
-    ivec2 base = ivec2(floor(g));
+    ivec2 base = ivec2(floor(g)); // f is clamped to [-1, size + 1]: defined conversion
     vec2 w = g - vec2(base);
-    bool still = all(lessThan(abs(w - round(w)), vec2(1e-3)));
-    bool all_valid = !still;
+    bool all_valid = frame.camera_static == 0u;
     for (int k = 0; k < 4 && all_valid; ++k)
         all_valid = tap_valid(base + ivec2(k & 1, k >> 1), p, eps);
     if (!all_valid) return texelFetch(history_prev, nearest, 0);
@@ -68,7 +68,10 @@ void main() {
                 vec4 clip = frame.prev_view_proj * vec4(p, 1.0); // eq 1
                 if (clip.w > 0.0) {
                     vec2 f = (clip.xy / clip.w * 0.5 + 0.5) * vec2(frame.size);
-                    ivec2 nearest = ivec2(floor(f));
+                    // Unmoved camera: the pixel is its own previous position.
+                    if (frame.camera_static != 0u) f = vec2(pixel) + 0.5;
+                    ivec2 nearest = texel_of(f, vec2(frame.size));
+                    f = clamp(f, vec2(-1.0), vec2(frame.size) + 1.0);
                     float eps = disocclusion_epsilon(p, texelFetch(g_normal, pixel, 0).xyz);
                     if (tap_valid(nearest, p, eps)) { // eqs 2-3 on the nearest texel
                         history = resample(f, nearest, p, eps);

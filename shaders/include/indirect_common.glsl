@@ -21,4 +21,10 @@ vec3 fresh_gather(vec3 p, vec3 n, bool refresh, ivec2 seed_pixel) {
                    : rsm_gather(p, n, float(effect.pattern), 1u, seed_pixel);
 }
 
+// The value a pass computes for a pixel at p: the gather, or with the test input
+// (IndirectInput::Ramp) p itself, a linear function with a known value at every pixel.
+vec3 indirect_value(vec3 p, vec3 n, bool refresh, ivec2 seed_pixel) {
+    return frame.indirect_ramp != 0u ? p : fresh_gather(p, n, refresh, seed_pixel);
+}
+
 #endif // INDIRECT_COMMON_GLSL
