@@ -85,3 +85,36 @@ pub fn frame_block(config: &RenderConfig, f: &FrameInputs<'_>) -> FrameBlock {
         indirect_ramp: (ind.input == IndirectInput::Ramp) as u32,
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scene::cornell_box;
+
+    /// `camera_static` is set exactly when last frame's view-projection equals this one's:
+    /// the smallest representable change of one entry clears it.
+    #[test]
+    fn camera_static_means_an_identical_view_projection() {
+        let scene = cornell_box();
+        let config = RenderConfig::default();
+        let aspect = config.width as f32 / config.height as f32;
+        let current = scene.camera.view_proj(aspect);
+        let mut moved = current.to_cols_array();
+        moved[12] = f32::from_bits(moved[12].to_bits() + 1);
+        let block = |prev_view_proj| {
+            frame_block(
+                &config,
+                &FrameInputs {
+                    camera: &scene.camera,
+                    prev_view_proj,
+                    light: &scene.light,
+                    ambient: scene.ambient,
+                    frame: 1,
+                    scene_radius: 1.0,
+                },
+            )
+        };
+        assert_eq!(block(current).camera_static, 1);
+        assert_eq!(block(Mat4::from_cols_array(&moved)).camera_static, 0);
+    }
+}
