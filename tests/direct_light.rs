@@ -1,5 +1,6 @@
 //! Direct light with PCF shadows on the Cornell box at 128x128, checked against the CPU:
-//! irradiance from the spot light, occlusion by the tall block, and the PCF penumbra.
+//! irradiance from the spot light, occlusion by the tall block, and the PCF penumbra; and a
+//! spot with a hard edge (inner angle at or past the outer one).
 
 mod common;
 

@@ -1,6 +1,8 @@
 //! One-bounce indirect light from the reflective shadow map: the full gather against a CPU
 //! evaluation of eq 9, convergence of the sampled gather with reuse, the screen-space
-//! visibility test, the half-resolution discard mask, and the work skipped after convergence.
+//! visibility test, the half-resolution discard mask, and the work skipped after convergence;
+//! precision: the RSM flux in fp16 at 1024², the fixed-point R2 sequence, and a linear ramp
+//! through the half-resolution chain.
 
 mod common;
 

@@ -1,6 +1,6 @@
 //! SSAO with the reverse reprojection cache, checked against analytic cases, a many-sample
-//! reference of the same estimator, a CPU reprojection, the GPU work counters, and a long
-//! jittering run.
+//! reference of the same estimator, a CPU reprojection, the GPU work counters, a long
+//! jittering run, and a static camera far from the origin.
 
 mod common;
 
