@@ -44,7 +44,7 @@ void main() {
         if (position.w != 0.0 &&
             (state == STATE_NEW || state == STATE_ACCUMULATING || state == STATE_REFRESH)) {
             bool refresh = state == STATE_REFRESH;
-            vec4 fresh = fresh_gather(position.xyz, texelFetch(g_normal, pixel, 0).xyz, refresh, pixel);
+            vec4 fresh = indirect_value(position.xyz, texelFetch(g_normal, pixel, 0).xyz, refresh, pixel);
             merge(pixel, imageLoad(history, pixel), fresh, refresh);
 #ifndef FIXUP
             atomicAdd(group_computed, 1u);

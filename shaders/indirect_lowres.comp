@@ -1,9 +1,10 @@
 #version 460
 // Half-resolution RSM gather over the 16x16 blocks the reprojection listed: each workgroup
-// computes the block's 8x8 low-resolution pixels plus a one-pixel apron (10x10) into the
-// block's own slot of the low-resolution buffer, so the upsampling of the block reads only
-// values computed this frame. A low-resolution pixel samples the G-buffer at its top-left
-// full-resolution texel.
+// computes the block's 8x8 low-resolution pixels plus a one-pixel apron on the right and
+// bottom (9x9) into the block's own slot of the low-resolution buffer, so the upsampling of
+// the block reads only values computed this frame. Low-resolution pixel i samples the G-buffer
+// at full-resolution texel 2i (the top-left of its 2x2 block), where indirect_upsample.comp's
+// weights place it.
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_samplerless_texture_functions : require
 #include "frame.glsl"
@@ -12,7 +13,7 @@
 #include "counters.glsl"
 #include "effect.glsl"
 
-layout(local_size_x = 10, local_size_y = 10) in;
+layout(local_size_x = 9, local_size_y = 9) in;
 
 layout(set = 1, binding = 6, std430) buffer LowRes { vec4 lowres[]; };
 
@@ -25,7 +26,7 @@ void main() {
     barrier();
     uint packed = counters.data[gl_WorkGroupID.x];
     ivec2 block = ivec2(packed & 0xffffu, packed >> 16);
-    ivec2 low = block * 8 - 1 + ivec2(gl_LocalInvocationID.xy);
+    ivec2 low = block * 8 + ivec2(gl_LocalInvocationID.xy);
     ivec2 low_size = ivec2((frame.size + 1u) / 2u);
     vec4 value = vec4(0.0);
     if (all(greaterThanEqual(low, ivec2(0))) && all(lessThan(low, low_size))) {
@@ -34,11 +35,11 @@ void main() {
         if (position.w != 0.0) {
             bool refresh = in_refresh_tile(block * 16);
             vec3 n = texelFetch(g_normal, full, 0).xyz;
-            value = fresh_gather(position.xyz, n, refresh, low);
+            value = indirect_value(position.xyz, n, refresh, low);
             atomicAdd(group_computed, 1u);
         }
     }
-    lowres[gl_WorkGroupID.x * 100u + gl_LocalInvocationIndex] = value;
+    lowres[gl_WorkGroupID.x * 81u + gl_LocalInvocationIndex] = value;
     barrier();
     if (gl_LocalInvocationIndex == 0u && group_computed > 0u)
         atomicAdd(counters.computed_pixels, group_computed);

@@ -1,8 +1,8 @@
 #version 460
 // Geometry-aware upsampling of the half-resolution gather (Lin 2013 section 4): each
-// full-resolution pixel that needs work tests its four low-resolution neighbours (normal within
-// ~25 degrees, and on the pixel's tangent plane within two pixel footprints) and interpolates
-// bilinearly from the accepted ones; a pixel with none is discarded, marked in the mask
+// full-resolution pixel that needs work tests the low-resolution samples that carry bilinear
+// weight at its position (one, two or four; normal within ~25 degrees, and on the pixel's
+// tangent plane within two pixel footprints) and interpolates bilinearly from the accepted ones; a pixel with none is discarded, marked in the mask
 // (Figure 4.1) and appended to the fix-up list for a full-resolution gather.
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_samplerless_texture_functions : require
@@ -38,24 +38,29 @@ void main() {
     vec3 p = texelFetch(g_position, pixel, 0).xyz;
     vec3 n = texelFetch(g_normal, pixel, 0).xyz;
     float footprint = 2.0 * distance(p, frame.camera_pos) * frame.tan_half_fov / float(frame.size.y);
-    vec2 f = (vec2(pixel) + 0.5) * 0.5 - 0.5;
-    ivec2 base = ivec2(floor(f));
-    vec2 w = f - vec2(base);
+    // Low-resolution pixel i holds the sample of full-resolution texel 2i, so in low-resolution
+    // units this pixel sits at pixel / 2: an even pixel is its own sample (weight 1), an odd
+    // one lies halfway between two samples. Neighbours base + 0..1 stay inside the block's 9x9
+    // slot.
+    ivec2 base = pixel >> 1;
+    vec2 w = vec2(pixel & 1) * 0.5;
     ivec2 low_size = ivec2((frame.size + 1u) / 2u);
-    ivec2 apron_origin = block * 8 - 1;
+    ivec2 apron_origin = block * 8;
     vec4 sum = vec4(0.0);
     float weight_sum = 0.0;
     for (int k = 0; k < 4; ++k) {
         ivec2 o = ivec2(k & 1, k >> 1);
         ivec2 low = base + o;
-        if (any(lessThan(low, ivec2(0))) || any(greaterThanEqual(low, low_size))) continue;
+        float weight = (o.x == 1 ? w.x : 1.0 - w.x) * (o.y == 1 ? w.y : 1.0 - w.y);
+        // Only samples that carry weight count: an accepted zero-weight one must not keep a
+        // pixel whose weighted samples were all rejected from the fix-up.
+        if (weight == 0.0 || any(greaterThanEqual(low, low_size))) continue;
         vec4 g = texelFetch(g_position, low * 2, 0);
         if (g.w == 0.0) continue;
         if (dot(texelFetch(g_normal, low * 2, 0).xyz, n) < NORMAL_ACCEPT) continue;
         if (abs(dot(n, g.xyz - p)) > PLANE_ACCEPT * footprint) continue;
-        float weight = (o.x == 1 ? w.x : 1.0 - w.x) * (o.y == 1 ? w.y : 1.0 - w.y);
         ivec2 local = low - apron_origin;
-        sum += weight * lowres[gl_WorkGroupID.x * 100u + uint(local.y * 10 + local.x)];
+        sum += weight * lowres[gl_WorkGroupID.x * 81u + uint(local.y * 9 + local.x)];
         weight_sum += weight;
     }
     bool discarded = weight_sum <= 0.0;

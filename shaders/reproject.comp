@@ -34,26 +34,25 @@ bool tap_valid(ivec2 t, vec3 p, float eps) {
 
 // History at the reprojected point: bilinear over the four taps around it when all hold this
 // surface, the nearest texel otherwise; the moments (mean squared luminance, pending gate
-// crossing) with the same weights.
-// Sub-1/1000-pixel motion is rounding noise of eq 1 (a static camera): the texel itself is
-// reused, or the history would drift by blending.
-vec4 resample(vec2 f, ivec2 nearest, vec3 p, float eps, out vec2 m2) {
+// crossing) with the same weights. A static camera (decided on the CPU) reuses the
+// texel itself: eq 1's rounding noise would otherwise blend neighbours into a converged value
+// every frame, and that noise grows with the coordinates' distance from the origin.
+vec4 resample(vec2 f, ivec2 nearest, vec3 p, float eps, out vec2 moments) {
     vec2 g = f - 0.5;
-    ivec2 base = ivec2(floor(g));
+    ivec2 base = ivec2(floor(g)); // f is clamped to [-1, size + 1]: defined conversion
     vec2 w = g - vec2(base);
-    bool still = all(lessThan(abs(w - round(w)), vec2(1e-3)));
-    bool all_valid = !still;
+    bool all_valid = frame.camera_static == 0u;
     for (int k = 0; k < 4 && all_valid; ++k)
         all_valid = tap_valid(base + ivec2(k & 1, k >> 1), p, eps);
     if (!all_valid) {
-        m2 = texelFetch(moments_prev, nearest, 0).rg;
+        moments = texelFetch(moments_prev, nearest, 0).rg;
         return texelFetch(history_prev, nearest, 0);
     }
     vec2 m00 = texelFetch(moments_prev, base, 0).rg;
     vec2 m10 = texelFetch(moments_prev, base + ivec2(1, 0), 0).rg;
     vec2 m01 = texelFetch(moments_prev, base + ivec2(0, 1), 0).rg;
     vec2 m11 = texelFetch(moments_prev, base + ivec2(1, 1), 0).rg;
-    m2 = mix(mix(m00, m10, w.x), mix(m01, m11, w.x), w.y);
+    moments = mix(mix(m00, m10, w.x), mix(m01, m11, w.x), w.y);
     vec4 h00 = texelFetch(history_prev, base, 0);
     vec4 h10 = texelFetch(history_prev, base + ivec2(1, 0), 0);
     vec4 h01 = texelFetch(history_prev, base + ivec2(0, 1), 0);
@@ -72,7 +71,7 @@ void main() {
     uint state = STATE_BACKGROUND;
     if (!outside_frame(pixel)) {
         vec4 history = vec4(0.0);
-        vec2 m2 = vec2(0.0);
+        vec2 moments = vec2(0.0);
         vec4 position = texelFetch(g_position, pixel, 0);
         if (position.w != 0.0) {
             vec3 p = position.xyz;
@@ -81,23 +80,26 @@ void main() {
                 vec4 clip = frame.prev_view_proj * vec4(p, 1.0); // eq 1
                 if (clip.w > 0.0) {
                     vec2 f = (clip.xy / clip.w * 0.5 + 0.5) * vec2(frame.size);
-                    ivec2 nearest = ivec2(floor(f));
+                    // Unmoved camera: the pixel is its own previous position.
+                    if (frame.camera_static != 0u) f = vec2(pixel) + 0.5;
+                    ivec2 nearest = texel_of(f, vec2(frame.size));
+                    f = clamp(f, vec2(-1.0), vec2(frame.size) + 1.0);
                     float eps = disocclusion_epsilon(p, texelFetch(g_normal, pixel, 0).xyz);
                     if (tap_valid(nearest, p, eps)) { // eqs 2-3 on the nearest texel
-                        history = resample(f, nearest, p, eps, m2);
+                        history = resample(f, nearest, p, eps, moments);
                         state = history.a >= float(frame.rotation_limit) ? STATE_CONVERGED : STATE_ACCUMULATING;
                     }
                 }
             }
             if (state == STATE_NEW) {
                 history = vec4(0.0);
-                m2 = vec2(0.0);
+                moments = vec2(0.0);
                 atomicAdd(group_disoccluded, 1u);
             }
             if (in_refresh_tile(pixel)) state = STATE_REFRESH;
         }
         imageStore(history_cur, pixel, history);
-        imageStore(moments_cur, pixel, vec4(m2, 0.0, 0.0));
+        imageStore(moments_cur, pixel, vec4(moments, 0.0, 0.0));
         imageStore(state_out, pixel, uvec4(state));
         if (state == STATE_NEW || state == STATE_ACCUMULATING || state == STATE_REFRESH) {
             uvec2 q = gl_LocalInvocationID.xy / 8u;

@@ -1,6 +1,7 @@
 #version 460
 // Reflective shadow map MRT (Dachsbacher & Stamminger 2005): world position, normal and the
-// flux each texel reflects. The depth attachment of the same pass is the shadow map.
+// flux each texel reflects, stored per unit solid angle and before the cone falloff (see
+// below). The depth attachment of the same pass is the shadow map.
 // @permutation flat: 
 // @permutation textured: TEXTURED
 #extension GL_GOOGLE_include_directive : require
@@ -31,15 +32,13 @@ void main() {
 #ifdef TEXTURED
     albedo *= texture(sampler2D(diffuse_texture, diffuse_sampler), v_uv).rgb;
 #endif
-    // Flux through this texel: I(w) times the texel's solid angle. On the image plane at unit
-    // distance a texel has area (2 tan(fov/2) / N)^2; seen off-axis at angle t it subtends
-    // that area times cos^3(t). All of it lands on this surface, which reflects albedo of it.
-    vec3 dir = safe_normalize(-to_light, frame.light_dir);
-    float cos_axis = max(dot(dir, frame.light_dir), 0.0);
-    float texel = 2.0 * frame.light_tan_half_fov / frame.shadow_map_size;
-    float solid_angle = texel * texel * cos_axis * cos_axis * cos_axis;
-    vec3 flux = albedo * frame.light_intensity * spot_factor(dir) * solid_angle;
+    // The flux this texel reflects is albedo x I x spot factor x the texel's solid angle
+    // (vpl_flux in rsm_gather.glsl). The target is fp16, whose normal range ends at 6.1e-5:
+    // the solid angle scales as 1/N^2 (3.5e-5 at the Cornell cone's edge with N = 512) and
+    // the spot factor runs to 0 at the cone's edge, so the full product would be subnormal or
+    // zero on large maps. Stored is albedo x I [W/sr], whose magnitude does not depend on N or
+    // on the cone; the gather multiplies the two factors back in fp32.
     out_position = vec4(v_position, 1.0);
     out_normal = vec4(n, 0.0);
-    out_flux = vec4(flux, 1.0);
+    out_flux = vec4(albedo * frame.light_intensity, 1.0);
 }

@@ -1,5 +1,6 @@
 //! Direct light with PCF shadows on the Cornell box at 128x128, checked against the CPU:
-//! irradiance from the spot light, occlusion by the tall block, and the PCF penumbra.
+//! irradiance from the spot light, occlusion by the tall block, and the PCF penumbra; and a
+//! spot with a hard edge (inner angle at or past the outer one).
 
 mod common;
 
@@ -269,5 +270,67 @@ fn pcf_penumbra_is_monotone_across_the_shadow_edge() {
     assert!(edges >= 20, "found only {edges} clean shadow edges to test");
     drop(soft);
     drop(hard);
+    common::assert_clean(&ctx);
+}
+
+/// A spot whose inner angle equals or exceeds the outer one has a hard edge at the outer
+/// angle on the GPU as on the CPU (`SpotLight::spot_factor`; smoothstep is undefined there):
+/// seen from above, every unshadowed floor pixel's direct light is finite and matches the
+/// CPU's irradiance at its G-buffer point, inside the cone and (zero) outside it.
+#[test]
+fn spot_with_inner_at_or_past_outer_has_a_hard_edge() {
+    let ctx = common::context();
+    let size = 64;
+    let albedo = Vec3::new(0.725, 0.71, 0.68);
+    for (inner, outer) in [(20.0, 20.0), (25.0, 20.0)] {
+        let mut scene = common::cornell_from_above(0.0, 0.0, 60.0);
+        scene.light.inner_deg = inner;
+        scene.light.outer_deg = outer;
+        let mut r = common::render(&ctx, scene, size, Pcf::HARD, 1);
+        let direct = common::read(&mut r, Target::Direct);
+        let pos = common::read(&mut r, Target::GPosition);
+        let nrm = common::read(&mut r, Target::GNormal);
+        let light = r.scene.light;
+        let cos_outer = outer.to_radians().cos();
+        let (mut inside, mut outside) = (0, 0);
+        for y in 0..size {
+            for x in 0..size {
+                let gpu = direct.texel(x, y);
+                assert!(gpu.iter().all(|c| c.is_finite()), "({x},{y}): {gpu:?}");
+                let p = pos.texel(x, y);
+                let (p, n) = (Vec3::new(p[0], p[1], p[2]), nrm.texel(x, y));
+                let n = Vec3::new(n[0], n[1], n[2]);
+                let to_p = (p - light.position).normalize();
+                // Points within fp32 noise of the edge may fall either side of it.
+                let edge = (to_p.dot(light.direction.normalize()) - cos_outer).abs() < 1e-4;
+                if pos.texel(x, y)[3] == 0.0 || !on_floor(p, n) || edge {
+                    continue;
+                }
+                if occlusion_around_on(&r.scene, p, n, 0.03) != Some(false) {
+                    continue;
+                }
+                let expected = albedo / PI * light.irradiance(p, n);
+                for c in 0..3 {
+                    assert!(
+                        (gpu[c] - expected[c]).abs() <= 0.02 * expected[c] + 1e-6,
+                        "inner {inner} outer {outer}, ({x},{y}) channel {c}: GPU {} vs CPU {}",
+                        gpu[c],
+                        expected[c]
+                    );
+                }
+                if light.spot_factor(to_p) > 0.0 {
+                    inside += 1;
+                } else {
+                    outside += 1;
+                }
+            }
+        }
+        eprintln!("inner {inner} outer {outer}: {inside} pixels inside, {outside} outside");
+        assert!(
+            inside >= 100 && outside >= 100,
+            "{inside} inside, {outside} outside"
+        );
+        drop(r);
+    }
     common::assert_clean(&ctx);
 }

@@ -1,11 +1,15 @@
 //! One-bounce indirect light from the reflective shadow map: the full gather against a CPU
 //! evaluation of eq 9, convergence of the sampled gather with reuse, the screen-space
-//! visibility test, the half-resolution discard mask, and the work skipped after convergence.
+//! visibility test, the half-resolution discard mask, and the work skipped after convergence;
+//! precision: the RSM flux in fp16 at 1024², the fixed-point R2 sequence, and a linear ramp
+//! through the half-resolution chain.
 
 mod common;
 
 use glam::Vec3;
-use ssgi::renderer::config::{Effects, IndirectConfig, RenderConfig, TemporalConfig};
+use ssgi::renderer::config::{
+    Effects, IndirectConfig, IndirectInput, RenderConfig, TemporalConfig,
+};
 use ssgi::renderer::pcf::Pcf;
 use ssgi::renderer::targets::Target;
 use ssgi::renderer::Renderer;
@@ -57,6 +61,16 @@ fn v3(t: [f32; 4]) -> Vec3 {
     Vec3::new(t[0], t[1], t[2])
 }
 
+/// Flux of the VPL at RSM texel (x, y), world position q, from the stored albedo x intensity:
+/// times the CPU's cone factor and the texel's solid angle ((2 tan(fov/2) / N)^2 cos^3 off the
+/// axis).
+fn vpl_flux(light: &SpotLight, flux: &ImageData, x: u32, y: u32, q: Vec3) -> Vec3 {
+    let side = 2.0 * (0.5 * light.frustum_fov_deg()).to_radians().tan() / flux.width as f32;
+    let dir = (q - light.position).normalize();
+    let cos_axis = dir.dot(light.direction.normalize()).max(0.0);
+    v3(flux.texel(x, y)) * light.spot_factor(dir) * side * side * cos_axis.powi(3)
+}
+
 /// Eq 9 summed over every RSM texel on the CPU, with the shader's texel-size distance floor.
 fn cpu_gather(light: &SpotLight, rsm: [&ImageData; 3], p: Vec3, n: Vec3) -> Vec3 {
     let [pos, nrm, flux] = rsm;
@@ -80,7 +94,7 @@ fn cpu_gather(light: &SpotLight, rsm: [&ImageData; 3], p: Vec3, n: Vec3) -> Vec3
             let texel = 2.0 * depth * tan_half / size as f32;
             let dir = d / d2.sqrt();
             let nq = v3(nrm.texel(x, y));
-            sum += v3(flux.texel(x, y)) * n.dot(dir).max(0.0) * nq.dot(-dir).max(0.0)
+            sum += vpl_flux(light, flux, x, y, q) * n.dot(dir).max(0.0) * nq.dot(-dir).max(0.0)
                 / d2.max(texel * texel);
         }
     }
@@ -94,6 +108,7 @@ fn full_gather_matches_eq_9_on_the_cpu() {
         vpls: 0,
         visibility: false,
         half_res: false,
+        ..Default::default()
     };
     let (mut r, _) = run(&ctx, cornell_box(), config(64, 32, ind, no_reuse()), 1);
     let gpu = r.read(Target::Indirect).unwrap();
@@ -190,7 +205,7 @@ fn sampled_gather_with_reuse_converges_to_the_full_gather() {
     );
 
     // Skipping after convergence: the RSM is not re-rendered and only the refresh tile (16x16
-    // pixels: 10x10 low-resolution gathers with the apron) is recomputed.
+    // pixels: 9x9 low-resolution gathers with the apron) is recomputed.
     for t in &timings[timings.len() - 3..] {
         let get = |name: &str| {
             t.counters
@@ -285,6 +300,7 @@ fn visibility_test_removes_light_through_a_wall() {
             vpls: 512,
             visibility,
             half_res: false,
+            ..Default::default()
         };
         let (mut r, _) = run(&ctx, wall_scene(), config(96, 64, ind, no_reuse()), 1);
         let pos = r.read(Target::GPosition).unwrap();
@@ -337,7 +353,8 @@ fn visibility_test_removes_light_through_a_wall() {
 
 /// The half-resolution discard mask equals the acceptance rule applied on the CPU to the
 /// read-back G-buffer (normals within ~25 degrees, tangent-plane distance within two
-/// footprints, for the four low-resolution neighbours).
+/// footprints, for the low-resolution samples with bilinear weight: sample i sits at
+/// full-resolution texel 2i).
 #[test]
 fn discard_mask_matches_the_cpu_rule() {
     let ctx = common::context();
@@ -346,6 +363,7 @@ fn discard_mask_matches_the_cpu_rule() {
         vpls: 16,
         visibility: false,
         half_res: true,
+        ..Default::default()
     };
     let (mut r, _) = run(&ctx, cornell_box(), config(size, 32, ind, no_reuse()), 1);
     let pos = r.read(Target::GPosition).unwrap();
@@ -363,12 +381,13 @@ fn discard_mask_matches_the_cpu_rule() {
             }
             let (pv, n) = (v3(p), v3(nrm.texel(x, y)));
             let footprint = 2.0 * pv.distance(cam.position) * tan_half / size as f32;
-            let fx = (x as f32 + 0.5) * 0.5 - 0.5;
-            let fy = (y as f32 + 0.5) * 0.5 - 0.5;
-            let (bx, by) = (fx.floor() as i32, fy.floor() as i32);
+            let (bx, by) = ((x / 2) as i32, (y / 2) as i32);
             let accepted = (0..4).any(|k| {
-                let (lx, ly) = (bx + (k & 1), by + (k >> 1));
-                if lx < 0 || ly < 0 || lx >= low || ly >= low {
+                let (ox, oy) = (k & 1, k >> 1);
+                // A weight of 0 when the pixel is even along that axis (it is its own sample).
+                let weighted = (ox == 0 || x % 2 == 1) && (oy == 0 || y % 2 == 1);
+                let (lx, ly) = (bx + ox, by + oy);
+                if !weighted || lx >= low || ly >= low {
                     return false;
                 }
                 let g = pos.texel(2 * lx as u32, 2 * ly as u32);
@@ -389,6 +408,278 @@ fn discard_mask_matches_the_cpu_rule() {
         "the Cornell box's edges must discard some pixels"
     );
     assert!(fraction >= 0.999, "mask agrees on {fraction}");
+    drop(r);
+    common::assert_clean(&ctx);
+}
+
+/// Raw fp16 channel `c` of texel (x, y) of an rgba16f read-back.
+fn half_bits(img: &ImageData, x: u32, y: u32, c: usize) -> u16 {
+    let i = (y as usize * img.width as usize + x as usize) * 8 + 2 * c;
+    u16::from_le_bytes([img.bytes[i], img.bytes[i + 1]])
+}
+
+/// Total flux the RSM's VPLs reflect, summed on the CPU from the stored values.
+fn rsm_total_flux(light: &SpotLight, pos: &ImageData, flux: &ImageData) -> Vec3 {
+    let mut sum = Vec3::ZERO;
+    for y in 0..pos.height {
+        for x in 0..pos.width {
+            let q = pos.texel(x, y);
+            if q[3] != 0.0 {
+                sum += vpl_flux(light, flux, x, y, v3(q));
+            }
+        }
+    }
+    sum
+}
+
+/// With a 1024² RSM (the texel solid angle ~1e-5 sr, times ~0.08 at the Cornell cone's edge)
+/// every texel with geometry inside the cone stores a normal fp16 value: exactly albedo x
+/// intensity of one of the box's materials, to fp16 rounding. The flux summed from the
+/// stored values equals the 256² map's total: the scale does not depend on the map size.
+#[test]
+fn rsm_flux_stays_normal_in_fp16_at_1024() {
+    let ctx = common::context();
+    let ind = IndirectConfig {
+        vpls: 16,
+        half_res: false,
+        ..Default::default()
+    };
+    let mut totals = Vec::new();
+    for rsm in [1024, 256] {
+        let (mut r, _) = run(&ctx, cornell_box(), config(8, rsm, ind, no_reuse()), 1);
+        let pos = r.read(Target::RsmPosition).unwrap();
+        let flux = r.read(Target::RsmFlux).unwrap();
+        assert_eq!(flux.format, ash::vk::Format::R16G16B16A16_SFLOAT);
+        let light = r.scene.light;
+        let expected: Vec<Vec3> = (r.scene.mesh.materials.iter())
+            .map(|m| Vec3::from_array(m.diffuse) * light.intensity)
+            .collect();
+        let mut lit = 0u32;
+        for y in 0..rsm {
+            for x in 0..rsm {
+                let q = pos.texel(x, y);
+                let dir = (v3(q) - light.position).normalize();
+                if q[3] == 0.0 || light.spot_factor(dir) <= 0.0 {
+                    continue;
+                }
+                for c in 0..3 {
+                    let exponent = (half_bits(&flux, x, y, c) >> 10) & 0x1f;
+                    assert!(
+                        (1..31).contains(&exponent),
+                        "texel ({x},{y}) channel {c}: {} is zero, subnormal or not finite",
+                        flux.texel(x, y)[c]
+                    );
+                }
+                // fp16 keeps 11 significant bits; the conversion may truncate (lavapipe's does),
+                // so the error is below one unit in the last place: 2^-10 relative.
+                let stored = v3(flux.texel(x, y));
+                let matches = |e: &Vec3| (stored - *e).abs().cmple(*e * 9.8e-4).all();
+                assert!(
+                    expected.iter().any(matches),
+                    "texel ({x},{y}) stores {stored}, not a material's albedo x intensity"
+                );
+                lit += 1;
+            }
+        }
+        assert!(lit > rsm * rsm / 2, "only {lit} lit texels");
+        totals.push(rsm_total_flux(&light, &pos, &flux));
+        drop(r);
+    }
+    let rel = ((totals[0] - totals[1]).abs() / totals[1]).max_element();
+    eprintln!(
+        "total reflected flux: 1024² {}, 256² {}, relative difference {rel:e}",
+        totals[0], totals[1]
+    );
+    // The maps differ only in how texels cover the box's open front and material borders
+    // (boundary error ~1/N: 2.4% between 64² and 1024²); a scale error would be a power of N.
+    assert!(rel < 0.01, "totals differ by {rel}");
+    common::assert_clean(&ctx);
+}
+
+/// `name = <...>` in the shader source: its `0x...u` literals, in order.
+fn shader_hex_constants(source: &str, name: &str) -> Vec<u32> {
+    let line = source
+        .lines()
+        .find(|l| l.contains(&format!("{name} =")))
+        .unwrap_or_else(|| panic!("{name} not in the shader"));
+    line.split("0x")
+        .skip(1)
+        .map(|h| u32::from_str_radix(h.split('u').next().unwrap(), 16).unwrap())
+        .collect()
+}
+
+/// The shader's R2 and golden-ratio constants are round(a 2^32) of the values derived here
+/// (the plastic number g, the real root of x^3 = x + 1: a = (1/g, 1/g^2); 1/phi), and its
+/// fixed-point arithmetic (uint wrap as fract, top 24 bits to float) reproduces the exact
+/// sequence fract(0.5 + i a + pattern / phi) to within 2^-24 + (i + pattern) 2^-33 for every
+/// point the largest gather uses (16384 VPLs, patterns up to the 2048 limit); fp32's
+/// float(i) * a is about 1e-3 off there.
+#[test]
+fn r2_sequence_is_exact_in_fixed_point() {
+    let source = include_str!("../shaders/include/rsm_gather.glsl");
+    let alpha = shader_hex_constants(source, "R2_ALPHA");
+    let golden = shader_hex_constants(source, "INV_GOLDEN_RATIO_FIXED");
+    let mut g = 1.5f64;
+    for _ in 0..50 {
+        g -= (g * g * g - g - 1.0) / (3.0 * g * g - 1.0);
+    }
+    let inv_phi = 2.0 / (1.0 + 5f64.sqrt());
+    let exact = [1.0 / g, 1.0 / (g * g), inv_phi];
+    let two32 = 2f64.powi(32);
+    assert_eq!(alpha.len(), 2);
+    assert_eq!(alpha[0] as f64, (exact[0] * two32).round());
+    assert_eq!(alpha[1] as f64, (exact[1] * two32).round());
+    assert_eq!(golden, [(exact[2] * two32).round() as u32]);
+    // The shader's r2_point(i, shift), with shift = pattern * INV_GOLDEN_RATIO_FIXED.
+    let point = |i: u32, pattern: u32| {
+        let shift = pattern.wrapping_mul(golden[0]);
+        let ux = 0x8000_0000u32
+            .wrapping_add(shift)
+            .wrapping_add(i.wrapping_mul(alpha[0]));
+        let uy = 0x8000_0000u32.wrapping_add(i.wrapping_mul(alpha[1]));
+        [ux, uy].map(|u| (u >> 8) as f32 * (1.0 / 16_777_216.0))
+    };
+    let mut worst = 0f64;
+    for pattern in [0u32, 1, 35, 2047] {
+        for i in 0..16384u32 {
+            let p = point(i, pattern);
+            let want = [
+                (0.5 + i as f64 * exact[0] + pattern as f64 * exact[2]).fract(),
+                (0.5 + i as f64 * exact[1]).fract(),
+            ];
+            for c in 0..2 {
+                assert!(
+                    (0.0..1.0).contains(&p[c]),
+                    "point {i} pattern {pattern}: {p:?}"
+                );
+                // Distance on the circle: a value just below 1 may come out just above 0.
+                let d = (p[c] as f64 - want[c]).abs();
+                let d = d.min(1.0 - d);
+                let bound = 2f64.powi(-24) + (i + pattern) as f64 * 2f64.powi(-33);
+                assert!(
+                    d <= bound,
+                    "point {i} pattern {pattern} axis {c}: off by {d:e}"
+                );
+                worst = worst.max(d);
+            }
+        }
+    }
+    eprintln!("largest deviation from the exact R2 points: {worst:e}");
+}
+
+/// End to end on the GPU: the sampled gather with the largest VPL count the configuration
+/// allows (16384, drawn from the fixed-point R2 sequence) matches the full gather over a 32²
+/// RSM closely.
+#[test]
+fn many_vpl_gather_matches_the_full_gather() {
+    let ctx = common::context();
+    let size = 16;
+    let sampled = IndirectConfig {
+        vpls: 16384,
+        half_res: false,
+        ..Default::default()
+    };
+    let full = IndirectConfig { vpls: 0, ..sampled };
+    let (mut a, _) = run(
+        &ctx,
+        cornell_box(),
+        config(size, 32, sampled, no_reuse()),
+        1,
+    );
+    let (mut b, _) = run(&ctx, cornell_box(), config(size, 32, full, no_reuse()), 1);
+    let mask = a.read(Target::GPosition).unwrap();
+    let error = relative_rmse(
+        &a.read(Target::Indirect).unwrap(),
+        &b.read(Target::Indirect).unwrap(),
+        &mask,
+    );
+    eprintln!("16384-VPL gather vs full gather: relative RMSE {error}");
+    assert!(error < 0.01, "relative RMSE {error}");
+    drop((a, b));
+    common::assert_clean(&ctx);
+}
+
+/// A plane facing the camera head-on (z = 0, seen along -z), so world x and y are affine in
+/// the pixel coordinates, and in (0, 2) where visible: an fp16 history then holds them to one
+/// unit in the last place, under 9.8e-4 (lavapipe truncates).
+fn ramp_scene() -> Scene {
+    let mut b = MeshBuilder::new();
+    let white = b.add_material(Material::colour("white", [0.8, 0.8, 0.8]));
+    let v = Vec3::new;
+    let corners = [
+        v(-5.0, -5.0, 0.0),
+        v(5.0, -5.0, 0.0),
+        v(5.0, 5.0, 0.0),
+        v(-5.0, 5.0, 0.0),
+    ];
+    b.add_flat_polygon(white, &corners, Vec3::Z);
+    let mut scene = cornell_box();
+    scene.name = "ramp".into();
+    scene.mesh = b.build();
+    scene.camera = Camera::new(v(1.0, 1.0, 2.5), v(1.0, 1.0, 0.0), 40.0, 0.05, 30.0);
+    scene.light = SpotLight {
+        position: v(1.0, 1.0, 2.0),
+        direction: Vec3::NEG_Z,
+        ..scene.light
+    };
+    scene
+}
+
+/// Half resolution reconstructs a linear ramp without a shift: with the ramp input every
+/// low-resolution sample holds its G-buffer texel's world position, and the upsampled value
+/// of every full-resolution pixel equals its own world position (bilinear interpolation is
+/// exact for a linear function when the weights match where the samples were taken) to 1e-3
+/// of the ramp's range. A sample position half a pixel off the weights' assumption errs by
+/// half a pixel's step, about 8e-3 of the range here. Width 64 and height 61 cover both
+/// parities; the last column has no sample to its right and is left out.
+#[test]
+fn half_resolution_reconstructs_a_linear_ramp() {
+    let ctx = common::context();
+    let (w, h) = (64u32, 61u32);
+    let ind = IndirectConfig {
+        vpls: 16,
+        half_res: true,
+        input: IndirectInput::Ramp,
+        ..Default::default()
+    };
+    let c = RenderConfig {
+        width: w,
+        height: h,
+        ..config(w, 32, ind, no_reuse())
+    };
+    let (mut r, _) = run(&ctx, ramp_scene(), c, 1);
+    let gpu = r.read(Target::Indirect).unwrap();
+    let pos = r.read(Target::GPosition).unwrap();
+    let mask = r.read(Target::DiscardMask).unwrap();
+    let low_w = w.div_ceil(2);
+    let pixels: Vec<(u32, u32)> = (0..h)
+        .flat_map(|y| (0..w).map(move |x| (x, y)))
+        .filter(|&(x, _)| x % 2 == 0 || x / 2 + 1 < low_w)
+        .collect();
+    let (mut lo, mut hi) = (Vec3::splat(f32::MAX), Vec3::splat(f32::MIN));
+    for &(x, y) in &pixels {
+        let p = pos.texel(x, y);
+        assert!(p[3] != 0.0, "({x},{y}) misses the plane");
+        assert_eq!(mask.texel(x, y)[0], 0.0, "({x},{y}) was discarded");
+        lo = lo.min(v3(p));
+        hi = hi.max(v3(p));
+    }
+    let range = hi - lo;
+    assert!(
+        range.x > 1.0 && range.y > 1.0 && lo.min_element() >= 0.0 && hi.max_element() < 2.0,
+        "{lo} .. {hi}"
+    );
+    let mut worst = Vec3::ZERO;
+    for &(x, y) in &pixels {
+        let error = (v3(gpu.texel(x, y)) - v3(pos.texel(x, y))).abs();
+        worst = worst.max(error);
+    }
+    let relative = worst.truncate() / range.truncate();
+    eprintln!("ramp reconstruction: largest error {worst} over range {range}: {relative}");
+    assert!(
+        relative.max_element() <= 1e-3 && worst.z <= 1e-3 * range.x,
+        "largest error {worst}, range {range}"
+    );
     drop(r);
     common::assert_clean(&ctx);
 }

@@ -83,7 +83,7 @@ float ao_crytek(ivec2 pixel, vec3 p, float pattern) {
         vec4 clip = frame.view_proj * vec4(s, 1.0);
         if (clip.w <= 0.0) continue;
         vec2 uv = clip.xy / clip.w * 0.5 + 0.5;
-        ivec2 q_pixel = ivec2(floor(uv * vec2(frame.size)));
+        ivec2 q_pixel = texel_of(uv * vec2(frame.size), vec2(frame.size));
         if (outside_frame(q_pixel))
             continue;
         vec4 q = texelFetch(g_position, q_pixel, 0);

@@ -17,4 +17,13 @@ vec3 safe_normalize(vec3 v, vec3 fallback) {
     return len2 > 1e-20 ? v * inversesqrt(len2) : fallback;
 }
 
+// Texel holding the continuous image position x (in texels) of an image of `size` texels:
+// floor(x) after clamping x to [-1, size], so a position off the image (even infinite, from a
+// tiny clip w) stays off it, one texel out, and the float-to-int conversion is defined (GLSL
+// leaves it undefined outside int's range). NaN compares false and maps to -1.
+ivec2 texel_of(vec2 x, vec2 size) {
+    vec2 lo = mix(vec2(-1.0), x, greaterThanEqual(x, vec2(-1.0)));
+    return ivec2(floor(min(lo, size)));
+}
+
 #endif // COMMON_GLSL

@@ -46,11 +46,17 @@ layout(set = 0, binding = 0, std140) uniform Frame {
     uint vpl_count;            // VPLs per gather (0 = every RSM texel)
     uint vpl_visibility;       // screen-space visibility test of each VPL (0/1)
     float vpl_march_near_px;   // nearest step of that visibility march [px]
+    uint camera_static;        // 1 when prev_view_proj equals view_proj exactly (CPU test)
+    uint indirect_ramp;        // test input: indirect passes output world position (0/1)
 } frame;
 
-// Smooth spot cone: 1 inside the inner angle, 0 outside the outer, Hermite in between.
+// Smooth spot cone: 1 inside the inner angle, 0 outside the outer, Hermite in between. As on
+// the CPU (SpotLight::spot_factor), an inner angle at or past the outer one makes the edge a
+// hard step at the outer angle: smoothstep is undefined for edge0 >= edge1.
 float spot_factor(vec3 to_point_unit) {
     float c = dot(frame.light_dir, to_point_unit);
+    if (!(c >= frame.light_cos_outer)) return 0.0; // also NaN
+    if (frame.light_cos_inner <= frame.light_cos_outer) return 1.0;
     return smoothstep(frame.light_cos_outer, frame.light_cos_inner, c);
 }
 

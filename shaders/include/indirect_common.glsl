@@ -32,4 +32,12 @@ vec4 fresh_gather(vec3 p, vec3 n, bool refresh, ivec2 seed_pixel) {
     return vec4(sum, sum2) / float(patterns);
 }
 
+// The value a pass computes for a pixel at p (rgb, a = mean squared luminance of its
+// patterns): the gather, or with the test input (IndirectInput::Ramp) p itself, a linear
+// function with a known value at every pixel.
+vec4 indirect_value(vec3 p, vec3 n, bool refresh, ivec2 seed_pixel) {
+    if (frame.indirect_ramp != 0u) return vec4(p, dot(p, LUMA) * dot(p, LUMA));
+    return fresh_gather(p, n, refresh, seed_pixel);
+}
+
 #endif // INDIRECT_COMMON_GLSL

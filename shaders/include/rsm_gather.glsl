@@ -6,6 +6,18 @@
 
 #include "frame.glsl"
 
+// Flux Phi_q of the VPL at RSM texel `texel`, world position q: the stored albedo x I times
+// the factors rsm.frag leaves out to keep fp16 values normal, the spot's cone factor and the
+// texel's solid angle. On the light's image plane at unit distance a texel has area
+// (2 tan(fov/2) / N)^2; seen off-axis at angle t it subtends that area times cos^3(t).
+vec3 vpl_flux(vec3 q, ivec2 texel) {
+    vec3 dir = safe_normalize(q - frame.light_pos, frame.light_dir);
+    float cos_axis = max(dot(dir, frame.light_dir), 0.0);
+    float side = 2.0 * frame.light_tan_half_fov / frame.shadow_map_size;
+    float solid_angle = side * side * cos_axis * cos_axis * cos_axis;
+    return texelFetch(rsm_flux, texel, 0).rgb * (spot_factor(dir) * solid_angle);
+}
+
 // Eq 9 for one VPL q at receiver p (normal n): Phi_q max(0, n.D) max(0, n_q.(-D)) / |q-p|^2.
 // |q-p|^2 is floored at the squared world size of one RSM texel at q: a VPL stands for a
 // texel-sized patch and the point-light law only holds beyond about its own size, so the
@@ -15,14 +27,13 @@ vec3 vpl_contribution(vec3 p, vec3 n, ivec2 texel) {
     vec4 q = texelFetch(rsm_position, texel, 0);
     if (q.w == 0.0) return vec3(0.0);
     vec3 nq = texelFetch(rsm_normal, texel, 0).xyz;
-    vec3 flux = texelFetch(rsm_flux, texel, 0).rgb;
     vec3 d = q.xyz - p;
     float d2 = dot(d, d);
     float depth = max(dot(q.xyz - frame.light_pos, frame.light_dir), 0.0);
     float texel_world = 2.0 * depth * frame.light_tan_half_fov / frame.shadow_map_size;
     if (d2 <= 0.0) return vec3(0.0);
     vec3 dir = d * inversesqrt(d2); // eq 10
-    return flux * max(dot(n, dir), 0.0) * max(dot(nq, -dir), 0.0) / max(d2, texel_world * texel_world);
+    return vpl_flux(q.xyz, texel) * max(dot(n, dir), 0.0) * max(dot(nq, -dir), 0.0) / max(d2, texel_world * texel_world);
 }
 
 // One point of the screen-space visibility march: false when the point at parameter t of the
@@ -31,7 +42,7 @@ vec3 vpl_contribution(vec3 p, vec3 n, ivec2 texel) {
 bool march_point_visible(vec3 p, vec3 q, float t) {
     vec4 cs = frame.view_proj * vec4(mix(p, q, t), 1.0);
     if (cs.w <= 0.0) return true;
-    ivec2 px = ivec2(floor((cs.xy / cs.w * 0.5 + 0.5) * vec2(frame.size)));
+    ivec2 px = texel_of((cs.xy / cs.w * 0.5 + 0.5) * vec2(frame.size), vec2(frame.size));
     if (outside_frame(px)) return true;
     vec4 g = texelFetch(g_position, px, 0);
     if (g.w == 0.0) return true;
@@ -65,10 +76,17 @@ vec3 vpl_term(vec3 p, vec3 n, ivec2 texel) {
     return c;
 }
 
-// The R2 low-discrepancy sequence (Roberts 2018): point i of the unit square. A closed form
-// with no inner loop (llvmpipe caps the iterations of a loop per invocation).
-vec2 r2_point(uint i) {
-    return fract(vec2(0.5) + float(i) * vec2(0.7548776662466927, 0.5698402909980532));
+// The R2 low-discrepancy sequence (Roberts 2018), point i of the unit square: fract(0.5 + i a)
+// with a = (1/g, 1/g^2), g the plastic number. In 0.32 fixed point (round(a 2^32)), where the
+// wrap of uint arithmetic is the fract: float(i) * a in fp32 keeps only about 1e-3 of the
+// fraction at i = 16384. `shift` (0.32 fixed point) is added to the first coordinate. The top
+// 24 bits convert exactly to a float below 1.
+const uvec2 R2_ALPHA = uvec2(0xC13FA9A9u, 0x91E10DA6u);
+// round(2^32 / phi): consecutive multiples mod 2^32 are maximally spread (per-pattern shifts).
+const uint INV_GOLDEN_RATIO_FIXED = 0x9E3779B9u;
+vec2 r2_point(uint i, uint shift) {
+    uvec2 u = uvec2(0x80000000u + shift, 0x80000000u) + i * R2_ALPHA;
+    return vec2(u >> 8u) * (1.0 / 16777216.0);
 }
 
 // Eq 9 summed over every RSM texel (the reference the sampled gather converges to). The
@@ -103,16 +121,18 @@ vec3 rsm_gather_sampled(vec3 p, vec3 n, float pattern, uint count, float seed) {
     float p_inner = 1.0 / (1.0 + 2.0 * log_ratio);  // probability of the inner disc
     float density = p_inner / (PI * r0 * r0); // C in p(x) = C / max(r, r0)^2
     float angle = frame.pattern_rotation * pattern + TWO_PI * seed;
-    float shift = fract(pattern * INV_GOLDEN_RATIO);
+    // Patterns are small non-negative integers (below MAX_PATTERNS): the conversion is exact.
+    uint shift = uint(pattern) * INV_GOLDEN_RATIO_FIXED;
     vec3 sum = vec3(0.0);
     for (uint i = 0u; i < count; ++i) {
-        vec2 u = r2_point(i);
-        float u1 = fract(u.x + shift);
+        vec2 u = r2_point(i, shift);
+        float u1 = u.x;
         float u2 = u.y;
         float r = u1 < p_inner ? r0 * sqrt(u1 / p_inner) : r0 * exp(log_ratio * (u1 - p_inner) / (1.0 - p_inner));
         float phi = TWO_PI * u2 + angle;
         vec2 x = c + r * vec2(cos(phi), sin(phi));
-        if (any(lessThan(x, vec2(0.0))) || any(greaterThanEqual(x, vec2(size)))) continue;
+        // Written so NaN fails too: the texel conversion below needs x inside the map.
+        if (!(all(greaterThanEqual(x, vec2(0.0))) && all(lessThan(x, vec2(size))))) continue;
         float weight = max(r, r0) * max(r, r0) / (density * r0 * r0);
         sum += weight * vpl_term(p, n, ivec2(floor(x)));
     }

@@ -71,7 +71,7 @@ float receiver_plane_depth(Receiver r, vec2 uv) {
 // darkens it anyway, so it counts as lit and the cone alone shapes that edge.
 float shadow_test(Receiver r, vec2 offset) {
     int size = int(frame.shadow_map_size);
-    ivec2 texel = ivec2(floor(r.uv * float(size) + offset));
+    ivec2 texel = texel_of(r.uv * float(size) + offset, vec2(size));
     if (any(lessThan(texel, ivec2(0))) || any(greaterThanEqual(texel, ivec2(size)))) return 1.0;
     float occluder = light_linear_depth(texelFetch(shadow_depth, texel, 0).r);
     float receiver = receiver_plane_depth(r, (vec2(texel) + 0.5) / float(size));

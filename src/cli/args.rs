@@ -159,6 +159,7 @@ impl SceneArgs {
                 vpls: self.vpls,
                 visibility: self.vpl_visibility,
                 half_res: self.half_res,
+                ..IndirectConfig::default()
             },
             temporal: TemporalConfig {
                 reuse: self.reuse,

@@ -28,7 +28,7 @@ use std::sync::Arc;
 /// 1 where the upsampling found no acceptable neighbour (Figure 4.1). Written only for the
 /// pixels recomputed this frame, so it is not discarded between frames.
 const DISCARD: Slot = Slot::Own(0);
-/// One 10x10 low-resolution tile (block plus apron) per listed block.
+/// One 9x9 low-resolution tile (block plus its right and bottom apron) per listed block.
 const LOWRES: Slot = Slot::OwnBuffer(0);
 
 /// Bindings 0-5 of every indirect pass.
@@ -160,11 +160,11 @@ impl IndirectEffect {
     fn create_sized(ctx: &Arc<Context>, c: &RenderConfig) -> Result<Sized> {
         let temporal = TemporalEffect::new(ctx, effect::INDIRECT, c.width, c.height)?;
         Ok(Sized {
-            // 10x10 texels of 16 bytes per block.
+            // 9x9 texels of 16 bytes per block.
             lowres: Buffer::new(
                 ctx,
                 "indirect.lowres",
-                temporal.max_blocks as u64 * 100 * 16,
+                temporal.max_blocks as u64 * 81 * 16,
                 vk::BufferUsageFlags::STORAGE_BUFFER,
                 MemoryLocation::GpuOnly,
             )?,

@@ -33,7 +33,8 @@ fn to_u8(v: f32) -> u8 {
 }
 
 /// A viewable RGBA8 picture of `data`: positions mapped from the scene bounds to 0..1,
-/// normals as n/2 + 1/2, depth and flux normalised by their range over the image, radiance
+/// normals as n/2 + 1/2, depth and flux (the RSM's stored albedo x intensity) normalised by their
+/// range over the image, radiance
 /// Reinhard-tonemapped.
 pub fn visualize(target: Target, data: &ImageData, bounds: &Aabb) -> Vec<u8> {
     if let Some(rgba) = data.rgba8() {

@@ -71,6 +71,22 @@ pub struct IndirectConfig {
     pub visibility: bool,
     /// Gather at half resolution, upsample geometry-aware, fix up discarded pixels.
     pub half_res: bool,
+    /// What the passes compute per pixel: the gather, or a test ramp. Not on the command line
+    /// and not in reports.
+    #[serde(skip)]
+    pub input: IndirectInput,
+}
+
+/// The value the indirect passes compute for a pixel before upsampling and accumulation.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum IndirectInput {
+    /// Eq 9 from the reflective shadow map.
+    #[default]
+    Gather,
+    /// Test input: the world position of the G-buffer texel each gather reads, as rgb. A
+    /// linear function with a known value at every pixel, so the half-resolution sample
+    /// positions and upsampling weights can be checked for an exact reconstruction.
+    Ramp,
 }
 
 impl IndirectConfig {
@@ -86,6 +102,7 @@ impl Default for IndirectConfig {
             vpls: 512,
             visibility: false,
             half_res: true,
+            input: IndirectInput::Gather,
         }
     }
 }

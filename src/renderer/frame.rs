@@ -1,7 +1,7 @@
 //! Per-frame constants: the `Frame` uniform block (shaders/include/frame.glsl) filled member by
 //! member through the struct build.rs generates from it.
 
-use super::config::{AoEstimator, Epsilon, IndirectConfig, RenderConfig};
+use super::config::{AoEstimator, Epsilon, IndirectConfig, IndirectInput, RenderConfig};
 use crate::scene::{Camera, SpotLight};
 pub use crate::shaders::FrameBlock;
 // Old path of the PCF types, until every user imports them from `renderer::pcf`.
@@ -34,8 +34,9 @@ pub fn frame_block(config: &RenderConfig, f: &FrameInputs<'_>) -> FrameBlock {
     };
     let (ao_directions, ao_steps) = ao.directions_steps();
     let ind = &config.indirect;
+    let view_proj = f.camera.view_proj(aspect);
     FrameBlock {
-        view_proj: f.camera.view_proj(aspect).to_cols_array(),
+        view_proj: view_proj.to_cols_array(),
         prev_view_proj: f.prev_view_proj.to_cols_array(),
         light_view_proj: light.view_proj().to_cols_array(),
         camera_pos: f.camera.position.to_array(),
@@ -78,5 +79,42 @@ pub fn frame_block(config: &RenderConfig, f: &FrameInputs<'_>) -> FrameBlock {
         vpl_count: ind.vpls,
         vpl_visibility: ind.visibility as u32,
         vpl_march_near_px: IndirectConfig::MARCH_NEAR_PX,
+        // Exact equality: an unmoved camera reuses each history texel as is, decided here
+        // rather than by a pixel threshold on eq 1, whose fp32 error grows with coordinates.
+        camera_static: (view_proj == f.prev_view_proj) as u32,
+        indirect_ramp: (ind.input == IndirectInput::Ramp) as u32,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scene::cornell_box;
+
+    /// `camera_static` is set exactly when last frame's view-projection equals this one's:
+    /// the smallest representable change of one entry clears it.
+    #[test]
+    fn camera_static_means_an_identical_view_projection() {
+        let scene = cornell_box();
+        let config = RenderConfig::default();
+        let aspect = config.width as f32 / config.height as f32;
+        let current = scene.camera.view_proj(aspect);
+        let mut moved = current.to_cols_array();
+        moved[12] = f32::from_bits(moved[12].to_bits() + 1);
+        let block = |prev_view_proj| {
+            frame_block(
+                &config,
+                &FrameInputs {
+                    camera: &scene.camera,
+                    prev_view_proj,
+                    light: &scene.light,
+                    ambient: scene.ambient,
+                    frame: 1,
+                    scene_radius: 1.0,
+                },
+            )
+        };
+        assert_eq!(block(current).camera_static, 1);
+        assert_eq!(block(Mat4::from_cols_array(&moved)).camera_static, 0);
     }
 }
