@@ -99,7 +99,7 @@ impl Effect {
             effects,
             ao: AoConfig::default(),
             indirect: IndirectConfig {
-                vpls: 64,
+                vpls: 512,
                 ..Default::default()
             },
             ..Default::default()
@@ -157,16 +157,6 @@ fn error(effect: Effect, a: &ImageData, b: &ImageData, mask: &ImageData) -> (f64
     ((se / n).sqrt() / scale, sum / n / scale)
 }
 
-/// Patterns per pixel of each effect's convergence check: the thesis's 36 for AO and shadows;
-/// indirect light's importance-sampled gather needs more samples for a 1% relative error than
-/// 36 patterns of 64 VPLs hold.
-fn patterns(effect: Effect) -> u32 {
-    match effect {
-        Effect::Indirect => 256,
-        _ => 36,
-    }
-}
-
 /// AO and shadow RMSE at most 0.005, indirect light relative RMSE at most 1%, with the default
 /// mode; the thesis's confidence mode is measured on the same view and its bias printed (it
 /// is documented in the README).
@@ -175,7 +165,8 @@ fn static_views_converge_to_independent_references() {
     let ctx = common::context();
     for effect in [Effect::Ao, Effect::Shadow, Effect::Indirect] {
         let (reference, mask) = render(&ctx, effect, effect.reference(), 1);
-        let limit = patterns(effect);
+        // The thesis's rotation limit.
+        let limit = 36;
         let frames = limit + 2;
         let (default, _) = render(
             &ctx,

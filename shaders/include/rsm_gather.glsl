@@ -120,9 +120,13 @@ vec3 rsm_gather_sampled(vec3 p, vec3 n, float pattern, uint count, float seed) {
     float log_ratio = log(R / r0);
     float p_inner = 1.0 / (1.0 + 2.0 * log_ratio);  // probability of the inner disc
     float density = p_inner / (PI * r0 * r0); // C in p(x) = C / max(r, r0)^2
-    float angle = frame.pattern_rotation * pattern + TWO_PI * seed;
-    // Patterns are small non-negative integers (below MAX_PATTERNS): the conversion is exact.
-    uint shift = uint(pattern) * INV_GOLDEN_RATIO_FIXED;
+    // Pattern j shifts the radii by frac(j / phi) and rotates by 2 pi times the base-2 radical
+    // inverse of j: a 2D low-discrepancy sequence over patterns, so any prefix of them covers
+    // both dimensions evenly and no rotation repeats (a fixed angle step would repeat every
+    // 360 / step patterns). Patterns are small non-negative integers: the conversion is exact.
+    uint j = uint(pattern);
+    float angle = TWO_PI * (float(bitfieldReverse(j) >> 8) * (1.0 / 16777216.0) + seed);
+    uint shift = j * INV_GOLDEN_RATIO_FIXED;
     vec3 sum = vec3(0.0);
     for (uint i = 0u; i < count; ++i) {
         vec2 u = r2_point(i, shift);
