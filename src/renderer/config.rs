@@ -177,7 +177,10 @@ pub struct TemporalConfig {
     pub accumulate: Accumulate,
     /// Patterns per pixel before it counts as converged: 360 / 10 degrees in the thesis.
     pub rotation_limit: u32,
-    /// Rotation of the sampling pattern between frames, degrees (the thesis's theta = 10).
+    /// Rotation of the indirect light's VPL pattern between frames, degrees (the thesis's
+    /// theta = 10). AO and PCF patterns take their rotations from low-discrepancy sequences
+    /// instead (shaders/include/patterns.glsl): with 8 AO directions, 10 degrees x j revisits
+    /// only 9 rotations.
     pub rotation_deg: f32,
     pub epsilon: Epsilon,
     /// Nehab et al.'s tiled refresh: one tile per frame recomputed from scratch.
