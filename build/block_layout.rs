@@ -13,6 +13,7 @@ pub const GENERATED: &[(&str, &str)] = &[
     ("Effect", "EffectPush"),
     ("Counters", "CountersHeader"),
     ("Material", "MaterialPush"),
+    ("Probe", "ProbePush"),
 ];
 
 #[derive(Clone, Debug, PartialEq)]

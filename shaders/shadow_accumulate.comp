@@ -41,14 +41,14 @@ void main() {
                 float sum = 0.0;
                 float sum2 = 0.0;
                 for (uint j = 0u; j < limit; ++j) {
-                    float x = shadow_visibility(p, n, float(j));
+                    float x = shadow_visibility(p, n, float(j), pixel);
                     sum += x;
                     sum2 += x * x;
                 }
                 result = vec2(sum / float(limit), float(limit));
                 m = vec2(sum2 / float(limit), 0.0);
             } else {
-                float fresh = shadow_visibility(p, n, h.a);
+                float fresh = shadow_visibility(p, n, h.a, pixel);
                 result = accumulate(h.r, h.a, fresh, m);
             }
             imageStore(history, pixel, vec4(clamp(result.x, 0.0, 1.0), 0.0, 0.0, result.y));

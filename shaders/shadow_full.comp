@@ -1,6 +1,7 @@
 #version 460
 // Shadow visibility of every pixel, every frame: the grid PCF baseline (hard, 49 samples) or a
-// disc kernel with a fixed pattern (references with many samples). r = visibility, a = samples.
+// disc kernel with the fixed pattern 0 (a Vogel spiral turned per pixel; references with many
+// samples). r = visibility, a = samples.
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_samplerless_texture_functions : require
 #include "frame.glsl"
@@ -20,6 +21,6 @@ void main() {
     vec4 position = texelFetch(g_position, pixel, 0);
     float v = 1.0;
     if (position.w != 0.0)
-        v = shadow_visibility(position.xyz, texelFetch(g_normal, pixel, 0).xyz, 0.0);
+        v = shadow_visibility(position.xyz, texelFetch(g_normal, pixel, 0).xyz, 0.0, pixel);
     imageStore(visibility_out, pixel, vec4(v, 0.0, 0.0, 1.0));
 }

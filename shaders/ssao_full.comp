@@ -1,6 +1,7 @@
 #version 460
 // SSAO without reuse: every pixel, every frame, `patterns` patterns starting at the pattern
-// offset (1 fixed pattern for the thesis's no-reuse baseline; many for references).
+// base (the fixed pattern 0 for the thesis's no-reuse baseline; many from an index range no
+// accumulation reaches for references).
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_samplerless_texture_functions : require
 #include "frame.glsl"
@@ -27,7 +28,7 @@ void main() {
         float visibility = 1.0;
         if (position.w != 0.0) {
             vec3 n = texelFetch(g_normal, pixel, 0).xyz;
-            visibility = 1.0 - ao_estimate(pixel, position.xyz, n, frame.pattern_offset, frame.ao_patterns);
+            visibility = 1.0 - ao_estimate(pixel, position.xyz, n, float(frame.pattern_base), frame.ao_patterns);
             atomicAdd(block_computed, 1u);
         }
         imageStore(ao_out, pixel, vec4(visibility, 0.0, 0.0, float(frame.ao_patterns)));

@@ -63,7 +63,9 @@ fn compute_modules_have_workgroups_and_graphics_do_not() {
 #[allow(dead_code)]
 mod block_layout;
 
-use ssgi::shaders::{BlockMember, CountersHeader, EffectPush, FrameBlock, MaterialPush};
+use ssgi::shaders::{
+    BlockMember, CountersHeader, EffectPush, FrameBlock, MaterialPush, ProbePush, PROBES,
+};
 
 /// The generated struct of a GLSL block: its members and size.
 fn generated(name: &str) -> (&'static [BlockMember], usize) {
@@ -72,6 +74,7 @@ fn generated(name: &str) -> (&'static [BlockMember], usize) {
         "Effect" => (EffectPush::MEMBERS, EffectPush::SIZE),
         "Counters" => (CountersHeader::MEMBERS, CountersHeader::SIZE),
         "Material" => (MaterialPush::MEMBERS, MaterialPush::SIZE),
+        "Probe" => (ProbePush::MEMBERS, ProbePush::SIZE),
         other => panic!("block {other} has no generated struct"),
     }
 }
@@ -79,7 +82,7 @@ fn generated(name: &str) -> (&'static [BlockMember], usize) {
 #[test]
 fn every_module_declares_the_shared_blocks_as_generated() {
     let mut seen = 0;
-    for m in ALL {
+    for m in ALL.iter().chain(PROBES) {
         for b in m.blocks {
             let (members, size) = generated(b.name);
             assert_eq!(b.members, members, "{}: block {}", m.label(), b.name);

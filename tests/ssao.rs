@@ -209,7 +209,7 @@ fn static_camera_converges_to_the_many_sample_reference() {
     let ctx = common::context();
     let size = 128;
     // Reference: the same estimator with 32 patterns x 32 samples = 1024 samples, one frame,
-    // patterns offset by half a step so they are not the ones the accumulation uses.
+    // from the reference's own index range, so none is a pattern the accumulation uses.
     let reference_ao = AoConfig {
         patterns: 32,
         ..Default::default()
@@ -521,5 +521,163 @@ fn static_camera_far_from_the_origin_keeps_its_history() {
     assert!(converged > 500, "only {converged} converged pixels");
     assert_eq!(changed, 0, "{changed} history texels changed");
     drop(r);
+    common::assert_clean(&ctx);
+}
+
+/// A 20 m square wall in the plane z = 0 facing +z, optionally with a second wall `step` in
+/// front of it over x >= 0, seen head-on from (0, 0, `distance`) with a `vfov_deg` lens: every
+/// pixel of the back wall lies at view depth `distance`.
+fn frontal_wall(distance: f32, vfov_deg: f32, step: Option<f32>) -> Scene {
+    let mut b = MeshBuilder::new();
+    let m = b.add_material(Material::colour("wall", [0.7, 0.7, 0.7]));
+    let h = 10.0;
+    let quad = |b: &mut MeshBuilder, x0: f32, z: f32| {
+        b.add_flat_polygon(
+            m,
+            &[
+                Vec3::new(x0, -h, z),
+                Vec3::new(h, -h, z),
+                Vec3::new(h, h, z),
+                Vec3::new(x0, h, z),
+            ],
+            Vec3::Z,
+        )
+    };
+    quad(&mut b, -h, 0.0);
+    if let Some(step) = step {
+        quad(&mut b, 0.0, step);
+    }
+    let mut scene = cornell_box();
+    scene.name = "frontal-wall".into();
+    scene.mesh = b.build();
+    scene.camera = Camera::new(
+        Vec3::new(0.0, 0.0, distance),
+        Vec3::ZERO,
+        vfov_deg,
+        0.1,
+        100.0,
+    );
+    scene
+}
+
+/// Mittring's estimator on a wall facing the camera: half of a ball centred on the wall lies
+/// behind it, so the converged visibility is 0.5 (the wall sits at one view depth, so the
+/// depth comparison has no slope to misjudge). Both the accumulated patterns (0 up to the
+/// rotation limit, averaged by the capped mean) and the reference's independent range.
+#[test]
+fn crytek_flat_wall_facing_the_camera_is_one_half() {
+    let ctx = common::context();
+    let size = 64;
+    let scene = frontal_wall(2.0, 60.0, None);
+    // A 0.3 m ball: 8.3 px at this depth.
+    let radius = 0.3 / scene.mesh.bounds.radius();
+    let limit = TemporalConfig::default().rotation_limit;
+    let ao = |patterns| AoConfig {
+        estimator: AoEstimator::Crytek,
+        radius,
+        patterns,
+        ..Default::default()
+    };
+    let reference = TemporalConfig {
+        reuse: false,
+        ..Default::default()
+    };
+    let accumulated = TemporalConfig {
+        accumulate: Accumulate::Mean { cap: limit },
+        ..no_refresh()
+    };
+    for (name, temporal, patterns, frames) in [
+        ("reference range", reference, limit, 1),
+        ("accumulated", accumulated, 1, limit),
+    ] {
+        let mut r = renderer(&ctx, scene.clone(), config(size, temporal, ao(patterns)));
+        run(&mut r, frames);
+        let all = ao_values(&mut r);
+        assert!(all.iter().all(|v| v.is_some()), "the wall fills the view");
+        // Pixels whose ball stays on screen (samples off screen count as unoccluded).
+        let margin = 10;
+        let values: Vec<f32> = (margin..size - margin)
+            .flat_map(|y| (margin..size - margin).map(move |x| (x, y)))
+            .filter_map(|(x, y)| all[(y * size + x) as usize])
+            .collect();
+        let mean = values.iter().sum::<f32>() / values.len() as f32;
+        let worst = values
+            .iter()
+            .map(|v| (v - 0.5).abs())
+            .fold(0.0f32, f32::max);
+        eprintln!("{name}: mean {mean:.5}, worst pixel off 0.5 by {worst:.4}");
+        // Tolerances: the sequence's discrepancy over 36 x 32 points per pixel (the plane
+        // through the ball tilts with the pixel's view ray; tests/patterns.rs: at most 1% for
+        // any plane), plus fp16 rounding of the history (2.4e-4 per update at 0.5).
+        assert!(
+            (mean - 0.5).abs() <= 0.005,
+            "{name}: mean visibility {mean}"
+        );
+        assert!(worst <= 0.02, "{name}: a pixel off 0.5 by {worst}");
+    }
+    common::assert_clean(&ctx);
+}
+
+/// Eq 8's `far` is the world radius projected at the pixel's view depth: on a wall facing the
+/// camera every pixel has the same depth, so the occlusion a step casts on the wall beside
+/// it is the same along the whole edge: in the middle of the image and near its top and
+/// bottom, where the distance to the camera is 22% larger than the depth with this 90° lens
+/// (a radius from the distance shrinks eq 8's far there by a fifth, and the occlusion's mean
+/// distance from the edge by 8%).
+#[test]
+fn ao_radius_follows_view_depth_across_the_image() {
+    let ctx = common::context();
+    let size = 128u32;
+    // A 2 cm step: small next to the 0.375 m radius, so the step's own perspective (its points
+    // seen 2 cm nearer, off-axis) changes each sample's direction by about 1%.
+    let scene = frontal_wall(2.0, 90.0, Some(0.02));
+    // 0.375 m at depth 2 with a 90° lens on 128 px: 12 px.
+    let radius = 0.375 / scene.mesh.bounds.radius();
+    let ao = AoConfig {
+        radius,
+        patterns: TemporalConfig::default().rotation_limit,
+        ..Default::default()
+    };
+    let temporal = TemporalConfig {
+        reuse: false,
+        ..Default::default()
+    };
+    let mut r = renderer(&ctx, scene, config(size, temporal, ao));
+    run(&mut r, 1);
+    let ao = r.read(Target::Ao).unwrap();
+    // Over the back wall's pixels left of the edge (x = 0 at column 64): the occlusion and its
+    // mean distance from the edge, which scales with eq 8's far (the occlusion itself barely
+    // does: nearer samples weigh more). Each over 8 rows, two periods of the 4x4 random
+    // vectors.
+    let band = |rows: std::ops::Range<u32>| -> (f32, f32) {
+        let (mut occlusion, mut moment) = (0.0, 0.0);
+        for y in rows {
+            for x in 0..size / 2 {
+                let o = 1.0 - ao.texel(x, y)[0];
+                occlusion += o;
+                moment += o * (size as f32 / 2.0 - x as f32 - 0.5);
+            }
+        }
+        (occlusion, moment / occlusion)
+    };
+    let middle = band(60..68);
+    // Rows 16..24 and 104..112: |y_ndc| about 0.7, 16 px from the border so no sample of the
+    // 13 px range leaves the image.
+    let top = band(16..24);
+    let bottom = band(104..112);
+    eprintln!(
+        "beside the step (occlusion, mean distance [px]): middle {middle:.3?}, top {top:.3?}, bottom {bottom:.3?}"
+    );
+    assert!(
+        middle.0 > 1.0,
+        "the step occludes the wall beside it ({middle:?})"
+    );
+    for (name, v) in [("top", top), ("bottom", bottom)] {
+        let ratio = v.1 / middle.1;
+        assert!(
+            (ratio - 1.0).abs() <= 0.03,
+            "{name}: occlusion reaches {ratio} as far as in the middle"
+        );
+    }
     common::assert_clean(&ctx);
 }

@@ -1,15 +1,11 @@
 // SSAO estimators. Both return occlusion in [0, 1] for one sampling pattern; `pattern` indexes
-// the per-frame rotation (theta per pattern) and range scale. Requires g_position and
-// random_vectors to be declared by the including shader.
+// the pattern sequences of patterns.glsl (rotation and range scale, or the sphere's points).
+// Requires g_position and random_vectors to be declared by the including shader.
 #ifndef AO_GLSL
 #define AO_GLSL
 
 #include "frame.glsl"
-
-// Range scale of pattern j: 1 for pattern 0, then a low-discrepancy spread of +-10%.
-float pattern_scale(float pattern) {
-    return 1.0 + 0.2 * (fract(pattern * INV_GOLDEN_RATIO + 0.5) - 0.5);
-}
+#include "patterns.glsl"
 
 // Per-pixel rotation from the 4x4 random-vector texture (unit 2D vectors).
 vec2 pixel_rotation(ivec2 pixel) {
@@ -22,27 +18,31 @@ vec2 rotate2(vec2 v, vec2 cs) {
 
 // Lin 2013 eq 6-8: directions x log-spaced screen-space steps; each sample q contributes
 // max(n . (q - p)/|q - p|, 0) / D(d) with D(d) = 1 + a d + b d^2, d in units of the radius.
-float ao_thesis(ivec2 pixel, vec3 p, vec3 n, float pattern) {
+float ao_thesis(ivec2 pixel, vec3 p, vec3 n, uint pattern) {
     uint dirs = frame.ao_directions;
     uint steps = frame.ao_steps;
     float radius = frame.ao_radius;
-    float dist = max(distance(p, frame.camera_pos), 1e-30);
+    // View depth (clip w of a perspective projection): a sphere's projected size follows the
+    // depth along the view axis, not the distance, which is larger towards the image corners.
+    float depth = max((frame.view_proj * vec4(p, 1.0)).w, 1e-30);
     // The world radius projected to pixels at this depth; eq 8's far.
-    float px_per_world = float(frame.size.y) / (2.0 * frame.tan_half_fov * dist);
+    float px_per_world = float(frame.size.y) / (2.0 * frame.tan_half_fov * depth);
     float near_px = frame.ao_near_px;
     // At most a quarter of the image, at least 1.5 near steps; on images under 9 px the lower
     // bound wins (clamp with min > max is undefined in GLSL).
     float far_px = max(min(radius * px_per_world, 0.25 * float(frame.size.y)), near_px * 1.5);
-    float scale = pattern_scale(pattern);
-    float angle = frame.pattern_rotation * pattern;
+    vec2 rotation_scale = ao_thesis_pattern(pattern, dirs);
+    float scale = rotation_scale.y;
+    float angle = rotation_scale.x;
+    // The 4x4 random vectors perturb the pattern per pixel (the thesis's Figure 3.8 b).
     vec2 rot = rotate2(pixel_rotation(pixel), vec2(cos(angle), sin(angle)));
     vec2 center = vec2(pixel) + 0.5;
     float sum = 0.0;
     for (uint d = 0u; d < dirs; ++d) {
         float a = TWO_PI * float(d) / float(dirs);
         vec2 dir = rotate2(vec2(cos(a), sin(a)), rot);
-        for (uint i = 1u; i <= steps; ++i) {
-            float s = near_px * pow(far_px / near_px, float(i) / float(steps)) * scale; // eq 8
+        for (uint i = 0u; i < steps; ++i) {
+            float s = ao_step_px(i, steps, near_px, far_px) * scale; // eq 8
             ivec2 q_pixel = ivec2(floor(center + dir * s));
             if (outside_frame(q_pixel))
                 continue;
@@ -52,7 +52,7 @@ float ao_thesis(ivec2 pixel, vec3 p, vec3 n, float pattern) {
             float d2 = dot(v, v);
             // Same-point samples carry no direction: 1e-12 of the squared depth is far below
             // one pixel's footprint at any depth.
-            if (d2 <= 1e-12 * dist * dist) continue;
+            if (d2 <= 1e-12 * depth * depth) continue;
             float len = sqrt(d2);
             float x = len / radius;
             sum += max(dot(n, v / len), 0.0) / (1.0 + frame.ao_atten_a * x + frame.ao_atten_b * x * x);
@@ -62,24 +62,21 @@ float ao_thesis(ivec2 pixel, vec3 p, vec3 n, float pattern) {
 }
 
 // Mittring 2007: points in a sphere of the world radius around p; a point is occluded when
-// the visible surface at its screen position is in front of it (within the radius).
-float ao_crytek(ivec2 pixel, vec3 p, float pattern) {
+// the visible surface at its screen position is in front of it (within the radius). The
+// points of patterns 0, 1, ... fill the ball uniformly (patterns.glsl), so the radius is not
+// scaled per pattern: their radii already vary continuously.
+float ao_crytek(ivec2 pixel, vec3 p, uint pattern) {
     uint count = frame.ao_samples;
-    float radius = frame.ao_radius * pattern_scale(pattern);
+    float radius = frame.ao_radius;
     vec3 view_dir = safe_normalize(p - frame.camera_pos, vec3(0.0, 0.0, -1.0));
     vec3 t = safe_normalize(cross(view_dir, abs(view_dir.y) < 0.99 ? vec3(0, 1, 0) : vec3(1, 0, 0)), vec3(1, 0, 0));
     vec3 b = cross(view_dir, t);
-    float angle = frame.pattern_rotation * pattern;
-    vec2 rot = rotate2(pixel_rotation(pixel), vec2(cos(angle), sin(angle)));
+    vec2 rot = pixel_rotation(pixel);
     float occluded = 0.0;
     for (uint k = 0u; k < count; ++k) {
-        // Fibonacci sphere directions, radii spread so the points fill the ball uniformly.
-        float z = 1.0 - 2.0 * (float(k) + 0.5) / float(count);
-        float r_xy = sqrt(max(1.0 - z * z, 0.0));
-        float phi = GOLDEN_ANGLE * float(k);
-        vec2 xy = rotate2(vec2(cos(phi), sin(phi)) * r_xy, rot);
-        float r = radius * pow((float(k) + 0.5) / float(count), 1.0 / 3.0);
-        vec3 s = p + r * (xy.x * t + xy.y * b + z * view_dir);
+        vec3 o = crytek_offset(k, count, pattern);
+        vec2 xy = rotate2(o.xy, rot);
+        vec3 s = p + radius * (xy.x * t + xy.y * b + o.z * view_dir);
         vec4 clip = frame.view_proj * vec4(s, 1.0);
         if (clip.w <= 0.0) continue;
         vec2 uv = clip.xy / clip.w * 0.5 + 0.5;
@@ -98,11 +95,12 @@ float ao_crytek(ivec2 pixel, vec3 p, float pattern) {
     return occluded / float(count);
 }
 
-// Occlusion averaged over `patterns` consecutive patterns starting at `first`.
+// Occlusion averaged over `patterns` consecutive patterns starting at `first` (a whole number:
+// pattern indices arrive as floats from the history's count channel, exact below 2^24).
 float ao_estimate(ivec2 pixel, vec3 p, vec3 n, float first, uint patterns) {
     float sum = 0.0;
     for (uint j = 0u; j < patterns; ++j) {
-        float pattern = first + float(j);
+        uint pattern = uint(first) + j;
         sum += frame.ao_estimator == 1u ? ao_crytek(pixel, p, pattern) : ao_thesis(pixel, p, n, pattern);
     }
     return sum / float(max(patterns, 1u));

@@ -28,12 +28,11 @@ layout(set = 0, binding = 0, std140) uniform Frame {
     float pcf_radius;          // PCF kernel radius [texels]
     uint pcf_kernel;           // 0 grid, 1 rotated disc
     uint pcf_count;            // grid side, or disc samples
-    uint accumulate_mode;      // 0 confidence (eqs 4-5), 1 EMA, 2 capped mean
-    float accumulate_param;    // confidence bias / EMA alpha / mean cap
+    uint accumulate_mode;      // 0 confidence (eqs 4-5), 1 EMA, 2 capped mean, 3 gated mean
+    float accumulate_param;    // confidence bias / EMA alpha / mean cap / gate [sigmas]
     float epsilon;             // eq 3 threshold: texel footprints (relative) or world units
     uint epsilon_absolute;     // 0 relative, 1 absolute
-    float pattern_rotation;    // rotation between consecutive patterns [rad]
-    float pattern_offset;      // offset of the first pattern (0.5 for multi-pattern references)
+    uint pattern_base;         // first pattern without reuse (0, or an independent range for references)
     float ao_radius;           // world-space sampling radius
     float ao_atten_a;          // eq 7: D(d) = 1 + a d + b d^2, d in units of the radius
     float ao_atten_b;

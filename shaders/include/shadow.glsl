@@ -4,6 +4,7 @@
 #define SHADOW_GLSL
 
 #include "frame.glsl"
+#include "patterns.glsl"
 
 // Receiver in light space: shadow-map uv, view distance along the light axis (clip w), and the
 // receiver's tangent plane in light clip space (point + two tangents), so each PCF tap can
@@ -88,33 +89,24 @@ float pcf_grid(Receiver r, int k) {
     return lit / float(k * k);
 }
 
-// `count` samples of a Vogel spiral filling the disc of the PCF radius, rotated by `angle` and
-// scaled by `scale` (the thesis rotates and scales the 9-sample pattern every frame).
-float pcf_disc(Receiver r, uint count, float angle, float scale) {
-    float radius = frame.pcf_radius * scale;
+// `count` taps of the Vogel spiral of pattern `pattern` at `pixel` over the PCF radius
+// (pcf_disc_offset: over patterns the taps fill the disc uniformly).
+float pcf_disc(Receiver r, uint count, uint pattern, ivec2 pixel) {
     float lit = 0.0;
-    for (uint j = 0u; j < count; ++j) {
-        float rho = radius * sqrt((float(j) + 0.5) / float(count));
-        float phi = float(j) * GOLDEN_ANGLE + angle;
-        lit += shadow_test(r, rho * vec2(cos(phi), sin(phi)));
-    }
+    for (uint j = 0u; j < count; ++j)
+        lit += shadow_test(r, frame.pcf_radius * pcf_disc_offset(j, count, pattern, pixel));
     return lit / float(max(count, 1u));
 }
 
-// Range scale of shadow pattern j (1 for pattern 0, then +-10%).
-float shadow_pattern_scale(float pattern) {
-    return 1.0 + 0.2 * (fract(pattern * INV_GOLDEN_RATIO + 0.5) - 0.5);
-}
-
-// Visibility of world point p (normal n) with the configured kernel; `pattern` picks the disc's
-// rotation and scale.
-float shadow_visibility(vec3 p, vec3 n, float pattern) {
+// Visibility of world point p (normal n) seen at `pixel` with the configured kernel; `pattern`
+// (a whole number, carried as a float like the history's count) picks the disc's pattern.
+float shadow_visibility(vec3 p, vec3 n, float pattern, ivec2 pixel) {
     vec3 l = safe_normalize(frame.light_pos - p, -frame.light_dir);
     float cos_surface = dot(n, l);
     if (cos_surface <= 0.0) return 0.0; // facing away: no direct light to shadow
     Receiver r = light_receiver(p, n, cos_surface);
     if (frame.pcf_kernel == 1u)
-        return pcf_disc(r, frame.pcf_count, frame.pattern_rotation * pattern, shadow_pattern_scale(pattern));
+        return pcf_disc(r, frame.pcf_count, uint(pattern), pixel);
     return pcf_grid(r, int(frame.pcf_count));
 }
 

@@ -26,10 +26,14 @@ use std::sync::Arc;
 /// light, the reprojection shared by every temporal effect, the whole frame.
 pub const COLUMNS: [&str; 4] = ["ao", "indirect", "reproject", "total"];
 
-/// AO patterns of the reference: 32 x 32 samples = 1024 per pixel, no blur.
+/// AO patterns of the reference: 32 x 32 samples = 1024 per pixel, no blur, drawn from
+/// `REFERENCE_PATTERN_BASE` on (renderer::frame): points of the same uniform kernel that no
+/// accumulation uses, so an accumulation that misses part of the kernel shows as error.
 pub const REFERENCE_AO_PATTERNS: u32 = 32;
 /// PCF of the reference: the reuse row's disc (Vogel spiral over the same radius) with 1024
-/// samples, without reuse: what the 9-sample disc accumulated over frames converges to.
+/// samples in its fixed pattern 0, without reuse: the uniform disc the 9-sample disc
+/// accumulated over frames converges to (tests/patterns.rs compares the radial distributions
+/// of the offsets the shader uses), sharing none of its offsets.
 pub const REFERENCE_PCF: Pcf = Pcf {
     kernel: PcfKernel::Disc { samples: 1024 },
     radius_texels: Pcf::NINE.radius_texels,

@@ -62,7 +62,7 @@ pub struct SceneArgs {
     #[arg(long, default_value = "static")]
     pub path: String,
     /// Shadow filtering: `hard`; 9 = the thesis's 9-sample disc, rotated and scaled every frame
-    /// and accumulated with reuse; another square (25, 49, ...) = a regular grid every frame;
+    /// and accumulated with reuse (filling the disc uniformly over frames); another square (25, 49, ...) = a regular grid every frame;
     /// disc:N = an N-sample disc.
     #[arg(long, default_value = "49", value_parser = parse_pcf)]
     pub pcf: Pcf,
@@ -167,7 +167,6 @@ impl SceneArgs {
                 rotation_limit: self.rotation_limit,
                 epsilon: self.epsilon,
                 refresh: self.refresh,
-                ..TemporalConfig::default()
             },
         }
     }

@@ -194,8 +194,6 @@ pub struct TemporalConfig {
     pub accumulate: Accumulate,
     /// Patterns per pixel before it counts as converged: 360 / 10 degrees in the thesis.
     pub rotation_limit: u32,
-    /// Rotation of the sampling pattern between frames, degrees (the thesis's theta = 10).
-    pub rotation_deg: f32,
     pub epsilon: Epsilon,
     /// Nehab et al.'s tiled refresh: one tile per frame recomputed from scratch.
     pub refresh: bool,
@@ -207,7 +205,6 @@ impl Default for TemporalConfig {
             reuse: true,
             accumulate: Accumulate::GATED,
             rotation_limit: 36,
-            rotation_deg: 10.0,
             epsilon: Epsilon::DEFAULT,
             refresh: true,
         }
@@ -346,9 +343,6 @@ impl RenderConfig {
                  pattern of a pixel at once)",
                 t.rotation_limit
             ));
-        }
-        if !t.rotation_deg.is_finite() {
-            return bad("rotation angle must be finite".into());
         }
         match t.accumulate {
             Accumulate::Gated { sigmas } if !(sigmas.is_finite() && sigmas > 0.0) => {

@@ -8,6 +8,15 @@ pub use crate::shaders::FrameBlock;
 pub use super::pcf::{Pcf, PcfKernel};
 use glam::{Mat4, Vec3};
 
+/// First pattern of multi-pattern evaluations without reuse (references): an index range no
+/// accumulation reaches (rotation limits stay at most `MAX_PATTERNS`), so a reference is drawn
+/// from points independent of the ones it judges instead of repeating them (shaders/include/
+/// patterns.glsl: the golden sequence is shifted by a generic fraction, and the index has
+/// nonzero low digits in bases 2 and 3, so its radical inverses are not the accumulated
+/// patterns' own strata). Below 2^20, so the index converts exactly to a float in the shaders,
+/// and times 4096 AO samples it stays below 2^32.
+pub const REFERENCE_PATTERN_BASE: u32 = 1_000_003;
+
 /// Everything that changes per frame, besides the configuration.
 pub struct FrameInputs<'a> {
     pub camera: &'a Camera,
@@ -61,8 +70,11 @@ pub fn frame_block(config: &RenderConfig, f: &FrameInputs<'_>) -> FrameBlock {
         accumulate_param: t.accumulate.parameter(),
         epsilon,
         epsilon_absolute,
-        pattern_rotation: t.rotation_deg.to_radians(),
-        pattern_offset: if ao.patterns > 1 { 0.5 } else { 0.0 },
+        pattern_base: if ao.patterns > 1 {
+            REFERENCE_PATTERN_BASE
+        } else {
+            0
+        },
         // The radius is relative to the scene's bounding radius (scale-free AO).
         ao_radius: ao.radius * f.scene_radius.max(f32::MIN_POSITIVE),
         ao_atten_a: ao.attenuation[0],

@@ -1,9 +1,11 @@
 //! PCF soft-shadow kernels: the thesis's 49-sample grid baseline, hard shadows, and the rotated
-//! and scaled Vogel disc accumulated with the cache.
+//! Vogel disc accumulated with the cache.
 
 /// The PCF kernel: a regular grid (the thesis's 49-sample baseline, or hard shadows), or a disc
-/// of Vogel-spiral samples that is rotated and scaled every frame and accumulated (the thesis's
-/// 9-sample PCF with the cache; many samples without reuse for references).
+/// of Vogel-spiral samples that is rotated and moved radially every frame and accumulated, so
+/// over frames the taps fill the disc uniformly (the thesis's 9-sample PCF with the cache; many
+/// samples in the fixed pattern 0 without reuse for references). Each pixel turns the disc by
+/// its own interleaved-gradient-noise angle (shaders/include/patterns.glsl).
 #[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
 #[serde(tag = "kernel", rename_all = "lowercase")]
 pub enum PcfKernel {
@@ -28,7 +30,7 @@ impl Pcf {
         kernel: PcfKernel::Grid { side: 1 },
         radius_texels: 0.0,
     };
-    /// The thesis's 9-sample PCF, rotated and scaled per frame and accumulated.
+    /// The thesis's 9-sample PCF, a new rotation and radial offset per frame, accumulated.
     pub const NINE: Pcf = Pcf {
         kernel: PcfKernel::Disc { samples: 9 },
         radius_texels: 3.0,
