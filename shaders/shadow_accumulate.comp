@@ -1,6 +1,6 @@
 #version 460
 // PCF soft shadows with temporal reuse (Lin 2013 section 3.4): over the 8x8 blocks the
-// reprojection listed, one rotated and scaled disc pattern per pixel that is new or
+// reprojection listed, one disc pattern (patterns.glsl) per pixel that is new or
 // accumulating, merged into the history (temporal.glsl); the refresh tile is recomputed as the
 // mean of every pattern up to the rotation limit, the estimator accumulation converges to.
 #extension GL_GOOGLE_include_directive : require

@@ -1,6 +1,6 @@
 //! SSAO (Lin 2013 eqs 6-8, or Mittring's sphere). With reuse: an indirect dispatch over the
-//! blocks the reprojection listed, one rotated pattern per pixel merged into the AO history
-//! (eqs 4-5), refresh tiles recomputed in full. Without reuse: every pixel with a fixed
+//! blocks the reprojection listed, one pattern per pixel merged into the AO history (the
+//! gated running mean, or eqs 4-5), refresh tiles recomputed as the mean of every pattern. Without reuse: every pixel with a fixed
 //! pattern (or many patterns, for references), then the thesis's 5x5 Gaussian blur.
 
 use super::effect::{
