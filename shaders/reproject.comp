@@ -34,10 +34,10 @@ bool tap_valid(ivec2 t, vec3 p, float eps) {
 
 // History at the reprojected point: bilinear over the four taps around it when all hold this
 // surface, the nearest texel otherwise; the moments (mean squared luminance, pending gate
-// crossing) with the same weights. A static camera (decided on the CPU) reuses the
+// crossing, estimates in the mean: the smallest tap's) with the same weights. A static camera (decided on the CPU) reuses the
 // texel itself: eq 1's rounding noise would otherwise blend neighbours into a converged value
 // every frame, and that noise grows with the coordinates' distance from the origin.
-vec4 resample(vec2 f, ivec2 nearest, vec3 p, float eps, out vec2 moments) {
+vec4 resample(vec2 f, ivec2 nearest, vec3 p, float eps, out vec4 moments) {
     vec2 g = f - 0.5;
     ivec2 base = ivec2(floor(g)); // f is clamped to [-1, size + 1]: defined conversion
     vec2 w = g - vec2(base);
@@ -45,14 +45,15 @@ vec4 resample(vec2 f, ivec2 nearest, vec3 p, float eps, out vec2 moments) {
     for (int k = 0; k < 4 && all_valid; ++k)
         all_valid = tap_valid(base + ivec2(k & 1, k >> 1), p, eps);
     if (!all_valid) {
-        moments = texelFetch(moments_prev, nearest, 0).rg;
+        moments = texelFetch(moments_prev, nearest, 0);
         return texelFetch(history_prev, nearest, 0);
     }
-    vec2 m00 = texelFetch(moments_prev, base, 0).rg;
-    vec2 m10 = texelFetch(moments_prev, base + ivec2(1, 0), 0).rg;
-    vec2 m01 = texelFetch(moments_prev, base + ivec2(0, 1), 0).rg;
-    vec2 m11 = texelFetch(moments_prev, base + ivec2(1, 1), 0).rg;
+    vec4 m00 = texelFetch(moments_prev, base, 0);
+    vec4 m10 = texelFetch(moments_prev, base + ivec2(1, 0), 0);
+    vec4 m01 = texelFetch(moments_prev, base + ivec2(0, 1), 0);
+    vec4 m11 = texelFetch(moments_prev, base + ivec2(1, 1), 0);
     moments = mix(mix(m00, m10, w.x), mix(m01, m11, w.x), w.y);
+    moments.z = min(min(m00.z, m10.z), min(m01.z, m11.z));
     vec4 h00 = texelFetch(history_prev, base, 0);
     vec4 h10 = texelFetch(history_prev, base + ivec2(1, 0), 0);
     vec4 h01 = texelFetch(history_prev, base + ivec2(0, 1), 0);
@@ -71,7 +72,7 @@ void main() {
     uint state = STATE_BACKGROUND;
     if (!outside_frame(pixel)) {
         vec4 history = vec4(0.0);
-        vec2 moments = vec2(0.0);
+        vec4 moments = vec4(0.0);
         vec4 position = texelFetch(g_position, pixel, 0);
         if (position.w != 0.0) {
             vec3 p = position.xyz;
@@ -93,13 +94,13 @@ void main() {
             }
             if (state == STATE_NEW) {
                 history = vec4(0.0);
-                moments = vec2(0.0);
+                moments = vec4(0.0);
                 atomicAdd(group_disoccluded, 1u);
             }
             if (in_refresh_tile(pixel)) state = STATE_REFRESH;
         }
         imageStore(history_cur, pixel, history);
-        imageStore(moments_cur, pixel, vec4(moments, 0.0, 0.0));
+        imageStore(moments_cur, pixel, moments);
         imageStore(state_out, pixel, uvec4(state));
         if (state == STATE_NEW || state == STATE_ACCUMULATING || state == STATE_REFRESH) {
             uvec2 q = gl_LocalInvocationID.xy / 8u;

@@ -36,7 +36,7 @@ void main() {
             vec4 h = imageLoad(history, pixel);
             uint limit = frame.rotation_limit;
             vec2 result;
-            vec2 m = imageLoad(moments, pixel).rg;
+            vec4 m = imageLoad(moments, pixel);
             if (state == STATE_REFRESH) {
                 float sum = 0.0;
                 float sum2 = 0.0;
@@ -46,13 +46,13 @@ void main() {
                     sum2 += x * x;
                 }
                 result = vec2(sum / float(limit), float(limit));
-                m = vec2(sum2 / float(limit), 0.0);
+                m = vec4(sum2 / float(limit), 0.0, float(limit), 0.0);
             } else {
                 float fresh = shadow_visibility(p, n, h.a, pixel);
                 result = accumulate(h.r, h.a, fresh, m);
             }
             imageStore(history, pixel, vec4(clamp(result.x, 0.0, 1.0), 0.0, 0.0, result.y));
-            imageStore(moments, pixel, vec4(m, 0.0, 0.0));
+            imageStore(moments, pixel, m);
             atomicAdd(group_computed, 1u);
         }
     }

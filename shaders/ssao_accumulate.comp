@@ -37,7 +37,7 @@ void main() {
             vec4 h = imageLoad(history, pixel);
             uint limit = frame.rotation_limit;
             vec2 result;
-            vec2 m = imageLoad(moments, pixel).rg;
+            vec4 m = imageLoad(moments, pixel);
             if (state == STATE_REFRESH) {
                 // The mean of every pattern and of its square: what accumulation converges to.
                 float sum = 0.0;
@@ -48,14 +48,14 @@ void main() {
                     sum2 += x * x;
                 }
                 result = vec2(sum / float(limit), float(limit));
-                m = vec2(sum2 / float(limit), 0.0);
+                m = vec4(sum2 / float(limit), 0.0, float(limit), 0.0);
             } else {
                 // Each pixel walks through patterns 0, 1, ... in the order it accumulates them.
                 float fresh = 1.0 - ao_estimate(pixel, p, n, h.a, 1u);
                 result = accumulate(h.r, h.a, fresh, m);
             }
             imageStore(history, pixel, vec4(clamp(result.x, 0.0, 1.0), 0.0, 0.0, result.y));
-            imageStore(moments, pixel, vec4(m, 0.0, 0.0));
+            imageStore(moments, pixel, m);
             atomicAdd(group_computed, 1u);
         }
     }

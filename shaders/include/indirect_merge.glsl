@@ -8,18 +8,18 @@
 // Merge a fresh estimate (rgb, a = mean squared luminance of its patterns) into the history at
 // `pixel` (rgb value, a = estimates) and its second moment.
 void merge(ivec2 pixel, vec4 h, vec4 fresh, bool refresh) {
-    vec2 m = imageLoad(moments, pixel).rg;
+    vec4 m = imageLoad(moments, pixel);
     vec4 result;
     if (refresh) {
         result = vec4(fresh.rgb, float(frame.rotation_limit));
-        m = vec2(fresh.a, 0.0);
+        m = vec4(fresh.a, 0.0, float(frame.rotation_limit), 0.0);
     } else {
         result = accumulate3(h.rgb, h.a, fresh.rgb, m);
     }
     // Finite and non-negative, whatever a degenerate VPL produced.
     imageStore(history, pixel, vec4(clamp(result.rgb, vec3(0.0), vec3(HISTORY_MAX)), result.a));
     m.x = clamp(m.x, 0.0, HISTORY_MAX * HISTORY_MAX);
-    imageStore(moments, pixel, vec4(m, 0.0, 0.0));
+    imageStore(moments, pixel, m);
 }
 
 #endif // INDIRECT_MERGE_GLSL

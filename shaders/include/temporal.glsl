@@ -30,7 +30,11 @@ float disocclusion_epsilon(vec3 p, vec3 n) {
 // more than `sigmas` standard deviations of the patterns so far AND by more than GATE_RELATIVE
 // of the larger of the two luminances. One outlier is merged like any estimate (the mean stays
 // unbiased: importance-sampled VPL gathers have heavy tails), a change of the lighting persists
-// and restarts the mean one frame later. The relative floor is scale-free (HDR radiance and
+// and restarts the mean one frame later. A restart empties the mean (the moments' count of
+// estimates in it, z) but not the pixel's pattern count (the history's a), so a pixel whose
+// mean keeps restarting (a grazing surface under fast motion, whose resampled history misses
+// its steep gradient) still converges after the rotation limit and costs no more than with
+// eqs 4-5. The relative floor is scale-free (HDR radiance and
 // [0, 1] visibilities alike) and keeps one flipped PCF tap (1/9) or AO sample from counting as
 // a change where every earlier pattern agreed (zero variance).
 const float GATE_RELATIVE = 0.25;
@@ -44,9 +48,9 @@ const vec3 LUMA = vec3(0.2126, 0.7152, 0.0722);
 // Weight of a fresh estimate in the merge with a history of `n` estimates (n >= 1); `change`
 // is the thesis's |V_old - V_new| on the effect's own scale, `l_old` / `l_fresh` the
 // luminances (the value itself for scalar effects). `moments` holds the mean squared luminance
-// (x) and the side of a pending gate crossing (y: +-1, 0 none), updated here for the gate. A
-// weight of 1 restarts the history from the fresh estimate.
-float fresh_weight(float n, float change, float l_old, float l_fresh, inout vec2 moments) {
+// (x), the side of a pending gate crossing (y: +-1, 0 none) and the estimates in the gated
+// mean (z), updated here for the gate. A weight of 1 restarts the mean from the fresh estimate.
+float fresh_weight(float n, float change, float l_old, float l_fresh, inout vec4 moments) {
     uint mode = frame.accumulate_mode;
     float k = frame.accumulate_param;
     if (mode == 0u) return clamp(change, 0.0, 1.0) / (1.0 + k); // eqs 4-5
@@ -55,48 +59,51 @@ float fresh_weight(float n, float change, float l_old, float l_fresh, inout vec2
     float sigma = sqrt(max(moments.x - l_old * l_old, 0.0));
     float gate = max(k * sigma, GATE_RELATIVE * max(abs(l_old), abs(l_fresh)));
     float diff = l_fresh - l_old;
-    float side = n >= GATE_MIN_COUNT && abs(diff) > gate ? sign(diff) : 0.0;
+    float in_mean = max(moments.z, 1.0);
+    float side = in_mean >= GATE_MIN_COUNT && abs(diff) > gate ? sign(diff) : 0.0;
     // A resampled history blends the flags of its taps: a crossing counts where most agree.
     bool persists = side * moments.y > 0.5;
     moments.y = persists ? 0.0 : side;
-    return persists ? 1.0 : 1.0 / (n + 1.0);
+    return persists ? 1.0 : 1.0 / (in_mean + 1.0);
 }
 
-// Count after a merge with weight `w`: a restart of the gated mean counts one estimate.
-float merged_count(float n, float w) {
-    return frame.accumulate_mode == 3u && w >= 1.0 ? 1.0 : n + 1.0;
+// Moments after a merge with weight `w` of an estimate of squared luminance `l2`.
+vec4 merged_moments(vec4 moments, float w, float l2) {
+    moments.x += w * (l2 - moments.x);
+    moments.z = w >= 1.0 ? 1.0 : moments.z + 1.0;
+    return moments;
 }
 
 // Merge a fresh scalar estimate into the history value `old` that holds `n` estimates;
-// `moments` (mean squared value, pending gate crossing) is updated in place. Returns (value,
-// count).
-vec2 accumulate(float old, float n, float fresh, inout vec2 moments) {
+// `moments` (mean squared value, pending gate crossing, estimates in the mean) is updated in
+// place. Returns (value, count).
+vec2 accumulate(float old, float n, float fresh, inout vec4 moments) {
     fresh = clamp(fresh, -HISTORY_MAX, HISTORY_MAX);
     if (n < 0.5) {
-        moments = vec2(fresh * fresh, 0.0);
+        moments = vec4(fresh * fresh, 0.0, 1.0, 0.0);
         return vec2(fresh, 1.0);
     }
     float w = fresh_weight(n, abs(old - fresh), old, fresh, moments);
-    moments.x += w * (fresh * fresh - moments.x);
-    return vec2(old + w * (fresh - old), merged_count(n, w));
+    moments = merged_moments(moments, w, fresh * fresh);
+    return vec2(old + w * (fresh - old), n + 1.0);
 }
 
 // The same for radiance. The thesis's difference is taken relative to the larger of the two
 // values' norms, so confidence measures relative change for any colour and any intensity (a
 // difference over luminance would be 14x larger for pure blue than for grey). Returns
 // (value, count).
-vec4 accumulate3(vec3 old, float n, vec3 fresh, inout vec2 moments) {
+vec4 accumulate3(vec3 old, float n, vec3 fresh, inout vec4 moments) {
     fresh = clamp(fresh, vec3(-HISTORY_MAX), vec3(HISTORY_MAX));
     float l_fresh = dot(fresh, LUMA);
     if (n < 0.5) {
-        moments = vec2(l_fresh * l_fresh, 0.0);
+        moments = vec4(l_fresh * l_fresh, 0.0, 1.0, 0.0);
         return vec4(fresh, 1.0);
     }
     float norm = max(length(old), length(fresh));
     float change = norm > 0.0 ? length(old - fresh) / norm : 0.0;
     float w = fresh_weight(n, change, dot(old, LUMA), l_fresh, moments);
-    moments.x += w * (l_fresh * l_fresh - moments.x);
-    return vec4(old + w * (fresh - old), merged_count(n, w));
+    moments = merged_moments(moments, w, l_fresh * l_fresh);
+    return vec4(old + w * (fresh - old), n + 1.0);
 }
 
 #endif // TEMPORAL_GLSL

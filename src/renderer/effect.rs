@@ -67,7 +67,8 @@ pub struct TemporalEffect {
     pub kind: EffectKind,
     /// rgb = value, a = estimates accumulated.
     pub history: PingPong,
-    /// r = mean squared luminance of the estimates, g = pending gate crossing (gated mean).
+    /// r = mean squared luminance of the estimates, g = pending gate crossing, b = estimates in
+    /// the gated mean since its last restart.
     pub moments: PingPong,
     pub state: Image,
     pub counters: Buffer,

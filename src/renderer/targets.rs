@@ -26,7 +26,8 @@ pub const AO_FORMAT: vk::Format = vk::Format::R16G16B16A16_SFLOAT;
 /// which the 36th pattern of a mean (1/37 of a difference of 0.01) already is.
 pub const HISTORY_FORMAT: vk::Format = vk::Format::R32G32B32A32_SFLOAT;
 /// The moments history beside it (r: mean squared luminance of the estimates, g: the side of
-/// a pending gate crossing of the gated mean, see shaders/include/temporal.glsl).
+/// a pending gate crossing of the gated mean, b: estimates in that mean since its last
+/// restart; see shaders/include/temporal.glsl).
 /// rgba32f rather than rg32f: a storage format every Vulkan device supports without
 /// shaderStorageImageExtendedFormats.
 pub const MOMENTS_FORMAT: vk::Format = vk::Format::R32G32B32A32_SFLOAT;
