@@ -600,8 +600,8 @@ fn many_vpl_gather_matches_the_full_gather() {
 }
 
 /// A plane facing the camera head-on (z = 0, seen along -z), so world x and y are affine in
-/// the pixel coordinates, and in (0, 2) where visible: an fp16 history then holds them to one
-/// unit in the last place, under 9.8e-4 (lavapipe truncates).
+/// the pixel coordinates, and in (0, 2) where visible (the fp32 history holds them far below
+/// the 1e-3 tolerance).
 fn ramp_scene() -> Scene {
     let mut b = MeshBuilder::new();
     let white = b.add_material(Material::colour("white", [0.8, 0.8, 0.8]));

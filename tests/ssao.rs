@@ -608,7 +608,7 @@ fn crytek_flat_wall_facing_the_camera_is_one_half() {
         eprintln!("{name}: mean {mean:.5}, worst pixel off 0.5 by {worst:.4}");
         // Tolerances: the sequence's discrepancy over 36 x 32 points per pixel (the plane
         // through the ball tilts with the pixel's view ray; tests/patterns.rs: at most 1% for
-        // any plane), plus fp16 rounding of the history (2.4e-4 per update at 0.5).
+        // any plane).
         assert!(
             (mean - 0.5).abs() <= 0.005,
             "{name}: mean visibility {mean}"
