@@ -34,9 +34,9 @@ float disocclusion_epsilon(vec3 p, vec3 n) {
 // estimates in it, z) but not the pixel's pattern count (the history's a), so a pixel whose
 // mean keeps restarting (a grazing surface under fast motion, whose resampled history misses
 // its steep gradient) still converges after the rotation limit and costs no more than with
-// eqs 4-5. The relative floor is scale-free (HDR radiance and
-// [0, 1] visibilities alike) and keeps one flipped PCF tap (1/9) or AO sample from counting as
-// a change where every earlier pattern agreed (zero variance).
+// eqs 4-5. The relative floor is scale-free (HDR radiance and [0, 1] visibilities alike) and
+// keeps one flipped PCF tap (1/9) or AO sample from counting as a change where every earlier
+// pattern agreed (zero variance).
 const float GATE_RELATIVE = 0.25;
 // Estimates before the gate may act: with fewer the patterns' variance is not known yet.
 const float GATE_MIN_COUNT = 4.0;
