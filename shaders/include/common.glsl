@@ -4,11 +4,6 @@
 
 const float PI = 3.14159265358979;
 const float TWO_PI = 6.28318530718;
-// 1/phi = phi - 1: consecutive multiples mod 1 are maximally spread (a 1D low-discrepancy
-// sequence for per-pattern offsets).
-const float INV_GOLDEN_RATIO = 0.6180339887;
-// 2 pi (1 - 1/phi) radians: successive Vogel-spiral samples are this far apart in angle.
-const float GOLDEN_ANGLE = 2.39996322973;
 
 // Normalise with a fallback: |v|^2 below 1e-20 means a degenerate direction (interpolated
 // normals and light vectors are O(1) or scene-scale, never legitimately that small).
