@@ -33,7 +33,7 @@ void main() {
         ivec2 full = low * 2;
         vec4 position = texelFetch(g_position, full, 0);
         if (position.w != 0.0) {
-            bool refresh = in_refresh_tile(block * 16);
+            bool refresh = low_in_refresh_tile(low);
             vec3 n = texelFetch(g_normal, full, 0).xyz;
             value = indirect_value(position.xyz, n, refresh, low);
             atomicAdd(group_computed, 1u);

@@ -2,7 +2,8 @@
 // PCF soft shadows with temporal reuse (Lin 2013 section 3.4): over the 8x8 blocks the
 // reprojection listed, one disc pattern (patterns.glsl) per pixel that is new or
 // accumulating, merged into the history (temporal.glsl); the refresh tile is recomputed as the
-// mean of every pattern up to the rotation limit, the estimator accumulation converges to.
+// mean of every pattern up to the rotation limit, the estimator accumulation converges to, and
+// blended in along the tile's feather ramp (refresh_weight).
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_samplerless_texture_functions : require
 #include "frame.glsl"
@@ -45,8 +46,8 @@ void main() {
                     sum += x;
                     sum2 += x * x;
                 }
-                result = vec2(sum / float(limit), float(limit));
-                m = vec4(sum2 / float(limit), 0.0, float(limit), 0.0);
+                float w = refresh_blend(refresh_weight(pixel), h.a, sum2 / float(limit), m);
+                result = vec2(mix(h.r, sum / float(limit), w), float(limit));
             } else {
                 float fresh = shadow_visibility(p, n, h.a, pixel);
                 result = accumulate(h.r, h.a, fresh, m);

@@ -3,7 +3,8 @@
 // evaluates one rotated pattern per pixel that is new or accumulating and merges it into the
 // history (temporal.glsl: the gated running mean, eqs 4-5, EMA or capped mean); pixels of the
 // refresh tile are recomputed from scratch as the mean of every pattern up to the rotation
-// limit, the estimator accumulation converges to. Converged pixels are left alone.
+// limit, the estimator accumulation converges to, and blended in along the tile's feather ramp
+// (refresh_weight). Converged pixels are left alone.
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_samplerless_texture_functions : require
 #include "frame.glsl"
@@ -47,8 +48,8 @@ void main() {
                     sum += x;
                     sum2 += x * x;
                 }
-                result = vec2(sum / float(limit), float(limit));
-                m = vec4(sum2 / float(limit), 0.0, float(limit), 0.0);
+                float w = refresh_blend(refresh_weight(pixel), h.a, sum2 / float(limit), m);
+                result = vec2(mix(h.r, sum / float(limit), w), float(limit));
             } else {
                 // Each pixel walks through patterns 0, 1, ... in the order it accumulates them.
                 float fresh = 1.0 - ao_estimate(pixel, p, n, h.a, 1u);

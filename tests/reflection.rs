@@ -141,12 +141,13 @@ fn generated_structs_put_each_member_at_its_reflected_offset() {
         assert_eq!(out[r.clone()], bytes[r], "member {}", m.name);
     }
     let push = EffectPush {
-        refresh_origin: [7, 9],
+        refresh_rect: [7, 9, 11, 13],
         pattern: 5,
         ..Default::default()
     }
     .to_bytes();
     assert_eq!(push[..8], [7, 0, 0, 0, 9, 0, 0, 0]);
+    assert_eq!(push[12], 13);
     let p = EffectPush::MEMBERS
         .iter()
         .find(|m| m.name == "pattern")

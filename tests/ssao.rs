@@ -6,7 +6,7 @@ mod common;
 
 use glam::{Mat4, Vec3, Vec4};
 use ssgi::renderer::config::{
-    Accumulate, AoConfig, AoEstimator, Effects, RenderConfig, TemporalConfig,
+    Accumulate, AoConfig, AoEstimator, Effects, Refresh, RenderConfig, TemporalConfig,
 };
 use ssgi::renderer::pcf::Pcf;
 use ssgi::renderer::targets::Target;
@@ -34,7 +34,7 @@ fn config(size: u32, temporal: TemporalConfig, ao: AoConfig) -> RenderConfig {
 
 fn no_refresh() -> TemporalConfig {
     TemporalConfig {
-        refresh: false,
+        refresh: Refresh::Off,
         ..Default::default()
     }
 }
@@ -372,7 +372,7 @@ fn translation_recompute_mask_matches_cpu_reprojection() {
 fn converged_static_view_computes_at_most_one_refresh_tile() {
     let ctx = common::context();
     let size = 256;
-    for refresh in [true, false] {
+    for refresh in [Refresh::Feathered, Refresh::Hard, Refresh::Off] {
         let temporal = TemporalConfig {
             refresh,
             ..Default::default()
@@ -397,7 +397,7 @@ fn converged_static_view_computes_at_most_one_refresh_tile() {
         );
         for t in &timings[38..] {
             let c = computed(t);
-            if refresh {
+            if refresh != Refresh::Off {
                 assert!(c <= 64 * 64, "frame {}: {c} pixels computed", t.frame);
                 assert!(c > 0, "frame {}: the refresh tile holds geometry", t.frame);
             } else {

@@ -4,10 +4,11 @@
 #define EFFECT_GLSL
 
 #include "counters.glsl"
+#include "frame.glsl"
 
 layout(push_constant) uniform Effect {
-    uvec2 refresh_origin;  // refresh tile origin [px]; ~0 = no refresh this frame
-    uint refresh_tile;     // refresh tile side [px]
+    uvec4 refresh_rect;    // refresh tile [x0, x1) x [y0, y1) as (x0, y0, x1, y1) [px]; empty = none
+    uint refresh_feather;  // width of the refresh tile's blend ramp [px]; 0 = hard tile
     uint history_valid;    // 0 on the first frame, after a resize or a camera cut
     uint block_shift;      // log2 of the work-block side (3: 8x8, 4: 16x16)
     uint pattern;          // this frame's pattern index
@@ -21,9 +22,34 @@ ivec2 block_pixel(uint index, uvec2 local) {
 
 // Whether full-resolution pixel `pixel` lies in this frame's refresh tile.
 bool in_refresh_tile(ivec2 pixel) {
-    uvec2 tile = effect.refresh_origin;
-    return tile.x != 0xffffffffu && all(greaterThanEqual(uvec2(pixel), tile)) &&
-           all(lessThan(uvec2(pixel), tile + effect.refresh_tile));
+    uvec4 r = effect.refresh_rect;
+    return all(greaterThanEqual(uvec2(pixel), r.xy)) && all(lessThan(uvec2(pixel), r.zw));
+}
+
+// Whether half-resolution sample `low` (full-resolution texel 2 low) is read by the upsampling
+// of a pixel in the refresh tile: pixel x reads samples x / 2 and, when odd, x / 2 + 1, so the
+// tile [x0, x1) reads [x0 / 2, x1 / 2].
+bool low_in_refresh_tile(ivec2 low) {
+    uvec4 r = effect.refresh_rect;
+    return all(lessThan(r.xy, r.zw)) && all(greaterThanEqual(uvec2(low), r.xy >> 1)) &&
+           all(lessThanEqual(uvec2(low), r.zw >> 1));
+}
+
+// Weight of the recomputed value in a refreshed pixel: 1 in the tile's core, falling linearly
+// to 1 / (2 feather) at the pixels next to a tile edge, so a tile whose neighbours have drifted
+// (a screen-space effect seen from elsewhere, histories smoothed by resampling) meets them in
+// a ramp instead of a step (the seams of the thesis's Figure 4.4). Edges on the image border
+// have no neighbour and are not feathered. The schedule (temporal.rs) shifts the tile grid by
+// half a tile from cycle to cycle, so every pixel lies in some tile's core.
+float refresh_weight(ivec2 pixel) {
+    if (effect.refresh_feather == 0u) return 1.0;
+    uvec4 r = effect.refresh_rect;
+    float feather = float(effect.refresh_feather);
+    vec2 c = vec2(pixel) + 0.5;
+    vec2 lo = mix(c - vec2(r.xy), vec2(feather), equal(r.xy, uvec2(0u)));
+    vec2 hi = mix(vec2(r.zw) - c, vec2(feather), greaterThanEqual(r.zw, frame.size));
+    vec2 d = min(lo, hi);
+    return clamp(min(d.x, d.y) / feather, 0.0, 1.0);
 }
 
 #endif // EFFECT_GLSL

@@ -11,8 +11,8 @@ void merge(ivec2 pixel, vec4 h, vec4 fresh, bool refresh) {
     vec4 m = imageLoad(moments, pixel);
     vec4 result;
     if (refresh) {
-        result = vec4(fresh.rgb, float(frame.rotation_limit));
-        m = vec4(fresh.a, 0.0, float(frame.rotation_limit), 0.0);
+        float w = refresh_blend(refresh_weight(pixel), h.a, fresh.a, m);
+        result = vec4(mix(h.rgb, fresh.rgb, w), float(frame.rotation_limit));
     } else {
         result = accumulate3(h.rgb, h.a, fresh.rgb, m);
     }

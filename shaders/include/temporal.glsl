@@ -106,4 +106,16 @@ vec4 accumulate3(vec3 old, float n, vec3 fresh, inout vec4 moments) {
     return vec4(old + w * (fresh - old), n + 1.0);
 }
 
+// A refreshed pixel: the mean of every pattern is blended into the history with the refresh
+// weight `w` (effect.glsl's refresh_weight). A history of `n` estimates, fewer than the rotation
+// limit, weighs at most its share n / limit (a new pixel, n = 0, takes the mean alone).
+// `mean2` is the patterns' mean squared luminance; the moments become the blend's, holding
+// the rotation limit's count. Returns the weight of the recomputed mean.
+float refresh_blend(float w, float n, float mean2, inout vec4 moments) {
+    float limit = float(frame.rotation_limit);
+    w = max(w, 1.0 - clamp(n / limit, 0.0, 1.0));
+    moments = vec4(mix(moments.x, mean2, w), 0.0, limit, 0.0);
+    return w;
+}
+
 #endif // TEMPORAL_GLSL

@@ -7,7 +7,7 @@ use crate::cli::args::{
     parse_vpls, AccumulateMode,
 };
 use crate::error::{Error, Result};
-use crate::renderer::config::{Accumulate, AoEstimator};
+use crate::renderer::config::{Accumulate, AoEstimator, Refresh};
 use crate::renderer::frame::Pcf;
 use crate::renderer::RenderConfig;
 use clap::ValueEnum;
@@ -85,7 +85,9 @@ impl Key {
             Key::Accumulate => {
                 "history merge, default parameter if none; mean alone caps at the rotation limit"
             }
-            Key::Refresh => "tiled refresh, one tile recomputed per frame (--refresh)",
+            Key::Refresh => {
+                "tiled refresh, one tile recomputed per frame; hard = the thesis's seams"
+            }
             Key::RotationLimit => "patterns per pixel before it counts as converged",
             Key::Epsilon => "disocclusion threshold: pixel footprints, or abs: world units",
             Key::Vpls => "VPLs gathered per pixel and frame; all = every RSM texel (--vpls)",
@@ -103,7 +105,8 @@ impl Key {
             Key::AoEstimator => "thesis|crytek",
             Key::AoRadius => "number in (0, 10]",
             Key::AoPatterns => "integer 1..=1024",
-            Key::Reuse | Key::Refresh | Key::Visibility | Key::HalfRes => "on|off",
+            Key::Reuse | Key::Visibility | Key::HalfRes => "on|off",
+            Key::Refresh => "feathered|on|hard|off",
             Key::Accumulate => "gated[:SIGMAS]|confidence[:BIAS]|ema[:ALPHA]|mean[:CAP]",
             Key::RotationLimit => "integer 1..=2048",
             Key::Epsilon => "NUMBER|abs:NUMBER",
@@ -189,12 +192,12 @@ pub fn apply(config: &mut RenderConfig, key: Key, value: &str) -> Result<()> {
         },
         Setting::Flag(on) => match key {
             Key::Reuse => config.temporal.reuse = on,
-            Key::Refresh => config.temporal.refresh = on,
             Key::Visibility => config.indirect.visibility = on,
             _ => config.indirect.half_res = on,
         },
         Setting::Radius(r) => config.ao.radius = r,
         Setting::Estimator(e) => config.ao.estimator = e,
+        Setting::Refresh(r) => config.temporal.refresh = r,
         Setting::Accumulate(a) => config.temporal.accumulate = a,
         Setting::MeanOfLimit => {
             config.temporal.accumulate = Accumulate::Mean {
@@ -311,6 +314,7 @@ enum Setting {
     Flag(bool),
     Radius(f32),
     Estimator(AoEstimator),
+    Refresh(Refresh),
     Accumulate(Accumulate),
     MeanOfLimit,
     Epsilon(crate::renderer::config::Epsilon),
@@ -338,9 +342,8 @@ impl Setting {
             Key::RsmSize => count(crate::renderer::MAX_SIZE),
             Key::RotationLimit => parse_pattern_count(v).map(Setting::Count),
             Key::Vpls => parse_vpls(v).map(Setting::Count),
-            Key::Reuse | Key::Refresh | Key::Visibility | Key::HalfRes => {
-                parse_on_off(v).map(Setting::Flag)
-            }
+            Key::Refresh => Refresh::from_str(v, false).map(Setting::Refresh),
+            Key::Reuse | Key::Visibility | Key::HalfRes => parse_on_off(v).map(Setting::Flag),
             Key::AoRadius => match v.parse::<f32>() {
                 Ok(r) if r.is_finite() && r > 0.0 && r <= 10.0 => Ok(Setting::Radius(r)),
                 _ => Err("not a number in (0, 10]".into()),
@@ -407,7 +410,7 @@ mod tests {
             (Key::Accumulate, "ema:0.25", |c| {
                 c.temporal.accumulate = Accumulate::Ema { alpha: 0.25 }
             }),
-            (Key::Refresh, "off", |c| c.temporal.refresh = false),
+            (Key::Refresh, "hard", |c| c.temporal.refresh = Refresh::Hard),
             (Key::RotationLimit, "64", |c| c.temporal.rotation_limit = 64),
             (Key::Epsilon, "abs:0.1", |c| {
                 c.temporal.epsilon = Epsilon::Absolute { epsilon: 0.1 }

@@ -2,7 +2,7 @@
 //! parsers. Checks that need more than one flag, or the scene, happen in the jobs.
 
 use crate::renderer::config::{
-    Accumulate, AoConfig, AoEstimator, Effects, Epsilon, IndirectConfig, TemporalConfig,
+    Accumulate, AoConfig, AoEstimator, Effects, Epsilon, IndirectConfig, Refresh, TemporalConfig,
 };
 use crate::renderer::frame::Pcf;
 use crate::renderer::{RenderConfig, MAX_SIZE};
@@ -117,9 +117,10 @@ pub struct SceneArgs {
     #[arg(long, default_value = "on", value_parser = parse_on_off, action = clap::ArgAction::Set)]
     pub half_res: bool,
     /// Tiled refresh: one tile per frame (64x64 for AO and shadows, 16x16 for indirect light)
-    /// recomputed from scratch.
-    #[arg(long, default_value = "on", value_parser = parse_on_off, action = clap::ArgAction::Set)]
-    pub refresh: bool,
+    /// recomputed from scratch; `feathered` (or `on`) blends it in along a quarter-tile ramp on
+    /// a grid shifted by half a tile each cycle, `hard` replaces it outright (the thesis).
+    #[arg(long, value_enum, default_value_t = Refresh::Feathered)]
+    pub refresh: Refresh,
 }
 
 /// `--accumulate` choices.

@@ -117,6 +117,22 @@ pub enum AoEstimator {
     Crytek,
 }
 
+/// Nehab et al.'s tiled refresh: one tile per frame recomputed from scratch (the mean of every
+/// pattern), and how the recomputed tile meets its neighbours.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, clap::ValueEnum)]
+#[serde(rename_all = "lowercase")]
+pub enum Refresh {
+    /// Converged pixels are reused until they are disoccluded.
+    Off,
+    /// The default: the recomputed tile is blended into the history along a ramp a quarter tile
+    /// wide, on a grid shifted by half a tile from cycle to cycle, so a tile whose neighbours
+    /// drifted under motion leaves no seam.
+    #[value(alias = "on")]
+    Feathered,
+    /// The thesis's: the recomputed tile replaces the history (seams under motion, Figure 4.4).
+    Hard,
+}
+
 /// How a fresh estimate is merged into the reprojected history.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
 #[serde(tag = "mode", rename_all = "lowercase")]
@@ -195,8 +211,7 @@ pub struct TemporalConfig {
     /// Patterns per pixel before it counts as converged: 360 / 10 degrees in the thesis.
     pub rotation_limit: u32,
     pub epsilon: Epsilon,
-    /// Nehab et al.'s tiled refresh: one tile per frame recomputed from scratch.
-    pub refresh: bool,
+    pub refresh: Refresh,
 }
 
 impl Default for TemporalConfig {
@@ -206,7 +221,7 @@ impl Default for TemporalConfig {
             accumulate: Accumulate::GATED,
             rotation_limit: 36,
             epsilon: Epsilon::DEFAULT,
-            refresh: true,
+            refresh: Refresh::Feathered,
         }
     }
 }
@@ -327,7 +342,7 @@ impl RenderConfig {
         }
         if self.effects.indirect
             && self.temporal.reuse
-            && self.temporal.refresh
+            && self.temporal.refresh != Refresh::Off
             && self.indirect.vpls as u64 * self.temporal.rotation_limit as u64 > 32768
         {
             return bad(format!(

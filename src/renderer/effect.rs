@@ -2,10 +2,10 @@
 //! lists and counters, refresh schedule and the push constants its passes share. The
 //! reprojection pass and the accumulation rules are the same for every effect.
 
-use super::config::FRAMES_IN_FLIGHT;
+use super::config::{Refresh, FRAMES_IN_FLIGHT};
 use super::counters::{self, Counter, CounterReadback};
 use super::targets::{PingPong, HISTORY_FORMAT, MOMENTS_FORMAT, STATE_FORMAT};
-use super::temporal::RefreshSchedule;
+use super::temporal::{RefreshRect, RefreshSchedule};
 use crate::error::Result;
 use crate::shaders::EffectPush;
 use crate::vk::cmd::Recorder;
@@ -120,22 +120,33 @@ impl TemporalEffect {
 
     /// This frame's push constants: a refresh tile is drawn only while the history is reused
     /// (`reusing`) and tiled refresh is on; `pattern` is the frame's pattern index.
-    pub fn frame_push(&mut self, reusing: bool, refresh: bool, pattern: u32) -> EffectPush {
-        let tile = (reusing && refresh).then(|| self.schedule.next_tile());
-        self.push_constants(tile, reusing, pattern)
+    pub fn frame_push(&mut self, reusing: bool, refresh: Refresh, pattern: u32) -> EffectPush {
+        let feathered = refresh == Refresh::Feathered;
+        let tile = (reusing && refresh != Refresh::Off).then(|| self.schedule.next_tile(feathered));
+        let mut push = self.push_constants(tile, reusing, pattern);
+        if !feathered {
+            push.refresh_feather = 0;
+        }
+        push
     }
 
-    /// Push constants (`Effect` in shaders/include/effect.glsl) for this frame.
+    /// Push constants (`Effect` in shaders/include/effect.glsl) for this frame, with the
+    /// refresh tile feathered.
     pub fn push_constants(
         &self,
-        refresh: Option<(u32, u32)>,
+        refresh: Option<RefreshRect>,
         history_valid: bool,
         pattern: u32,
     ) -> EffectPush {
-        let (x, y) = refresh.unwrap_or((u32::MAX, u32::MAX));
+        let r = refresh.unwrap_or(RefreshRect {
+            x0: 0,
+            y0: 0,
+            x1: 0,
+            y1: 0,
+        });
         EffectPush {
-            refresh_origin: [x, y],
-            refresh_tile: self.kind.refresh_tile,
+            refresh_rect: [r.x0, r.y0, r.x1, r.y1],
+            refresh_feather: self.schedule.feather(),
             history_valid: history_valid as u32,
             block_shift: self.kind.block_shift,
             pattern,

@@ -30,15 +30,32 @@ impl Rng {
     }
 }
 
-/// One tile per frame, drawn from a random permutation of all tiles without repetition; a new
-/// permutation starts when every tile has been refreshed.
+/// A refresh tile: the pixels [x0, x1) x [y0, y1).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord)]
+pub struct RefreshRect {
+    pub x0: u32,
+    pub y0: u32,
+    pub x1: u32,
+    pub y1: u32,
+}
+
+/// Grid shift of each refresh cycle in half tiles. A refreshed tile is blended in along a ramp a
+/// quarter tile wide (shaders/include/effect.glsl, `refresh_weight`), so only its central half
+/// is replaced outright; with the grid shifted by half a tile in x, y or both from cycle to
+/// cycle, every pixel lies in the central half of some tile once every four cycles.
+const GRID_SHIFTS: [(u32, u32); 4] = [(0, 0), (1, 1), (1, 0), (0, 1)];
+
+/// One tile per frame, drawn from a random permutation of the tiles of this cycle's grid
+/// without repetition; a new cycle, on the next shifted grid, starts when every tile has been
+/// refreshed. Tiles cut by the image border are clipped.
 #[derive(Clone, Debug)]
 pub struct RefreshSchedule {
     tile: u32,
-    tiles_x: u32,
-    tiles_y: u32,
-    order: Vec<u32>,
+    width: u32,
+    height: u32,
+    order: Vec<RefreshRect>,
     next: usize,
+    cycle: usize,
     rng: Rng,
 }
 
@@ -51,22 +68,57 @@ impl RefreshSchedule {
     pub fn with_tile(width: u32, height: u32, tile: u32) -> Self {
         Self {
             tile,
-            tiles_x: width.div_ceil(tile),
-            tiles_y: height.div_ceil(tile),
+            width,
+            height,
             order: Vec::new(),
             next: 0,
+            cycle: 0,
             rng: Rng::new(0x005e_ed0f_7e11),
         }
     }
 
-    pub fn tile_count(&self) -> u32 {
-        self.tiles_x * self.tiles_y
+    /// Width of the blend ramp at a tile's inner edges: a quarter tile.
+    pub fn feather(&self) -> u32 {
+        (self.tile / 4).max(1)
     }
 
-    /// Pixel origin of the next tile.
-    pub fn next_tile(&mut self) -> (u32, u32) {
+    /// Tile spans along one axis of `extent` pixels for a grid shifted by `shift` pixels.
+    fn spans(&self, extent: u32, shift: u32) -> Vec<(u32, u32)> {
+        let first = if shift > 0 {
+            shift as i64 - self.tile as i64
+        } else {
+            0
+        };
+        (0..)
+            .map(|k| first + k * self.tile as i64)
+            .take_while(|&start| start < extent as i64)
+            .map(|start| {
+                let end = (start + self.tile as i64).min(extent as i64);
+                (start.max(0) as u32, end as u32)
+            })
+            .collect()
+    }
+
+    /// The tiles of the grid of cycle `cycle`.
+    pub fn grid(&self, cycle: usize) -> Vec<RefreshRect> {
+        let (sx, sy) = GRID_SHIFTS[cycle % GRID_SHIFTS.len()];
+        let half = self.tile / 2;
+        let xs = self.spans(self.width, sx * half);
+        let ys = self.spans(self.height, sy * half);
+        ys.iter()
+            .flat_map(|&(y0, y1)| {
+                xs.iter()
+                    .map(move |&(x0, x1)| RefreshRect { x0, y0, x1, y1 })
+            })
+            .collect()
+    }
+
+    /// The next tile; `shifted`: on the grid of the current cycle, else on the unshifted grid
+    /// (hard refresh, the thesis's fixed tiles).
+    pub fn next_tile(&mut self, shifted: bool) -> RefreshRect {
         if self.next >= self.order.len() {
-            self.order = (0..self.tile_count()).collect();
+            self.order = self.grid(if shifted { self.cycle } else { 0 });
+            self.cycle += 1;
             for i in (1..self.order.len()).rev() {
                 let j = self.rng.below(i as u32 + 1) as usize;
                 self.order.swap(i, j);
@@ -75,10 +127,7 @@ impl RefreshSchedule {
         }
         let t = self.order[self.next];
         self.next += 1;
-        (
-            (t % self.tiles_x) * self.tile,
-            (t / self.tiles_x) * self.tile,
-        )
+        t
     }
 }
 
@@ -100,18 +149,65 @@ mod tests {
     use super::*;
 
     #[test]
-    fn every_tile_once_per_cycle() {
-        let mut s = RefreshSchedule::new(300, 130); // 5 x 3 tiles, partial edge tiles
-        assert_eq!(s.tile_count(), 15);
-        for _ in 0..3 {
-            let mut seen: Vec<(u32, u32)> = (0..15).map(|_| s.next_tile()).collect();
-            seen.sort();
-            seen.dedup();
-            assert_eq!(seen.len(), 15);
-            assert!(seen
-                .iter()
-                .all(|&(x, y)| x < 300 && y < 130 && x % 64 == 0 && y % 64 == 0));
+    fn every_pixel_once_per_cycle_on_shifted_grids() {
+        let (w, h) = (300, 130); // partial edge tiles
+        let mut s = RefreshSchedule::new(w, h);
+        for cycle in 0..8 {
+            let tiles = s.grid(cycle).len();
+            let mut hits = vec![0u32; (w * h) as usize];
+            for _ in 0..tiles {
+                let r = s.next_tile(true);
+                assert!(
+                    r.x0 < r.x1 && r.x1 <= w && r.y0 < r.y1 && r.y1 <= h,
+                    "{r:?}"
+                );
+                assert!(r.x1 - r.x0 <= 64 && r.y1 - r.y0 <= 64);
+                for y in r.y0..r.y1 {
+                    for x in r.x0..r.x1 {
+                        hits[(y * w + x) as usize] += 1;
+                    }
+                }
+            }
+            assert!(hits.iter().all(|&n| n == 1), "cycle {cycle}");
         }
+        assert_eq!(s.grid(0).len(), 5 * 3);
+        assert_eq!(s.grid(1).len(), 6 * 3); // shifted by 32: [0, 32), ..., [288, 300)
+    }
+
+    /// Distance of x from the nearest inner tile edge, as the shader's refresh_weight measures
+    /// it (edges on the image border do not count).
+    fn inner_distance(x: u32, (x0, x1): (u32, u32), extent: u32) -> f32 {
+        let c = x as f32 + 0.5;
+        let lo = if x0 == 0 { f32::MAX } else { c - x0 as f32 };
+        let hi = if x1 >= extent {
+            f32::MAX
+        } else {
+            x1 as f32 - c
+        };
+        lo.min(hi)
+    }
+
+    #[test]
+    fn every_pixel_is_in_a_tile_core_within_four_cycles() {
+        let (w, h) = (200, 150);
+        let s = RefreshSchedule::new(w, h);
+        let feather = s.feather() as f32;
+        let mut core = vec![false; (w * h) as usize];
+        for cycle in 0..4 {
+            for r in s.grid(cycle) {
+                for y in r.y0..r.y1 {
+                    for x in r.x0..r.x1 {
+                        let d = inner_distance(x, (r.x0, r.x1), w).min(inner_distance(
+                            y,
+                            (r.y0, r.y1),
+                            h,
+                        ));
+                        core[(y * w + x) as usize] |= d >= feather;
+                    }
+                }
+            }
+        }
+        assert!(core.iter().all(|&c| c));
     }
 
     #[test]
