@@ -1,9 +1,10 @@
 #version 460
 // Reverse reprojection (Lin 2013 eqs 1-3) for one temporal effect: previous texture coordinate
 // of every pixel from its world position and last frame's view-projection, disocclusion test
-// against the world-position history, resampling of the effect's history (rgb value, a =
-// estimates) and of its second moment, per-pixel state, and the list of work blocks that hold pixels needing work (the
-// effect pass's indirect dispatch). Run once per effect with its push constants.
+// against the world-position history (and the normal history: FACING_ACCEPT), resampling of the
+// effect's history (rgb value, a = estimates) and of its second moment, per-pixel state, and
+// the list of work blocks that hold pixels needing work (the effect pass's indirect dispatch).
+// Run once per effect with its push constants.
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_samplerless_texture_functions : require
 #include "frame.glsl"
@@ -22,14 +23,23 @@ layout(set = 1, binding = 4, rgba32f) uniform writeonly image2D history_cur;
 layout(set = 1, binding = 5, r32ui) uniform writeonly uimage2D state_out;
 layout(set = 1, binding = 7) uniform texture2D moments_prev;
 layout(set = 1, binding = 8, rgba32f) uniform writeonly image2D moments_cur;
+layout(set = 1, binding = 9) uniform texture2D prev_normal;    // last frame's G-buffer normal
+
+// Beyond eq 3: a history texel must also face the pixel's way, within 60 degrees. The back of
+// a thin wall (or of any two-sided sheet) has the front's position, and a camera passing
+// through it would otherwise hand the unlit back's history to the lit front; a crease's other
+// face (90 degrees) is another surface too. Curved surfaces turn far less between neighbouring
+// texels at any useful resolution.
+const float FACING_ACCEPT = 0.5;
 
 shared uint quadrant_needs_work[4];
 shared uint group_disoccluded;
 
-bool tap_valid(ivec2 t, vec3 p, float eps) {
+bool tap_valid(ivec2 t, vec3 p, vec3 n, float eps) {
     if (outside_frame(t)) return false;
     vec4 h = texelFetch(prev_position, t, 0);
-    return h.w != 0.0 && distance(h.xyz, p) <= eps; // eq 3
+    return h.w != 0.0 && distance(h.xyz, p) <= eps && // eq 3
+           dot(texelFetch(prev_normal, t, 0).xyz, n) >= FACING_ACCEPT;
 }
 
 // History at the reprojected point: bilinear over the four taps around it when all hold this
@@ -37,13 +47,13 @@ bool tap_valid(ivec2 t, vec3 p, float eps) {
 // crossing, estimates in the mean: the smallest tap's) with the same weights. A static camera (decided on the CPU) reuses the
 // texel itself: eq 1's rounding noise would otherwise blend neighbours into a converged value
 // every frame, and that noise grows with the coordinates' distance from the origin.
-vec4 resample(vec2 f, ivec2 nearest, vec3 p, float eps, out vec4 moments) {
+vec4 resample(vec2 f, ivec2 nearest, vec3 p, vec3 n, float eps, out vec4 moments) {
     vec2 g = f - 0.5;
     ivec2 base = ivec2(floor(g)); // f is clamped to [-1, size + 1]: defined conversion
     vec2 w = g - vec2(base);
     bool all_valid = frame.camera_static == 0u;
     for (int k = 0; k < 4 && all_valid; ++k)
-        all_valid = tap_valid(base + ivec2(k & 1, k >> 1), p, eps);
+        all_valid = tap_valid(base + ivec2(k & 1, k >> 1), p, n, eps);
     if (!all_valid) {
         moments = texelFetch(moments_prev, nearest, 0);
         return texelFetch(history_prev, nearest, 0);
@@ -85,9 +95,10 @@ void main() {
                     if (frame.camera_static != 0u) f = vec2(pixel) + 0.5;
                     ivec2 nearest = texel_of(f, vec2(frame.size));
                     f = clamp(f, vec2(-1.0), vec2(frame.size) + 1.0);
-                    float eps = disocclusion_epsilon(p, texelFetch(g_normal, pixel, 0).xyz);
-                    if (tap_valid(nearest, p, eps)) { // eqs 2-3 on the nearest texel
-                        history = resample(f, nearest, p, eps, moments);
+                    vec3 n = texelFetch(g_normal, pixel, 0).xyz;
+                    float eps = disocclusion_epsilon(p, n);
+                    if (tap_valid(nearest, p, n, eps)) { // eqs 2-3 on the nearest texel
+                        history = resample(f, nearest, p, n, eps, moments);
                         state = history.a >= float(frame.rotation_limit) ? STATE_CONVERGED : STATE_ACCUMULATING;
                     }
                 }

@@ -287,7 +287,8 @@ fn static_camera_converges_to_the_many_sample_reference() {
 }
 
 /// Camera moved sideways by a known amount: the GPU's disoccluded pixels equal a CPU
-/// application of eqs 1-3 (nearest texel, the same scale-free epsilon) to the two G-buffers.
+/// application of eqs 1-3 (nearest texel, the same scale-free epsilon) and the facing test
+/// (normals within 60 degrees) to the two G-buffers.
 #[test]
 fn translation_recompute_mask_matches_cpu_reprojection() {
     let ctx = common::context();
@@ -310,6 +311,7 @@ fn translation_recompute_mask_matches_cpu_reprojection() {
     let pos1 = r.read(Target::GPosition).unwrap();
     let pos0 = r.read(Target::GPositionHistory).unwrap();
     let nrm1 = r.read(Target::GNormal).unwrap();
+    let nrm0 = r.read(Target::GNormalHistory).unwrap();
     let state = r.read(Target::State).unwrap();
     let vp0 = c0.view_proj(1.0);
     let tan_half = (0.5 * c1.vfov_deg).to_radians().tan();
@@ -342,8 +344,12 @@ fn translation_recompute_mask_matches_cpu_reprojection() {
                     (uv.x * size as f32).floor() as i64,
                     (uv.y * size as f32).floor() as i64,
                 );
-                texel(&pos0, tx, ty)
-                    .is_some_and(|h| h[3] != 0.0 && Vec3::new(h[0], h[1], h[2]).distance(w) <= eps)
+                let facing = |t: [f32; 4]| Vec3::from_slice(&t[..3]).dot(n) >= 0.5;
+                texel(&pos0, tx, ty).is_some_and(|h| {
+                    h[3] != 0.0
+                        && Vec3::new(h[0], h[1], h[2]).distance(w) <= eps
+                        && texel(&nrm0, tx, ty).is_some_and(facing)
+                })
             };
             let gpu_new = state.texel(x, y)[0] as u32 == 2;
             cpu_new += (!valid) as u32;
@@ -558,6 +564,57 @@ fn frontal_wall(distance: f32, vfov_deg: f32, step: Option<f32>) -> Scene {
         100.0,
     );
     scene
+}
+
+/// A camera passing through a thin wall: the wall's back has the front's positions, so eq 3
+/// alone would hand the back's history to the front. The facing test (reproject.comp's
+/// FACING_ACCEPT) rejects it: every wall pixel is recomputed. A step on the same side keeps
+/// its history, so the test tells the two apart.
+#[test]
+fn thin_wall_seen_from_behind_does_not_reuse_its_front() {
+    let ctx = common::context();
+    let size = 64;
+    let mut r = renderer(
+        &ctx,
+        frontal_wall(4.0, 40.0, None),
+        config(size, no_refresh(), AoConfig::default()),
+    );
+    let front = r.scene.camera;
+    let new_fraction = |r: &mut Renderer| {
+        let state = r.read(Target::State).unwrap();
+        let pos = r.read(Target::GPosition).unwrap();
+        let (mut new, mut geometry) = (0, 0);
+        for y in 0..size {
+            for x in 0..size {
+                if pos.texel(x, y)[3] != 0.0 {
+                    geometry += 1;
+                    new += (state.texel(x, y)[0] as u32 == 2) as u32;
+                }
+            }
+        }
+        assert!(geometry > size * size / 2, "the wall fills the view");
+        new as f64 / geometry as f64
+    };
+    r.render_frame(&front).unwrap();
+    let step = Camera {
+        position: front.position + Vec3::new(0.0, 0.0, -0.01),
+        ..front
+    };
+    r.render_frame(&step).unwrap();
+    r.finish().unwrap();
+    let same_side = new_fraction(&mut r);
+    let behind = Camera {
+        position: Vec3::new(0.0, 0.0, -4.0),
+        ..front
+    };
+    r.render_frame(&behind).unwrap();
+    r.finish().unwrap();
+    let through = new_fraction(&mut r);
+    eprintln!("recomputed: {same_side:.4} after a step, {through:.4} from behind");
+    assert!(same_side < 0.05, "a small step recomputes {same_side}");
+    assert!(through > 0.99, "from behind only {through} recomputed");
+    drop(r);
+    common::assert_clean(&ctx);
 }
 
 /// Mittring's estimator on a wall facing the camera: half of a ball centred on the wall lies

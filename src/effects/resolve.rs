@@ -24,6 +24,7 @@ pub fn shared(t: &Targets, slot: Slot, parity: usize) -> Option<&Image> {
         Slot::GPosition => Target::GPosition,
         Slot::GPositionPrev => Target::GPositionHistory,
         Slot::GNormal => Target::GNormal,
+        Slot::GNormalPrev => Target::GNormalHistory,
         Slot::GAlbedo => Target::GAlbedo,
         Slot::GDepth => Target::GDepth,
         Slot::RsmPosition => Target::RsmPosition,

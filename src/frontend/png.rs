@@ -74,7 +74,7 @@ pub fn visualize(target: Target, data: &ImageData, bounds: &Aabb) -> Vec<u8> {
                         p.to_array()
                     }
                 }
-                Target::GNormal | Target::RsmNormal => {
+                Target::GNormal | Target::GNormalHistory | Target::RsmNormal => {
                     [t[0] * 0.5 + 0.5, t[1] * 0.5 + 0.5, t[2] * 0.5 + 0.5]
                 }
                 Target::GDepth | Target::RsmDepth => {

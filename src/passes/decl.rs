@@ -16,7 +16,10 @@ pub enum Slot {
     GPosition,
     /// Last frame's G-buffer world position: the world-position history of eq 2.
     GPositionPrev,
+    /// This frame's G-buffer normal (ping-ponged).
     GNormal,
+    /// Last frame's G-buffer normal: the disocclusion test's facing check.
+    GNormalPrev,
     GAlbedo,
     RsmPosition,
     RsmNormal,

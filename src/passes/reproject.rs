@@ -21,6 +21,7 @@ const BINDS: &[Bind] = &[
     Bind::new(6, Slot::Counters, Use::BufferReadWrite),
     Bind::new(7, Slot::MomentsPrev, Use::Sampled),
     Bind::new(8, Slot::Moments, Use::StorageWrite),
+    Bind::new(9, Slot::GNormalPrev, Use::Sampled),
 ];
 
 pub fn layout() -> PassLayout {

@@ -94,7 +94,9 @@ impl PingPong {
 pub struct GBuffer {
     /// This frame's world position, and last frame's (the world-position history of eq 2).
     pub position: PingPong,
-    pub normal: Image,
+    /// This frame's normal, and last frame's (the disocclusion test rejects a history texel
+    /// facing away: the back of a thin wall sits at the same position as its front).
+    pub normal: PingPong,
     pub albedo: Image,
     pub depth: Image,
 }
@@ -124,6 +126,8 @@ pub enum Target {
     /// Last frame's G-buffer position: the world-position history of eq 2.
     GPositionHistory,
     GNormal,
+    /// Last frame's G-buffer normal.
+    GNormalHistory,
     GAlbedo,
     GDepth,
     RsmPosition,
@@ -143,12 +147,13 @@ pub enum Target {
 }
 
 impl Target {
-    pub const ALL: [Target; 16] = [
+    pub const ALL: [Target; 17] = [
         Target::Output,
         Target::Direct,
         Target::GPosition,
         Target::GPositionHistory,
         Target::GNormal,
+        Target::GNormalHistory,
         Target::GAlbedo,
         Target::GDepth,
         Target::RsmPosition,
@@ -169,6 +174,7 @@ impl Target {
             Target::GPosition => "gbuffer_position",
             Target::GPositionHistory => "gbuffer_position_history",
             Target::GNormal => "gbuffer_normal",
+            Target::GNormalHistory => "gbuffer_normal_history",
             Target::GAlbedo => "gbuffer_albedo",
             Target::GDepth => "gbuffer_depth",
             Target::RsmPosition => "rsm_position",
@@ -198,7 +204,10 @@ impl Targets {
                     image(ctx, "gbuffer.position.0", s, gp, ATTACHMENT_READ)?,
                     image(ctx, "gbuffer.position.1", s, gp, ATTACHMENT_READ)?,
                 ]),
-                normal: image(ctx, "gbuffer.normal", s, gn, ATTACHMENT_READ)?,
+                normal: PingPong::new([
+                    image(ctx, "gbuffer.normal.0", s, gn, ATTACHMENT_READ)?,
+                    image(ctx, "gbuffer.normal.1", s, gn, ATTACHMENT_READ)?,
+                ]),
                 albedo: image(ctx, "gbuffer.albedo", s, ga, ATTACHMENT_READ)?,
                 depth: image(ctx, "gbuffer.depth", s, DEPTH_FORMAT, DEPTH_READ)?,
             },
@@ -220,7 +229,8 @@ impl Targets {
             Target::Output => &self.output,
             Target::GPosition => self.gbuffer.position.current(parity),
             Target::GPositionHistory => self.gbuffer.position.previous(parity),
-            Target::GNormal => &self.gbuffer.normal,
+            Target::GNormal => self.gbuffer.normal.current(parity),
+            Target::GNormalHistory => self.gbuffer.normal.previous(parity),
             Target::GAlbedo => &self.gbuffer.albedo,
             Target::GDepth => &self.gbuffer.depth,
             Target::RsmPosition => &self.rsm.position,
