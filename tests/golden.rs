@@ -78,7 +78,11 @@ fn render(scene_spec: &str, effects: Effects, reuse: bool) -> Vec<u8> {
     let base = r.scene.camera;
     let bounds = r.scene.mesh.bounds;
     for f in 0..FRAMES {
-        let camera = CameraPath::Orbit.camera_at(&base, &bounds, f, ORBIT_FRAMES);
+        // One turn per ORBIT_FRAMES seconds at 1 fps: frame f is f / ORBIT_FRAMES of a turn.
+        let orbit = CameraPath::Orbit {
+            seconds: ORBIT_FRAMES as f32,
+        };
+        let camera = orbit.camera_at(&base, &bounds, f as f32);
         r.render_frame(&camera).expect("frame");
     }
     r.finish().expect("finish");

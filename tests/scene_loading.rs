@@ -608,14 +608,20 @@ fn keyframe_files_parse_and_interpolate() {
     for (name, text) in [("path.json", JSON_KEYS), ("path.toml", TOML_KEYS)] {
         let file = dir.write(name, text);
         let path = CameraPath::parse(file.to_str().unwrap()).unwrap();
-        let at = |f| path.camera_at(&base.camera, &base.mesh.bounds, f, 5);
-        assert_eq!(at(0).position, Vec3::new(0.0, 1.0, 3.0));
+        // Keyframe times are seconds.
+        let at = |t| path.camera_at(&base.camera, &base.mesh.bounds, t);
+        assert_eq!(at(0.0).position, Vec3::new(0.0, 1.0, 3.0));
         assert!(
-            at(2).position.abs_diff_eq(Vec3::new(1.0, 1.0, 3.0), 1e-6),
+            at(1.0).position.abs_diff_eq(Vec3::new(1.0, 1.0, 3.0), 1e-6),
             "{name}"
         );
-        assert_eq!(at(4).position, Vec3::new(2.0, 1.0, 3.0));
-        assert_eq!(at(3).vfov_deg, base.camera.vfov_deg);
+        assert_eq!(at(2.0).position, Vec3::new(2.0, 1.0, 3.0));
+        assert_eq!(
+            at(5.0).position,
+            Vec3::new(2.0, 1.0, 3.0),
+            "held at the end"
+        );
+        assert_eq!(at(1.5).vfov_deg, base.camera.vfov_deg);
         assert_eq!(path.name(), "keyframes(2)");
     }
 }
@@ -654,17 +660,18 @@ fn bad_keyframe_files_name_the_path() {
 fn builtin_paths_from_a_scene() {
     let s = load_scene("cornell-box", None).unwrap();
     let orbit = CameraPath::parse("orbit").unwrap();
-    let c = orbit.camera_at(&s.camera, &s.mesh.bounds, 0, 8);
+    let c = orbit.camera_at(&s.camera, &s.mesh.bounds, 0.0);
     let centre = s.mesh.bounds.center();
     let radius =
         |c: &Camera| Vec3::new(c.position.x - centre.x, 0.0, c.position.z - centre.z).length();
     for f in 0..8 {
-        let cf = orbit.camera_at(&s.camera, &s.mesh.bounds, f, 8);
+        let cf = orbit.camera_at(&s.camera, &s.mesh.bounds, f as f32 * 1.5);
         assert!((radius(&cf) - radius(&c)).abs() < 1e-4);
         assert_eq!(cf.position.y, s.camera.position.y);
     }
     assert_eq!(CameraPath::parse("static").unwrap().name(), "static");
-    assert_eq!(CameraPath::parse("dolly").unwrap().name(), "dolly");
+    assert_eq!(CameraPath::parse("dolly").unwrap().name(), "dolly:6s");
+    assert_eq!(CameraPath::parse("orbit:3s").unwrap().name(), "orbit:3s");
 }
 
 // ---------------------------------------------------------------- robustness

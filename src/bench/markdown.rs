@@ -51,7 +51,8 @@ fn header(r: &TableReport) -> String {
          | | |\n|---|---|\n\
          | device | {} ({}) |\n| driver | {} |\n| Vulkan | {} |\n| resolution | {}x{} |\n\
          | frames shown | {} |\n\
-         | frames | {} measured per row, after {} warmup frames at the path's first camera |\n\
+         | frames | {} measured per row ({} s of the path at {} fps), after {} warmup frames at \
+         the path's first camera |\n\
          | timing | median per-frame GPU time from timestamp queries, ms; fps = 1000 / ms |\n\
          | thesis | {} |\n\n",
         r.command,
@@ -67,6 +68,8 @@ fn header(r: &TableReport) -> String {
             None => "offscreen (no window)".to_string(),
         },
         r.frames,
+        r.frames as f32 / r.fps,
+        r.fps,
         r.warmup,
         r.thesis_setup,
     );

@@ -12,6 +12,7 @@ use crate::passes::PassId;
 use crate::renderer::config::Effects;
 use crate::renderer::targets::Target;
 use crate::renderer::{RenderConfig, Renderer};
+use crate::scene::path::frame_time;
 use crate::scene::{Camera, CameraPath, Keyframe, Scene};
 use crate::vk::{Context, ImageData};
 use serde::Serialize;
@@ -88,6 +89,8 @@ pub struct RunSpec<'a> {
     pub path: &'a CameraPath,
     pub frames: u32,
     pub warmup: u32,
+    /// Frame i of the path is shown at i / fps seconds.
+    pub fps: f32,
     /// Also read the buffers after the warmup frames (the reference row compares its last
     /// frame with them).
     pub snapshot_after_warmup: bool,
@@ -118,10 +121,10 @@ pub struct Measured {
     pub after_warmup: Option<LastFrame>,
 }
 
-/// The camera of the last frame of a `frames`-frame run along `path`.
-pub fn last_camera(scene: &Scene, path: &CameraPath, frames: u32) -> Camera {
-    let frames = frames.max(1);
-    path.camera_at(&scene.camera, &scene.mesh.bounds, frames - 1, frames)
+/// The camera of the last frame of a `frames`-frame run along `path` at `fps`.
+pub fn last_camera(scene: &Scene, path: &CameraPath, frames: u32, fps: f32) -> Camera {
+    let time = frame_time(frames.max(1) - 1, fps);
+    path.camera_at(&scene.camera, &scene.mesh.bounds, time)
 }
 
 /// A path that holds `camera` on every frame (lens and up come from the scene's camera, as for
@@ -147,7 +150,7 @@ pub fn measure(
     let bounds = renderer.scene.mesh.bounds;
     let mut bar = Progress::new((spec.warmup + frames) as u64, spec.label, spec.progress);
     let mut timings = Vec::with_capacity((spec.warmup + frames) as usize);
-    let first = spec.path.camera_at(&base, &bounds, 0, frames);
+    let first = spec.path.camera_at(&base, &bounds, 0.0);
     sink.begin(spec.label);
     for _ in 0..spec.warmup {
         timings.extend(sink.frame(&mut renderer, &first)?);
@@ -161,7 +164,7 @@ pub fn measure(
     };
     let mut camera = first;
     for i in 0..frames {
-        camera = spec.path.camera_at(&base, &bounds, i, frames);
+        camera = spec.path.camera_at(&base, &bounds, frame_time(i, spec.fps));
         timings.extend(sink.frame(&mut renderer, &camera)?);
         bar.inc();
     }
@@ -171,6 +174,8 @@ pub fn measure(
     let config = serde_json::json!({
         "scene": renderer.scene.name,
         "path": spec.path.name(),
+        "fps": spec.fps,
+        "seconds": frames as f32 / spec.fps,
         "frames": frames,
         "warmup": spec.warmup,
         "render": spec.config,

@@ -10,6 +10,8 @@ pub struct TableOptions {
     /// Frames measured per row along the path, after `warmup` frames at its first camera.
     pub frames: u32,
     pub warmup: u32,
+    /// Frame i of the path is shown at i / fps seconds.
+    pub fps: f32,
     /// Camera path override (table-specific meaning; `None`: the table's default).
     pub path: Option<String>,
     /// Effects rendered by every row.

@@ -210,6 +210,7 @@ pub struct SceneRun<'a> {
     pub path: &'a CameraPath,
     pub frames: u32,
     pub warmup: u32,
+    pub fps: f32,
     pub progress: bool,
 }
 
@@ -224,7 +225,7 @@ pub fn measure_rows(
     run: &SceneRun<'_>,
 ) -> Result<(Vec<RowResult>, BTreeMap<String, TruthQuality>)> {
     let frames = run.frames.max(1);
-    let camera = last_camera(scene, run.path, frames);
+    let camera = last_camera(scene, run.path, frames, run.fps);
     let held = held_at(&camera);
     let truth = ground_truth_of(scene, run, camera)?;
     let mut reference = measure(
@@ -237,6 +238,7 @@ pub fn measure_rows(
             path: &held,
             frames: REFERENCE_FRAMES,
             warmup: 1,
+            fps: run.fps,
             snapshot_after_warmup: true,
             progress: run.progress,
         },
@@ -258,6 +260,7 @@ pub fn measure_rows(
                 path: run.path,
                 frames,
                 warmup: run.warmup,
+                fps: run.fps,
                 snapshot_after_warmup: false,
                 progress: run.progress,
             },

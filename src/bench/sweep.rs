@@ -45,6 +45,7 @@ pub struct SweepSpec<'a> {
     pub path: &'a CameraPath,
     pub frames: u32,
     pub warmup: u32,
+    pub fps: f32,
     pub combinations: Vec<(Label, RenderConfig)>,
     pub progress: bool,
 }
@@ -87,7 +88,7 @@ pub fn run(
 ) -> Result<(Vec<SweepRow>, BTreeMap<String, TruthQuality>)> {
     let scene = spec.scene;
     let frames = spec.frames.max(1);
-    let held = held_at(&last_camera(scene, spec.path, frames));
+    let held = held_at(&last_camera(scene, spec.path, frames, spec.fps));
     let total = spec.combinations.len() as u64;
     let bar = progress_bar(total, spec.progress);
     let mut rows = Vec::new();
@@ -109,6 +110,7 @@ pub fn run(
                 path: spec.path,
                 frames,
                 warmup: spec.warmup,
+                fps: spec.fps,
                 snapshot_after_warmup: false,
                 progress: false,
             },
@@ -127,6 +129,7 @@ pub fn run(
                     path: &held,
                     frames: REFERENCE_FRAMES,
                     warmup: 1,
+                    fps: spec.fps,
                     snapshot_after_warmup: true,
                     progress: false,
                 },

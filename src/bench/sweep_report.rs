@@ -21,6 +21,8 @@ pub struct SweepHeader {
     pub size: [u32; 2],
     pub frames: u32,
     pub warmup: u32,
+    /// Path time per frame: frame i at i / fps seconds.
+    pub fps: f32,
     pub device: String,
     pub driver: String,
     pub reference_rays_per_second: f64,
@@ -94,7 +96,8 @@ pub fn markdown(
     quality: &BTreeMap<String, TruthQuality>,
 ) -> String {
     let mut s = format!(
-        "# Sweep: {} along `{}`\n\n`{}`\n\n{}x{}, {} measured frames after {} warmup frames; \
+        "# Sweep: {} along `{}`\n\n`{}`\n\n{}x{}, {} measured frames ({} s of the path at {} fps) \
+         after {} warmup frames; \
          device {} (driver {}). Times are medians of per-frame GPU time over the measured \
          frames, all measured in this one process. Errors are of the last frame, against the \
          CPU ground truth (`ssgi reference`) and against the converged estimator of the same \
@@ -105,6 +108,8 @@ pub fn markdown(
         header.size[0],
         header.size[1],
         header.frames,
+        header.frames as f32 / header.fps,
+        header.fps,
         header.warmup,
         header.device,
         header.driver

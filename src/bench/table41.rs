@@ -96,6 +96,7 @@ pub fn run(
             base_config: base,
             frames: opts.frames,
             warmup: opts.warmup,
+            fps: opts.fps,
         },
         SETUP,
         vec![COLUMN_NOTE.to_string()],
@@ -110,6 +111,7 @@ pub fn run(
                 path: &path,
                 frames: opts.frames,
                 warmup: opts.warmup,
+                fps: opts.fps,
                 progress: opts.progress,
             },
         )?;

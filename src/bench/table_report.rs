@@ -4,7 +4,7 @@
 //! JSON, version 1 (later versions only add fields):
 //! ```text
 //! { "version", "table", "command", "ssgi_version", "device", "driver", "device_type",
-//!   "api_version", "window", "present_mode", "width", "height", "frames", "warmup",
+//!   "api_version", "window", "present_mode", "width", "height", "frames", "warmup", "fps",
 //!   "base_config", "reference",
 //!   "thesis_setup", "notes": [str],
 //!   "scenes": [ { "spec", "name", "path", "triangles", "note", "thesis", "thesis_speedups",
@@ -153,6 +153,8 @@ pub struct TableReport {
     pub height: u32,
     pub frames: u32,
     pub warmup: u32,
+    /// Path time per frame: frame i at i / fps seconds.
+    pub fps: f32,
     /// The configuration every row starts from (rows change reuse, patterns, PCF).
     pub base_config: RenderConfig,
     /// What the error columns compare against.
@@ -173,6 +175,8 @@ pub struct Header<'a> {
     pub base_config: RenderConfig,
     pub frames: u32,
     pub warmup: u32,
+    /// Path time per frame: frame i at i / fps seconds.
+    pub fps: f32,
 }
 
 /// How the error columns are made.
@@ -219,6 +223,7 @@ impl TableReport {
             height: h.base_config.height,
             frames: h.frames,
             warmup: h.warmup,
+            fps: h.fps,
             base_config: h.base_config,
             reference: REFERENCE.to_string(),
             thesis_setup: thesis_setup.to_string(),

@@ -93,7 +93,7 @@ impl Walkthrough {
             NEAR_FRACTION * diagonal,
             FAR_FRACTION * diagonal,
         );
-        scene.camera = path.camera_at(&scene.camera, &b, 0, 2);
+        scene.camera = path.camera_at(&scene.camera, &b, 0.0);
         let at = b.min + b.extent() * Vec3::from(self.light_at);
         let floor = Vec3::new(at.x, b.min.y, at.z);
         let d = at.distance(floor);
@@ -140,6 +140,7 @@ pub fn run(
             base_config: base,
             frames: opts.frames,
             warmup: opts.warmup,
+            fps: opts.fps,
         },
         SETUP,
         vec![
@@ -163,6 +164,7 @@ pub fn run(
                 path: &path,
                 frames: opts.frames,
                 warmup: opts.warmup,
+                fps: opts.fps,
                 progress: opts.progress,
             },
         )?;

@@ -58,9 +58,14 @@ pub struct SceneArgs {
     /// Image size, WIDTHxHEIGHT.
     #[arg(long, default_value = "512x512", value_parser = parse_size)]
     pub size: (u32, u32),
-    /// Camera path: static, orbit, dolly, or a keyframe file (.json / .toml).
+    /// Camera path: static, orbit[:SECONDS] (one turn per 12 s by default), dolly[:SECONDS]
+    /// (6 s), or a keyframe file (.json / .toml, times in seconds).
     #[arg(long, default_value = "static")]
     pub path: String,
+    /// Frame rate of path time: frame i shows the path at i / fps seconds, so the motion per
+    /// frame does not depend on how many frames a run has.
+    #[arg(long, default_value_t = crate::scene::path::DEFAULT_FPS, value_parser = parse_fps)]
+    pub fps: f32,
     /// Shadow filtering: `hard`; 9 = the thesis's 9-sample disc, rotated and scaled every frame
     /// and accumulated with reuse (filling the disc uniformly over frames); another square (25, 49, ...) = a regular grid every frame;
     /// disc:N = an N-sample disc.
@@ -175,6 +180,14 @@ impl SceneArgs {
 
 fn parse_frame_count_u64(s: &str) -> std::result::Result<u64, String> {
     parse_frame_count(s).map(u64::from)
+}
+
+/// Frames per second of path time: finite, in (0, 10000].
+pub fn parse_fps(s: &str) -> std::result::Result<f32, String> {
+    match s.parse::<f32>() {
+        Ok(f) if f.is_finite() && f > 0.0 && f <= 10000.0 => Ok(f),
+        _ => Err(format!("--fps must be a number in (0, 10000], not {s:?}")),
+    }
 }
 
 /// A frame count of a run: at least 1 (a run of no frames has nothing to write or report).
@@ -370,6 +383,9 @@ pub struct TableArgs {
     /// Frames rendered first at the path's first camera and left out of the statistics.
     #[arg(long, default_value_t = 10)]
     pub warmup: u32,
+    /// Frame rate of path time (frame i at i / fps seconds along the path).
+    #[arg(long, default_value_t = crate::scene::path::DEFAULT_FPS, value_parser = parse_fps)]
+    pub fps: f32,
     /// thesis-4.1: static, orbit, dolly, or a keyframe file, for all four scenes (default:
     /// paths/box.json, compiled in). thesis-walkthroughs: a directory holding sponza.json,
     /// sibenik.json and conference.json (default: those of paths/, compiled in).
@@ -417,9 +433,14 @@ pub struct ReferenceArgs {
     /// Image size, WIDTHxHEIGHT.
     #[arg(long, default_value = "256x256", value_parser = parse_size)]
     pub size: (u32, u32),
-    /// Camera path: static, orbit, dolly, or a keyframe file (.json / .toml).
+    /// Camera path: static, orbit[:SECONDS] (one turn per 12 s by default), dolly[:SECONDS]
+    /// (6 s), or a keyframe file (.json / .toml, times in seconds).
     #[arg(long, default_value = "static")]
     pub path: String,
+    /// Frame rate of path time: frame i shows the path at i / fps seconds, so the motion per
+    /// frame does not depend on how many frames a run has.
+    #[arg(long, default_value_t = crate::scene::path::DEFAULT_FPS, value_parser = parse_fps)]
+    pub fps: f32,
     /// Frames of the run the reference belongs to (the path's timing), at least 1.
     #[arg(long, default_value_t = 1, value_parser = parse_frame_count)]
     pub frames: u32,

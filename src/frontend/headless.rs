@@ -7,17 +7,19 @@ use super::sink::FrameSink;
 use crate::error::Result;
 use crate::renderer::targets::Target;
 use crate::renderer::Renderer;
+use crate::scene::path::frame_time;
 use crate::scene::CameraPath;
 use crate::vk::FrameTiming;
 use std::path::Path;
 
-/// Render `frames` frames along `path` into `sink`; returns every frame's GPU timing in frame
-/// order.
+/// Render `frames` frames along `path` into `sink`, frame i at i / `fps` seconds; returns every
+/// frame's GPU timing in frame order.
 pub fn run(
     renderer: &mut Renderer,
     sink: &mut dyn FrameSink,
     path: &CameraPath,
     frames: u32,
+    fps: f32,
     progress: bool,
 ) -> Result<Vec<FrameTiming>> {
     let base = renderer.scene.camera;
@@ -26,7 +28,7 @@ pub fn run(
     let mut bar = Progress::new(frames as u64, "rendering", progress);
     sink.begin(&renderer.scene.name);
     for i in 0..frames {
-        let camera = path.camera_at(&base, &bounds, i, frames);
+        let camera = path.camera_at(&base, &bounds, frame_time(i, fps));
         timings.extend(sink.frame(renderer, &camera)?);
         bar.inc();
     }

@@ -13,7 +13,7 @@ mod light;
 mod mesh;
 mod normals;
 mod obj;
-mod path;
+pub mod path;
 mod procedural;
 mod raycast;
 mod serde_vec3;

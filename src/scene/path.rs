@@ -1,9 +1,8 @@
 //! Camera paths for walkthroughs: static, orbit, dolly, or keyframes from a JSON/TOML file.
 //!
-//! All paths are functions of the frame number, so a run is reproducible frame by frame.
-//! Run progress is `u = frame / (frame_count - 1)` (0 on the first frame, 1 on the last),
-//! except the orbit, which uses `frame / frame_count` so that a looping run does not show
-//! the same view twice.
+//! Every path is a function of time in seconds, and a run shows frame i at i / fps seconds
+//! (`--fps`, default 60), so frame i puts the camera at the same place whatever the run's
+//! length, and the motion per frame is the path's speed over the frame rate.
 
 use super::camera::Camera;
 use super::error::SceneError;
@@ -11,9 +10,16 @@ use super::mesh::Aabb;
 use glam::Vec3;
 use std::path::Path;
 
-/// One keyframe. `time` is in any unit (seconds or 0..1): the first and last keyframe times
-/// are mapped to the first and last frame of the run, and intermediate frames interpolate
-/// linearly in between. Times must be finite and non-decreasing.
+/// Frame rate that maps frame numbers to path time when none is given.
+pub const DEFAULT_FPS: f32 = 60.0;
+/// Seconds per turn of `orbit` (about 0.5 degrees per frame at 60 fps).
+pub const DEFAULT_ORBIT_SECONDS: f32 = 12.0;
+/// Seconds per in-and-out of `dolly`.
+pub const DEFAULT_DOLLY_SECONDS: f32 = 6.0;
+
+/// One keyframe at `time` seconds. Between keyframes position and target interpolate
+/// linearly; before the first and after the last the camera holds. Times must be finite and
+/// non-decreasing (equal times: a cut).
 #[derive(serde::Deserialize, serde::Serialize, Clone, Debug, PartialEq)]
 #[serde(deny_unknown_fields)]
 pub struct Keyframe {
@@ -31,24 +37,60 @@ struct KeyframeFile {
 #[derive(Clone, Debug, PartialEq)]
 pub enum CameraPath {
     Static,
-    /// One full turn around the vertical axis through the scene centre, at the base
-    /// camera's horizontal distance and height.
-    Orbit,
-    /// Towards the target by 30 % of the distance and back (ping-pong).
-    Dolly,
+    /// Turns around the vertical axis through the scene centre, at the base camera's
+    /// horizontal distance and height, one turn per `seconds`.
+    Orbit {
+        seconds: f32,
+    },
+    /// Towards the target by 30 % of the distance and back (ping-pong), once per `seconds`.
+    Dolly {
+        seconds: f32,
+    },
     Keyframes(Vec<Keyframe>),
 }
 
 /// Fraction of the eye-target distance the dolly covers at its closest point.
 pub const DOLLY_FRACTION: f32 = 0.3;
 
+/// Path time of frame `frame` at `fps` frames per second.
+pub fn frame_time(frame: u32, fps: f32) -> f32 {
+    frame as f32 / fps
+}
+
+/// A duration `12`, `12s` or `0.5s`: finite, above zero.
+fn parse_seconds(what: &str, s: &str) -> Result<f32, SceneError> {
+    let number = s.strip_suffix('s').unwrap_or(s);
+    match number.parse::<f32>() {
+        Ok(v) if v.is_finite() && v > 0.0 => Ok(v),
+        _ => Err(SceneError::CameraPath {
+            path: what.into(),
+            message: format!("{s:?} is not a duration in seconds above zero (e.g. 12s)"),
+        }),
+    }
+}
+
 impl CameraPath {
-    /// `"static" | "orbit" | "dolly"` or the path of a `.json` / `.toml` keyframe file.
+    /// `static`, `orbit[:SECONDS]`, `dolly[:SECONDS]` or the path of a `.json` / `.toml`
+    /// keyframe file (times in seconds).
     pub fn parse(s: &str) -> Result<CameraPath, SceneError> {
-        match s {
+        let (name, duration) = match s.split_once(':') {
+            Some((n, d)) if n == "orbit" || n == "dolly" => (n, Some(d)),
+            _ => (s, None),
+        };
+        match name {
             "static" => Ok(Self::Static),
-            "orbit" => Ok(Self::Orbit),
-            "dolly" => Ok(Self::Dolly),
+            "orbit" => Ok(Self::Orbit {
+                seconds: duration
+                    .map(|d| parse_seconds(s, d))
+                    .transpose()?
+                    .unwrap_or(DEFAULT_ORBIT_SECONDS),
+            }),
+            "dolly" => Ok(Self::Dolly {
+                seconds: duration
+                    .map(|d| parse_seconds(s, d))
+                    .transpose()?
+                    .unwrap_or(DEFAULT_DOLLY_SECONDS),
+            }),
             _ => Self::from_file(Path::new(s)),
         }
     }
@@ -64,15 +106,17 @@ impl CameraPath {
             .extension()
             .and_then(|e| e.to_str())
             .map(str::to_ascii_lowercase);
-        let is_json =
-            match ext.as_deref() {
-                Some("json") => true,
-                Some("toml") => false,
-                _ => return Err(err(
-                    "not a camera path: use static, orbit, dolly, or a .json/.toml keyframe file"
+        let is_json = match ext.as_deref() {
+            Some("json") => true,
+            Some("toml") => false,
+            _ => {
+                return Err(err(
+                    "not a camera path: use static, orbit[:SECONDS], dolly[:SECONDS], or a \
+                     .json/.toml keyframe file"
                         .into(),
-                )),
-            };
+                ))
+            }
+        };
         let text = std::fs::read_to_string(path).map_err(|e| err(format!("cannot read: {e}")))?;
         let file: KeyframeFile = if is_json {
             serde_json::from_str(&text).map_err(|e| err(format!("invalid JSON: {e}")))?
@@ -86,24 +130,33 @@ impl CameraPath {
     pub fn name(&self) -> String {
         match self {
             Self::Static => "static".into(),
-            Self::Orbit => "orbit".into(),
-            Self::Dolly => "dolly".into(),
+            Self::Orbit { seconds } => format!("orbit:{seconds}s"),
+            Self::Dolly { seconds } => format!("dolly:{seconds}s"),
             Self::Keyframes(k) => format!("keyframes({})", k.len()),
         }
     }
 
-    /// The camera for `frame` of a `frame_count`-frame run; lens and up come from `base`.
-    pub fn camera_at(&self, base: &Camera, bounds: &Aabb, frame: u32, frame_count: u32) -> Camera {
-        let u = if frame_count > 1 {
-            (frame.min(frame_count - 1) as f32) / (frame_count - 1) as f32
-        } else {
-            0.0
-        };
+    /// Seconds the path takes before it holds or repeats: a turn, an in-and-out, the last
+    /// keyframe's time after the first; 0 for a static camera.
+    pub fn duration(&self) -> f32 {
+        match self {
+            Self::Static => 0.0,
+            Self::Orbit { seconds } | Self::Dolly { seconds } => *seconds,
+            Self::Keyframes(k) => match (k.first(), k.last()) {
+                (Some(a), Some(b)) => b.time - a.time,
+                _ => 0.0,
+            },
+        }
+    }
+
+    /// The camera `time` seconds into the path; lens and up come from `base`.
+    pub fn camera_at(&self, base: &Camera, bounds: &Aabb, time: f32) -> Camera {
         match self {
             Self::Static => *base,
-            Self::Orbit => orbit(base, bounds, frame, frame_count),
-            Self::Dolly => {
-                // Triangle wave 0 → 1 → 0 over the run.
+            Self::Orbit { seconds } => orbit(base, bounds, time / seconds),
+            Self::Dolly { seconds } => {
+                // Triangle wave 0 -> 1 -> 0 once per period.
+                let u = (time / seconds).rem_euclid(1.0);
                 let s = 1.0 - (2.0 * u - 1.0).abs();
                 Camera {
                     position: base.position + (base.target - base.position) * (DOLLY_FRACTION * s),
@@ -112,7 +165,7 @@ impl CameraPath {
             }
             Self::Keyframes(keys) => {
                 let (position, target) =
-                    interpolate(keys, u).unwrap_or((base.position, base.target));
+                    interpolate(keys, time).unwrap_or((base.position, base.target));
                 Camera {
                     position,
                     target,
@@ -123,7 +176,8 @@ impl CameraPath {
     }
 }
 
-fn orbit(base: &Camera, bounds: &Aabb, frame: u32, frame_count: u32) -> Camera {
+/// The orbit after `turns` turns.
+fn orbit(base: &Camera, bounds: &Aabb, turns: f32) -> Camera {
     let center = if bounds.is_empty() {
         base.target
     } else {
@@ -136,7 +190,7 @@ fn orbit(base: &Camera, bounds: &Aabb, frame: u32, frame_count: u32) -> Camera {
         radius = bounds.radius().max(offset.length()).max(1.0);
     }
     let start = offset.x.atan2(offset.z);
-    let angle = start + std::f32::consts::TAU * (frame as f32 / frame_count.max(1) as f32);
+    let angle = start + std::f32::consts::TAU * turns.rem_euclid(1.0);
     let position = Vec3::new(
         center.x + radius * angle.sin(),
         base.position.y,
@@ -171,11 +225,12 @@ fn check_keyframes(keys: &[Keyframe]) -> Result<(), String> {
     Ok(())
 }
 
-/// Position and target at run progress `u` in [0, 1]. None only for an empty list.
-fn interpolate(keys: &[Keyframe], u: f32) -> Option<(Vec3, Vec3)> {
+/// Position and target `elapsed` seconds after the first keyframe. None only for an empty
+/// list.
+fn interpolate(keys: &[Keyframe], elapsed: f32) -> Option<(Vec3, Vec3)> {
     let first = keys.first()?;
     let last = keys.last()?;
-    let time = first.time + (last.time - first.time) * u;
+    let time = first.time + elapsed.max(0.0);
     let pair = |k: &Keyframe| (Vec3::from(k.position), Vec3::from(k.target));
     // The segment [a, b] holding `time`; equal times (a cut) take the later key.
     let Some(i) = keys.windows(2).position(|w| time < w[1].time) else {
@@ -218,19 +273,45 @@ mod tests {
     fn builtins() {
         assert_eq!(CameraPath::parse("static").unwrap(), CameraPath::Static);
         let b = base();
-        assert_eq!(CameraPath::Static.camera_at(&b, &bounds(), 3, 10), b);
-        let mid = CameraPath::Dolly.camera_at(&b, &bounds(), 5, 11);
+        assert_eq!(CameraPath::Static.camera_at(&b, &bounds(), 3.0), b);
+        let dolly = CameraPath::parse("dolly:4s").unwrap();
+        assert_eq!(dolly, CameraPath::Dolly { seconds: 4.0 });
+        let mid = dolly.camera_at(&b, &bounds(), 2.0);
         assert!(mid
             .position
             .abs_diff_eq(Vec3::new(0.0, 1.0, 3.4 * 0.7), 1e-5));
-        assert_eq!(CameraPath::Dolly.camera_at(&b, &bounds(), 10, 11), b);
-        assert_eq!(CameraPath::Dolly.camera_at(&b, &bounds(), 0, 1), b);
+        assert!(dolly
+            .camera_at(&b, &bounds(), 4.0)
+            .position
+            .abs_diff_eq(b.position, 1e-5));
+        assert_eq!(dolly.camera_at(&b, &bounds(), 0.0), b);
+        assert_eq!(
+            CameraPath::parse("orbit").unwrap(),
+            CameraPath::Orbit {
+                seconds: DEFAULT_ORBIT_SECONDS
+            }
+        );
+        assert_eq!(
+            CameraPath::parse("orbit:2.5").unwrap(),
+            CameraPath::Orbit { seconds: 2.5 }
+        );
+        for bad in [
+            "orbit:0s",
+            "orbit:-1",
+            "orbit:fast",
+            "dolly:nan",
+            "orbit:inf",
+        ] {
+            let e = CameraPath::parse(bad).unwrap_err().to_string();
+            assert!(e.contains("seconds"), "{bad}: {e}");
+        }
     }
 
     #[test]
     fn orbit_keeps_distance_and_height() {
         let b = base();
-        let q = CameraPath::Orbit.camera_at(&b, &bounds(), 1, 4);
+        let orbit = CameraPath::Orbit { seconds: 8.0 };
+        let q = orbit.camera_at(&b, &bounds(), 2.0);
         // A quarter turn from +z goes to +x.
         assert!(
             q.position.abs_diff_eq(Vec3::new(3.4, 1.0, 0.0), 1e-4),
@@ -238,12 +319,27 @@ mod tests {
             q.position
         );
         assert!(q.target.abs_diff_eq(Vec3::new(0.0, 1.0, 0.0), 1e-6));
-        let first = CameraPath::Orbit.camera_at(&b, &bounds(), 0, 4);
+        let first = orbit.camera_at(&b, &bounds(), 0.0);
         assert!(first.position.abs_diff_eq(b.position, 1e-5));
     }
 
+    /// Frame i at a given frame rate is the same camera whatever the run's length: the motion
+    /// per frame is the path's speed over the frame rate.
     #[test]
-    fn keyframes_interpolate_in_time() {
+    fn frame_i_does_not_depend_on_the_run_length() {
+        let b = base();
+        let orbit = CameraPath::parse("orbit:12s").unwrap();
+        let at = |frame| orbit.camera_at(&b, &bounds(), frame_time(frame, 60.0));
+        // 12 s per turn at 60 fps: 0.5 degrees per frame.
+        let step = (at(1).position - b.position).length();
+        let chord = 2.0 * 3.4 * (0.25f32).to_radians().sin();
+        assert!((step - chord).abs() < 1e-4, "{step} vs {chord}");
+        assert!(at(720).position.abs_diff_eq(b.position, 1e-3));
+        assert_eq!(at(100), at(100));
+    }
+
+    #[test]
+    fn keyframes_interpolate_in_seconds() {
         let keys = vec![
             Keyframe {
                 time: 0.0,
@@ -262,12 +358,14 @@ mod tests {
             },
         ];
         let p = CameraPath::Keyframes(keys);
-        let at = |f, n| p.camera_at(&base(), &bounds(), f, n).position;
-        assert!(at(0, 7).abs_diff_eq(Vec3::ZERO, 1e-6));
-        assert!(at(1, 7).abs_diff_eq(Vec3::new(0.5, 0.0, 0.0), 1e-6)); // t = 0.5
-        assert!(at(4, 7).abs_diff_eq(Vec3::new(1.0, 1.0, 0.0), 1e-6)); // t = 2
-        assert!(at(6, 7).abs_diff_eq(Vec3::new(1.0, 2.0, 0.0), 1e-6));
-        assert!(at(0, 1).abs_diff_eq(Vec3::ZERO, 1e-6));
+        assert_eq!(p.duration(), 3.0);
+        let at = |t| p.camera_at(&base(), &bounds(), t).position;
+        assert!(at(0.0).abs_diff_eq(Vec3::ZERO, 1e-6));
+        assert!(at(0.5).abs_diff_eq(Vec3::new(0.5, 0.0, 0.0), 1e-6));
+        assert!(at(2.0).abs_diff_eq(Vec3::new(1.0, 1.0, 0.0), 1e-6));
+        assert!(at(3.0).abs_diff_eq(Vec3::new(1.0, 2.0, 0.0), 1e-6));
+        // Held after the last keyframe.
+        assert!(at(10.0).abs_diff_eq(Vec3::new(1.0, 2.0, 0.0), 1e-6));
     }
 
     #[test]

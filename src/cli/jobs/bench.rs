@@ -34,6 +34,9 @@ fn bench_config(
     serde_json::json!({
         "scene": args.scene.scene,
         "path": path.name(),
+        "fps": args.scene.fps,
+        // Path time of the measured frames (the warmup frames come first on the path).
+        "seconds": args.frames as f32 / args.scene.fps,
         "frames": args.frames,
         "warmup": args.warmup,
         "rsm_size": args.scene.rsm_size,
@@ -62,7 +65,14 @@ fn bench_compare_reuse(
         let mut config = args.scene.render_config();
         config.temporal.reuse = reuse;
         let mut renderer = Renderer::new(ctx, scene.clone(), config)?;
-        let timings = headless::run(&mut renderer, sink, &path, args.frames + args.warmup, true)?;
+        let timings = headless::run(
+            &mut renderer,
+            sink,
+            &path,
+            args.frames + args.warmup,
+            args.scene.fps,
+            true,
+        )?;
         let report = Report::new(
             &ctx.info,
             args.scene.size.0,
@@ -107,7 +117,14 @@ pub fn bench(cli: &Cli, args: &BenchArgs) -> Result<()> {
     }
     let total = args.frames + args.warmup;
     let mut renderer = Renderer::new(&ctx, scene, args.scene.render_config())?;
-    let timings = headless::run(&mut renderer, sink.as_mut(), &path, total, true)?;
+    let timings = headless::run(
+        &mut renderer,
+        sink.as_mut(),
+        &path,
+        total,
+        args.scene.fps,
+        true,
+    )?;
     let config = bench_config(args, &ctx, &renderer, &path, sink.as_ref());
     let names: Vec<&str> = PassId::ALL.iter().map(|p| p.name()).collect();
     let report = Report::new(

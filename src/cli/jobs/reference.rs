@@ -17,7 +17,8 @@ pub fn reference(cli: &Cli, args: &ReferenceArgs) -> Result<()> {
             args.frames - 1
         )));
     }
-    let camera = path.camera_at(&scene.camera, &scene.mesh.bounds, frame, args.frames);
+    let time = crate::scene::path::frame_time(frame, args.fps);
+    let camera = path.camera_at(&scene.camera, &scene.mesh.bounds, time);
     let settings = Settings {
         ao: AoDefinition {
             radius: args.ao_radius * scene.mesh.bounds.radius().max(f32::MIN_POSITIVE),

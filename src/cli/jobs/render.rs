@@ -18,7 +18,14 @@ pub fn render(cli: &Cli, args: &RenderArgs) -> Result<()> {
         mut renderer,
         path,
     } = setup(cli, &args.scene)?;
-    headless::run(&mut renderer, &mut Offscreen, &path, frames, true)?;
+    headless::run(
+        &mut renderer,
+        &mut Offscreen,
+        &path,
+        frames,
+        args.scene.fps,
+        true,
+    )?;
     headless::write_output(&mut renderer, &args.out)?;
     eprintln!("wrote {}", args.out.display());
     if let Some(dir) = &args.dump_gbuffer {

@@ -36,7 +36,7 @@ pub fn sweep(cli: &Cli, args: &SweepArgs) -> Result<()> {
     });
     // The ground truth of the last frame, with the base configuration's AO definition (one
     // ground truth serves every combination, so the radius cannot vary).
-    let camera = last_camera(&scene, &path, args.frames);
+    let camera = last_camera(&scene, &path, args.frames, args.scene.fps);
     if combos
         .iter()
         .any(|(_, c)| (c.ao.radius, c.ao.attenuation) != (base.ao.radius, base.ao.attenuation))
@@ -66,6 +66,7 @@ pub fn sweep(cli: &Cli, args: &SweepArgs) -> Result<()> {
         path: &path,
         frames: args.frames,
         warmup,
+        fps: args.scene.fps,
         combinations: combos,
         progress: true,
     };
@@ -78,6 +79,7 @@ pub fn sweep(cli: &Cli, args: &SweepArgs) -> Result<()> {
         size: [w, h],
         frames: args.frames,
         warmup,
+        fps: args.scene.fps,
         device: ctx.info.name.clone(),
         driver: ctx.info.driver.clone(),
         reference_rays_per_second: truth.reference.rays_per_second(),

@@ -41,6 +41,7 @@ pub fn table(cli: &Cli, args: &TableArgs) -> Result<()> {
         size: args.size,
         frames: args.frames,
         warmup: args.warmup,
+        fps: args.fps,
         path: args.path.clone(),
         effects: args.effects,
         assets: cli.assets.clone().or_else(asset_dir_from_env),
