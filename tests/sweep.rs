@@ -58,6 +58,18 @@ fn sweep_two_keys_by_two_values() {
     }
     let readme = std::fs::read_to_string(out.join("README.md")).unwrap();
     assert!(readme.contains("--vary ao.samples=8,16"), "{readme}");
+    // The error maps explain themselves too: command and combination per prefix.
+    let maps = std::fs::read_to_string(out.join("maps").join("README.md")).unwrap();
+    assert!(maps.contains("--vary ao.samples=8,16"), "{maps}");
+    assert!(
+        maps.contains("- `03`: temporal.reuse=off, ao.samples=16"),
+        "{maps}"
+    );
+    let md = std::fs::read_to_string(out.join("sweep.md")).unwrap();
+    assert!(
+        md.contains("4 measured frames (0.07 s of the path at 60 fps)"),
+        "{md}"
+    );
     let json: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(out.join("sweep.json")).unwrap()).unwrap();
     let rows = json["rows"].as_array().unwrap();

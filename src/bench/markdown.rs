@@ -51,7 +51,7 @@ fn header(r: &TableReport) -> String {
          | | |\n|---|---|\n\
          | device | {} ({}) |\n| driver | {} |\n| Vulkan | {} |\n| resolution | {}x{} |\n\
          | frames shown | {} |\n\
-         | frames | {} measured per row ({} s of the path at {} fps), after {} warmup frames at \
+         | frames | {} measured per row ({:.2} s of the path at {} fps), after {} warmup frames at \
          the path's first camera |\n\
          | timing | median per-frame GPU time from timestamp queries, ms; fps = 1000 / ms |\n\
          | thesis | {} |\n\n",

@@ -96,7 +96,7 @@ pub fn markdown(
     quality: &BTreeMap<String, TruthQuality>,
 ) -> String {
     let mut s = format!(
-        "# Sweep: {} along `{}`\n\n`{}`\n\n{}x{}, {} measured frames ({} s of the path at {} fps) \
+        "# Sweep: {} along `{}`\n\n`{}`\n\n{}x{}, {} measured frames ({:.2} s of the path at {} fps) \
          after {} warmup frames; \
          device {} (driver {}). Times are medians of per-frame GPU time over the measured \
          frames, all measured in this one process. Errors are of the last frame, against the \
@@ -258,6 +258,26 @@ fn readme_text(h: &SweepHeader) -> String {
          frame against the ground truth (FLIP for `NN-final-flip.png`).\n",
         h.scene, h.path, h.size[0], h.size[1], h.device, h.driver, h.command
     )
+}
+
+/// README.md of a sweep's `maps/` folder: which combination each prefix is, and the command.
+pub fn maps_readme_text(h: &SweepHeader, rows: &[SweepRow]) -> String {
+    let mut s = format!(
+        "# Error maps of the sweep of {} along `{}`\n\nPer combination and buffer, the \
+         absolute error of the last frame against the ground truth (`NN-<buffer>.png`, magma) \
+         and FLIP of the final image (`NN-final-flip.png`); made by\n\n```sh\n{}\n```\n\n",
+        h.scene, h.path, h.command
+    );
+    for (i, row) in rows.iter().enumerate() {
+        let label: Vec<String> = row.label.iter().map(|(k, v)| format!("{k}={v}")).collect();
+        let label = if label.is_empty() {
+            "the base configuration".to_string()
+        } else {
+            label.join(", ")
+        };
+        s += &format!("- `{i:02}`: {label}\n");
+    }
+    s
 }
 
 /// Write sweep.csv, sweep.json, sweep.md, README.md and the plots into `dir`.

@@ -4,7 +4,7 @@ use super::common::{context_options, finish, load};
 use crate::bench::measure::last_camera;
 use crate::bench::sweep::{run, SweepSpec};
 use crate::bench::sweep_keys::{combinations, help_table, parse_vary};
-use crate::bench::sweep_report::{write, SweepHeader};
+use crate::bench::sweep_report::{maps_readme_text, write, SweepHeader};
 use crate::cli::args::{Cli, SweepArgs};
 use crate::error::Result;
 use crate::reference::run::Session;
@@ -97,6 +97,11 @@ pub fn sweep(cli: &Cli, args: &SweepArgs) -> Result<()> {
                 &format!("{i:02}"),
             )?);
         }
+    }
+    if rows.iter().any(|r| r.last.is_some()) {
+        let readme = args.out.join("maps").join("README.md");
+        crate::bench::output::write_text(&readme, &maps_readme_text(&header, &rows))?;
+        files.push(readme);
     }
     eprintln!("wrote {} files to {}", files.len(), args.out.display());
     finish(&ctx)
