@@ -57,10 +57,12 @@ fn bench_json_has_every_pass_and_skips_the_static_light_view() {
     assert!(report["device"].as_str().is_some_and(|d| !d.is_empty()));
     assert!(report["driver"].is_string());
     assert_eq!(report["config"]["frames"], 16);
+    assert_eq!(report["config"]["fps"], 60.0);
     let frames = report["frames"].as_array().unwrap();
     assert_eq!(frames.len(), 16);
     for (i, f) in frames.iter().enumerate() {
         assert_eq!(f["index"], i as u64);
+        assert_eq!(f["warmup"], false, "--warmup 0");
         let computed = f["counters"]["ssao_computed_pixels"].as_u64().unwrap();
         let disoccluded = f["counters"]["disoccluded_pixels"].as_u64().unwrap();
         assert!(computed <= 64 * 64, "frame {i}: {computed} SSAO pixels");

@@ -361,8 +361,12 @@ fn bench_window_reports_the_present_mode() {
         stderr.contains(&format!("present mode for benchmarking: {mode}")),
         "{stderr}"
     );
-    assert_eq!(report["frames"].as_array().unwrap().len(), 6);
+    let frames = report["frames"].as_array().unwrap();
+    assert_eq!(frames.len(), 6);
     assert_eq!(report["measured_frames"], 5);
+    // Every frame is listed; the warmup one is marked.
+    let warmup: Vec<bool> = frames.iter().map(|f| f["warmup"] == true).collect();
+    assert_eq!(warmup, [true, false, false, false, false, false]);
     assert!(report["total"]["median_ms"].as_f64().unwrap() > 0.0);
     let stdout = String::from_utf8_lossy(&out.stdout);
     assert!(stdout.contains("composite"), "{stdout}");

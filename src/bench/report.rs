@@ -8,7 +8,8 @@
 //!                 "recorded", "skipped" } ],          // over measured frames (after warmup);
 //!                                                     // times are null if never recorded
 //!   "total":  { "median_ms", "mean_ms", "p95_ms", "fps_equivalent" },  // sum of passes per frame
-//!   "frames": [ { "index", "passes": { name: ms }, "skipped": [name], "counters": { name: n } } ] }
+//!   "frames": [ { "index", "warmup", "passes": { name: ms }, "skipped": [name],
+//!                 "counters": { name: n } } ] }     // every frame, warmup ones marked
 //! ```
 
 use super::stats::summarize;
@@ -40,6 +41,8 @@ pub struct TotalRow {
 #[derive(Clone, Debug, Serialize)]
 pub struct FrameRow {
     pub index: u64,
+    /// A warmup frame: rendered, left out of `passes` and `total`.
+    pub warmup: bool,
     pub passes: BTreeMap<String, f64>,
     pub skipped: Vec<String>,
     pub counters: BTreeMap<String, u64>,
@@ -122,6 +125,7 @@ impl Report {
             .iter()
             .map(|t| FrameRow {
                 index: t.frame,
+                warmup: t.frame < warmup,
                 passes: t
                     .passes
                     .iter()

@@ -478,6 +478,7 @@ mod tests {
     fn group_sums_only_what_ran() {
         let frame = FrameRow {
             index: 3,
+            warmup: false,
             passes: [("ssao", 2.0), ("blur", 0.5), ("gbuffer", 1.0)]
                 .into_iter()
                 .map(|(n, ms)| (n.to_string(), ms))
