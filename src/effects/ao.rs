@@ -208,7 +208,10 @@ impl Effect for AoEffect {
 
     fn prepare(&mut self, info: &FrameInfo<'_>) {
         let t = &info.config.temporal;
-        self.push = self.sized.temporal.frame_push(info.reusing(), t.refresh, 0);
+        self.push = self
+            .sized
+            .temporal
+            .frame_push(info.reusing(), t.refresh, 0, info.camera_moved);
     }
 
     fn reprojects(&self, info: &FrameInfo<'_>) -> bool {

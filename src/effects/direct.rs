@@ -243,7 +243,12 @@ impl Effect for DirectEffect {
         }
         let refresh = info.config.temporal.refresh;
         if let Some(t) = &mut self.sized.temporal {
-            self.push = t.frame_push(info.reusing(), refresh, 0);
+            self.push = t.frame_push(
+                info.reusing(),
+                refresh,
+                0,
+                info.camera_moved || info.light_changed,
+            );
         }
     }
 

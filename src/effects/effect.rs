@@ -40,6 +40,10 @@ pub struct FrameInfo<'a> {
     /// Last frame's data is in the histories (false on the first frame, after a resize or a
     /// camera cut).
     pub history_valid: bool,
+    /// The view-projection differs from last frame's (or there is no last frame).
+    pub camera_moved: bool,
+    /// The light differs from the one the light view was last rendered for.
+    pub light_changed: bool,
 }
 
 impl FrameInfo<'_> {

@@ -244,10 +244,12 @@ impl Effect for IndirectEffect {
         } else {
             0
         };
-        self.push = self
-            .sized
-            .temporal
-            .frame_push(info.reusing(), t.refresh, pattern);
+        self.push = self.sized.temporal.frame_push(
+            info.reusing(),
+            t.refresh,
+            pattern,
+            info.camera_moved || info.light_changed,
+        );
     }
 
     fn reprojects(&self, _info: &FrameInfo<'_>) -> bool {

@@ -74,6 +74,8 @@ pub struct TemporalEffect {
     pub counters: Buffer,
     pub max_blocks: u32,
     pub schedule: RefreshSchedule,
+    /// Refresh tiles still to draw after the last change of camera or light.
+    pub refresh_left: u32,
     pub readback: CounterReadback,
 }
 
@@ -114,15 +116,36 @@ impl TemporalEffect {
             )?,
             max_blocks,
             schedule: RefreshSchedule::with_tile(width, height, kind.refresh_tile),
+            refresh_left: 0,
             readback: CounterReadback::new(ctx, FRAMES_IN_FLIGHT)?,
         })
     }
 
-    /// This frame's push constants: a refresh tile is drawn only while the history is reused
-    /// (`reusing`) and tiled refresh is on; `pattern` is the frame's pattern index.
-    pub fn frame_push(&mut self, reusing: bool, refresh: Refresh, pattern: u32) -> EffectPush {
+    /// This frame's push constants; `pattern` is the frame's pattern index. A refresh tile is
+    /// drawn only while the history is reused (`reusing`), tiled refresh is on, and a change
+    /// of what the effect reads (`inputs_changed`: the camera; for shadows and indirect light
+    /// also the light) is recent. A refresh recomputes what a pixel would get from its
+    /// patterns, which is what a converged pixel already holds unless the camera moved
+    /// (reprojection drift, a screen-space effect's view) or the light did. After the last
+    /// change the tiles run until every pixel has been in a tile's core once
+    /// (`RefreshSchedule::frames_to_cover`), then stop: a static view costs no refresh.
+    pub fn frame_push(
+        &mut self,
+        reusing: bool,
+        refresh: Refresh,
+        pattern: u32,
+        inputs_changed: bool,
+    ) -> EffectPush {
         let feathered = refresh == Refresh::Feathered;
-        let tile = (reusing && refresh != Refresh::Off).then(|| self.schedule.next_tile(feathered));
+        if !reusing || refresh == Refresh::Off {
+            self.refresh_left = 0;
+        } else if inputs_changed {
+            self.refresh_left = self.schedule.frames_to_cover(feathered);
+        }
+        let tile = (self.refresh_left > 0).then(|| {
+            self.refresh_left -= 1;
+            self.schedule.next_tile(feathered)
+        });
         let mut push = self.push_constants(tile, reusing, pattern);
         if !feathered {
             push.refresh_feather = 0;

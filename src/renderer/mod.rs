@@ -234,6 +234,8 @@ impl Renderer {
             },
             frame_index: self.frame_index,
             history_valid: self.history.is_some(),
+            camera_moved: self.history != Some(view_proj),
+            light_changed,
         };
         for e in &mut self.effects {
             e.prepare(&info);

@@ -113,6 +113,21 @@ impl RefreshSchedule {
             .collect()
     }
 
+    /// Frames from now until every pixel has lain in the core of a tile drawn since: the rest
+    /// of this cycle and four shifted cycles (feathered), or one more cycle (`shifted` false:
+    /// hard tiles replace everything they cover).
+    pub fn frames_to_cover(&self, shifted: bool) -> u32 {
+        let rest = self.order.len().saturating_sub(self.next);
+        let cycles: usize = if shifted {
+            (0..GRID_SHIFTS.len())
+                .map(|k| self.grid(self.cycle + k).len())
+                .sum()
+        } else {
+            self.grid(0).len()
+        };
+        (rest + cycles) as u32
+    }
+
     /// The next tile; `shifted`: on the grid of the current cycle, else on the unshifted grid
     /// (hard refresh, the thesis's fixed tiles).
     pub fn next_tile(&mut self, shifted: bool) -> RefreshRect {
