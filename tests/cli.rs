@@ -231,3 +231,23 @@ fn dump_leaves_out_the_buffers_of_disabled_effects() {
         );
     }
 }
+
+/// `--frames 0` is refused the same way by every subcommand that takes it, before anything
+/// runs (no device, display or asset needed).
+#[test]
+fn zero_frames_is_refused_everywhere() {
+    for sub in ["render", "bench", "table", "sweep", "reference", "view"] {
+        let mut cmd = ssgi();
+        cmd.arg(sub);
+        if sub == "table" {
+            cmd.arg("thesis-4.1");
+        }
+        let out = cmd.args(["--frames", "0"]).output().unwrap();
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{sub}: {stderr}");
+        assert!(
+            stderr.contains("--frames must be at least 1"),
+            "{sub}: {stderr}"
+        );
+    }
+}

@@ -377,8 +377,8 @@ pub struct TableArgs {
     /// Image size, WIDTHxHEIGHT.
     #[arg(long, default_value = "512x512", value_parser = parse_size)]
     pub size: (u32, u32),
-    /// Frames measured per row along the camera path.
-    #[arg(long, default_value_t = 120)]
+    /// Frames measured per row along the camera path, at least 1.
+    #[arg(long, default_value_t = 120, value_parser = parse_frame_count)]
     pub frames: u32,
     /// Frames rendered first at the path's first camera and left out of the statistics.
     #[arg(long, default_value_t = 10)]
