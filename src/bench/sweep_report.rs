@@ -150,14 +150,9 @@ pub fn markdown(
             } else {
                 ""
             };
-            let label: Vec<String> = r.label.iter().map(|(k, v)| format!("{k}={v}")).collect();
             s += &format!(
                 "| {star} | {} | {} | {} | {:.4} | {} | {} |\n",
-                if label.is_empty() {
-                    "base".into()
-                } else {
-                    label.join(", ")
-                },
+                row_label(r, "base"),
                 time_of(r, b).map_or("-".into(), |v| format!("{v:.3}")),
                 error_of(r, b).map_or("-".into(), |v| format!("{v:.5}")),
                 t.error.rel_mse,
@@ -260,6 +255,15 @@ fn readme_text(h: &SweepHeader) -> String {
     )
 }
 
+/// A row's varied keys as `key=value, ...`, or `base` when it varies nothing.
+fn row_label(row: &SweepRow, base: &str) -> String {
+    if row.label.is_empty() {
+        return base.to_string();
+    }
+    let parts: Vec<String> = row.label.iter().map(|(k, v)| format!("{k}={v}")).collect();
+    parts.join(", ")
+}
+
 /// README.md of a sweep's `maps/` folder: which combination each prefix is, and the command.
 pub fn maps_readme_text(h: &SweepHeader, rows: &[SweepRow]) -> String {
     let mut s = format!(
@@ -269,13 +273,7 @@ pub fn maps_readme_text(h: &SweepHeader, rows: &[SweepRow]) -> String {
         h.scene, h.path, h.command
     );
     for (i, row) in rows.iter().enumerate() {
-        let label: Vec<String> = row.label.iter().map(|(k, v)| format!("{k}={v}")).collect();
-        let label = if label.is_empty() {
-            "the base configuration".to_string()
-        } else {
-            label.join(", ")
-        };
-        s += &format!("- `{i:02}`: {label}\n");
+        s += &format!("- `{i:02}`: {}\n", row_label(row, "the base configuration"));
     }
     s
 }

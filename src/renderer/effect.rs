@@ -5,7 +5,7 @@
 use super::config::{Refresh, FRAMES_IN_FLIGHT};
 use super::counters::{self, Counter, CounterReadback};
 use super::targets::{PingPong, HISTORY_FORMAT, MOMENTS_FORMAT, STATE_FORMAT};
-use super::temporal::{RefreshRect, RefreshSchedule};
+use super::temporal::RefreshSchedule;
 use crate::error::Result;
 use crate::shaders::EffectPush;
 use crate::vk::cmd::Recorder;
@@ -146,31 +146,16 @@ impl TemporalEffect {
             self.refresh_left -= 1;
             self.schedule.next_tile(feathered)
         });
-        let mut push = self.push_constants(tile, reusing, pattern);
-        if !feathered {
-            push.refresh_feather = 0;
-        }
-        push
-    }
-
-    /// Push constants (`Effect` in shaders/include/effect.glsl) for this frame, with the
-    /// refresh tile feathered.
-    pub fn push_constants(
-        &self,
-        refresh: Option<RefreshRect>,
-        history_valid: bool,
-        pattern: u32,
-    ) -> EffectPush {
-        let r = refresh.unwrap_or(RefreshRect {
-            x0: 0,
-            y0: 0,
-            x1: 0,
-            y1: 0,
-        });
+        // An empty rectangle: no refresh this frame. A feather of 0: hard tiles.
+        let r = tile.unwrap_or_default();
         EffectPush {
             refresh_rect: [r.x0, r.y0, r.x1, r.y1],
-            refresh_feather: self.schedule.feather(),
-            history_valid: history_valid as u32,
+            refresh_feather: if feathered {
+                self.schedule.feather()
+            } else {
+                0
+            },
+            history_valid: reusing as u32,
             block_shift: self.kind.block_shift,
             pattern,
         }

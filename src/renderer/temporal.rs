@@ -31,7 +31,7 @@ impl Rng {
 }
 
 /// A refresh tile: the pixels [x0, x1) x [y0, y1).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, PartialOrd, Ord)]
 pub struct RefreshRect {
     pub x0: u32,
     pub y0: u32,
@@ -82,13 +82,19 @@ impl RefreshSchedule {
         (self.tile / 4).max(1)
     }
 
-    /// Tile spans along one axis of `extent` pixels for a grid shifted by `shift` pixels.
-    fn spans(&self, extent: u32, shift: u32) -> Vec<(u32, u32)> {
-        let first = if shift > 0 {
+    /// Start of the first tile along an axis for a grid shifted by `shift` pixels (negative:
+    /// a tile cut by the image border).
+    fn first_start(&self, shift: u32) -> i64 {
+        if shift > 0 {
             shift as i64 - self.tile as i64
         } else {
             0
-        };
+        }
+    }
+
+    /// Tile spans along one axis of `extent` pixels for a grid shifted by `shift` pixels.
+    fn spans(&self, extent: u32, shift: u32) -> Vec<(u32, u32)> {
+        let first = self.first_start(shift);
         (0..)
             .map(|k| first + k * self.tile as i64)
             .take_while(|&start| start < extent as i64)
@@ -97,6 +103,18 @@ impl RefreshSchedule {
                 (start.max(0) as u32, end as u32)
             })
             .collect()
+    }
+
+    /// Tiles in the grid of cycle `cycle`, counted without building it (`frames_to_cover`
+    /// runs on every frame the camera moves).
+    fn grid_len(&self, cycle: usize) -> usize {
+        let (sx, sy) = GRID_SHIFTS[cycle % GRID_SHIFTS.len()];
+        let half = self.tile / 2;
+        let count = |extent: u32, shift: u32| {
+            let covered = (extent as i64 - self.first_start(shift)).max(0) as usize;
+            covered.div_ceil(self.tile as usize)
+        };
+        count(self.width, sx * half) * count(self.height, sy * half)
     }
 
     /// The tiles of the grid of cycle `cycle`.
@@ -120,10 +138,10 @@ impl RefreshSchedule {
         let rest = self.order.len().saturating_sub(self.next);
         let cycles: usize = if shifted {
             (0..GRID_SHIFTS.len())
-                .map(|k| self.grid(self.cycle + k).len())
+                .map(|k| self.grid_len(self.cycle + k))
                 .sum()
         } else {
-            self.grid(0).len()
+            self.grid_len(0)
         };
         (rest + cycles) as u32
     }
@@ -187,6 +205,9 @@ mod tests {
         }
         assert_eq!(s.grid(0).len(), 5 * 3);
         assert_eq!(s.grid(1).len(), 6 * 3); // shifted by 32: [0, 32), ..., [288, 300)
+        for cycle in 0..4 {
+            assert_eq!(s.grid_len(cycle), s.grid(cycle).len(), "cycle {cycle}");
+        }
     }
 
     /// Distance of x from the nearest inner tile edge, as the shader's refresh_weight measures

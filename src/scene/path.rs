@@ -77,19 +77,19 @@ impl CameraPath {
             Some((n, d)) if n == "orbit" || n == "dolly" => (n, Some(d)),
             _ => (s, None),
         };
+        let seconds = |default| {
+            duration
+                .map(|d| parse_seconds(s, d))
+                .transpose()
+                .map(|d| d.unwrap_or(default))
+        };
         match name {
             "static" => Ok(Self::Static),
             "orbit" => Ok(Self::Orbit {
-                seconds: duration
-                    .map(|d| parse_seconds(s, d))
-                    .transpose()?
-                    .unwrap_or(DEFAULT_ORBIT_SECONDS),
+                seconds: seconds(DEFAULT_ORBIT_SECONDS)?,
             }),
             "dolly" => Ok(Self::Dolly {
-                seconds: duration
-                    .map(|d| parse_seconds(s, d))
-                    .transpose()?
-                    .unwrap_or(DEFAULT_DOLLY_SECONDS),
+                seconds: seconds(DEFAULT_DOLLY_SECONDS)?,
             }),
             _ => Self::from_file(Path::new(s)),
         }
