@@ -14,6 +14,7 @@ pub const GENERATED: &[(&str, &str)] = &[
     ("Counters", "CountersHeader"),
     ("Material", "MaterialPush"),
     ("Probe", "ProbePush"),
+    ("Reproject", "ReprojectPush"),
 ];
 
 #[derive(Clone, Debug, PartialEq)]

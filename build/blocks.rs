@@ -37,12 +37,21 @@ fn member_type(
     })
 }
 
+/// A pass that fills several effects' counters declares one copy of the block per lane
+/// (`Counters0`, `Counters1`, ...): each is checked as `Counters`.
+fn lane_copy_of(name: &str) -> &str {
+    match name.strip_prefix("Counters") {
+        Some(k) if !k.is_empty() && k.bytes().all(|b| b.is_ascii_digit()) => "Counters",
+        _ => name,
+    }
+}
+
 /// The generated blocks a module declares, by GLSL name.
 pub fn reflect_blocks(module: &naga::Module, file: &str) -> Result<Vec<Block>, String> {
     let mut out = Vec::new();
     for (_, var) in module.global_variables.iter() {
         let ty = &module.types[var.ty];
-        let Some(name) = ty.name.as_deref() else {
+        let Some(name) = ty.name.as_deref().map(lane_copy_of) else {
             continue;
         };
         if !GENERATED.iter().any(|(g, _)| *g == name) {

@@ -1,29 +1,59 @@
 #version 460
-// Reverse reprojection (Lin 2013 eqs 1-3) for one temporal effect: previous texture coordinate
-// of every pixel from its world position and last frame's view-projection, disocclusion test
-// against the world-position history (and the normal history: FACING_ACCEPT), resampling of the
-// effect's history (rgb value, a = estimates) and of its second moment, per-pixel state, and
-// the list of work blocks that hold pixels needing work (the effect pass's indirect dispatch).
-// Run once per effect with its push constants.
+// Reverse reprojection (Lin 2013 eqs 1-3) for every temporal effect at once. Per pixel, the
+// G-buffer, the previous texture coordinate (eq 1) and the disocclusion test against the
+// world-position and normal histories (eqs 2-3, FACING_ACCEPT) are read and computed once;
+// then each effect (a "lane": its history, moments, state, counters and push constants)
+// resamples its own history with that result, gets its per-pixel state, and lists its work
+// blocks (the effect pass's indirect dispatch).
+//
+// LANES (1-3) is the number of temporal effects the renderer was built with, in registry
+// order; a lane whose effect does not reproject this frame has `active` 0 and is left alone.
+// @permutation 1: LANES=1
+// @permutation 2: LANES=2
+// @permutation 3: LANES=3
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_samplerless_texture_functions : require
 #include "frame.glsl"
 #include "temporal.glsl"
-#define COUNTERS_BINDING 6
+#define COUNTERS_LANES
 #include "counters.glsl"
-#include "effect.glsl"
 
 layout(local_size_x = 16, local_size_y = 16) in;
 
 layout(set = 1, binding = 0) uniform texture2D g_position;
 layout(set = 1, binding = 1) uniform texture2D g_normal;
 layout(set = 1, binding = 2) uniform texture2D prev_position; // last frame's G-buffer position
-layout(set = 1, binding = 3) uniform texture2D history_prev;
-layout(set = 1, binding = 4, rgba32f) uniform writeonly image2D history_cur;
-layout(set = 1, binding = 5, r32ui) uniform writeonly uimage2D state_out;
-layout(set = 1, binding = 7) uniform texture2D moments_prev;
-layout(set = 1, binding = 8, rgba32f) uniform writeonly image2D moments_cur;
-layout(set = 1, binding = 9) uniform texture2D prev_normal;    // last frame's G-buffer normal
+layout(set = 1, binding = 3) uniform texture2D prev_normal;   // last frame's G-buffer normal
+
+// Lane k's resources at bindings 8 + 8k ...: last frame's history (rgb value, a = estimates),
+// this frame's, the state, the counters, last frame's moments and this frame's.
+#define LANE_RESOURCES(k)                                                                      \
+    layout(set = 1, binding = 8 * k + 8) uniform texture2D history_prev_##k;                   \
+    layout(set = 1, binding = 8 * k + 9, rgba32f) uniform writeonly image2D history_cur_##k;   \
+    layout(set = 1, binding = 8 * k + 10, r32ui) uniform writeonly uimage2D state_out_##k;     \
+    layout(set = 1, binding = 8 * k + 11, std430) buffer Counters##k {                         \
+        COUNTERS_MEMBERS                                                                       \
+    } counters_##k;                                                                            \
+    layout(set = 1, binding = 8 * k + 12) uniform texture2D moments_prev_##k;                  \
+    layout(set = 1, binding = 8 * k + 13, rgba32f) uniform writeonly image2D moments_cur_##k;
+
+LANE_RESOURCES(0)
+#if LANES > 1
+LANE_RESOURCES(1)
+#endif
+#if LANES > 2
+LANE_RESOURCES(2)
+#endif
+
+// build.rs generates the Rust struct `ReprojectPush` from this block.
+layout(push_constant) uniform Reproject {
+    uvec4 refresh_rect_0; // lane k's refresh tile (x0, y0, x1, y1) [px]; empty = none
+    uvec4 refresh_rect_1;
+    uvec4 refresh_rect_2;
+    uvec4 lane_0;         // lane k: (active, history_valid, log2 of the work-block side, 0)
+    uvec4 lane_1;
+    uvec4 lane_2;
+} lanes;
 
 // Beyond eq 3: a history texel must also face the pixel's way, within 60 degrees. The back of
 // a thin wall (or of any two-sided sheet) has the front's position, and a camera passing
@@ -32,8 +62,20 @@ layout(set = 1, binding = 9) uniform texture2D prev_normal;    // last frame's G
 // texels at any useful resolution.
 const float FACING_ACCEPT = 0.5;
 
-shared uint quadrant_needs_work[4];
-shared uint group_disoccluded;
+// What every lane shares: where the pixel was last frame and which texels there hold it.
+struct Reprojected {
+    bool geometry; // the pixel shows a surface
+    bool found;    // the nearest previous texel holds this surface (eqs 2-3 + facing)
+    bool bilinear; // all four texels around the previous position do
+    ivec2 nearest;
+    ivec2 base;    // lower-left of the four
+    vec2 w;        // bilinear weights
+};
+
+// Work blocks (quadrants of the 16x16 group) that hold pixels needing work, and the pixels
+// with no history, per lane.
+shared uint quadrant_mask[LANES];
+shared uint group_disoccluded[LANES];
 
 bool tap_valid(ivec2 t, vec3 p, vec3 n, float eps) {
     if (outside_frame(t)) return false;
@@ -42,100 +84,152 @@ bool tap_valid(ivec2 t, vec3 p, vec3 n, float eps) {
            dot(texelFetch(prev_normal, t, 0).xyz, n) >= FACING_ACCEPT;
 }
 
-// History at the reprojected point: bilinear over the four taps around it when all hold this
-// surface, the nearest texel otherwise; the moments (mean squared luminance, pending gate
-// crossing, estimates in the mean: the smallest tap's) with the same weights. A static camera (decided on the CPU) reuses the
-// texel itself: eq 1's rounding noise would otherwise blend neighbours into a converged value
-// every frame, and that noise grows with the coordinates' distance from the origin.
-vec4 resample(vec2 f, ivec2 nearest, vec3 p, vec3 n, float eps, out vec4 moments) {
+// Eqs 1-3 for `pixel`. The history is read bilinearly over the four taps around the previous
+// position when all hold this surface, else at the nearest texel. A static camera (decided on
+// the CPU) reuses the texel itself: eq 1's rounding noise would otherwise blend neighbours
+// into a converged value every frame, and that noise grows with the coordinates' distance from
+// the origin.
+Reprojected reproject(ivec2 pixel) {
+    Reprojected r;
+    r.geometry = false;
+    r.found = false;
+    r.bilinear = false;
+    r.nearest = pixel;
+    r.base = pixel;
+    r.w = vec2(0.0);
+    vec4 position = texelFetch(g_position, pixel, 0);
+    if (position.w == 0.0) return r;
+    r.geometry = true;
+    vec3 p = position.xyz;
+    vec4 clip = frame.prev_view_proj * vec4(p, 1.0); // eq 1
+    if (!(clip.w > 0.0)) return r;
+    vec2 f = (clip.xy / clip.w * 0.5 + 0.5) * vec2(frame.size);
+    if (frame.camera_static != 0u) f = vec2(pixel) + 0.5;
+    r.nearest = texel_of(f, vec2(frame.size));
+    f = clamp(f, vec2(-1.0), vec2(frame.size) + 1.0);
+    vec3 n = texelFetch(g_normal, pixel, 0).xyz;
+    float eps = disocclusion_epsilon(p, n);
+    r.found = tap_valid(r.nearest, p, n, eps); // eqs 2-3 on the nearest texel
+    if (!r.found || frame.camera_static != 0u) return r;
     vec2 g = f - 0.5;
-    ivec2 base = ivec2(floor(g)); // f is clamped to [-1, size + 1]: defined conversion
-    vec2 w = g - vec2(base);
-    bool all_valid = frame.camera_static == 0u;
-    for (int k = 0; k < 4 && all_valid; ++k)
-        all_valid = tap_valid(base + ivec2(k & 1, k >> 1), p, n, eps);
-    if (!all_valid) {
-        moments = texelFetch(moments_prev, nearest, 0);
-        return texelFetch(history_prev, nearest, 0);
-    }
-    vec4 m00 = texelFetch(moments_prev, base, 0);
-    vec4 m10 = texelFetch(moments_prev, base + ivec2(1, 0), 0);
-    vec4 m01 = texelFetch(moments_prev, base + ivec2(0, 1), 0);
-    vec4 m11 = texelFetch(moments_prev, base + ivec2(1, 1), 0);
-    moments = mix(mix(m00, m10, w.x), mix(m01, m11, w.x), w.y);
-    moments.z = min(min(m00.z, m10.z), min(m01.z, m11.z));
-    vec4 h00 = texelFetch(history_prev, base, 0);
-    vec4 h10 = texelFetch(history_prev, base + ivec2(1, 0), 0);
-    vec4 h01 = texelFetch(history_prev, base + ivec2(0, 1), 0);
-    vec4 h11 = texelFetch(history_prev, base + ivec2(1, 1), 0);
-    vec4 h = mix(mix(h00, h10, w.x), mix(h01, h11, w.x), w.y);
-    // A blend holds no more estimates than its weakest tap.
-    h.a = min(min(h00.a, h10.a), min(h01.a, h11.a));
-    return h;
+    r.base = ivec2(floor(g)); // f is clamped to [-1, size + 1]: defined conversion
+    r.w = g - vec2(r.base);
+    r.bilinear = true;
+    for (int k = 0; k < 4 && r.bilinear; ++k)
+        r.bilinear = tap_valid(r.base + ivec2(k & 1, k >> 1), p, n, eps);
+    return r;
 }
 
+// A lane's texture at the previous position: the bilinear blend, or the nearest texel;
+// `lowest` is the smallest of the taps per channel (a blend holds no more estimates than its
+// weakest tap).
+vec4 resample(Reprojected r, texture2D t, out vec4 lowest) {
+    if (!r.bilinear) {
+        lowest = texelFetch(t, r.nearest, 0);
+        return lowest;
+    }
+    vec4 t00 = texelFetch(t, r.base, 0);
+    vec4 t10 = texelFetch(t, r.base + ivec2(1, 0), 0);
+    vec4 t01 = texelFetch(t, r.base + ivec2(0, 1), 0);
+    vec4 t11 = texelFetch(t, r.base + ivec2(1, 1), 0);
+    lowest = min(min(t00, t10), min(t01, t11));
+    return mix(mix(t00, t10, r.w.x), mix(t01, t11, r.w.x), r.w.y);
+}
+
+bool in_rect(ivec2 pixel, uvec4 rect) {
+    return all(greaterThanEqual(uvec2(pixel), rect.xy)) && all(lessThan(uvec2(pixel), rect.zw));
+}
+
+// One lane's history, moments and state before the refresh tile; `lane` is (active,
+// history_valid, block shift, 0). The moments' count of estimates in the gated mean (z) is the
+// smallest tap's.
+uint lane_state(Reprojected r, uvec4 lane, texture2D history_prev,
+                texture2D moments_prev, out vec4 history, out vec4 moments) {
+    history = vec4(0.0);
+    moments = vec4(0.0);
+    if (!r.geometry) return STATE_BACKGROUND;
+    uint state = STATE_NEW;
+    if (lane.y != 0u && r.found) {
+        vec4 lowest;
+        history = resample(r, history_prev, lowest);
+        history.a = lowest.a;
+        moments = resample(r, moments_prev, lowest);
+        moments.z = lowest.z;
+        state = history.a >= float(frame.rotation_limit) ? STATE_CONVERGED : STATE_ACCUMULATING;
+    }
+    return state;
+}
+
+bool needs_work(uint state) {
+    return state == STATE_NEW || state == STATE_ACCUMULATING || state == STATE_REFRESH;
+}
+
+// The lane's images at `pixel` and its group tallies.
+#define LANE_PIXEL(k)                                                                          \
+    if (lanes.lane_##k.x != 0u) {                                                              \
+        vec4 history, moments;                                                                 \
+        uint state = lane_state(r, lanes.lane_##k, history_prev_##k, moments_prev_##k,         \
+                                history, moments);                                             \
+        if (state == STATE_NEW) atomicAdd(group_disoccluded[k], 1u);                           \
+        if (r.geometry && in_rect(pixel, lanes.refresh_rect_##k)) state = STATE_REFRESH;       \
+        imageStore(history_cur_##k, pixel, history);                                           \
+        imageStore(moments_cur_##k, pixel, moments);                                           \
+        imageStore(state_out_##k, pixel, uvec4(state));                                        \
+        if (needs_work(state)) atomicOr(quadrant_mask[k], quadrant_bit);                       \
+    }
+
+// Work block `q` of this group in the lane's list: 16x16 blocks are the whole group (q = 0
+// stands for any quadrant), 8x8 blocks each quadrant.
+uvec2 listed_block(uint q, uint shift) {
+    uvec2 group = gl_WorkGroupID.xy;
+    return shift == 4u ? group : group * 2u + uvec2(q & 1u, q >> 1);
+}
+
+uint listed_quadrants(uint mask, uint shift) {
+    return shift == 4u ? uint(mask != 0u) : mask;
+}
+
+#define LANE_LIST(k)                                                                           \
+    if (lanes.lane_##k.x != 0u) {                                                              \
+        if (group_disoccluded[k] > 0u)                                                         \
+            atomicAdd(counters_##k.disoccluded_pixels, group_disoccluded[k]);                  \
+        uint shift = lanes.lane_##k.z;                                                         \
+        uint mask = listed_quadrants(quadrant_mask[k], shift);                                 \
+        for (uint q = 0u; q < 4u; ++q) {                                                       \
+            if ((mask & (1u << q)) == 0u) continue;                                            \
+            uvec2 b = listed_block(q, shift);                                                  \
+            uint slot = atomicAdd(counters_##k.dispatch_x, 1u);                                \
+            counters_##k.data[slot] = b.x | (b.y << 16);                                       \
+        }                                                                                      \
+    }
+
 void main() {
-    if (gl_LocalInvocationIndex < 4u) quadrant_needs_work[gl_LocalInvocationIndex] = 0u;
-    if (gl_LocalInvocationIndex == 0u) group_disoccluded = 0u;
+    if (gl_LocalInvocationIndex < uint(LANES)) {
+        quadrant_mask[gl_LocalInvocationIndex] = 0u;
+        group_disoccluded[gl_LocalInvocationIndex] = 0u;
+    }
     barrier();
     ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
-    uint state = STATE_BACKGROUND;
     if (!outside_frame(pixel)) {
-        vec4 history = vec4(0.0);
-        vec4 moments = vec4(0.0);
-        vec4 position = texelFetch(g_position, pixel, 0);
-        if (position.w != 0.0) {
-            vec3 p = position.xyz;
-            state = STATE_NEW;
-            if (effect.history_valid != 0u) {
-                vec4 clip = frame.prev_view_proj * vec4(p, 1.0); // eq 1
-                if (clip.w > 0.0) {
-                    vec2 f = (clip.xy / clip.w * 0.5 + 0.5) * vec2(frame.size);
-                    // Unmoved camera: the pixel is its own previous position.
-                    if (frame.camera_static != 0u) f = vec2(pixel) + 0.5;
-                    ivec2 nearest = texel_of(f, vec2(frame.size));
-                    f = clamp(f, vec2(-1.0), vec2(frame.size) + 1.0);
-                    vec3 n = texelFetch(g_normal, pixel, 0).xyz;
-                    float eps = disocclusion_epsilon(p, n);
-                    if (tap_valid(nearest, p, n, eps)) { // eqs 2-3 on the nearest texel
-                        history = resample(f, nearest, p, n, eps, moments);
-                        state = history.a >= float(frame.rotation_limit) ? STATE_CONVERGED : STATE_ACCUMULATING;
-                    }
-                }
-            }
-            if (state == STATE_NEW) {
-                history = vec4(0.0);
-                moments = vec4(0.0);
-                atomicAdd(group_disoccluded, 1u);
-            }
-            if (in_refresh_tile(pixel)) state = STATE_REFRESH;
-        }
-        imageStore(history_cur, pixel, history);
-        imageStore(moments_cur, pixel, moments);
-        imageStore(state_out, pixel, uvec4(state));
-        if (state == STATE_NEW || state == STATE_ACCUMULATING || state == STATE_REFRESH) {
-            uvec2 q = gl_LocalInvocationID.xy / 8u;
-            atomicOr(quadrant_needs_work[q.y * 2u + q.x], 1u);
-        }
+        Reprojected r = reproject(pixel);
+        uvec2 q = gl_LocalInvocationID.xy / 8u;
+        uint quadrant_bit = 1u << (q.y * 2u + q.x);
+        LANE_PIXEL(0)
+#if LANES > 1
+        LANE_PIXEL(1)
+#endif
+#if LANES > 2
+        LANE_PIXEL(2)
+#endif
     }
     barrier();
     if (gl_LocalInvocationIndex == 0u) {
-        if (group_disoccluded > 0u) atomicAdd(counters.disoccluded_pixels, group_disoccluded);
-        uvec2 group = gl_WorkGroupID.xy;
-        if (effect.block_shift == 4u) { // 16x16 blocks: the whole group
-            uint any_work = quadrant_needs_work[0] | quadrant_needs_work[1] |
-                            quadrant_needs_work[2] | quadrant_needs_work[3];
-            if (any_work != 0u) {
-                uint slot = atomicAdd(counters.dispatch_x, 1u);
-                counters.data[slot] = group.x | (group.y << 16);
-            }
-        } else { // 8x8 blocks: each quadrant on its own
-            for (uint k = 0u; k < 4u; ++k) {
-                if (quadrant_needs_work[k] == 0u) continue;
-                uvec2 b = group * 2u + uvec2(k & 1u, k >> 1);
-                uint slot = atomicAdd(counters.dispatch_x, 1u);
-                counters.data[slot] = b.x | (b.y << 16);
-            }
-        }
+        LANE_LIST(0)
+#if LANES > 1
+        LANE_LIST(1)
+#endif
+#if LANES > 2
+        LANE_LIST(2)
+#endif
     }
 }

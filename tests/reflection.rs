@@ -64,7 +64,8 @@ fn compute_modules_have_workgroups_and_graphics_do_not() {
 mod block_layout;
 
 use ssgi::shaders::{
-    BlockMember, CountersHeader, EffectPush, FrameBlock, MaterialPush, ProbePush, PROBES,
+    BlockMember, CountersHeader, EffectPush, FrameBlock, MaterialPush, ProbePush, ReprojectPush,
+    PROBES,
 };
 
 /// The generated struct of a GLSL block: its members and size.
@@ -75,6 +76,7 @@ fn generated(name: &str) -> (&'static [BlockMember], usize) {
         "Counters" => (CountersHeader::MEMBERS, CountersHeader::SIZE),
         "Material" => (MaterialPush::MEMBERS, MaterialPush::SIZE),
         "Probe" => (ProbePush::MEMBERS, ProbePush::SIZE),
+        "Reproject" => (ReprojectPush::MEMBERS, ReprojectPush::SIZE),
         other => panic!("block {other} has no generated struct"),
     }
 }

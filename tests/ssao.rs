@@ -5,6 +5,7 @@
 mod common;
 
 use glam::{Mat4, Vec3, Vec4};
+use ssgi::effects::EffectId;
 use ssgi::renderer::config::{
     Accumulate, AoConfig, AoEstimator, Effects, Refresh, RenderConfig, TemporalConfig,
 };
@@ -288,7 +289,8 @@ fn static_camera_converges_to_the_many_sample_reference() {
 
 /// Camera moved sideways by a known amount: the GPU's disoccluded pixels equal a CPU
 /// application of eqs 1-3 (nearest texel, the same scale-free epsilon) and the facing test
-/// (normals within 60 degrees) to the two G-buffers.
+/// (normals within 60 degrees) to the two G-buffers, for each effect's lane of the shared
+/// reprojection.
 #[test]
 fn translation_recompute_mask_matches_cpu_reprojection() {
     let ctx = common::context();
@@ -296,7 +298,11 @@ fn translation_recompute_mask_matches_cpu_reprojection() {
     let mut r = renderer(
         &ctx,
         cornell_box(),
-        config(size, no_refresh(), AoConfig::default()),
+        RenderConfig {
+            pcf: Pcf::NINE,
+            effects: Effects::ALL,
+            ..config(size, no_refresh(), AoConfig::default())
+        },
     );
     let c0 = r.scene.camera;
     let shift = Vec3::new(0.12, 0.03, -0.05);
@@ -312,7 +318,24 @@ fn translation_recompute_mask_matches_cpu_reprojection() {
     let pos0 = r.read(Target::GPositionHistory).unwrap();
     let nrm1 = r.read(Target::GNormal).unwrap();
     let nrm0 = r.read(Target::GNormalHistory).unwrap();
-    let state = r.read(Target::State).unwrap();
+    for id in [EffectId::Direct, EffectId::Ao, EffectId::Indirect] {
+        let state = r.read_state(id).unwrap();
+        check_mask(id, &state, [&pos0, &pos1], [&nrm0, &nrm1], (c0, c1));
+    }
+    drop(r);
+    common::assert_clean(&ctx);
+}
+
+/// The GPU's disoccluded pixels of one effect's `state` against eqs 1-3 and the facing test
+/// applied on the CPU to the G-buffers of two frames seen from `cameras`.
+fn check_mask(
+    id: EffectId,
+    state: &ImageData,
+    [pos0, pos1]: [&ImageData; 2],
+    [nrm0, nrm1]: [&ImageData; 2],
+    (c0, c1): (Camera, Camera),
+) {
+    let size = state.width;
     let vp0 = c0.view_proj(1.0);
     let tan_half = (0.5 * c1.vfov_deg).to_radians().tan();
     let texel = |img: &ImageData, x: i64, y: i64| {
@@ -345,10 +368,10 @@ fn translation_recompute_mask_matches_cpu_reprojection() {
                     (uv.y * size as f32).floor() as i64,
                 );
                 let facing = |t: [f32; 4]| Vec3::from_slice(&t[..3]).dot(n) >= 0.5;
-                texel(&pos0, tx, ty).is_some_and(|h| {
+                texel(pos0, tx, ty).is_some_and(|h| {
                     h[3] != 0.0
                         && Vec3::new(h[0], h[1], h[2]).distance(w) <= eps
-                        && texel(&nrm0, tx, ty).is_some_and(facing)
+                        && texel(nrm0, tx, ty).is_some_and(facing)
                 })
             };
             let gpu_new = state.texel(x, y)[0] as u32 == 2;
@@ -358,7 +381,9 @@ fn translation_recompute_mask_matches_cpu_reprojection() {
         }
     }
     let fraction = agree as f64 / total as f64;
-    eprintln!("mask agreement {fraction:.5} over {total} pixels, CPU disoccluded {cpu_new}");
+    eprintln!(
+        "{id:?}: mask agreement {fraction:.5} over {total} pixels, CPU disoccluded {cpu_new}"
+    );
     assert!(
         cpu_new as f64 > 0.01 * total as f64,
         "the move disoccludes too little to test: {cpu_new}"
@@ -367,8 +392,90 @@ fn translation_recompute_mask_matches_cpu_reprojection() {
         cpu_new < total / 2,
         "the move disoccludes nearly everything: {cpu_new}"
     );
-    assert!(fraction >= 0.995, "recompute mask agrees on {fraction}");
-    drop(r);
+    assert!(
+        fraction >= 0.995,
+        "{id:?}: recompute mask agrees on {fraction}"
+    );
+}
+
+/// One reprojection serves every temporal effect (a lane each): along a moving camera with
+/// refresh tiles, each effect's per-pixel state and output with all three effects on equal,
+/// bit for bit, those of a renderer where the effect is the only one (a single lane).
+#[test]
+fn shared_reprojection_matches_each_effect_alone() {
+    let ctx = common::context();
+    let size = 64u32;
+    let all = RenderConfig {
+        pcf: Pcf::NINE,
+        effects: Effects::ALL,
+        ..config(size, TemporalConfig::default(), AoConfig::default())
+    };
+    let c0 = cornell_box().camera;
+    let cameras: Vec<Camera> = (0..4)
+        .map(|i| {
+            let shift = Vec3::new(0.05, 0.02, -0.03) * i as f32;
+            Camera {
+                position: c0.position + shift,
+                target: c0.target + shift,
+                ..c0
+            }
+        })
+        .collect();
+    let render = |c: RenderConfig| {
+        let mut r = renderer(&ctx, cornell_box(), c);
+        for camera in &cameras {
+            r.render_frame(camera).unwrap();
+        }
+        r.finish().unwrap();
+        r
+    };
+    let mut shared = render(all);
+    let only = |direct, ao, indirect| Effects {
+        direct,
+        ao,
+        indirect,
+    };
+    let alone = [
+        (EffectId::Direct, Target::Shadow, only(true, false, false)),
+        (EffectId::Ao, Target::Ao, only(false, true, false)),
+        (
+            EffectId::Indirect,
+            Target::Indirect,
+            only(false, false, true),
+        ),
+    ];
+    for (id, output, effects) in alone {
+        let mut single = render(RenderConfig { effects, ..all });
+        let (a, b) = (
+            shared.read_state(id).unwrap(),
+            single.read_state(id).unwrap(),
+        );
+        let states = |img: &ImageData| {
+            let mut n = [0u32; 5];
+            for y in 0..img.height {
+                for x in 0..img.width {
+                    n[(img.texel(x, y)[0] as usize).min(4)] += 1;
+                }
+            }
+            n
+        };
+        eprintln!(
+            "{id:?}: states (converged, accumulating, new, refresh, background) {:?}",
+            states(&a)
+        );
+        assert!(states(&a)[2] > 0, "{id:?}: the moves disocclude nothing");
+        assert!(
+            a.bytes == b.bytes,
+            "{id:?}: state differs from the effect alone"
+        );
+        let (a, b) = (shared.read(output).unwrap(), single.read(output).unwrap());
+        assert!(
+            a.bytes == b.bytes,
+            "{id:?}: {} differs from the effect alone",
+            output.name()
+        );
+    }
+    drop(shared);
     common::assert_clean(&ctx);
 }
 

@@ -4,8 +4,7 @@
 //! pattern (or many patterns, for references), then the thesis's 5x5 Gaussian blur.
 
 use super::effect::{
-    every_pixel, reprojection, Effect, EffectId, FrameInfo, Recording, Registration, Setup,
-    TermKind,
+    every_pixel, Effect, EffectId, FrameInfo, Recording, Registration, Setup, TermKind,
 };
 use super::resolve::EffectResources;
 use crate::error::Result;
@@ -17,8 +16,7 @@ use crate::renderer::effect::{self, TemporalEffect};
 use crate::renderer::targets::{Target, Targets, AO_FORMAT};
 use crate::renderer::temporal::random_vectors;
 use crate::shaders::{self, EffectPush};
-use crate::vk::cmd::Recorder;
-use crate::vk::{upload_image, Access, Context, Image, ImageDesc, Tracker};
+use crate::vk::{upload_image, Access, Context, Image, ImageDesc};
 use ash::vk;
 use std::sync::Arc;
 
@@ -79,7 +77,6 @@ pub struct AoEffect {
     ssao: ComputePass,
     /// The no-reuse baseline's blur (single-pattern runs only; references are not blurred).
     blur: Option<ComputePass>,
-    reproject: ComputePass,
     random: Image,
     sized: Sized,
     push: EffectPush,
@@ -125,7 +122,6 @@ impl AoEffect {
             reuse,
             ssao: ComputePass::new(s.ctx, s.pool, PassId::Ssao, module, binds)?,
             blur,
-            reproject: reprojection(s, "ao")?,
             random,
             sized: Self::create_sized(s.ctx, s.config)?,
             push: EffectPush::default(),
@@ -191,7 +187,6 @@ impl Effect for AoEffect {
         let own = self.own();
         let res = self.resources(targets, &own);
         self.ssao.bind(ctx, &res)?;
-        self.reproject.bind(ctx, &res)?;
         if let Some(b) = &self.blur {
             b.bind(ctx, &res)?;
         }
@@ -218,13 +213,8 @@ impl Effect for AoEffect {
         info.config.temporal.reuse
     }
 
-    fn record_reprojection(&self, info: &FrameInfo<'_>, rec: &Recorder<'_>, tracker: &mut Tracker) {
-        let own = self.own();
-        let res = self.resources(info.targets, &own);
-        let push = self.push.to_bytes();
-        let all = every_pixel(info);
-        self.reproject
-            .record(rec, tracker, info.frame, &res, &push, all);
+    fn push(&self) -> &EffectPush {
+        &self.push
     }
 
     fn record(&self, info: &FrameInfo<'_>, r: &mut Recording<'_>) {

@@ -5,8 +5,7 @@
 //! rgb = outgoing diffuse radiance albedo/pi * E * V, a = V.
 
 use super::effect::{
-    every_pixel, reprojection, Effect, EffectId, FrameInfo, Recording, Registration, Setup,
-    TermKind,
+    every_pixel, Effect, EffectId, FrameInfo, Recording, Registration, Setup, TermKind,
 };
 use super::resolve::EffectResources;
 use crate::error::Result;
@@ -18,8 +17,7 @@ use crate::renderer::effect::{self, TemporalEffect};
 use crate::renderer::pcf::PcfKernel;
 use crate::renderer::targets::{Target, Targets, AO_FORMAT, DIRECT_FORMAT};
 use crate::shaders::{self, EffectPush};
-use crate::vk::cmd::Recorder;
-use crate::vk::{Context, Image, ImageDesc, Tracker};
+use crate::vk::{Context, Image, ImageDesc};
 use ash::vk;
 use std::sync::Arc;
 
@@ -73,11 +71,10 @@ fn layouts() -> Vec<PassLayout> {
     ]
 }
 
-/// What reuse adds: the accumulating shadow pass, its reprojection, and a direct pass whose
-/// sets read the history.
+/// What reuse adds: the accumulating shadow pass and a direct pass whose sets read the
+/// history (the reprojection is the renderer's, one lane per temporal effect).
 struct Reuse {
     accumulate: ComputePass,
-    reproject: ComputePass,
     direct_from_history: ComputePass,
 }
 
@@ -121,7 +118,6 @@ impl DirectEffect {
                     &shaders::SHADOW_ACCUMULATE_COMP,
                     SHADOW_ACCUMULATE,
                 )?,
-                reproject: reprojection(s, "shadow")?,
                 direct_from_history: direct.instance(s.pool, "direct from shadow history")?,
             })
         } else {
@@ -217,7 +213,6 @@ impl Effect for DirectEffect {
         self.direct.bind(ctx, &res)?;
         if let Some(r) = &self.reuse {
             r.accumulate.bind(ctx, &res)?;
-            r.reproject.bind(ctx, &res)?;
             let own = self.own(true);
             r.direct_from_history
                 .bind(ctx, &self.resources(targets, &own))?;
@@ -256,15 +251,8 @@ impl Effect for DirectEffect {
         self.counts(info.config)
     }
 
-    fn record_reprojection(&self, info: &FrameInfo<'_>, rec: &Recorder<'_>, tracker: &mut Tracker) {
-        if let Some(r) = &self.reuse {
-            let own = self.own(false);
-            let res = self.resources(info.targets, &own);
-            let push = self.push.to_bytes();
-            let all = every_pixel(info);
-            r.reproject
-                .record(rec, tracker, info.frame, &res, &push, all);
-        }
+    fn push(&self) -> &EffectPush {
+        &self.push
     }
 
     fn record(&self, info: &FrameInfo<'_>, r: &mut Recording<'_>) {

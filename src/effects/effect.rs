@@ -2,11 +2,12 @@
 //! given to create itself and to record a frame.
 
 use crate::error::Result;
-use crate::passes::compute::{ComputePass, Dispatch, FrameSet};
+use crate::passes::compute::{Dispatch, FrameSet};
 use crate::passes::{PassId, PassLayout};
 use crate::renderer::config::RenderConfig;
 use crate::renderer::effect::TemporalEffect;
 use crate::renderer::targets::{Target, Targets};
+use crate::shaders::EffectPush;
 use crate::vk::cmd::Recorder;
 use crate::vk::{Context, DescriptorPool, GpuTimer, Image, Tracker};
 use std::sync::Arc;
@@ -77,18 +78,11 @@ impl Recording<'_> {
     }
 }
 
-/// Passes several effects share, created once by the renderer.
-pub struct SharedPasses {
-    /// Reverse reprojection (each temporal effect gets its own instance's descriptor sets).
-    pub reproject: ComputePass,
-}
-
 /// Everything an effect needs to create itself.
 pub struct Setup<'a> {
     pub ctx: &'a Arc<Context>,
     pub pool: &'a DescriptorPool,
     pub config: &'a RenderConfig,
-    pub shared: &'a SharedPasses,
     pub tracker: &'a mut Tracker,
 }
 
@@ -115,11 +109,13 @@ pub trait Effect {
     /// Before recording: draw the frame's refresh tile and push constants.
     fn prepare(&mut self, info: &FrameInfo<'_>);
 
-    /// Whether this frame reprojects the effect's history.
+    /// Whether this frame reprojects the effect's history (its lane of the shared
+    /// reprojection pass runs).
     fn reprojects(&self, info: &FrameInfo<'_>) -> bool;
 
-    /// Record that reprojection (inside the frame's one `reproject` region).
-    fn record_reprojection(&self, info: &FrameInfo<'_>, rec: &Recorder<'_>, tracker: &mut Tracker);
+    /// This frame's push constants (from `prepare`): the reprojection takes the refresh tile,
+    /// history validity and block size of its lane from them.
+    fn push(&self) -> &EffectPush;
 
     /// Record the effect's passes.
     fn record(&self, info: &FrameInfo<'_>, r: &mut Recording<'_>);
@@ -139,13 +135,6 @@ pub struct Registration {
     pub enabled: fn(&RenderConfig) -> bool,
     pub create: fn(&mut Setup<'_>) -> Result<Box<dyn Effect>>,
     pub layouts: fn() -> Vec<PassLayout>,
-}
-
-/// The reprojection instance of a temporal effect (its own descriptor sets).
-pub fn reprojection(s: &Setup<'_>, effect: &str) -> Result<ComputePass> {
-    s.shared
-        .reproject
-        .instance(s.pool, &format!("reproject {effect}"))
 }
 
 /// A dispatch over every pixel of the frame.

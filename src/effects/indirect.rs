@@ -5,10 +5,7 @@
 //! full-resolution gather per block. It always goes through the reprojection: without reuse
 //! every pixel is new and every block listed, with the fixed pattern 0.
 
-use super::effect::{
-    every_pixel, reprojection, Effect, EffectId, FrameInfo, Recording, Registration, Setup,
-    TermKind,
-};
+use super::effect::{Effect, EffectId, FrameInfo, Recording, Registration, Setup, TermKind};
 use super::resolve::EffectResources;
 use crate::error::Result;
 use crate::passes::compute::{ComputePass, Dispatch};
@@ -19,8 +16,7 @@ use crate::renderer::counters::FIXUP_DISPATCH_OFFSET;
 use crate::renderer::effect::{self, TemporalEffect};
 use crate::renderer::targets::{Target, Targets, STATE_FORMAT};
 use crate::shaders::{self, EffectPush};
-use crate::vk::cmd::Recorder;
-use crate::vk::{Buffer, Context, Image, ImageDesc, Tracker};
+use crate::vk::{Buffer, Context, Image, ImageDesc};
 use ash::vk;
 use gpu_allocator::MemoryLocation;
 use std::sync::Arc;
@@ -116,7 +112,6 @@ struct Sized {
 
 pub struct IndirectEffect {
     gather: Gather,
-    reproject: ComputePass,
     sized: Sized,
     push: EffectPush,
 }
@@ -151,7 +146,6 @@ impl IndirectEffect {
         };
         Ok(Self {
             gather,
-            reproject: reprojection(s, "indirect")?,
             sized: Self::create_sized(s.ctx, s.config)?,
             push: EffectPush::default(),
         })
@@ -221,7 +215,6 @@ impl Effect for IndirectEffect {
     fn bind(&self, ctx: &Context, targets: &Targets) -> Result<()> {
         let (own, buffers) = (self.own(), [&self.sized.lowres]);
         let res = self.resources(targets, &own, &buffers);
-        self.reproject.bind(ctx, &res)?;
         for p in self.passes() {
             p.bind(ctx, &res)?;
         }
@@ -256,13 +249,8 @@ impl Effect for IndirectEffect {
         true
     }
 
-    fn record_reprojection(&self, info: &FrameInfo<'_>, rec: &Recorder<'_>, tracker: &mut Tracker) {
-        let (own, buffers) = (self.own(), [&self.sized.lowres]);
-        let res = self.resources(info.targets, &own, &buffers);
-        let push = self.push.to_bytes();
-        let all = every_pixel(info);
-        self.reproject
-            .record(rec, tracker, info.frame, &res, &push, all);
+    fn push(&self) -> &EffectPush {
+        &self.push
     }
 
     fn record(&self, info: &FrameInfo<'_>, r: &mut Recording<'_>) {

@@ -10,8 +10,7 @@ pub mod indirect;
 pub mod resolve;
 
 pub use effect::{
-    every_pixel, reprojection, Effect, EffectId, FrameInfo, Recording, Registration, Setup,
-    SharedPasses, TermKind,
+    every_pixel, Effect, EffectId, FrameInfo, Recording, Registration, Setup, TermKind,
 };
 
 use crate::error::Result;

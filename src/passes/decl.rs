@@ -86,6 +86,16 @@ impl Use {
         })
     }
 
+    /// The same binding with the old contents kept: a pass that leaves a resource alone this
+    /// time (a dynamically skipped branch) still names it, and synchronization validation
+    /// counts its writes, but it must not discard what is there.
+    pub fn keeping_contents(self) -> Use {
+        match self {
+            Use::StorageWrite => Use::StorageReadWrite,
+            other => other,
+        }
+    }
+
     fn is_buffer(self) -> bool {
         self.kind() == Some(DescriptorKind::StorageBuffer)
     }
@@ -155,7 +165,17 @@ fn missing(pass: &str, b: &Bind) -> Error {
 
 /// The descriptor writes of set 1 for `parity`.
 pub fn writes(pass: &str, binds: &[Bind], res: &dyn Resolve, parity: usize) -> Result<SetWriter> {
-    let mut w = SetWriter::new();
+    write_binds(SetWriter::new(), pass, binds, res, parity)
+}
+
+/// `w` plus the writes of `binds` (a pass whose set gathers several resolvers' resources).
+pub fn write_binds(
+    mut w: SetWriter,
+    pass: &str,
+    binds: &[Bind],
+    res: &dyn Resolve,
+    parity: usize,
+) -> Result<SetWriter> {
     for b in binds.iter().filter(|b| b.usage.kind().is_some()) {
         w = if b.usage.is_buffer() {
             let buffer = res.buffer(b.slot).ok_or_else(|| missing(pass, b))?;

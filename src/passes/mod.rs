@@ -22,7 +22,7 @@ pub fn frame_layouts() -> Vec<PassLayout> {
     let mut v = Vec::new();
     v.extend(light_view::layouts());
     v.extend(gbuffer::layouts());
-    v.push(reproject::layout());
+    v.extend(reproject::layouts());
     v.push(composite::layout());
     v
 }

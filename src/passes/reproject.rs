@@ -1,40 +1,210 @@
-//! Reverse reprojection (Lin 2013 eqs 1-3), one dispatch per temporal effect: per-pixel state,
-//! history resampling, the disocclusion count and the effect's list of blocks needing work.
+//! Reverse reprojection (Lin 2013 eqs 1-3) of every temporal effect in one dispatch: the
+//! G-buffer, the previous position and the disocclusion test once per pixel, then each effect's
+//! history resampling, per-pixel state, disocclusion count and list of blocks needing work.
+//! Each temporal effect is a lane: its resources sit at their own bindings, resolved by the
+//! effect, and its push constants in its own members.
 
-use super::compute::ComputePass;
-use super::decl::{Bind, Slot, Use};
+use super::decl::{self, Bind, Resolve, Slot, Use};
 use super::layout::PassLayout;
 use super::pass_id::PassId;
-use crate::error::Result;
-use crate::shaders;
-use crate::vk::{Context, DescriptorPool};
+use crate::error::{Error, Result};
+use crate::shaders::{self, ReprojectPush, ShaderModuleInfo};
+use crate::vk::cmd::Recorder;
+use crate::vk::{Context, DescriptorPool, Pipeline, SetWriter, Tracker};
+use ash::vk;
 use std::sync::Arc;
 
-const BINDS: &[Bind] = &[
+use super::compute::FrameSet;
+
+/// Temporal effects one reprojection serves (the shader's permutations).
+pub const MAX_LANES: usize = 3;
+
+/// What every lane shares: this frame's G-buffer and last frame's.
+const SHARED: &[Bind] = &[
     Bind::new(0, Slot::GPosition, Use::Sampled),
     Bind::new(1, Slot::GNormal, Use::Sampled),
     Bind::new(2, Slot::GPositionPrev, Use::Sampled),
-    Bind::new(3, Slot::HistoryPrev, Use::Sampled),
-    // Every pixel is written: resampled history, or cleared where it is disoccluded.
-    Bind::new(4, Slot::History, Use::StorageWrite),
-    Bind::new(5, Slot::State, Use::StorageWrite),
-    Bind::new(6, Slot::Counters, Use::BufferReadWrite),
-    Bind::new(7, Slot::MomentsPrev, Use::Sampled),
-    Bind::new(8, Slot::Moments, Use::StorageWrite),
-    Bind::new(9, Slot::GNormalPrev, Use::Sampled),
+    Bind::new(3, Slot::GNormalPrev, Use::Sampled),
 ];
 
-pub fn layout() -> PassLayout {
-    ComputePass::layout(PassId::Reproject, &shaders::REPROJECT_COMP, BINDS)
+/// Lane `k`'s resources, at bindings 8 + 8k onwards (shaders/reproject.comp's LANE_RESOURCES).
+const fn lane_binds(k: u32) -> [Bind; 6] {
+    let b = 8 + 8 * k;
+    [
+        Bind::new(b, Slot::HistoryPrev, Use::Sampled),
+        // Every pixel is written: resampled history, or cleared where it is disoccluded.
+        Bind::new(b + 1, Slot::History, Use::StorageWrite),
+        Bind::new(b + 2, Slot::State, Use::StorageWrite),
+        Bind::new(b + 3, Slot::Counters, Use::BufferReadWrite),
+        Bind::new(b + 4, Slot::MomentsPrev, Use::Sampled),
+        Bind::new(b + 5, Slot::Moments, Use::StorageWrite),
+    ]
 }
 
-/// The pipeline; each temporal effect records through its own [`ComputePass::instance`].
-pub fn new(ctx: &Arc<Context>, pool: &DescriptorPool) -> Result<ComputePass> {
-    ComputePass::new(
-        ctx,
-        pool,
-        PassId::Reproject,
-        &shaders::REPROJECT_COMP,
-        BINDS,
-    )
+const LANE_BINDS: [[Bind; 6]; MAX_LANES] = [lane_binds(0), lane_binds(1), lane_binds(2)];
+
+fn module(lanes: usize) -> &'static ShaderModuleInfo {
+    match lanes {
+        1 => &shaders::REPROJECT_COMP_1,
+        2 => &shaders::REPROJECT_COMP_2,
+        _ => &shaders::REPROJECT_COMP_3,
+    }
+}
+
+fn binds(lanes: usize) -> Vec<Bind> {
+    let mut v = SHARED.to_vec();
+    for lane in &LANE_BINDS[..lanes] {
+        v.extend_from_slice(lane);
+    }
+    v
+}
+
+/// Every permutation's layout for the reflection check.
+pub fn layouts() -> Vec<PassLayout> {
+    (1..=MAX_LANES)
+        .map(|n| PassLayout {
+            pass: PassId::Reproject,
+            modules: vec![module(n)],
+            declared: decl::layout(&binds(n)),
+        })
+        .collect()
+}
+
+/// One lane's part of a frame: its push constants and whether it runs.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct LaneFrame {
+    /// The effect reprojects its history this frame.
+    pub active: bool,
+    pub history_valid: bool,
+    /// log2 of the effect's work-block side.
+    pub block_shift: u32,
+    /// Refresh tile (x0, y0, x1, y1) [px]; empty = none.
+    pub refresh_rect: [u32; 4],
+}
+
+/// The frame's push constants from each lane's part.
+pub fn push(lanes: &[LaneFrame]) -> ReprojectPush {
+    let lane = |k: usize| {
+        lanes.get(k).map_or([0; 4], |l| {
+            [l.active as u32, l.history_valid as u32, l.block_shift, 0]
+        })
+    };
+    let rect = |k: usize| lanes.get(k).map_or([0; 4], |l| l.refresh_rect);
+    ReprojectPush {
+        refresh_rect_0: rect(0),
+        refresh_rect_1: rect(1),
+        refresh_rect_2: rect(2),
+        lane_0: lane(0),
+        lane_1: lane(1),
+        lane_2: lane(2),
+    }
+}
+
+pub struct ReprojectPass {
+    lanes: usize,
+    pipeline: Pipeline,
+    sets: [vk::DescriptorSet; 2],
+}
+
+impl ReprojectPass {
+    /// The pass for `lanes` temporal effects (1 ..= MAX_LANES).
+    pub fn new(ctx: &Arc<Context>, pool: &DescriptorPool, lanes: usize) -> Result<Self> {
+        if lanes == 0 || lanes > MAX_LANES {
+            return Err(Error::Config(format!(
+                "the reprojection serves 1 to {MAX_LANES} temporal effects, not {lanes} \
+                 (add a permutation to shaders/reproject.comp and a lane to LANE_BINDS)"
+            )));
+        }
+        let name = PassId::Reproject.name();
+        let pipeline = Pipeline::compute_specialized(
+            ctx,
+            name,
+            module(lanes),
+            &decl::layout(&binds(lanes)),
+            &[],
+        )?;
+        let layout = pipeline.set_layouts[1];
+        let sets = [
+            pool.allocate(layout, &format!("{name} set 1 parity 0"))?,
+            pool.allocate(layout, &format!("{name} set 1 parity 1"))?,
+        ];
+        Ok(Self {
+            lanes,
+            pipeline,
+            sets,
+        })
+    }
+
+    /// Point both parities' sets at the G-buffer (`shared`) and each lane's resources, one
+    /// resolver per lane in lane order (creation and resize, device idle).
+    pub fn bind(&self, ctx: &Context, shared: &dyn Resolve, lanes: &[&dyn Resolve]) -> Result<()> {
+        assert_eq!(lanes.len(), self.lanes, "one resolver per lane");
+        let name = PassId::Reproject.name();
+        for (parity, set) in self.sets.iter().enumerate() {
+            let mut w = decl::write_binds(SetWriter::new(), name, SHARED, shared, parity)?;
+            for (binds, res) in LANE_BINDS.iter().zip(lanes) {
+                w = decl::write_binds(w, name, binds, *res, parity)?;
+            }
+            w.write(ctx, *set);
+        }
+        Ok(())
+    }
+
+    /// Barriers for the G-buffer and the active lanes' resources, then one dispatch over every
+    /// pixel. `lanes` pairs each lane's resolver with its part of the frame.
+    pub fn record(
+        &self,
+        rec: &Recorder<'_>,
+        tracker: &mut Tracker,
+        frame: FrameSet,
+        shared: &dyn Resolve,
+        lanes: &[(&dyn Resolve, LaneFrame)],
+        (width, height): (u32, u32),
+    ) {
+        let name = PassId::Reproject.name();
+        decl::access(name, SHARED, shared, frame.parity, tracker);
+        for (binds, (res, lane)) in LANE_BINDS.iter().zip(lanes) {
+            if lane.active {
+                decl::access(name, binds, *res, frame.parity, tracker);
+            } else {
+                // Left untouched, but the shader names its resources: they must be in the
+                // layouts the set expects and synchronized as written, their contents kept.
+                let kept = binds.map(|b| Bind::new(b.binding, b.slot, b.usage.keeping_contents()));
+                decl::access(name, &kept, *res, frame.parity, tracker);
+            }
+        }
+        tracker.flush(rec.device, rec.cmd);
+        let frames: Vec<LaneFrame> = lanes.iter().map(|(_, l)| *l).collect();
+        rec.bind(&self.pipeline, &[frame.set, self.sets[frame.parity]]);
+        rec.push(&self.pipeline, &push(&frames).to_bytes());
+        rec.dispatch_2d(&self.pipeline, width, height);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn lanes_do_not_share_bindings() {
+        let all = binds(MAX_LANES);
+        let mut numbers: Vec<u32> = all.iter().map(|b| b.binding).collect();
+        numbers.sort_unstable();
+        numbers.dedup();
+        assert_eq!(numbers.len(), all.len());
+    }
+
+    #[test]
+    fn absent_lanes_push_inactive() {
+        let p = push(&[LaneFrame {
+            active: true,
+            history_valid: true,
+            block_shift: 4,
+            refresh_rect: [1, 2, 3, 4],
+        }]);
+        assert_eq!(p.lane_0, [1, 1, 4, 0]);
+        assert_eq!(p.refresh_rect_0, [1, 2, 3, 4]);
+        assert_eq!(p.lane_1, [0; 4]);
+        assert_eq!(p.lane_2, [0; 4]);
+    }
 }

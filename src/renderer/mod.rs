@@ -9,19 +9,20 @@ pub mod counters;
 pub mod effect;
 pub mod frame;
 pub mod pcf;
+pub mod reprojection;
 pub mod scene_gpu;
 pub mod targets;
 pub mod temporal;
 
 use crate::effects::resolve::shared;
-use crate::effects::{self, Effect, EffectId, FrameInfo, Recording, Setup, SharedPasses};
+use crate::effects::{self, Effect, EffectId, FrameInfo, Recording, Setup};
 use crate::error::{Error, Result};
 use crate::passes::composite::{CompositePass, Terms};
 use crate::passes::compute::FrameSet;
 use crate::passes::decl::{Resolve, Slot};
 use crate::passes::gbuffer::GBufferPass;
 use crate::passes::light_view::LightViewPass;
-use crate::passes::{reproject, PassId};
+use crate::passes::PassId;
 use crate::scene::{Camera, Scene, SpotLight};
 use crate::vk::cmd::Recorder;
 use crate::vk::{
@@ -33,6 +34,7 @@ pub use config::{RenderConfig, FRAMES_IN_FLIGHT, MAX_SIZE};
 use frame::{frame_block, FrameBlock, FrameInputs};
 use glam::Mat4;
 use gpu_allocator::MemoryLocation;
+use reprojection::Reprojection;
 use scene_gpu::SceneGpu;
 use std::sync::Arc;
 use targets::{Target, Targets};
@@ -74,7 +76,7 @@ pub struct Renderer {
     history: Option<Mat4>,
     /// The last pass recorded into each slot's command buffer (device-loss reports).
     last_pass: [Option<PassId>; FRAMES_IN_FLIGHT],
-    _shared: SharedPasses,
+    reprojection: Reprojection,
     _pool: DescriptorPool,
 }
 
@@ -92,16 +94,13 @@ impl Renderer {
             &scene.mesh,
             light_view.material_layout(),
         )?;
-        let shared = SharedPasses {
-            reproject: reproject::new(ctx, &pool)?,
-        };
         let effects = effects::create(&mut Setup {
             ctx,
             pool: &pool,
             config: &config,
-            shared: &shared,
             tracker: &mut tracker,
         })?;
+        let reprojection = Reprojection::new(ctx, &pool, &effects)?;
         let kinds: Vec<u32> = effects.iter().map(|e| e.term(0).0 as u32).collect();
         let composite = CompositePass::new(ctx, &pool, &kinds)?;
         // Set 0 layout: every pipeline declares the same frame binding, so any of them works.
@@ -137,7 +136,7 @@ impl Renderer {
             rsm_light: None,
             history: None,
             last_pass: [None; FRAMES_IN_FLIGHT],
-            _shared: shared,
+            reprojection,
             _pool: pool,
         };
         renderer.bind()?;
@@ -149,6 +148,8 @@ impl Renderer {
         for e in &self.effects {
             e.bind(&self.ctx, &self.targets)?;
         }
+        self.reprojection
+            .bind(&self.ctx, &self.targets, &self.effects)?;
         let shared = SharedTargets(&self.targets);
         self.composite
             .bind(&self.ctx, &terms(&shared, &self.effects))
@@ -261,8 +262,8 @@ impl Renderer {
         r.timed(PassId::GBuffer, |rec, tr| {
             self.gbuffer.record(rec, tr, frame, scene, &shared)
         });
-        // 4. Reprojection of every temporal effect that reuses its history this frame.
-        record_reprojections(&self.effects, &info, &mut r);
+        // 4. One reprojection, a lane per temporal effect that reuses its history this frame.
+        self.reprojection.record(&self.effects, &info, &mut r);
         // 5. Effects, in registry order.
         for e in &self.effects {
             e.record(&info, &mut r);
@@ -387,6 +388,19 @@ impl Renderer {
         Ok(pending)
     }
 
+    /// Copy the per-pixel reprojection state of effect `id` in the last rendered frame to the
+    /// host (waits for the GPU): `Target::State` shows one effect's, this any effect's.
+    pub fn read_state(&mut self, id: EffectId) -> Result<ImageData> {
+        let effect = self.effects.iter().find(|e| e.id() == id);
+        let state = effect.and_then(|e| e.temporal()).map(|t| &t.state);
+        let state = state.ok_or_else(|| {
+            Error::Config(format!(
+                "{id:?} keeps no history in this run (off, or no reuse)"
+            ))
+        })?;
+        read_image(&self.ctx, &mut self.tracker, state)
+    }
+
     /// Copy a target of the last rendered frame to the host (waits for the GPU).
     pub fn read(&mut self, target: Target) -> Result<ImageData> {
         let parity = self.last_parity();
@@ -425,23 +439,6 @@ fn resolve_target<'a>(
                 .iter()
                 .find_map(|e| e.target(target, parity, config))
         }),
-    }
-}
-
-/// Reset the counters of every effect that counts this frame, then one `reproject` region
-/// with the reprojection of every effect that reuses its history.
-fn record_reprojections(effects: &[Box<dyn Effect>], info: &FrameInfo<'_>, r: &mut Recording<'_>) {
-    for e in effects.iter().filter(|e| e.counts(info.config)) {
-        if let Some(temporal) = e.temporal() {
-            temporal.reset_counters(&r.rec, r.tracker);
-        }
-    }
-    if effects.iter().any(|e| e.reprojects(info)) {
-        r.timed(PassId::Reproject, |rec, tr| {
-            for e in effects.iter().filter(|e| e.reprojects(info)) {
-                e.record_reprojection(info, rec, tr);
-            }
-        });
     }
 }
 

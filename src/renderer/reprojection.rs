@@ -1,0 +1,113 @@
+//! The frame's one reprojection: every effect with a history is a lane of the shared
+//! reprojection pass (registry order), so the G-buffer, the previous position and the
+//! disocclusion test are read and computed once per pixel whatever the number of effects.
+
+use crate::effects::resolve::EffectResources;
+use crate::effects::{Effect, FrameInfo, Recording};
+use crate::error::Result;
+use crate::passes::decl::Resolve;
+use crate::passes::reproject::{LaneFrame, ReprojectPass};
+use crate::passes::PassId;
+use crate::renderer::effect::TemporalEffect;
+use crate::renderer::targets::Targets;
+use crate::vk::{Context, DescriptorPool};
+use std::sync::Arc;
+
+/// The pass, absent when no effect keeps a history.
+pub struct Reprojection {
+    pass: Option<ReprojectPass>,
+}
+
+/// An effect's lane resources: its history, moments, state and counters.
+fn lane<'a>(targets: &'a Targets, t: &'a TemporalEffect) -> EffectResources<'a> {
+    EffectResources {
+        targets,
+        temporal: Some(t),
+        own: &[],
+        own_buffers: &[],
+    }
+}
+
+/// The G-buffer every lane shares.
+fn shared(targets: &Targets) -> EffectResources<'_> {
+    EffectResources {
+        targets,
+        temporal: None,
+        own: &[],
+        own_buffers: &[],
+    }
+}
+
+fn temporals(effects: &[Box<dyn Effect>]) -> impl Iterator<Item = (&dyn Effect, &TemporalEffect)> {
+    effects
+        .iter()
+        .filter_map(|e| e.temporal().map(|t| (e.as_ref(), t)))
+}
+
+impl Reprojection {
+    pub fn new(
+        ctx: &Arc<Context>,
+        pool: &DescriptorPool,
+        effects: &[Box<dyn Effect>],
+    ) -> Result<Self> {
+        let lanes = temporals(effects).count();
+        let pass = match lanes {
+            0 => None,
+            n => Some(ReprojectPass::new(ctx, pool, n)?),
+        };
+        Ok(Self { pass })
+    }
+
+    /// Point the pass at the current targets and histories (creation and resize).
+    pub fn bind(
+        &self,
+        ctx: &Context,
+        targets: &Targets,
+        effects: &[Box<dyn Effect>],
+    ) -> Result<()> {
+        let Some(pass) = &self.pass else {
+            return Ok(());
+        };
+        let lanes: Vec<EffectResources> =
+            temporals(effects).map(|(_, t)| lane(targets, t)).collect();
+        let lanes: Vec<&dyn Resolve> = lanes.iter().map(|l| l as &dyn Resolve).collect();
+        pass.bind(ctx, &shared(targets), &lanes)
+    }
+
+    /// Reset the counters of every effect that counts this frame, then one `reproject` region
+    /// with one dispatch for every lane whose effect reuses its history this frame.
+    pub fn record(&self, effects: &[Box<dyn Effect>], info: &FrameInfo<'_>, r: &mut Recording<'_>) {
+        for e in effects.iter().filter(|e| e.counts(info.config)) {
+            if let Some(temporal) = e.temporal() {
+                temporal.reset_counters(&r.rec, r.tracker);
+            }
+        }
+        let Some(pass) = &self.pass else {
+            return;
+        };
+        let targets = info.targets;
+        let lanes: Vec<(EffectResources, LaneFrame)> = temporals(effects)
+            .map(|(e, t)| {
+                let push = e.push();
+                let frame = LaneFrame {
+                    active: e.reprojects(info),
+                    history_valid: push.history_valid != 0,
+                    block_shift: t.kind.block_shift,
+                    refresh_rect: push.refresh_rect,
+                };
+                (lane(targets, t), frame)
+            })
+            .collect();
+        if !lanes.iter().any(|(_, l)| l.active) {
+            return;
+        }
+        let lanes: Vec<(&dyn Resolve, LaneFrame)> = lanes
+            .iter()
+            .map(|(res, l)| (res as &dyn Resolve, *l))
+            .collect();
+        let size = (targets.width, targets.height);
+        r.timed(PassId::Reproject, |rec, tr| {
+            pass.record(rec, tr, info.frame, &shared(targets), &lanes, size)
+        });
+    }
+}
