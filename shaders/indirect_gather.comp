@@ -25,9 +25,13 @@ layout(set = 1, binding = 8, rgba32f) uniform image2D moments;
 #include "indirect_merge.glsl"
 
 shared uint group_computed;
+shared uint group_refresh; // pattern evaluations of the refresh tile
 
 void main() {
-    if (gl_LocalInvocationIndex == 0u) group_computed = 0u;
+    if (gl_LocalInvocationIndex == 0u) {
+        group_computed = 0u;
+        group_refresh = 0u;
+    }
     barrier();
 #ifdef FIXUP
     uint i = gl_GlobalInvocationID.x;
@@ -44,6 +48,7 @@ void main() {
         if (position.w != 0.0 &&
             (state == STATE_NEW || state == STATE_ACCUMULATING || state == STATE_REFRESH)) {
             bool refresh = state == STATE_REFRESH;
+            if (refresh) atomicAdd(group_refresh, frame.rotation_limit);
             vec4 fresh = indirect_value(position.xyz, texelFetch(g_normal, pixel, 0).xyz, refresh, pixel);
             merge(pixel, imageLoad(history, pixel), fresh, refresh);
 #ifndef FIXUP
@@ -54,4 +59,6 @@ void main() {
     barrier();
     if (gl_LocalInvocationIndex == 0u && group_computed > 0u)
         atomicAdd(counters.computed_pixels, group_computed);
+    if (gl_LocalInvocationIndex == 0u && group_refresh > 0u)
+        atomicAdd(counters.refresh_evaluations, group_refresh);
 }

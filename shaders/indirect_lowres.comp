@@ -20,9 +20,13 @@ layout(set = 1, binding = 6, std430) buffer LowRes { vec4 lowres[]; };
 #include "indirect_common.glsl"
 
 shared uint group_computed;
+shared uint group_refresh; // pattern evaluations of the refresh tile
 
 void main() {
-    if (gl_LocalInvocationIndex == 0u) group_computed = 0u;
+    if (gl_LocalInvocationIndex == 0u) {
+        group_computed = 0u;
+        group_refresh = 0u;
+    }
     barrier();
     uint packed = counters.data[gl_WorkGroupID.x];
     ivec2 block = ivec2(packed & 0xffffu, packed >> 16);
@@ -34,6 +38,7 @@ void main() {
         vec4 position = texelFetch(g_position, full, 0);
         if (position.w != 0.0) {
             bool refresh = low_in_refresh_tile(low);
+            if (refresh) atomicAdd(group_refresh, frame.rotation_limit);
             vec3 n = texelFetch(g_normal, full, 0).xyz;
             value = indirect_value(position.xyz, n, refresh, low);
             atomicAdd(group_computed, 1u);
@@ -43,4 +48,6 @@ void main() {
     barrier();
     if (gl_LocalInvocationIndex == 0u && group_computed > 0u)
         atomicAdd(counters.computed_pixels, group_computed);
+    if (gl_LocalInvocationIndex == 0u && group_refresh > 0u)
+        atomicAdd(counters.refresh_evaluations, group_refresh);
 }

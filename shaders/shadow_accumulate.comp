@@ -24,9 +24,13 @@ layout(set = 1, binding = 6, rgba32f) uniform image2D moments;
 #include "shadow.glsl"
 
 shared uint group_computed;
+shared uint group_refresh; // pattern evaluations of the refresh tile
 
 void main() {
-    if (gl_LocalInvocationIndex == 0u) group_computed = 0u;
+    if (gl_LocalInvocationIndex == 0u) {
+        group_computed = 0u;
+        group_refresh = 0u;
+    }
     barrier();
     ivec2 pixel = block_pixel(gl_WorkGroupID.x, gl_LocalInvocationID.xy);
     if (!outside_frame(pixel)) {
@@ -39,6 +43,7 @@ void main() {
             vec2 result;
             vec4 m = imageLoad(moments, pixel);
             if (state == STATE_REFRESH) {
+                atomicAdd(group_refresh, limit);
                 float sum = 0.0;
                 float sum2 = 0.0;
                 for (uint j = 0u; j < limit; ++j) {
@@ -60,4 +65,6 @@ void main() {
     barrier();
     if (gl_LocalInvocationIndex == 0u && group_computed > 0u)
         atomicAdd(counters.computed_pixels, group_computed);
+    if (gl_LocalInvocationIndex == 0u && group_refresh > 0u)
+        atomicAdd(counters.refresh_evaluations, group_refresh);
 }

@@ -25,9 +25,13 @@ layout(set = 1, binding = 6, rgba32f) uniform image2D moments;
 #include "ao.glsl"
 
 shared uint group_computed;
+shared uint group_refresh; // pattern evaluations of the refresh tile
 
 void main() {
-    if (gl_LocalInvocationIndex == 0u) group_computed = 0u;
+    if (gl_LocalInvocationIndex == 0u) {
+        group_computed = 0u;
+        group_refresh = 0u;
+    }
     barrier();
     ivec2 pixel = block_pixel(gl_WorkGroupID.x, gl_LocalInvocationID.xy);
     if (!outside_frame(pixel)) {
@@ -40,6 +44,7 @@ void main() {
             vec2 result;
             vec4 m = imageLoad(moments, pixel);
             if (state == STATE_REFRESH) {
+                atomicAdd(group_refresh, limit);
                 // The mean of every pattern and of its square: what accumulation converges to.
                 float sum = 0.0;
                 float sum2 = 0.0;
@@ -63,4 +68,6 @@ void main() {
     barrier();
     if (gl_LocalInvocationIndex == 0u && group_computed > 0u)
         atomicAdd(counters.computed_pixels, group_computed);
+    if (gl_LocalInvocationIndex == 0u && group_refresh > 0u)
+        atomicAdd(counters.refresh_evaluations, group_refresh);
 }

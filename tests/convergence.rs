@@ -7,6 +7,7 @@ mod common;
 
 use ssgi::renderer::config::{
     Accumulate, AoConfig, Effects, IndirectConfig, Refresh, RenderConfig, TemporalConfig,
+    MAX_REFRESH_BUDGET,
 };
 use ssgi::renderer::pcf::{Pcf, PcfKernel};
 use ssgi::renderer::targets::Target;
@@ -317,6 +318,8 @@ fn refreshed_tiles_meet_accumulated_pixels_without_a_seam() {
         c.width = size;
         c.height = size;
         c.temporal.refresh = Refresh::Feathered;
+        // The thesis's tile sizes (the budget's default tiles are a few pixels wide).
+        c.temporal.refresh_budget = MAX_REFRESH_BUDGET;
         let mut r = Renderer::new(&ctx, effect.scene(), c).expect("renderer");
         let mut camera = r.scene.camera;
         for _ in 0..40 {

@@ -7,6 +7,7 @@
 //   fixup_pixels              full-resolution fix-ups (half-resolution indirect light)
 //   max_blocks                size of the block list; the fix-up list follows it in `data`
 //   fixup_dispatch_x, _y, _z  ceil(fixup_pixels / 64), y = z = 1
+//   refresh_evaluations       pattern evaluations of the refresh tile (every pattern counts)
 //   data[]                    blocks (x | y << 16), then fix-up pixels (x | y << 16)
 // COUNTERS_MEMBERS lets a pass that fills several effects' lists (the reprojection) declare
 // one block per effect with the same layout.
@@ -24,6 +25,7 @@
     uint fixup_dispatch_x;                                                                     \
     uint fixup_dispatch_y;                                                                     \
     uint fixup_dispatch_z;                                                                     \
+    uint refresh_evaluations;                                                                  \
     uint data[];
 
 #ifndef COUNTERS_LANES

@@ -121,11 +121,33 @@ pub struct SceneArgs {
     /// Gather indirect light at half resolution with geometry-aware upsampling.
     #[arg(long, default_value = "on", value_parser = parse_on_off, action = clap::ArgAction::Set)]
     pub half_res: bool,
-    /// Tiled refresh: one tile per frame (64x64 for AO and shadows, 16x16 for indirect light)
-    /// recomputed from scratch; `feathered` (or `on`) blends it in along a quarter-tile ramp on
-    /// a grid shifted by half a tile each cycle, `hard` replaces it outright (the thesis).
+    /// Tiled refresh: one tile per frame recomputed from scratch (at most 64x64 for AO and
+    /// shadows, 16x16 for indirect light, smaller where --refresh-budget requires);
+    /// `feathered` (or `on`) blends it in along a quarter-tile ramp on a grid shifted by half a
+    /// tile each cycle, `hard` replaces it outright (the thesis).
     #[arg(long, value_enum, default_value_t = Refresh::Feathered)]
     pub refresh: Refresh,
+    /// Most work the refresh may spend per frame, as a share of a full frame's pattern
+    /// evaluations: `5%` or `0.05` (up to 100 frames' worth, e.g. 225% for the thesis's 64x64
+    /// tiles at 256x256).
+    #[arg(long, default_value = "5%", value_parser = parse_fraction)]
+    pub refresh_budget: f32,
+}
+
+/// A share of a frame's work: `5%` or `0.05`, in (0, 100] (above 1: more than a frame, e.g.
+/// the thesis's 64x64 refresh tiles).
+pub fn parse_fraction(s: &str) -> Result<f32, String> {
+    let (number, scale) = match s.strip_suffix('%') {
+        Some(p) => (p, 0.01),
+        None => (s, 1.0),
+    };
+    let max = crate::renderer::config::MAX_REFRESH_BUDGET;
+    match number.trim().parse::<f32>() {
+        Ok(v) if v.is_finite() && v * scale > 0.0 && v * scale <= max => Ok(v * scale),
+        _ => Err(format!(
+            "{s:?} is not a share in (0, {max}]: write a percentage like 5% or a fraction like 0.05"
+        )),
+    }
 }
 
 /// `--accumulate` choices.
@@ -173,6 +195,7 @@ impl SceneArgs {
                 rotation_limit: self.rotation_limit,
                 epsilon: self.epsilon,
                 refresh: self.refresh,
+                refresh_budget: self.refresh_budget,
             },
         }
     }

@@ -15,6 +15,7 @@ use crate::renderer::config::RenderConfig;
 use crate::renderer::effect::{self, TemporalEffect};
 use crate::renderer::targets::{Target, Targets, AO_FORMAT};
 use crate::renderer::temporal::random_vectors;
+use crate::renderer::temporal::Sampling;
 use crate::shaders::{self, EffectPush};
 use crate::vk::{upload_image, Access, Context, Image, ImageDesc};
 use ash::vk;
@@ -144,7 +145,7 @@ impl AoEffect {
             )
         };
         Ok(Sized {
-            temporal: TemporalEffect::new(ctx, effect::AO, c.width, c.height)?,
+            temporal: TemporalEffect::new(ctx, effect::AO, c, Sampling::FullRes)?,
             raw: image("ao.raw")?,
             blurred: image("ao.blurred")?,
         })

@@ -16,6 +16,7 @@ use crate::renderer::config::RenderConfig;
 use crate::renderer::effect::{self, TemporalEffect};
 use crate::renderer::pcf::PcfKernel;
 use crate::renderer::targets::{Target, Targets, AO_FORMAT, DIRECT_FORMAT};
+use crate::renderer::temporal::Sampling;
 use crate::shaders::{self, EffectPush};
 use crate::vk::{Context, Image, ImageDesc};
 use ash::vk;
@@ -157,7 +158,12 @@ impl DirectEffect {
             shadow: image("shadow", AO_FORMAT)?,
             direct: image("direct", DIRECT_FORMAT)?,
             temporal: if c.temporal.reuse {
-                Some(TemporalEffect::new(ctx, effect::SHADOW, c.width, c.height)?)
+                Some(TemporalEffect::new(
+                    ctx,
+                    effect::SHADOW,
+                    c,
+                    Sampling::FullRes,
+                )?)
             } else {
                 None
             },

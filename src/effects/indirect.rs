@@ -15,6 +15,7 @@ use crate::renderer::config::RenderConfig;
 use crate::renderer::counters::FIXUP_DISPATCH_OFFSET;
 use crate::renderer::effect::{self, TemporalEffect};
 use crate::renderer::targets::{Target, Targets, STATE_FORMAT};
+use crate::renderer::temporal::Sampling;
 use crate::shaders::{self, EffectPush};
 use crate::vk::{Buffer, Context, Image, ImageDesc};
 use ash::vk;
@@ -152,7 +153,12 @@ impl IndirectEffect {
     }
 
     fn create_sized(ctx: &Arc<Context>, c: &RenderConfig) -> Result<Sized> {
-        let temporal = TemporalEffect::new(ctx, effect::INDIRECT, c.width, c.height)?;
+        let sampling = if c.indirect.half_res {
+            Sampling::HalfRes
+        } else {
+            Sampling::FullRes
+        };
+        let temporal = TemporalEffect::new(ctx, effect::INDIRECT, c, sampling)?;
         Ok(Sized {
             // 9x9 texels of 16 bytes per block.
             lowres: Buffer::new(

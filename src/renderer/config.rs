@@ -212,7 +212,17 @@ pub struct TemporalConfig {
     pub rotation_limit: u32,
     pub epsilon: Epsilon,
     pub refresh: Refresh,
+    /// Most pattern evaluations the refresh may spend per frame, as a fraction of a full
+    /// frame's (every pixel, one pattern): the refresh tile's side follows from it
+    /// (`temporal::budget_tile`).
+    pub refresh_budget: f32,
 }
+
+/// The default refresh budget: 5% of a full frame's evaluations.
+pub const REFRESH_BUDGET: f32 = 0.05;
+/// The largest: 100 frames' work, enough for the thesis's tiles (a 64x64 tile with 36
+/// patterns is 2.25 frames of a 256x256 image, 36 of a 64x64 one).
+pub const MAX_REFRESH_BUDGET: f32 = 100.0;
 
 impl Default for TemporalConfig {
     fn default() -> Self {
@@ -222,6 +232,7 @@ impl Default for TemporalConfig {
             rotation_limit: 36,
             epsilon: Epsilon::DEFAULT,
             refresh: Refresh::Feathered,
+            refresh_budget: REFRESH_BUDGET,
         }
     }
 }
@@ -357,6 +368,15 @@ impl RenderConfig {
                 "rotation limit {} outside 1..={MAX_PATTERNS} (the refresh evaluates every \
                  pattern of a pixel at once)",
                 t.rotation_limit
+            ));
+        }
+        if !(t.refresh_budget.is_finite()
+            && t.refresh_budget > 0.0
+            && t.refresh_budget <= MAX_REFRESH_BUDGET)
+        {
+            return bad(format!(
+                "refresh budget {} must be a share of a frame's work in (0, {MAX_REFRESH_BUDGET}]                  (5% = 0.05)",
+                t.refresh_budget
             ));
         }
         match t.accumulate {

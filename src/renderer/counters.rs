@@ -25,6 +25,9 @@ pub enum Counter {
     Computed,
     /// Full-resolution fix-ups.
     Fixup,
+    /// Pattern evaluations spent on the refresh tile (each refreshed evaluation counts every
+    /// pattern it averages).
+    Refresh,
 }
 
 impl Counter {
@@ -33,6 +36,7 @@ impl Counter {
             Counter::Disoccluded => h.disoccluded_pixels,
             Counter::Computed => h.computed_pixels,
             Counter::Fixup => h.fixup_pixels,
+            Counter::Refresh => h.refresh_evaluations,
         }
     }
 }
@@ -72,6 +76,7 @@ pub fn record_reset(rec: &Recorder<'_>, tracker: &mut Tracker, gpu: &Buffer, max
         fixup_dispatch_x: 0,
         fixup_dispatch_y: 1,
         fixup_dispatch_z: 1,
+        refresh_evaluations: 0,
     };
     rec.update_buffer(gpu, &header.to_bytes());
 }

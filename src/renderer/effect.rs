@@ -2,10 +2,10 @@
 //! lists and counters, refresh schedule and the push constants its passes share. The
 //! reprojection pass and the accumulation rules are the same for every effect.
 
-use super::config::{Refresh, FRAMES_IN_FLIGHT};
+use super::config::{Refresh, RenderConfig, FRAMES_IN_FLIGHT};
 use super::counters::{self, Counter, CounterReadback};
 use super::targets::{PingPong, HISTORY_FORMAT, MOMENTS_FORMAT, STATE_FORMAT};
-use super::temporal::RefreshSchedule;
+use super::temporal::{budget_tile, RefreshSchedule, Sampling};
 use crate::error::Result;
 use crate::shaders::EffectPush;
 use crate::vk::cmd::Recorder;
@@ -19,7 +19,8 @@ pub struct EffectKind {
     pub name: &'static str,
     /// log2 of the work-block side: 3 (8x8) or 4 (16x16).
     pub block_shift: u32,
-    /// Side of the refresh tile (the thesis: 64 for SSAO and shadows, 16 for indirect light).
+    /// Largest side of the refresh tile (the thesis: 64 for SSAO and shadows, 16 for indirect
+    /// light); the refresh budget may make it smaller.
     pub refresh_tile: u32,
     /// Report names of the header words (see counters.rs) this effect fills.
     pub counters: &'static [(&'static str, Counter)],
@@ -34,6 +35,7 @@ pub const AO: EffectKind = EffectKind {
     counters: &[
         ("disoccluded_pixels", Counter::Disoccluded),
         ("ssao_computed_pixels", Counter::Computed),
+        ("ssao_refresh_evaluations", Counter::Refresh),
     ],
     fixups: false,
 };
@@ -42,7 +44,10 @@ pub const SHADOW: EffectKind = EffectKind {
     name: "shadow",
     block_shift: 3,
     refresh_tile: 64,
-    counters: &[("shadow_computed_pixels", Counter::Computed)],
+    counters: &[
+        ("shadow_computed_pixels", Counter::Computed),
+        ("shadow_refresh_evaluations", Counter::Refresh),
+    ],
     fixups: false,
 };
 
@@ -53,6 +58,7 @@ pub const INDIRECT: EffectKind = EffectKind {
     counters: &[
         ("indirect_computed_pixels", Counter::Computed),
         ("indirect_fixup_pixels", Counter::Fixup),
+        ("indirect_refresh_evaluations", Counter::Refresh),
     ],
     fixups: true,
 };
@@ -80,7 +86,23 @@ pub struct TemporalEffect {
 }
 
 impl TemporalEffect {
-    pub fn new(ctx: &Arc<Context>, kind: EffectKind, width: u32, height: u32) -> Result<Self> {
+    /// The effect's images at `config`'s size; its refresh tile is the largest within the
+    /// refresh budget (`temporal::budget_tile`) for an effect sampled as `sampling`.
+    pub fn new(
+        ctx: &Arc<Context>,
+        kind: EffectKind,
+        config: &RenderConfig,
+        sampling: Sampling,
+    ) -> Result<Self> {
+        let (width, height) = (config.width, config.height);
+        let t = &config.temporal;
+        let tile = budget_tile(
+            kind.refresh_tile,
+            sampling,
+            (width, height),
+            t.rotation_limit,
+            t.refresh_budget,
+        );
         let image = |suffix: &str, format| {
             Image::new(
                 ctx,
@@ -115,7 +137,7 @@ impl TemporalEffect {
                 fixups,
             )?,
             max_blocks,
-            schedule: RefreshSchedule::with_tile(width, height, kind.refresh_tile),
+            schedule: RefreshSchedule::with_tile(width, height, tile),
             refresh_left: 0,
             readback: CounterReadback::new(ctx, FRAMES_IN_FLIGHT)?,
         })
@@ -136,8 +158,9 @@ impl TemporalEffect {
         pattern: u32,
         inputs_changed: bool,
     ) -> EffectPush {
-        let feathered = refresh == Refresh::Feathered;
-        if !reusing || refresh == Refresh::Off {
+        // Below 4 pixels a tile has no core inside its feather: tiles that small replace.
+        let feathered = refresh == Refresh::Feathered && self.schedule.tile() >= 4;
+        if !reusing || refresh == Refresh::Off || self.schedule.tile() == 0 {
             self.refresh_left = 0;
         } else if inputs_changed {
             self.refresh_left = self.schedule.frames_to_cover(feathered);

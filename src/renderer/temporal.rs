@@ -77,6 +77,11 @@ impl RefreshSchedule {
         }
     }
 
+    /// Side of the tiles (0: no refresh).
+    pub fn tile(&self) -> u32 {
+        self.tile
+    }
+
     /// Width of the blend ramp at a tile's inner edges: a quarter tile.
     pub fn feather(&self) -> u32 {
         (self.tile / 4).max(1)
@@ -164,6 +169,56 @@ impl RefreshSchedule {
     }
 }
 
+/// Where an effect evaluates its patterns: at every pixel, or at half resolution (low-resolution
+/// samples upsampled, with full-resolution fix-ups where the upsampling fails).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Sampling {
+    FullRes,
+    HalfRes,
+}
+
+impl Sampling {
+    /// Evaluations of a full frame with one pattern: its pixels, or its low-resolution samples.
+    pub fn frame_evaluations(self, width: u32, height: u32) -> u64 {
+        match self {
+            Sampling::FullRes => width as u64 * height as u64,
+            Sampling::HalfRes => width.div_ceil(2) as u64 * height.div_ceil(2) as u64,
+        }
+    }
+
+    /// Most evaluations per pattern a refresh tile of side `s` can cost. At half resolution:
+    /// the low-resolution samples the tile's pixels read (ceil(s/2) + 1 per side, plus the
+    /// apron of each 8x8 low-resolution block, computed again by its neighbour), and, at
+    /// worst, every pixel of the tile as a full-resolution fix-up.
+    pub fn tile_evaluations(self, s: u32) -> u64 {
+        let s = s as u64;
+        match self {
+            Sampling::FullRes => s * s,
+            Sampling::HalfRes if s == 0 => 0,
+            Sampling::HalfRes => {
+                let lows = s.div_ceil(2) + 1;
+                let read = lows + lows.div_ceil(8);
+                read * read + s * s
+            }
+        }
+    }
+}
+
+/// The largest refresh tile side, at most `max_tile`, whose refresh (every one of `limit`
+/// patterns at each of its evaluations) costs at most `budget` of a full frame's evaluations;
+/// 0 when not even a single pixel fits (the refresh is then off for this effect).
+pub fn budget_tile(
+    max_tile: u32,
+    sampling: Sampling,
+    (width, height): (u32, u32),
+    limit: u32,
+    budget: f32,
+) -> u32 {
+    let allowed = budget as f64 * sampling.frame_evaluations(width, height) as f64;
+    let fits = |s: u32| (sampling.tile_evaluations(s) * limit as u64) as f64 <= allowed;
+    (1..=max_tile).take_while(|&s| fits(s)).last().unwrap_or(0)
+}
+
 /// 4x4 random unit 2D vectors (RGBA32F texels: cos, sin, 0, 0): the per-pixel rotation of the
 /// SSAO pattern, fixed seed so runs are reproducible.
 pub fn random_vectors() -> Vec<u8> {
@@ -244,6 +299,35 @@ mod tests {
             }
         }
         assert!(core.iter().all(|&c| c));
+    }
+
+    #[test]
+    fn budget_tile_stays_within_the_budget() {
+        // 256x256 AO, 36 patterns, 5%: 3276.8 evaluations allowed, 9x9x36 = 2916 fit.
+        assert_eq!(budget_tile(64, Sampling::FullRes, (256, 256), 36, 0.05), 9);
+        assert_eq!(budget_tile(64, Sampling::FullRes, (512, 512), 36, 0.05), 19);
+        assert_eq!(budget_tile(64, Sampling::FullRes, (64, 64), 36, 0.05), 2);
+        // The thesis's tile where the budget allows it.
+        assert_eq!(budget_tile(64, Sampling::FullRes, (512, 512), 1, 1.0), 64);
+        // Nothing fits: no refresh.
+        assert_eq!(budget_tile(64, Sampling::FullRes, (8, 8), 36, 0.05), 0);
+        for size in [64, 100, 256, 512, 1920] {
+            for limit in [1, 4, 36, 256] {
+                for budget in [0.01, 0.05, 0.2] {
+                    for sampling in [Sampling::FullRes, Sampling::HalfRes] {
+                        let s = budget_tile(64, sampling, (size, size), limit, budget);
+                        let cost = sampling.tile_evaluations(s) * limit as u64;
+                        let allowed = budget as f64 * sampling.frame_evaluations(size, size) as f64;
+                        assert!(
+                            cost as f64 <= allowed,
+                            "{size} {limit} {budget} {sampling:?}"
+                        );
+                        let bigger = sampling.tile_evaluations(s + 1) * limit as u64;
+                        assert!(s == 64 || bigger as f64 > allowed);
+                    }
+                }
+            }
+        }
     }
 
     #[test]

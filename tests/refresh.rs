@@ -1,0 +1,138 @@
+//! The refresh's budget and its stability: per-frame GPU counters of the pattern evaluations
+//! spent on refresh tiles against `--refresh-budget`, and the flicker of a converged view while
+//! the tiles run (Chen et al.'s "barely notable" mean squared difference, 2.5e-5).
+
+mod common;
+
+use glam::Vec3;
+use ssgi::renderer::config::{Effects, RenderConfig, TemporalConfig, REFRESH_BUDGET};
+use ssgi::renderer::pcf::Pcf;
+use ssgi::renderer::targets::Target;
+use ssgi::renderer::temporal::Sampling;
+use ssgi::renderer::Renderer;
+use ssgi::scene::{cornell_box, Camera};
+use ssgi::vk::{FrameTiming, ImageData};
+
+fn config(size: u32) -> RenderConfig {
+    RenderConfig {
+        width: size,
+        height: size,
+        rsm_size: 128,
+        pcf: Pcf::NINE,
+        effects: Effects::ALL,
+        ao: Default::default(),
+        indirect: Default::default(),
+        temporal: TemporalConfig::default(),
+    }
+}
+
+/// The box's camera moved sideways by `i` small steps.
+fn stepped(base: Camera, i: u32) -> Camera {
+    let shift = Vec3::new(0.004, 0.0, 0.0) * i as f32;
+    Camera {
+        position: base.position + shift,
+        target: base.target + shift,
+        ..base
+    }
+}
+
+fn counter(t: &FrameTiming, name: &str) -> Option<u64> {
+    t.counters.iter().find(|(n, _)| *n == name).map(|(_, v)| *v)
+}
+
+/// Move the camera for a few frames (the refresh starts after a change), then hold it: on every frame each effect's refresh evaluations stay within the budget times its
+/// evaluations of a full frame (pixels; low-resolution samples for half-resolution indirect
+/// light), and they are not zero where a tile fits, so the count is really taken.
+#[test]
+fn refresh_evaluations_stay_within_the_budget() {
+    let ctx = common::context();
+    for size in [64u32, 256] {
+        let mut r = Renderer::new(&ctx, cornell_box(), config(size)).expect("renderer");
+        let base = r.scene.camera;
+        let mut timings = Vec::new();
+        for frame in 0..16u32 {
+            let camera = stepped(base, frame.saturating_sub(2).min(4));
+            timings.extend(r.render_frame(&camera).expect("frame"));
+        }
+        timings.extend(r.finish().expect("finish"));
+        assert_eq!(timings.len(), 16);
+        for (name, sampling) in [
+            ("ssao", Sampling::FullRes),
+            ("shadow", Sampling::FullRes),
+            ("indirect", Sampling::HalfRes),
+        ] {
+            let key = format!("{name}_refresh_evaluations");
+            let allowed = REFRESH_BUDGET as f64 * sampling.frame_evaluations(size, size) as f64;
+            let counts: Vec<u64> = timings
+                .iter()
+                .map(|t| counter(t, &key).unwrap_or_else(|| panic!("no counter {key}")))
+                .collect();
+            let most = counts.iter().copied().max().unwrap_or(0);
+            eprintln!(
+                "{size}x{size} {name}: most refresh evaluations {most}, allowed {allowed:.0}"
+            );
+            for (frame, &n) in counts.iter().enumerate() {
+                assert!(
+                    n as f64 <= allowed,
+                    "{size}x{size} {name}: frame {frame} spent {n} refresh evaluations, budget {allowed}"
+                );
+            }
+            // A tile of one pixel costs 36 evaluations (two low-resolution samples and a fix-up
+            // at half resolution): does one fit?
+            let fits = sampling.tile_evaluations(1) * 36 <= allowed as u64;
+            assert_eq!(most > 0, fits, "{size}x{size} {name}: refreshed {most}");
+        }
+        drop(r);
+    }
+    common::assert_clean(&ctx);
+}
+
+/// Mean squared difference of the RGB channels of two RGBA8 frames, in [0, 1] units.
+fn msd(a: &ImageData, b: &ImageData) -> f64 {
+    let (mut sum, mut n) = (0.0, 0usize);
+    for (pa, pb) in a.bytes.chunks(4).zip(b.bytes.chunks(4)) {
+        for c in 0..3 {
+            let d = (pa[c] as f64 - pb[c] as f64) / 255.0;
+            sum += d * d;
+            n += 1;
+        }
+    }
+    sum / n as f64
+}
+
+/// After the camera stops, the refresh tiles go on running for many frames; once the pixels
+/// the motion disoccluded have converged, consecutive final frames differ by a mean squared
+/// difference below 2.5e-5 (Chen, Lei, Chang 2012's threshold for barely notable flicker),
+/// while the refresh counters show tiles still running.
+#[test]
+fn converged_view_does_not_flicker_while_refreshing() {
+    let ctx = common::context();
+    let size = 128u32;
+    let mut r = Renderer::new(&ctx, cornell_box(), config(size)).expect("renderer");
+    let base = r.scene.camera;
+    let mut timings = Vec::new();
+    for frame in 0..40u32 {
+        timings.extend(r.render_frame(&stepped(base, frame.min(4))).expect("frame"));
+    }
+    let held = stepped(base, 4);
+    let mut previous = None;
+    let mut worst = 0.0f64;
+    for _ in 0..12 {
+        timings.extend(r.render_frame(&held).expect("frame"));
+        let out = r.read(Target::Output).expect("output");
+        if let Some(p) = &previous {
+            worst = worst.max(msd(p, &out));
+        }
+        previous = Some(out);
+    }
+    timings.extend(r.finish().expect("finish"));
+    let refreshed: u64 = timings[40..]
+        .iter()
+        .map(|t| counter(t, "ssao_refresh_evaluations").unwrap_or(0))
+        .sum();
+    eprintln!("largest consecutive-frame MSD {worst:.3e}; AO refresh evaluations {refreshed}");
+    assert!(refreshed > 0, "no refresh ran while the view was held");
+    assert!(worst < 2.5e-5, "consecutive frames differ by MSD {worst}");
+    drop(r);
+    common::assert_clean(&ctx);
+}
