@@ -3,8 +3,8 @@
 //! `--reuse`, ...), so a sweep accepts exactly what a single run accepts.
 
 use crate::cli::args::{
-    parse_bias, parse_ema_alpha, parse_epsilon, parse_gate, parse_on_off, parse_pattern_count,
-    parse_vpls, AccumulateMode,
+    parse_bias, parse_ema_alpha, parse_epsilon, parse_fraction, parse_gate, parse_on_off,
+    parse_pattern_count, parse_vpls, AccumulateMode,
 };
 use crate::error::{Error, Result};
 use crate::renderer::config::{Accumulate, AoEstimator, Refresh};
@@ -27,6 +27,7 @@ pub enum Key {
     Reuse,
     Accumulate,
     Refresh,
+    RefreshBudget,
     RotationLimit,
     Epsilon,
     Vpls,
@@ -38,7 +39,7 @@ pub enum Key {
 
 impl Key {
     /// Every key, in the order `help_table` lists them.
-    pub const ALL: [Key; 14] = [
+    pub const ALL: [Key; 15] = [
         Key::AoSamples,
         Key::AoEstimator,
         Key::AoRadius,
@@ -46,6 +47,7 @@ impl Key {
         Key::Reuse,
         Key::Accumulate,
         Key::Refresh,
+        Key::RefreshBudget,
         Key::RotationLimit,
         Key::Epsilon,
         Key::Vpls,
@@ -65,6 +67,7 @@ impl Key {
             Key::Reuse => "temporal.reuse",
             Key::Accumulate => "temporal.accumulate",
             Key::Refresh => "temporal.refresh",
+            Key::RefreshBudget => "temporal.refresh_budget",
             Key::RotationLimit => "temporal.rotation_limit",
             Key::Epsilon => "temporal.epsilon",
             Key::Vpls => "indirect.vpls",
@@ -88,6 +91,9 @@ impl Key {
             Key::Refresh => {
                 "tiled refresh, one tile recomputed per frame; hard = the thesis's seams"
             }
+            Key::RefreshBudget => {
+                "refresh work per frame, share of a full frame's (--refresh-budget)"
+            }
             Key::RotationLimit => "patterns per pixel before it counts as converged",
             Key::Epsilon => "disocclusion threshold: pixel footprints, or abs: world units",
             Key::Vpls => "VPLs gathered per pixel and frame; all = every RSM texel (--vpls)",
@@ -107,6 +113,7 @@ impl Key {
             Key::AoPatterns => "integer 1..=1024",
             Key::Reuse | Key::Visibility | Key::HalfRes => "on|off",
             Key::Refresh => "feathered|on|hard|off",
+            Key::RefreshBudget => "PERCENT% or fraction in (0, 100]",
             Key::Accumulate => "gated[:SIGMAS]|confidence[:BIAS]|ema[:ALPHA]|mean[:CAP]",
             Key::RotationLimit => "integer 1..=2048",
             Key::Epsilon => "NUMBER|abs:NUMBER",
@@ -198,6 +205,7 @@ pub fn apply(config: &mut RenderConfig, key: Key, value: &str) -> Result<()> {
         Setting::Radius(r) => config.ao.radius = r,
         Setting::Estimator(e) => config.ao.estimator = e,
         Setting::Refresh(r) => config.temporal.refresh = r,
+        Setting::Budget(b) => config.temporal.refresh_budget = b,
         Setting::Accumulate(a) => config.temporal.accumulate = a,
         Setting::MeanOfLimit => {
             config.temporal.accumulate = Accumulate::Mean {
@@ -315,6 +323,7 @@ enum Setting {
     Radius(f32),
     Estimator(AoEstimator),
     Refresh(Refresh),
+    Budget(f32),
     Accumulate(Accumulate),
     MeanOfLimit,
     Epsilon(crate::renderer::config::Epsilon),
@@ -343,6 +352,7 @@ impl Setting {
             Key::RotationLimit => parse_pattern_count(v).map(Setting::Count),
             Key::Vpls => parse_vpls(v).map(Setting::Count),
             Key::Refresh => Refresh::from_str(v, false).map(Setting::Refresh),
+            Key::RefreshBudget => parse_fraction(v).map(Setting::Budget),
             Key::Reuse | Key::Visibility | Key::HalfRes => parse_on_off(v).map(Setting::Flag),
             Key::AoRadius => match v.parse::<f32>() {
                 Ok(r) if r.is_finite() && r > 0.0 && r <= 10.0 => Ok(Setting::Radius(r)),
@@ -411,6 +421,9 @@ mod tests {
                 c.temporal.accumulate = Accumulate::Ema { alpha: 0.25 }
             }),
             (Key::Refresh, "hard", |c| c.temporal.refresh = Refresh::Hard),
+            (Key::RefreshBudget, "225%", |c| {
+                c.temporal.refresh_budget = 2.25
+            }),
             (Key::RotationLimit, "64", |c| c.temporal.rotation_limit = 64),
             (Key::Epsilon, "abs:0.1", |c| {
                 c.temporal.epsilon = Epsilon::Absolute { epsilon: 0.1 }
