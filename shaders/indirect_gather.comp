@@ -1,8 +1,13 @@
 #version 460
-// Full-resolution RSM gather merged into the indirect history: over the fix-up list of pixels
-// the upsampling discarded, or over the listed 16x16 blocks when half resolution is off.
+// Full-resolution RSM gather merged into the indirect history. `fixup`: over the list of
+// pixels the upsampling discarded; `blocks`: over the listed 16x16 blocks when half resolution
+// is off; both one pattern per new or accumulating pixel. `refresh`: one workgroup per pixel
+// of the refresh tile (refresh.glsl) recomputes it at full resolution as the mean of every
+// pattern up to the rotation limit, blended in along the tile's feather ramp; it runs last,
+// and the other passes leave refresh pixels alone.
 // @permutation fixup: FIXUP
 // @permutation blocks: BLOCKS
+// @permutation refresh: REFRESH
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_samplerless_texture_functions : require
 #include "frame.glsl"
@@ -11,12 +16,6 @@
 #include "counters.glsl"
 #include "effect.glsl"
 
-#ifdef FIXUP
-layout(local_size_x = 64) in;
-#else
-layout(local_size_x = 16, local_size_y = 16) in;
-#endif
-
 layout(set = 1, binding = 6, rgba32f) uniform image2D history;
 layout(set = 1, binding = 7, r32ui) uniform readonly uimage2D state_in;
 layout(set = 1, binding = 8, rgba32f) uniform image2D moments;
@@ -24,14 +23,38 @@ layout(set = 1, binding = 8, rgba32f) uniform image2D moments;
 #include "indirect_common.glsl"
 #include "indirect_merge.glsl"
 
-shared uint group_computed;
-shared uint group_refresh; // pattern evaluations of the refresh tile
+#ifdef REFRESH
+#include "refresh.glsl"
+layout(local_size_x = REFRESH_THREADS) in;
 
 void main() {
-    if (gl_LocalInvocationIndex == 0u) {
-        group_computed = 0u;
-        group_refresh = 0u;
+    ivec2 pixel = refresh_pixel();
+    uint limit = frame.rotation_limit;
+    bool refreshed = !outside_frame(pixel) && imageLoad(state_in, pixel).r == STATE_REFRESH;
+    vec4 mine = vec4(0.0); // sums of this invocation's patterns (rgb) and squared luminances
+    if (refreshed) {
+        vec3 p = texelFetch(g_position, pixel, 0).xyz;
+        vec3 n = texelFetch(g_normal, pixel, 0).xyz;
+        for (uint j = gl_LocalInvocationIndex; j < limit; j += REFRESH_THREADS)
+            mine += indirect_pattern(p, n, j, pixel);
     }
+    vec4 total = refresh_sum(mine);
+    if (gl_LocalInvocationIndex != 0u || !refreshed) return;
+    merge(pixel, imageLoad(history, pixel), total / float(limit), true);
+    atomicAdd(counters.computed_pixels, 1u);
+    atomicAdd(counters.refresh_evaluations, limit);
+}
+#else
+#ifdef FIXUP
+layout(local_size_x = 64) in;
+#else
+layout(local_size_x = 16, local_size_y = 16) in;
+#endif
+
+shared uint group_computed;
+
+void main() {
+    if (gl_LocalInvocationIndex == 0u) group_computed = 0u;
     barrier();
 #ifdef FIXUP
     uint i = gl_GlobalInvocationID.x;
@@ -45,12 +68,9 @@ void main() {
     if (in_range) {
         uint state = imageLoad(state_in, pixel).r;
         vec4 position = texelFetch(g_position, pixel, 0);
-        if (position.w != 0.0 &&
-            (state == STATE_NEW || state == STATE_ACCUMULATING || state == STATE_REFRESH)) {
-            bool refresh = state == STATE_REFRESH;
-            if (refresh) atomicAdd(group_refresh, frame.rotation_limit);
-            vec4 fresh = indirect_value(position.xyz, texelFetch(g_normal, pixel, 0).xyz, refresh, pixel);
-            merge(pixel, imageLoad(history, pixel), fresh, refresh);
+        if (position.w != 0.0 && (state == STATE_NEW || state == STATE_ACCUMULATING)) {
+            vec4 fresh = indirect_value(position.xyz, texelFetch(g_normal, pixel, 0).xyz, pixel);
+            merge(pixel, imageLoad(history, pixel), fresh, false);
 #ifndef FIXUP
             atomicAdd(group_computed, 1u);
 #endif
@@ -59,6 +79,5 @@ void main() {
     barrier();
     if (gl_LocalInvocationIndex == 0u && group_computed > 0u)
         atomicAdd(counters.computed_pixels, group_computed);
-    if (gl_LocalInvocationIndex == 0u && group_refresh > 0u)
-        atomicAdd(counters.refresh_evaluations, group_refresh);
 }
+#endif

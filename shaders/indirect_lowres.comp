@@ -4,7 +4,9 @@
 // bottom (9x9) into the block's own slot of the low-resolution buffer, so the upsampling of
 // the block reads only values computed this frame. Low-resolution pixel i samples the G-buffer
 // at full-resolution texel 2i (the top-left of its 2x2 block), where indirect_upsample.comp's
-// weights place it.
+// weights place it. Pixels of the refresh tile are recomputed at full resolution by
+// indirect_gather.comp's `refresh`; the samples they would read hold this frame's pattern like
+// every other, for their neighbours.
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_samplerless_texture_functions : require
 #include "frame.glsl"
@@ -20,13 +22,9 @@ layout(set = 1, binding = 6, std430) buffer LowRes { vec4 lowres[]; };
 #include "indirect_common.glsl"
 
 shared uint group_computed;
-shared uint group_refresh; // pattern evaluations of the refresh tile
 
 void main() {
-    if (gl_LocalInvocationIndex == 0u) {
-        group_computed = 0u;
-        group_refresh = 0u;
-    }
+    if (gl_LocalInvocationIndex == 0u) group_computed = 0u;
     barrier();
     uint packed = counters.data[gl_WorkGroupID.x];
     ivec2 block = ivec2(packed & 0xffffu, packed >> 16);
@@ -37,10 +35,8 @@ void main() {
         ivec2 full = low * 2;
         vec4 position = texelFetch(g_position, full, 0);
         if (position.w != 0.0) {
-            bool refresh = low_in_refresh_tile(low);
-            if (refresh) atomicAdd(group_refresh, frame.rotation_limit);
             vec3 n = texelFetch(g_normal, full, 0).xyz;
-            value = indirect_value(position.xyz, n, refresh, low);
+            value = indirect_value(position.xyz, n, low);
             atomicAdd(group_computed, 1u);
         }
     }
@@ -48,6 +44,4 @@ void main() {
     barrier();
     if (gl_LocalInvocationIndex == 0u && group_computed > 0u)
         atomicAdd(counters.computed_pixels, group_computed);
-    if (gl_LocalInvocationIndex == 0u && group_refresh > 0u)
-        atomicAdd(counters.refresh_evaluations, group_refresh);
 }

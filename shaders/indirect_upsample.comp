@@ -34,7 +34,11 @@ void main() {
     ivec2 pixel = block * 16 + ivec2(gl_LocalInvocationID.xy);
     if (outside_frame(pixel)) return;
     uint state = imageLoad(state_in, pixel).r;
-    if (state != STATE_NEW && state != STATE_ACCUMULATING && state != STATE_REFRESH) return;
+    if (state == STATE_REFRESH) { // recomputed at full resolution (indirect_gather's refresh)
+        imageStore(discard_mask, pixel, uvec4(0u));
+        return;
+    }
+    if (state != STATE_NEW && state != STATE_ACCUMULATING) return;
     vec3 p = texelFetch(g_position, pixel, 0).xyz;
     vec3 n = texelFetch(g_normal, pixel, 0).xyz;
     float footprint = 2.0 * distance(p, frame.camera_pos) * frame.tan_half_fov / float(frame.size.y);
@@ -71,5 +75,5 @@ void main() {
         if (slot % 64u == 0u) atomicAdd(counters.fixup_dispatch_x, 1u);
         return;
     }
-    merge(pixel, imageLoad(history, pixel), sum / weight_sum, state == STATE_REFRESH);
+    merge(pixel, imageLoad(history, pixel), sum / weight_sum, false);
 }

@@ -1,10 +1,13 @@
 #version 460
-// SSAO with temporal reuse: dispatched indirectly over the 8x8 blocks the reprojection listed;
-// evaluates one rotated pattern per pixel that is new or accumulating and merges it into the
-// history (temporal.glsl: the gated running mean, eqs 4-5, EMA or capped mean); pixels of the
-// refresh tile are recomputed from scratch as the mean of every pattern up to the rotation
-// limit, the estimator accumulation converges to, and blended in along the tile's feather ramp
-// (refresh_weight). Converged pixels are left alone.
+// SSAO with temporal reuse. `blocks`: dispatched indirectly over the 8x8 blocks the
+// reprojection listed; evaluates one rotated pattern per pixel that is new or accumulating and
+// merges it into the history (temporal.glsl: the gated running mean, eqs 4-5, EMA or capped
+// mean). Converged pixels are left alone. `refresh`: one workgroup per pixel of the refresh
+// tile (refresh.glsl) recomputes it from scratch as the mean of every pattern up to the
+// rotation limit, the estimator accumulation converges to, blended in along the tile's feather
+// ramp (refresh_weight); it runs after `blocks`, which leaves refresh pixels alone.
+// @permutation blocks: BLOCKS
+// @permutation refresh: REFRESH
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_samplerless_texture_functions : require
 #include "frame.glsl"
@@ -12,8 +15,6 @@
 #define COUNTERS_BINDING 5
 #include "counters.glsl"
 #include "effect.glsl"
-
-layout(local_size_x = 8, local_size_y = 8) in;
 
 layout(set = 1, binding = 0) uniform texture2D g_position;
 layout(set = 1, binding = 1) uniform texture2D g_normal;
@@ -24,42 +25,53 @@ layout(set = 1, binding = 6, rgba32f) uniform image2D moments;
 
 #include "ao.glsl"
 
-shared uint group_computed;
-shared uint group_refresh; // pattern evaluations of the refresh tile
+#ifdef REFRESH
+#include "refresh.glsl"
+layout(local_size_x = REFRESH_THREADS) in;
 
 void main() {
-    if (gl_LocalInvocationIndex == 0u) {
-        group_computed = 0u;
-        group_refresh = 0u;
+    ivec2 pixel = refresh_pixel();
+    uint limit = frame.rotation_limit;
+    bool refreshed = !outside_frame(pixel) && imageLoad(state_in, pixel).r == STATE_REFRESH;
+    vec4 mine = vec4(0.0); // (sum, 0, 0, sum of squares) of this invocation's patterns
+    if (refreshed) {
+        vec3 p = texelFetch(g_position, pixel, 0).xyz;
+        vec3 n = texelFetch(g_normal, pixel, 0).xyz;
+        for (uint j = gl_LocalInvocationIndex; j < limit; j += REFRESH_THREADS) {
+            float x = 1.0 - ao_estimate(pixel, p, n, float(j), 1u);
+            mine += vec4(x, 0.0, 0.0, x * x);
+        }
     }
+    vec4 total = refresh_sum(mine);
+    if (gl_LocalInvocationIndex != 0u || !refreshed) return;
+    vec4 h = imageLoad(history, pixel);
+    vec4 m = imageLoad(moments, pixel);
+    float w = refresh_blend(refresh_weight(pixel), h.a, total.a / float(limit), m);
+    float value = mix(h.r, total.r / float(limit), w);
+    imageStore(history, pixel, vec4(clamp(value, 0.0, 1.0), 0.0, 0.0, float(limit)));
+    imageStore(moments, pixel, m);
+    atomicAdd(counters.computed_pixels, 1u);
+    atomicAdd(counters.refresh_evaluations, limit);
+}
+#else
+layout(local_size_x = 8, local_size_y = 8) in;
+
+shared uint group_computed;
+
+void main() {
+    if (gl_LocalInvocationIndex == 0u) group_computed = 0u;
     barrier();
     ivec2 pixel = block_pixel(gl_WorkGroupID.x, gl_LocalInvocationID.xy);
     if (!outside_frame(pixel)) {
         uint state = imageLoad(state_in, pixel).r;
-        if (state == STATE_NEW || state == STATE_ACCUMULATING || state == STATE_REFRESH) {
+        if (state == STATE_NEW || state == STATE_ACCUMULATING) {
             vec3 p = texelFetch(g_position, pixel, 0).xyz;
             vec3 n = texelFetch(g_normal, pixel, 0).xyz;
             vec4 h = imageLoad(history, pixel);
-            uint limit = frame.rotation_limit;
-            vec2 result;
             vec4 m = imageLoad(moments, pixel);
-            if (state == STATE_REFRESH) {
-                atomicAdd(group_refresh, limit);
-                // The mean of every pattern and of its square: what accumulation converges to.
-                float sum = 0.0;
-                float sum2 = 0.0;
-                for (uint j = 0u; j < limit; ++j) {
-                    float x = 1.0 - ao_estimate(pixel, p, n, float(j), 1u);
-                    sum += x;
-                    sum2 += x * x;
-                }
-                float w = refresh_blend(refresh_weight(pixel), h.a, sum2 / float(limit), m);
-                result = vec2(mix(h.r, sum / float(limit), w), float(limit));
-            } else {
-                // Each pixel walks through patterns 0, 1, ... in the order it accumulates them.
-                float fresh = 1.0 - ao_estimate(pixel, p, n, h.a, 1u);
-                result = accumulate(h.r, h.a, fresh, m);
-            }
+            // Each pixel walks through patterns 0, 1, ... in the order it accumulates them.
+            float fresh = 1.0 - ao_estimate(pixel, p, n, h.a, 1u);
+            vec2 result = accumulate(h.r, h.a, fresh, m);
             imageStore(history, pixel, vec4(clamp(result.x, 0.0, 1.0), 0.0, 0.0, result.y));
             imageStore(moments, pixel, m);
             atomicAdd(group_computed, 1u);
@@ -68,6 +80,5 @@ void main() {
     barrier();
     if (gl_LocalInvocationIndex == 0u && group_computed > 0u)
         atomicAdd(counters.computed_pixels, group_computed);
-    if (gl_LocalInvocationIndex == 0u && group_refresh > 0u)
-        atomicAdd(counters.refresh_evaluations, group_refresh);
 }
+#endif

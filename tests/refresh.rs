@@ -77,8 +77,7 @@ fn refresh_evaluations_stay_within_the_budget() {
                     "{size}x{size} {name}: frame {frame} spent {n} refresh evaluations, budget {allowed}"
                 );
             }
-            // A tile of one pixel costs 36 evaluations (two low-resolution samples and a fix-up
-            // at half resolution): does one fit?
+            // A tile of one pixel costs 36 evaluations: does one fit?
             let fits = sampling.tile_evaluations(1) * 36 <= allowed as u64;
             assert_eq!(most > 0, fits, "{size}x{size} {name}: refreshed {most}");
         }

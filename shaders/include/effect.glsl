@@ -26,15 +26,6 @@ bool in_refresh_tile(ivec2 pixel) {
     return all(greaterThanEqual(uvec2(pixel), r.xy)) && all(lessThan(uvec2(pixel), r.zw));
 }
 
-// Whether half-resolution sample `low` (full-resolution texel 2 low) is read by the upsampling
-// of a pixel in the refresh tile: pixel x reads samples x / 2 and, when odd, x / 2 + 1, so the
-// tile [x0, x1) reads [x0 / 2, x1 / 2].
-bool low_in_refresh_tile(ivec2 low) {
-    uvec4 r = effect.refresh_rect;
-    return all(lessThan(r.xy, r.zw)) && all(greaterThanEqual(uvec2(low), r.xy >> 1)) &&
-           all(lessThanEqual(uvec2(low), r.zw >> 1));
-}
-
 // Weight of the recomputed value in a refreshed pixel: 1 in the tile's core, falling linearly
 // to 1 / (2 feather) at the pixels next to a tile edge, so a tile whose neighbours have drifted
 // (a screen-space effect seen from elsewhere, histories smoothed by resampling) meets them in

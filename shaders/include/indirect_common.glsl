@@ -15,29 +15,18 @@ layout(set = 1, binding = 4) uniform texture2D rsm_flux;
 // After the bindings it reads.
 #include "rsm_gather.glsl"
 
-// Fresh estimate for a pixel (rgb) and the mean squared luminance of its patterns (a): in the
-// refresh tile the mean of every pattern up to the rotation limit (a recompute from scratch,
-// the estimator accumulation converges to), else this frame's pattern.
-vec4 fresh_gather(vec3 p, vec3 n, bool refresh, ivec2 seed_pixel) {
-    uint first = refresh ? 0u : effect.pattern;
-    uint patterns = refresh ? frame.rotation_limit : 1u;
-    vec3 sum = vec3(0.0);
-    float sum2 = 0.0;
-    for (uint j = 0u; j < patterns; ++j) {
-        vec3 x = rsm_gather(p, n, float(first + j), 1u, seed_pixel);
-        float l = dot(x, LUMA);
-        sum += x;
-        sum2 += l * l;
-    }
-    return vec4(sum, sum2) / float(patterns);
+// One pattern's estimate for a pixel at p (rgb) and its squared luminance (a): the gather, or
+// with the test input (IndirectInput::Ramp) p itself, a linear function with a known value at
+// every pixel.
+vec4 indirect_pattern(vec3 p, vec3 n, uint pattern, ivec2 seed_pixel) {
+    vec3 x = frame.indirect_ramp != 0u ? p : rsm_gather(p, n, float(pattern), 1u, seed_pixel);
+    float l = dot(x, LUMA);
+    return vec4(x, l * l);
 }
 
-// The value a pass computes for a pixel at p (rgb, a = mean squared luminance of its
-// patterns): the gather, or with the test input (IndirectInput::Ramp) p itself, a linear
-// function with a known value at every pixel.
-vec4 indirect_value(vec3 p, vec3 n, bool refresh, ivec2 seed_pixel) {
-    if (frame.indirect_ramp != 0u) return vec4(p, dot(p, LUMA) * dot(p, LUMA));
-    return fresh_gather(p, n, refresh, seed_pixel);
+// This frame's estimate (its pattern) for a pixel at p.
+vec4 indirect_value(vec3 p, vec3 n, ivec2 seed_pixel) {
+    return indirect_pattern(p, n, effect.pattern, seed_pixel);
 }
 
 #endif // INDIRECT_COMMON_GLSL

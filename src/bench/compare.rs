@@ -10,8 +10,8 @@ use std::collections::BTreeMap;
 /// Pass groups whose summed per-frame time is compared.
 pub const GROUPS: &[(&str, &[PassId])] = &[
     ("reproject", &[PassId::Reproject]),
-    ("ao", &[PassId::Ssao, PassId::Blur]),
-    ("shadow", &[PassId::Shadow]),
+    ("ao", &[PassId::Ssao, PassId::SsaoRefresh, PassId::Blur]),
+    ("shadow", &[PassId::Shadow, PassId::ShadowRefresh]),
     ("direct", &[PassId::Direct]),
     (
         "indirect",
@@ -19,6 +19,7 @@ pub const GROUPS: &[(&str, &[PassId])] = &[
             PassId::IndirectGather,
             PassId::IndirectUpsample,
             PassId::IndirectFixup,
+            PassId::IndirectRefresh,
         ],
     ),
     ("total", &[]),

@@ -4,7 +4,8 @@
 //! pattern (or many patterns, for references), then the thesis's 5x5 Gaussian blur.
 
 use super::effect::{
-    every_pixel, Effect, EffectId, FrameInfo, Recording, Registration, Setup, TermKind,
+    every_pixel, refresh_dispatch, Effect, EffectId, FrameInfo, Recording, Registration, Setup,
+    TermKind,
 };
 use super::resolve::EffectResources;
 use crate::error::Result;
@@ -60,7 +61,16 @@ pub const REGISTRATION: Registration = Registration {
 
 fn layouts() -> Vec<PassLayout> {
     vec![
-        ComputePass::layout(PassId::Ssao, &shaders::SSAO_ACCUMULATE_COMP, ACCUMULATE),
+        ComputePass::layout(
+            PassId::Ssao,
+            &shaders::SSAO_ACCUMULATE_COMP_BLOCKS,
+            ACCUMULATE,
+        ),
+        ComputePass::layout(
+            PassId::SsaoRefresh,
+            &shaders::SSAO_ACCUMULATE_COMP_REFRESH,
+            ACCUMULATE,
+        ),
         ComputePass::layout(PassId::Ssao, &shaders::SSAO_FULL_COMP, FULL),
         ComputePass::layout(PassId::Blur, &shaders::BLUR_COMP, BLUR),
     ]
@@ -76,6 +86,8 @@ struct Sized {
 pub struct AoEffect {
     reuse: bool,
     ssao: ComputePass,
+    /// With reuse: the refresh tile, one workgroup per pixel.
+    refresh: Option<ComputePass>,
     /// The no-reuse baseline's blur (single-pattern runs only; references are not blurred).
     blur: Option<ComputePass>,
     random: Image,
@@ -104,7 +116,7 @@ impl AoEffect {
             Access::ComputeSampledRead,
         )?;
         let (module, binds) = if reuse {
-            (&shaders::SSAO_ACCUMULATE_COMP, ACCUMULATE)
+            (&shaders::SSAO_ACCUMULATE_COMP_BLOCKS, ACCUMULATE)
         } else {
             (&shaders::SSAO_FULL_COMP, FULL)
         };
@@ -119,9 +131,21 @@ impl AoEffect {
         } else {
             None
         };
+        let refresh = if reuse {
+            Some(ComputePass::new(
+                s.ctx,
+                s.pool,
+                PassId::SsaoRefresh,
+                &shaders::SSAO_ACCUMULATE_COMP_REFRESH,
+                ACCUMULATE,
+            )?)
+        } else {
+            None
+        };
         Ok(Self {
             reuse,
             ssao: ComputePass::new(s.ctx, s.pool, PassId::Ssao, module, binds)?,
+            refresh,
             blur,
             random,
             sized: Self::create_sized(s.ctx, s.config)?,
@@ -188,6 +212,9 @@ impl Effect for AoEffect {
         let own = self.own();
         let res = self.resources(targets, &own);
         self.ssao.bind(ctx, &res)?;
+        if let Some(p) = &self.refresh {
+            p.bind(ctx, &res)?;
+        }
         if let Some(b) = &self.blur {
             b.bind(ctx, &res)?;
         }
@@ -231,6 +258,11 @@ impl Effect for AoEffect {
         r.timed(PassId::Ssao, |rec, tr| {
             self.ssao.record(rec, tr, info.frame, &res, push, dispatch)
         });
+        if let (Some(p), Some(tile)) = (&self.refresh, refresh_dispatch(&self.push)) {
+            r.timed(PassId::SsaoRefresh, |rec, tr| {
+                p.record(rec, tr, info.frame, &res, push, tile)
+            });
+        }
         if let Some(blur) = &self.blur {
             r.timed(PassId::Blur, |rec, tr| {
                 blur.record(rec, tr, info.frame, &res, &[], every_pixel(info))

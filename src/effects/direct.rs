@@ -5,7 +5,8 @@
 //! rgb = outgoing diffuse radiance albedo/pi * E * V, a = V.
 
 use super::effect::{
-    every_pixel, Effect, EffectId, FrameInfo, Recording, Registration, Setup, TermKind,
+    every_pixel, refresh_dispatch, Effect, EffectId, FrameInfo, Recording, Registration, Setup,
+    TermKind,
 };
 use super::resolve::EffectResources;
 use crate::error::Result;
@@ -65,7 +66,12 @@ fn layouts() -> Vec<PassLayout> {
         ComputePass::layout(PassId::Shadow, &shaders::SHADOW_FULL_COMP, SHADOW_FULL),
         ComputePass::layout(
             PassId::Shadow,
-            &shaders::SHADOW_ACCUMULATE_COMP,
+            &shaders::SHADOW_ACCUMULATE_COMP_BLOCKS,
+            SHADOW_ACCUMULATE,
+        ),
+        ComputePass::layout(
+            PassId::ShadowRefresh,
+            &shaders::SHADOW_ACCUMULATE_COMP_REFRESH,
             SHADOW_ACCUMULATE,
         ),
         ComputePass::layout(PassId::Direct, &shaders::DIRECT_COMP, DIRECT_LIGHT),
@@ -76,6 +82,8 @@ fn layouts() -> Vec<PassLayout> {
 /// history (the reprojection is the renderer's, one lane per temporal effect).
 struct Reuse {
     accumulate: ComputePass,
+    /// The refresh tile, one workgroup per pixel.
+    refresh: ComputePass,
     direct_from_history: ComputePass,
 }
 
@@ -116,7 +124,14 @@ impl DirectEffect {
                     s.ctx,
                     s.pool,
                     PassId::Shadow,
-                    &shaders::SHADOW_ACCUMULATE_COMP,
+                    &shaders::SHADOW_ACCUMULATE_COMP_BLOCKS,
+                    SHADOW_ACCUMULATE,
+                )?,
+                refresh: ComputePass::new(
+                    s.ctx,
+                    s.pool,
+                    PassId::ShadowRefresh,
+                    &shaders::SHADOW_ACCUMULATE_COMP_REFRESH,
                     SHADOW_ACCUMULATE,
                 )?,
                 direct_from_history: direct.instance(s.pool, "direct from shadow history")?,
@@ -219,6 +234,7 @@ impl Effect for DirectEffect {
         self.direct.bind(ctx, &res)?;
         if let Some(r) = &self.reuse {
             r.accumulate.bind(ctx, &res)?;
+            r.refresh.bind(ctx, &res)?;
             let own = self.own(true);
             r.direct_from_history
                 .bind(ctx, &self.resources(targets, &own))?;
@@ -278,6 +294,11 @@ impl Effect for DirectEffect {
         r.timed(PassId::Shadow, |rec, tr| {
             shadow.record(rec, tr, info.frame, &res, push, dispatch)
         });
+        if let (Some(reuse), Some(tile)) = (accumulated, refresh_dispatch(&self.push)) {
+            r.timed(PassId::ShadowRefresh, |rec, tr| {
+                reuse.refresh.record(rec, tr, info.frame, &res, push, tile)
+            });
+        }
         r.timed(PassId::Direct, |rec, tr| {
             direct.record(rec, tr, info.frame, &res, &[], every_pixel(info))
         });

@@ -137,6 +137,14 @@ pub struct Registration {
     pub layouts: fn() -> Vec<PassLayout>,
 }
 
+/// The refresh pass's dispatch this frame, one workgroup per pixel of the refresh tile in
+/// `push`; `None` when no tile is drawn.
+pub fn refresh_dispatch(push: &EffectPush) -> Option<Dispatch> {
+    let [x0, y0, x1, y1] = push.refresh_rect;
+    let pixels = x1.saturating_sub(x0) * y1.saturating_sub(y0);
+    (pixels > 0).then_some(Dispatch::Groups(pixels))
+}
+
 /// A dispatch over every pixel of the frame.
 pub fn every_pixel(info: &FrameInfo<'_>) -> Dispatch {
     Dispatch::Pixels {

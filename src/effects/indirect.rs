@@ -5,7 +5,9 @@
 //! full-resolution gather per block. It always goes through the reprojection: without reuse
 //! every pixel is new and every block listed, with the fixed pattern 0.
 
-use super::effect::{Effect, EffectId, FrameInfo, Recording, Registration, Setup, TermKind};
+use super::effect::{
+    refresh_dispatch, Effect, EffectId, FrameInfo, Recording, Registration, Setup, TermKind,
+};
 use super::resolve::EffectResources;
 use crate::error::Result;
 use crate::passes::compute::{ComputePass, Dispatch};
@@ -89,6 +91,11 @@ fn layouts() -> Vec<PassLayout> {
             &shaders::INDIRECT_GATHER_COMP_BLOCKS,
             GATHER,
         ),
+        ComputePass::layout(
+            PassId::IndirectRefresh,
+            &shaders::INDIRECT_GATHER_COMP_REFRESH,
+            GATHER,
+        ),
     ]
 }
 
@@ -113,6 +120,8 @@ struct Sized {
 
 pub struct IndirectEffect {
     gather: Gather,
+    /// The refresh tile at full resolution, one workgroup per pixel.
+    refresh: ComputePass,
     sized: Sized,
     push: EffectPush,
 }
@@ -145,8 +154,14 @@ impl IndirectEffect {
                 GATHER,
             )?)
         };
+        let refresh = pass(
+            PassId::IndirectRefresh,
+            &shaders::INDIRECT_GATHER_COMP_REFRESH,
+            GATHER,
+        )?;
         Ok(Self {
             gather,
+            refresh,
             sized: Self::create_sized(s.ctx, s.config)?,
             push: EffectPush::default(),
         })
@@ -202,8 +217,8 @@ impl IndirectEffect {
 
     fn passes(&self) -> Vec<&ComputePass> {
         match &self.gather {
-            Gather::Half(h) => vec![&h.lowres, &h.upsample, &h.fixup],
-            Gather::Full(p) => vec![p],
+            Gather::Half(h) => vec![&h.lowres, &h.upsample, &h.fixup, &self.refresh],
+            Gather::Full(p) => vec![p, &self.refresh],
         }
     }
 }
@@ -281,6 +296,9 @@ impl Effect for IndirectEffect {
                     },
                 );
             }
+        }
+        if let Some(tile) = refresh_dispatch(&self.push) {
+            run(&self.refresh, tile);
         }
     }
 

@@ -10,7 +10,8 @@ pub mod indirect;
 pub mod resolve;
 
 pub use effect::{
-    every_pixel, Effect, EffectId, FrameInfo, Recording, Registration, Setup, TermKind,
+    every_pixel, refresh_dispatch, Effect, EffectId, FrameInfo, Recording, Registration, Setup,
+    TermKind,
 };
 
 use crate::error::Result;

@@ -26,6 +26,8 @@ pub enum Dispatch {
     Pixels { width: u32, height: u32 },
     /// The (x, y, z) counts stored at byte `offset` of the pass's `Slot::Counters` buffer.
     Indirect { offset: u64 },
+    /// `groups` workgroups in x (one per refresh-tile pixel).
+    Groups(u32),
 }
 
 pub struct ComputePass {
@@ -125,6 +127,7 @@ impl ComputePass {
         }
         match dispatch {
             Dispatch::Pixels { width, height } => rec.dispatch_2d(&self.pipeline, width, height),
+            Dispatch::Groups(groups) => rec.dispatch_groups(groups),
             Dispatch::Indirect { offset } => match res.buffer(Slot::Counters) {
                 Some(args) => rec.dispatch_indirect(args, offset),
                 None => panic!(

@@ -12,10 +12,14 @@ pub enum PassId {
     Reproject,
     /// PCF shadow visibility (every frame, or accumulated with the cache).
     Shadow,
+    /// The shadow's refresh tile, every pattern, spread over threads.
+    ShadowRefresh,
     /// Direct spot light times the shadow visibility.
     Direct,
     /// Screen-space ambient occlusion.
     Ssao,
+    /// The AO's refresh tile, every pattern, spread over threads.
+    SsaoRefresh,
     /// 5x5 Gaussian blur of the AO (no-reuse baseline only).
     Blur,
     /// RSM gather (half resolution, or full resolution without half-res).
@@ -24,22 +28,27 @@ pub enum PassId {
     IndirectUpsample,
     /// Full-resolution gather of the pixels the upsampling discarded.
     IndirectFixup,
+    /// Indirect light's refresh tile at full resolution, every pattern, spread over threads.
+    IndirectRefresh,
     /// Composite + tonemap into the output image.
     Composite,
 }
 
 impl PassId {
-    pub const ALL: [PassId; 11] = [
+    pub const ALL: [PassId; 14] = [
         PassId::LightView,
         PassId::GBuffer,
         PassId::Reproject,
         PassId::Shadow,
+        PassId::ShadowRefresh,
         PassId::Direct,
         PassId::Ssao,
+        PassId::SsaoRefresh,
         PassId::Blur,
         PassId::IndirectGather,
         PassId::IndirectUpsample,
         PassId::IndirectFixup,
+        PassId::IndirectRefresh,
         PassId::Composite,
     ];
 
@@ -48,13 +57,16 @@ impl PassId {
             PassId::LightView => "light_view",
             PassId::GBuffer => "gbuffer",
             PassId::Shadow => "shadow",
+            PassId::ShadowRefresh => "shadow_refresh",
             PassId::Direct => "direct",
             PassId::Reproject => "reproject",
             PassId::Ssao => "ssao",
+            PassId::SsaoRefresh => "ssao_refresh",
             PassId::Blur => "blur",
             PassId::IndirectGather => "indirect_gather",
             PassId::IndirectUpsample => "indirect_upsample",
             PassId::IndirectFixup => "indirect_fixup",
+            PassId::IndirectRefresh => "indirect_refresh",
             PassId::Composite => "composite",
         }
     }

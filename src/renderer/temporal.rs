@@ -186,21 +186,10 @@ impl Sampling {
         }
     }
 
-    /// Most evaluations per pattern a refresh tile of side `s` can cost. At half resolution:
-    /// the low-resolution samples the tile's pixels read (ceil(s/2) + 1 per side, plus the
-    /// apron of each 8x8 low-resolution block, computed again by its neighbour), and, at
-    /// worst, every pixel of the tile as a full-resolution fix-up.
+    /// Evaluations per pattern of a refresh tile of side `s`: every pixel of it, at full
+    /// resolution whatever the sampling (half-resolution effects refresh at full resolution).
     pub fn tile_evaluations(self, s: u32) -> u64 {
-        let s = s as u64;
-        match self {
-            Sampling::FullRes => s * s,
-            Sampling::HalfRes if s == 0 => 0,
-            Sampling::HalfRes => {
-                let lows = s.div_ceil(2) + 1;
-                let read = lows + lows.div_ceil(8);
-                read * read + s * s
-            }
-        }
+        s as u64 * s as u64
     }
 }
 

@@ -92,6 +92,12 @@ impl<'a> Recorder<'a> {
         };
     }
 
+    /// Dispatch `x` workgroups (y = z = 1).
+    pub fn dispatch_groups(&self, x: u32) {
+        // SAFETY: recording with a compute pipeline bound.
+        unsafe { self.device.cmd_dispatch(self.cmd, x, 1, 1) };
+    }
+
     /// Dispatch with the (x, y, z) workgroup counts stored in `args` at byte `offset`.
     pub fn dispatch_indirect(&self, args: &Buffer, offset: u64) {
         // SAFETY: recording with a compute pipeline bound; `args` has INDIRECT_BUFFER usage

@@ -1,0 +1,36 @@
+// The refresh tile spread over threads: one workgroup of REFRESH_THREADS invocations per
+// refreshed pixel, each invocation evaluating every REFRESH_THREADS-th pattern, the sums
+// reduced in shared memory. A pixel's full set of patterns then costs one pattern's time on
+// enough threads, instead of one invocation looping over them all while the rest of the GPU
+// waits (the tile is a few hundred pixels at most: see temporal::budget_tile).
+// The including shader declares `layout(local_size_x = REFRESH_THREADS) in;`.
+#ifndef REFRESH_GLSL
+#define REFRESH_GLSL
+
+#include "effect.glsl"
+
+#define REFRESH_THREADS 64
+
+shared vec4 refresh_partial[REFRESH_THREADS];
+
+// The pixel of this workgroup: the tile's pixels in rows (the dispatch has one group each).
+ivec2 refresh_pixel() {
+    uvec4 r = effect.refresh_rect;
+    uint width = max(r.z - r.x, 1u);
+    uint i = gl_WorkGroupID.x;
+    return ivec2(r.x + i % width, r.y + i / width);
+}
+
+// Sum of `mine` over the workgroup (every invocation must call it: it holds barriers).
+vec4 refresh_sum(vec4 mine) {
+    uint t = gl_LocalInvocationIndex;
+    refresh_partial[t] = mine;
+    barrier();
+    for (uint half_count = REFRESH_THREADS / 2u; half_count > 0u; half_count >>= 1u) {
+        if (t < half_count) refresh_partial[t] += refresh_partial[t + half_count];
+        barrier();
+    }
+    return refresh_partial[0];
+}
+
+#endif // REFRESH_GLSL
