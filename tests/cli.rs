@@ -12,6 +12,44 @@ fn tmp(name: &str) -> std::path::PathBuf {
     dir.join(name)
 }
 
+/// `--warmup converged` renders until the computed-pixel counters settle: on a static view,
+/// until nothing is computed any more. The report says how many frames that took, marks them,
+/// and the measured frames compute nothing.
+#[test]
+fn converged_warmup_measures_the_steady_state() {
+    let json = tmp("bench-converged.json");
+    let out = ssgi()
+        .args(["--validation", "bench", "--scene", "cornell-box"])
+        .args(["--size", "64x64", "--rsm-size", "128", "--pcf", "9"])
+        .args(["--frames", "4", "--warmup", "converged", "--json"])
+        .arg(&json)
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "bench failed:\n{stderr}");
+    assert!(stderr.contains("warmup: converged after"), "{stderr}");
+    let report: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+    let warmup = &report["config"]["warmup"];
+    assert_eq!(warmup["mode"], "converged");
+    assert_eq!(warmup["settled"], true);
+    let n = warmup["frames"].as_u64().unwrap();
+    // Two windows of the rotation limit (36) at least; a static view settles soon after.
+    assert!((72..=200).contains(&n), "warmup of {n} frames");
+    let frames = report["frames"].as_array().unwrap();
+    assert_eq!(frames.len() as u64, n + 4);
+    for f in frames {
+        let index = f["index"].as_u64().unwrap();
+        assert_eq!(f["warmup"], index < n, "frame {index}");
+        if index >= n {
+            for effect in ["ssao", "shadow", "indirect"] {
+                let key = format!("{effect}_computed_pixels");
+                assert_eq!(f["counters"][&key], 0, "frame {index}: {key}");
+            }
+        }
+    }
+}
+
 #[test]
 fn bench_json_has_every_pass_and_skips_the_static_light_view() {
     let json = tmp("bench.json");

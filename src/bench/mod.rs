@@ -25,6 +25,7 @@ pub mod table41;
 pub mod table_report;
 pub mod thesis;
 pub mod walkthrough;
+pub mod warmup;
 
 pub use options::TableOptions;
 pub use report::Report;

@@ -1,6 +1,7 @@
 //! What the command line accepts: the clap definitions of every subcommand and their value
 //! parsers. Checks that need more than one flag, or the scene, happen in the jobs.
 
+use crate::bench::warmup::Warmup;
 use crate::renderer::config::{
     Accumulate, AoConfig, AoEstimator, Effects, Epsilon, IndirectConfig, Refresh, TemporalConfig,
 };
@@ -324,9 +325,11 @@ pub struct BenchArgs {
     /// Frames measured after warmup, at least 1.
     #[arg(long, default_value_t = 200, value_parser = parse_frame_count)]
     pub frames: u32,
-    /// Frames rendered first and left out of the statistics.
-    #[arg(long, default_value_t = 10)]
-    pub warmup: u32,
+    /// Frames rendered first along the path and left out of the statistics: a count, or
+    /// `converged` (until the per-frame computed-pixel counters settle, at most 600 frames),
+    /// so the measured frames are the cache's steady state at the path's speed.
+    #[arg(long, default_value = "10", value_parser = crate::bench::warmup::parse_warmup)]
+    pub warmup: Warmup,
     /// Write the report as JSON here.
     #[arg(long)]
     pub json: Option<PathBuf>,

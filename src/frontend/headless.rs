@@ -22,12 +22,25 @@ pub fn run(
     fps: f32,
     progress: bool,
 ) -> Result<Vec<FrameTiming>> {
+    run_from(renderer, sink, path, 0, frames, fps, progress)
+}
+
+/// As [`run`], starting at frame `first` of the path (after a warmup of `first` frames).
+pub fn run_from(
+    renderer: &mut Renderer,
+    sink: &mut dyn FrameSink,
+    path: &CameraPath,
+    first: u32,
+    frames: u32,
+    fps: f32,
+    progress: bool,
+) -> Result<Vec<FrameTiming>> {
     let base = renderer.scene.camera;
     let bounds = renderer.scene.mesh.bounds;
     let mut timings = Vec::with_capacity(frames as usize);
     let mut bar = Progress::new(frames as u64, "rendering", progress);
     sink.begin(&renderer.scene.name);
-    for i in 0..frames {
+    for i in first..first.saturating_add(frames) {
         let camera = path.camera_at(&base, &bounds, frame_time(i, fps));
         timings.extend(sink.frame(renderer, &camera)?);
         bar.inc();

@@ -3,6 +3,7 @@
 
 use super::common::{check_frames, context_options, finish, load};
 use crate::bench::compare::Comparison;
+use crate::bench::warmup::{self, Warmup};
 use crate::bench::Report;
 use crate::cli::args::{BenchArgs, Cli};
 use crate::error::{Error, Result};
@@ -30,6 +31,7 @@ fn bench_config(
     renderer: &Renderer,
     path: &CameraPath,
     sink: &dyn FrameSink,
+    warmup: &warmup::Outcome,
 ) -> serde_json::Value {
     serde_json::json!({
         "scene": args.scene.scene,
@@ -38,7 +40,7 @@ fn bench_config(
         // Path time of the measured frames (the warmup frames come first on the path).
         "seconds": args.frames as f32 / args.scene.fps,
         "frames": args.frames,
-        "warmup": args.warmup,
+        "warmup": warmup,
         "rsm_size": args.scene.rsm_size,
         "pcf_samples": args.scene.pcf.samples(),
         "pcf_radius_texels": args.scene.pcf.radius_texels,
@@ -51,6 +53,39 @@ fn bench_config(
     })
 }
 
+/// Warm `renderer` up along `path` as `--warmup` asks, then measure `--frames` frames; the
+/// report marks the warmup frames and leaves them out of the statistics.
+fn measure(
+    args: &BenchArgs,
+    ctx: &Context,
+    renderer: &mut Renderer,
+    sink: &mut dyn FrameSink,
+    path: &CameraPath,
+) -> Result<Report> {
+    let fps = args.scene.fps;
+    let (mut timings, outcome) = warmup::run(renderer, sink, path, fps, args.warmup, true)?;
+    timings.extend(headless::run_from(
+        renderer,
+        sink,
+        path,
+        outcome.frames,
+        args.frames,
+        fps,
+        true,
+    )?);
+    eprintln!("{}", outcome.describe());
+    let names: Vec<&str> = PassId::ALL.iter().map(|p| p.name()).collect();
+    Ok(Report::new(
+        &ctx.info,
+        args.scene.size.0,
+        args.scene.size.1,
+        bench_config(args, ctx, renderer, path, sink, &outcome),
+        &names,
+        &timings,
+        outcome.frames as u64,
+    ))
+}
+
 /// `bench --compare-reuse`: both configurations on one context, one after the other.
 fn bench_compare_reuse(
     args: &BenchArgs,
@@ -59,29 +94,12 @@ fn bench_compare_reuse(
     scene: Scene,
     path: CameraPath,
 ) -> Result<()> {
-    let names: Vec<&str> = PassId::ALL.iter().map(|p| p.name()).collect();
     let mut reports = Vec::new();
     for reuse in [true, false] {
         let mut config = args.scene.render_config();
         config.temporal.reuse = reuse;
         let mut renderer = Renderer::new(ctx, scene.clone(), config)?;
-        let timings = headless::run(
-            &mut renderer,
-            sink,
-            &path,
-            args.frames + args.warmup,
-            args.scene.fps,
-            true,
-        )?;
-        let report = Report::new(
-            &ctx.info,
-            args.scene.size.0,
-            args.scene.size.1,
-            bench_config(args, ctx, &renderer, &path, sink),
-            &names,
-            &timings,
-            args.warmup as u64,
-        );
+        let report = measure(args, ctx, &mut renderer, sink, &path)?;
         println!("reuse {}:", if reuse { "on" } else { "off" });
         print!("{}", report.table());
         if let (Some(out), true) = (&args.out, reuse) {
@@ -103,7 +121,9 @@ fn bench_compare_reuse(
 
 pub fn bench(cli: &Cli, args: &BenchArgs) -> Result<()> {
     check_frames(args.frames, "--frames")?;
-    check_frames(args.warmup, "--warmup")?;
+    if let Warmup::Frames(n) = args.warmup {
+        check_frames(n, "--warmup")?;
+    }
     if args.frames == 0 {
         return Err(Error::Config("--frames must be at least 1".into()));
     }
@@ -115,27 +135,8 @@ pub fn bench(cli: &Cli, args: &BenchArgs) -> Result<()> {
         drop(sink);
         return finish(&ctx);
     }
-    let total = args.frames + args.warmup;
     let mut renderer = Renderer::new(&ctx, scene, args.scene.render_config())?;
-    let timings = headless::run(
-        &mut renderer,
-        sink.as_mut(),
-        &path,
-        total,
-        args.scene.fps,
-        true,
-    )?;
-    let config = bench_config(args, &ctx, &renderer, &path, sink.as_ref());
-    let names: Vec<&str> = PassId::ALL.iter().map(|p| p.name()).collect();
-    let report = Report::new(
-        &ctx.info,
-        args.scene.size.0,
-        args.scene.size.1,
-        config,
-        &names,
-        &timings,
-        args.warmup as u64,
-    );
+    let report = measure(args, &ctx, &mut renderer, sink.as_mut(), &path)?;
     print!("{}", report.table());
     if let Some(json) = &args.json {
         write_json(json, &report)?;
