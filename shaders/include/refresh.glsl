@@ -9,6 +9,7 @@
 
 #include "effect.glsl"
 
+// Also config.rs's REFRESH_THREADS (the per-thread loop bound it validates).
 #define REFRESH_THREADS 64
 
 shared vec4 refresh_partial[REFRESH_THREADS];

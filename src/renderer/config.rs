@@ -218,6 +218,10 @@ pub struct TemporalConfig {
     pub refresh_budget: f32,
 }
 
+/// Threads sharing out one refresh-tile pixel's patterns (`REFRESH_THREADS` of
+/// shaders/include/refresh.glsl).
+pub const REFRESH_THREADS: u32 = 64;
+
 /// The default refresh budget: 5% of a full frame's evaluations.
 pub const REFRESH_BUDGET: f32 = 0.05;
 /// The largest: 100 frames' work, enough for the thesis's tiles (a 64x64 tile with 36
@@ -354,12 +358,16 @@ impl RenderConfig {
         if self.effects.indirect
             && self.temporal.reuse
             && self.temporal.refresh != Refresh::Off
-            && self.indirect.vpls as u64 * self.temporal.rotation_limit as u64 > 32768
+            && self.indirect.vpls as u64
+                * self.temporal.rotation_limit.div_ceil(REFRESH_THREADS) as u64
+                > 32768
         {
             return bad(format!(
-                "the refresh tile gathers {} VPLs x {} patterns per pixel; keep the product at \
+                "each refresh thread gathers {} VPLs x {} of the {} patterns; keep the product at \
                  most 32768",
-                self.indirect.vpls, self.temporal.rotation_limit
+                self.indirect.vpls,
+                self.temporal.rotation_limit.div_ceil(REFRESH_THREADS),
+                self.temporal.rotation_limit
             ));
         }
         let t = &self.temporal;
@@ -413,6 +421,26 @@ impl RenderConfig {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn refresh_loops_stay_short_per_thread() {
+        let mut c = RenderConfig::default();
+        c.indirect.vpls = 16384;
+        // 64 patterns: one per refresh thread; 128: two.
+        c.temporal.rotation_limit = 64;
+        assert!(c.validate().is_ok());
+        c.temporal.rotation_limit = 128;
+        assert!(c.validate().is_ok());
+        c.temporal.rotation_limit = 129;
+        let e = c.validate().unwrap_err().to_string();
+        assert!(
+            e.contains("each refresh thread gathers 16384 VPLs x 3"),
+            "{e}"
+        );
+        // Without refresh no loop gathers more than one pattern.
+        c.temporal.refresh = Refresh::Off;
+        assert!(c.validate().is_ok());
+    }
 
     #[test]
     fn absurd_counts_gates_and_step_sizes_are_rejected() {
