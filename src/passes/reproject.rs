@@ -4,6 +4,7 @@
 //! Each temporal effect is a lane: its resources sit at their own bindings, resolved by the
 //! effect, and its push constants in its own members.
 
+use super::compute::FrameSet;
 use super::decl::{self, Bind, Resolve, Slot, Use};
 use super::layout::PassLayout;
 use super::pass_id::PassId;
@@ -13,8 +14,6 @@ use crate::vk::cmd::Recorder;
 use crate::vk::{Context, DescriptorPool, Pipeline, SetWriter, Tracker};
 use ash::vk;
 use std::sync::Arc;
-
-use super::compute::FrameSet;
 
 /// Temporal effects one reprojection serves (the shader's permutations).
 pub const MAX_LANES: usize = 3;
