@@ -173,9 +173,12 @@ impl ReprojectPass {
             }
         }
         tracker.flush(rec.device, rec.cmd);
-        let frames: Vec<LaneFrame> = lanes.iter().map(|(_, l)| *l).collect();
+        let mut frames = [LaneFrame::default(); MAX_LANES];
+        for (f, (_, l)) in frames.iter_mut().zip(lanes) {
+            *f = *l;
+        }
         rec.bind(&self.pipeline, &[frame.set, self.sets[frame.parity]]);
-        rec.push(&self.pipeline, &push(&frames).to_bytes());
+        rec.push(&self.pipeline, &push(&frames[..lanes.len()]).to_bytes());
         rec.dispatch_2d(&self.pipeline, width, height);
     }
 }

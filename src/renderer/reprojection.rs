@@ -6,7 +6,7 @@ use crate::effects::resolve::EffectResources;
 use crate::effects::{Effect, FrameInfo, Recording};
 use crate::error::Result;
 use crate::passes::decl::Resolve;
-use crate::passes::reproject::{LaneFrame, ReprojectPass};
+use crate::passes::reproject::{LaneFrame, ReprojectPass, MAX_LANES};
 use crate::passes::PassId;
 use crate::renderer::effect::TemporalEffect;
 use crate::renderer::targets::Targets;
@@ -85,29 +85,39 @@ impl Reprojection {
         let Some(pass) = &self.pass else {
             return;
         };
+        // Fixed-size arrays: nothing is allocated per frame. Unused entries point at the
+        // G-buffer resolver and are never passed on.
         let targets = info.targets;
-        let lanes: Vec<(EffectResources, LaneFrame)> = temporals(effects)
-            .map(|(e, t)| {
-                let push = e.push();
-                let frame = LaneFrame {
-                    active: e.reprojects(info),
-                    history_valid: push.history_valid != 0,
-                    block_shift: t.kind.block_shift,
-                    refresh_rect: push.refresh_rect,
-                };
-                (lane(targets, t), frame)
-            })
-            .collect();
-        if !lanes.iter().any(|(_, l)| l.active) {
+        let shared = shared(targets);
+        let mut resources: [Option<EffectResources>; MAX_LANES] = std::array::from_fn(|_| None);
+        let mut frames = [LaneFrame::default(); MAX_LANES];
+        let mut count = 0;
+        for ((e, t), (res, frame)) in temporals(effects).zip(resources.iter_mut().zip(&mut frames))
+        {
+            let push = e.push();
+            *res = Some(lane(targets, t));
+            *frame = LaneFrame {
+                active: e.reprojects(info),
+                history_valid: push.history_valid != 0,
+                block_shift: t.kind.block_shift,
+                refresh_rect: push.refresh_rect,
+            };
+            count += 1;
+        }
+        if !frames.iter().any(|l| l.active) {
             return;
         }
-        let lanes: Vec<(&dyn Resolve, LaneFrame)> = lanes
-            .iter()
-            .map(|(res, l)| (res as &dyn Resolve, *l))
-            .collect();
+        let lanes: [(&dyn Resolve, LaneFrame); MAX_LANES] = std::array::from_fn(|k| {
+            let res: &dyn Resolve = match &resources[k] {
+                Some(r) => r,
+                None => &shared,
+            };
+            (res, frames[k])
+        });
+        let lanes = &lanes[..count];
         let size = (targets.width, targets.height);
         r.timed(PassId::Reproject, |rec, tr| {
-            pass.record(rec, tr, info.frame, &shared(targets), &lanes, size)
+            pass.record(rec, tr, info.frame, &shared, lanes, size)
         });
     }
 }
