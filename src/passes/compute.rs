@@ -30,6 +30,19 @@ pub enum Dispatch {
     Groups(u32),
 }
 
+/// Set 1 of `pipeline` once per frame parity, labelled `name`.
+pub fn parity_sets(
+    pool: &DescriptorPool,
+    pipeline: &Pipeline,
+    name: &str,
+) -> Result<[vk::DescriptorSet; 2]> {
+    let layout = pipeline.set_layouts[1];
+    Ok([
+        pool.allocate(layout, &format!("{name} set 1 parity 0"))?,
+        pool.allocate(layout, &format!("{name} set 1 parity 1"))?,
+    ])
+}
+
 pub struct ComputePass {
     pub id: PassId,
     pipeline: Arc<Pipeline>,
@@ -74,8 +87,8 @@ impl ComputePass {
         Self::with_pipeline(pool, id, Arc::new(pipeline), binds, id.name())
     }
 
-    /// Another instance of the same pipeline with its own descriptor sets (the reprojection
-    /// runs once per temporal effect); `name` labels the sets.
+    /// Another instance of the same pipeline with its own descriptor sets (the direct pass
+    /// reading the shadow history); `name` labels the sets.
     pub fn instance(&self, pool: &DescriptorPool, name: &str) -> Result<Self> {
         Self::with_pipeline(pool, self.id, self.pipeline.clone(), self.binds, name)
     }
@@ -87,11 +100,7 @@ impl ComputePass {
         binds: &'static [Bind],
         name: &str,
     ) -> Result<Self> {
-        let layout = pipeline.set_layouts[1];
-        let sets = [
-            pool.allocate(layout, &format!("{name} set 1 parity 0"))?,
-            pool.allocate(layout, &format!("{name} set 1 parity 1"))?,
-        ];
+        let sets = parity_sets(pool, &pipeline, name)?;
         Ok(Self {
             id,
             pipeline,

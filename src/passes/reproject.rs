@@ -4,7 +4,7 @@
 //! Each temporal effect is a lane: its resources sit at their own bindings, resolved by the
 //! effect, and its push constants in its own members.
 
-use super::compute::FrameSet;
+use super::compute::{parity_sets, FrameSet};
 use super::decl::{self, Bind, Resolve, Slot, Use};
 use super::layout::PassLayout;
 use super::pass_id::PassId;
@@ -122,11 +122,7 @@ impl ReprojectPass {
             &decl::layout(&binds(lanes)),
             &[],
         )?;
-        let layout = pipeline.set_layouts[1];
-        let sets = [
-            pool.allocate(layout, &format!("{name} set 1 parity 0"))?,
-            pool.allocate(layout, &format!("{name} set 1 parity 1"))?,
-        ];
+        let sets = parity_sets(pool, &pipeline, name)?;
         Ok(Self {
             lanes,
             pipeline,

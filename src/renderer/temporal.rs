@@ -185,12 +185,12 @@ impl Sampling {
             Sampling::HalfRes => width.div_ceil(2) as u64 * height.div_ceil(2) as u64,
         }
     }
+}
 
-    /// Evaluations per pattern of a refresh tile of side `s`: every pixel of it, at full
-    /// resolution whatever the sampling (half-resolution effects refresh at full resolution).
-    pub fn tile_evaluations(self, s: u32) -> u64 {
-        s as u64 * s as u64
-    }
+/// Evaluations per pattern of a refresh tile of side `s`: every pixel of it, at full resolution
+/// whatever the effect's sampling (half-resolution effects refresh at full resolution).
+pub fn tile_evaluations(s: u32) -> u64 {
+    s as u64 * s as u64
 }
 
 /// The largest refresh tile side, at most `max_tile`, whose refresh (every one of `limit`
@@ -204,7 +204,7 @@ pub fn budget_tile(
     budget: f32,
 ) -> u32 {
     let allowed = budget as f64 * sampling.frame_evaluations(width, height) as f64;
-    let fits = |s: u32| (sampling.tile_evaluations(s) * limit as u64) as f64 <= allowed;
+    let fits = |s: u32| (tile_evaluations(s) * limit as u64) as f64 <= allowed;
     (1..=max_tile).take_while(|&s| fits(s)).last().unwrap_or(0)
 }
 
@@ -305,13 +305,13 @@ mod tests {
                 for budget in [0.01, 0.05, 0.2] {
                     for sampling in [Sampling::FullRes, Sampling::HalfRes] {
                         let s = budget_tile(64, sampling, (size, size), limit, budget);
-                        let cost = sampling.tile_evaluations(s) * limit as u64;
+                        let cost = tile_evaluations(s) * limit as u64;
                         let allowed = budget as f64 * sampling.frame_evaluations(size, size) as f64;
                         assert!(
                             cost as f64 <= allowed,
                             "{size} {limit} {budget} {sampling:?}"
                         );
-                        let bigger = sampling.tile_evaluations(s + 1) * limit as u64;
+                        let bigger = tile_evaluations(s + 1) * limit as u64;
                         assert!(s == 64 || bigger as f64 > allowed);
                     }
                 }
