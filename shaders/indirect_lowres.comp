@@ -4,7 +4,8 @@
 // bottom (9x9) into the block's own slot of the low-resolution buffer, so the upsampling of
 // the block reads only values computed this frame. Low-resolution pixel i samples the G-buffer
 // at full-resolution texel 2i (the top-left of its 2x2 block), where indirect_upsample.comp's
-// weights place it. Pixels of the refresh tile are recomputed at full resolution by
+// weights place it. With interleaving each low-resolution pixel gathers its share of the VPLs,
+// put together from the tile's pixels where its full-resolution texel is new (interleave.glsl). Pixels of the refresh tile are recomputed at full resolution by
 // indirect_gather.comp's `refresh`; the samples they would read hold this frame's pattern like
 // every other, for their neighbours.
 #extension GL_GOOGLE_include_directive : require
@@ -15,11 +16,14 @@
 #include "counters.glsl"
 #include "effect.glsl"
 
-layout(local_size_x = 9, local_size_y = 9) in;
+#define INTERLEAVE_TILE 9u
+layout(local_size_x = INTERLEAVE_TILE, local_size_y = INTERLEAVE_TILE) in;
 
 layout(set = 1, binding = 6, std430) buffer LowRes { vec4 lowres[]; };
+layout(set = 1, binding = 7, r32ui) uniform readonly uimage2D state_in;
 
 #include "indirect_common.glsl"
+#include "interleave.glsl"
 
 shared uint group_computed;
 
@@ -31,15 +35,25 @@ void main() {
     ivec2 low = block * 8 + ivec2(gl_LocalInvocationID.xy);
     ivec2 low_size = ivec2((frame.size + 1u) / 2u);
     vec4 value = vec4(0.0);
+    bool computed = false;
+    vec3 p = vec3(0.0);
+    vec3 n = vec3(0.0);
+    bool is_new = false;
     if (all(greaterThanEqual(low, ivec2(0))) && all(lessThan(low, low_size))) {
         ivec2 full = low * 2;
         vec4 position = texelFetch(g_position, full, 0);
         if (position.w != 0.0) {
-            vec3 n = texelFetch(g_normal, full, 0).xyz;
-            value = indirect_value(position.xyz, n, low);
+            computed = true;
+            p = position.xyz;
+            n = texelFetch(g_normal, full, 0).xyz;
+            is_new = imageLoad(state_in, full).r == STATE_NEW;
+            value = indirect_share(p, n, low);
             atomicAdd(group_computed, 1u);
         }
     }
+    // Neighbours one low-resolution pixel (two full ones) apart.
+    value = interleave_reconstruct(gl_LocalInvocationID.xy, computed, is_new, p, n, pixel_footprint(p, 2.0), value);
+    if (!computed) value = vec4(0.0);
     lowres[gl_WorkGroupID.x * 81u + gl_LocalInvocationIndex] = value;
     barrier();
     if (gl_LocalInvocationIndex == 0u && group_computed > 0u)

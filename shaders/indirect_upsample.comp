@@ -1,9 +1,9 @@
 #version 460
 // Geometry-aware upsampling of the half-resolution gather (Lin 2013 section 4): each
 // full-resolution pixel that needs work tests the low-resolution samples that carry bilinear
-// weight at its position (one, two or four; normal within ~25 degrees, and on the pixel's
-// tangent plane within two pixel footprints) and interpolates bilinearly from the accepted ones; a pixel with none is discarded, marked in the mask
-// (Figure 4.1) and appended to the fix-up list for a full-resolution gather.
+// weight at its position (one, two or four; `same_surface`: normal within ~25 degrees, and on
+// the pixel's tangent plane within two pixel footprints) and interpolates bilinearly from the
+// accepted ones; a pixel with none is discarded, marked in the mask (Figure 4.1) and appended to the fix-up list for a full-resolution gather.
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_samplerless_texture_functions : require
 #include "frame.glsl"
@@ -23,11 +23,6 @@ layout(set = 1, binding = 10, rgba32f) uniform image2D moments;
 #include "indirect_common.glsl"
 #include "indirect_merge.glsl"
 
-// cos(25 degrees): neighbours on a surface turned further away belong to another surface.
-const float NORMAL_ACCEPT = 0.9;
-// Tangent-plane distance limit in pixel footprints.
-const float PLANE_ACCEPT = 2.0;
-
 void main() {
     uint packed = counters.data[gl_WorkGroupID.x];
     ivec2 block = ivec2(packed & 0xffffu, packed >> 16);
@@ -41,7 +36,7 @@ void main() {
     if (state != STATE_NEW && state != STATE_ACCUMULATING) return;
     vec3 p = texelFetch(g_position, pixel, 0).xyz;
     vec3 n = texelFetch(g_normal, pixel, 0).xyz;
-    float footprint = 2.0 * distance(p, frame.camera_pos) * frame.tan_half_fov / float(frame.size.y);
+    float footprint = pixel_footprint(p, 1.0);
     // Low-resolution pixel i holds the sample of full-resolution texel 2i, so in low-resolution
     // units this pixel sits at pixel / 2: an even pixel is its own sample (weight 1), an odd
     // one lies halfway between two samples. Neighbours base + 0..1 stay inside the block's 9x9
@@ -61,8 +56,7 @@ void main() {
         if (weight == 0.0 || any(greaterThanEqual(low, low_size))) continue;
         vec4 g = texelFetch(g_position, low * 2, 0);
         if (g.w == 0.0) continue;
-        if (dot(texelFetch(g_normal, low * 2, 0).xyz, n) < NORMAL_ACCEPT) continue;
-        if (abs(dot(n, g.xyz - p)) > PLANE_ACCEPT * footprint) continue;
+        if (!same_surface(p, n, g.xyz, texelFetch(g_normal, low * 2, 0).xyz, footprint)) continue;
         ivec2 local = low - apron_origin;
         sum += weight * lowres[gl_WorkGroupID.x * 81u + uint(local.y * 9 + local.x)];
         weight_sum += weight;

@@ -683,3 +683,71 @@ fn half_resolution_reconstructs_a_linear_ramp() {
     drop(r);
     common::assert_clean(&ctx);
 }
+
+/// Interleaved sampling (`--interleave N`): the VPLs split into N^2 shares; a new pixel's first
+/// estimate puts together the shares of its NxN window, an accumulating pixel takes its own
+/// share, a different one each pattern. With every RSM texel as VPLs the shares are fixed
+/// sub-lattices of the map, so with a rotation limit of 1 + k N^2 each pixel has gathered
+/// every texel k times after its first, reconstructed estimate: the accumulated result is the
+/// full gather (up to that first estimate's weight), at full and at half resolution. And the reconstruction pays: a new
+/// pixel's estimate from the window of 512-VPL shares (128 VPLs each) beats a 128-VPL gather.
+#[test]
+fn interleaved_gather_converges_to_the_full_gather() {
+    let ctx = common::context();
+    let size = 64;
+    for half_res in [false, true] {
+        let full = IndirectConfig {
+            vpls: 0,
+            half_res,
+            ..Default::default()
+        };
+        let (mut r, _) = run(&ctx, cornell_box(), config(size, 32, full, no_reuse()), 1);
+        let reference = r.read(Target::Indirect).unwrap();
+        let mask = r.read(Target::GPosition).unwrap();
+        drop(r);
+        for (n, patterns) in [(2, 37), (3, 37), (4, 49)] {
+            let temporal = TemporalConfig {
+                rotation_limit: patterns,
+                ..Default::default()
+            };
+            let interleaved = IndirectConfig {
+                interleave: n,
+                ..full
+            };
+            let (mut r, timings) = run(
+                &ctx,
+                cornell_box(),
+                config(size, 32, interleaved, temporal),
+                patterns + 2,
+            );
+            let accumulated = r.read(Target::Indirect).unwrap();
+            let error = relative_rmse(&accumulated, &reference, &mask);
+            eprintln!(
+                "half_res {half_res}, interleave {n}: accumulated vs the full gather, relative \
+                 RMSE {error}"
+            );
+            assert!(error < 0.01, "interleave {n}: relative RMSE {error}");
+            // Every pixel accumulated to the rotation limit: no pixel is still computing.
+            let last = timings.last().unwrap();
+            assert!(last.skipped.contains(&"light_view"), "{:?}", last.skipped);
+            drop(r);
+        }
+        let sampled = |vpls, interleave| {
+            let c = IndirectConfig {
+                vpls,
+                interleave,
+                half_res,
+                ..Default::default()
+            };
+            let (mut r, _) = run(&ctx, cornell_box(), config(size, 32, c, no_reuse()), 1);
+            relative_rmse(&r.read(Target::Indirect).unwrap(), &reference, &mask)
+        };
+        let (shared, alone) = (sampled(512, 2), sampled(128, 1));
+        eprintln!(
+            "half_res {half_res}, one new frame: 512 VPLs interleaved 2x2 {shared}, 128 VPLs \
+             {alone}"
+        );
+        assert!(shared < alone, "interleaved {shared} vs 128 VPLs {alone}");
+    }
+    common::assert_clean(&ctx);
+}

@@ -45,6 +45,7 @@ layout(set = 0, binding = 0, std140) uniform Frame {
     uint vpl_count;            // VPLs per gather (0 = every RSM texel)
     uint vpl_visibility;       // screen-space visibility test of each VPL (0/1)
     float vpl_march_near_px;   // nearest step of that visibility march [px]
+    uint vpl_interleave;       // interleaved gather: block side N, one VPL subset per pixel (1 = off)
     uint camera_static;        // 1 when prev_view_proj equals view_proj exactly (CPU test)
     uint indirect_ramp;        // test input: indirect passes output world position (0/1)
 } frame;

@@ -15,18 +15,41 @@ layout(set = 1, binding = 4) uniform texture2D rsm_flux;
 // After the bindings it reads.
 #include "rsm_gather.glsl"
 
-// One pattern's estimate for a pixel at p (rgb) and its squared luminance (a): the gather, or
-// with the test input (IndirectInput::Ramp) p itself, a linear function with a known value at
-// every pixel.
-vec4 indirect_pattern(vec3 p, vec3 n, uint pattern, ivec2 seed_pixel) {
-    vec3 x = frame.indirect_ramp != 0u ? p : rsm_gather(p, n, float(pattern), 1u, seed_pixel);
+// One pattern's estimate for a pixel at p (rgb) and its squared luminance (a) from its share
+// of the VPLs (rsm_gather; interleave 1: every VPL), or with the test input
+// (IndirectInput::Ramp) p itself, a linear function with a known value at every pixel.
+vec4 indirect_pattern(vec3 p, vec3 n, uint pattern, ivec2 pixel, uint interleave) {
+    vec3 x = frame.indirect_ramp != 0u ? p : rsm_gather(p, n, pattern, pixel, interleave);
     float l = dot(x, LUMA);
     return vec4(x, l * l);
 }
 
-// This frame's estimate (its pattern) for a pixel at p.
-vec4 indirect_value(vec3 p, vec3 n, ivec2 seed_pixel) {
-    return indirect_pattern(p, n, effect.pattern, seed_pixel);
+// This frame's estimate (its pattern) for a pixel at p with every VPL.
+vec4 indirect_value(vec3 p, vec3 n, ivec2 pixel) {
+    return indirect_pattern(p, n, effect.pattern, pixel, 1u);
+}
+
+// This frame's estimate for a pixel at p from its interleaved share of the VPLs
+// (frame.vpl_interleave).
+vec4 indirect_share(vec3 p, vec3 n, ivec2 pixel) {
+    return indirect_pattern(p, n, effect.pattern, pixel, frame.vpl_interleave);
+}
+
+// World-space size of one pixel at p, at a sampling step of `step` full-resolution pixels.
+float pixel_footprint(vec3 p, float step) {
+    return 2.0 * distance(p, frame.camera_pos) * frame.tan_half_fov / float(frame.size.y) * step;
+}
+
+// cos(25 degrees): neighbours on a surface turned further away belong to another surface.
+const float NORMAL_ACCEPT = 0.9;
+// Tangent-plane distance limit in pixel footprints: scale-free, as the footprint grows with
+// the distance to the camera.
+const float PLANE_ACCEPT = 2.0;
+
+// Whether a sample at q (normal nq) lies on the surface of the pixel at p (normal n), whose
+// footprint is `footprint`: used wherever one pixel's light stands in for another's.
+bool same_surface(vec3 p, vec3 n, vec3 q, vec3 nq, float footprint) {
+    return dot(nq, n) >= NORMAL_ACCEPT && abs(dot(n, q - p)) <= PLANE_ACCEPT * footprint;
 }
 
 #endif // INDIRECT_COMMON_GLSL

@@ -5,6 +5,7 @@
 #define RSM_GATHER_GLSL
 
 #include "frame.glsl"
+#include "patterns.glsl"
 
 // Flux Phi_q of the VPL at RSM texel `texel`, world position q: the stored albedo x I times
 // the factors rsm.frag leaves out to keep fp16 values normal, the spot's cone factor and the
@@ -89,31 +90,45 @@ vec2 r2_point(uint i, uint shift) {
     return vec2(u >> 8u) * (1.0 / 16777216.0);
 }
 
-// Eq 9 summed over every RSM texel (the reference the sampled gather converges to). The
-// configuration limits this to RSMs of at most 128x128 texels (RenderConfig::validate): llvmpipe
-// caps loop iterations per invocation and GPU drivers reset devices on long dispatches.
-vec3 rsm_gather_all(vec3 p, vec3 n) {
-    int size = int(frame.shadow_map_size);
-    vec3 sum = vec3(0.0);
-    for (int y = 0; y < size; ++y)
-        for (int x = 0; x < size; ++x)
-            sum += vpl_term(p, n, ivec2(x, y));
-    return sum;
+// The centre of the VPL density for a receiver at p: its projection into the RSM [texels].
+// Any centre keeps the estimator unbiased, so points behind the light or projecting outside
+// use the nearest RSM point (the centre when behind): otherwise nearly every sample would miss
+// the map.
+vec2 rsm_centre(vec3 p) {
+    float size = frame.shadow_map_size;
+    vec4 clip = frame.light_view_proj * vec4(p, 1.0);
+    return clip.w > 0.0 ? clamp((clip.xy / clip.w * 0.5 + 0.5) * size, vec2(0.0), vec2(size))
+                        : vec2(0.5 * size);
 }
 
-// `count` VPLs drawn around p's projection into the RSM with a density that falls off as
+// Eq 9 over the RSM texels of share `share` of an N x N split (N = side): the texels with
+// (x mod N, y mod N) = share, a sub-lattice as even in both directions as the map, times N^2,
+// so that the mean over the N^2 shares is exactly the sum over every texel (also when N does
+// not divide the map's side and shares differ by a row); side 1: every texel, the reference
+// the sampled gather converges to. The configuration limits this to RSMs of at most 128x128 texels
+// (RenderConfig::validate): llvmpipe caps loop iterations per invocation and GPU drivers reset
+// devices on long dispatches.
+vec3 rsm_gather_all(vec3 p, vec3 n, uvec2 share, uint side) {
+    uint size = uint(frame.shadow_map_size);
+    vec3 sum = vec3(0.0);
+    for (uint y = share.y; y < size; y += side)
+        for (uint x = share.x; x < size; x += side)
+            sum += vpl_term(p, n, ivec2(x, y));
+    return side == 1u ? sum : sum * float(side * side);
+}
+
+// VPLs drawn around p's projection into the RSM with a density that falls off as
 // 1/r^2 beyond one texel (uniform inside it), each weighted by the inverse density, i.e. by its
 // squared distance (Dachsbacher & Stamminger's weighting). The disc reaches the farthest RSM
-// corner, so the estimator is unbiased for the sum over every texel. `pattern` rotates the
-// points and shifts the radii (a new pattern each frame); `seed` rotates per pixel.
-vec3 rsm_gather_sampled(vec3 p, vec3 n, float pattern, uint count, float seed) {
+// corner, so the estimator is unbiased for the sum over every texel. The VPLs are points
+// [first, end) of one R2 sequence: a run of a Kronecker sequence is a shifted prefix of it,
+// as even in both dimensions as the whole, so a run is an unbiased share of the first `end`
+// points (every k-th point instead would lie on a few lines: a stride of the R2 lattice is a
+// poor lattice). `pattern` rotates the points and shifts the radii (a new pattern each
+// frame); `seed` rotates per pixel (per interleaving block).
+vec3 rsm_gather_sampled(vec3 p, vec3 n, uint pattern, uint first, uint end, float seed) {
     float size = frame.shadow_map_size;
-    // The density peaks at p's projection into the RSM. Any centre keeps the estimator
-    // unbiased, so points behind the light or projecting outside use the nearest RSM point
-    // (the centre when behind): otherwise nearly every sample would miss the map.
-    vec4 clip = frame.light_view_proj * vec4(p, 1.0);
-    vec2 c = clip.w > 0.0 ? clamp((clip.xy / clip.w * 0.5 + 0.5) * size, vec2(0.0), vec2(size))
-                          : vec2(0.5 * size);
+    vec2 c = rsm_centre(p);
     vec2 far_corner = max(abs(c), abs(c - vec2(size)));
     float r0 = 1.0;
     float R = max(length(far_corner), 2.0 * r0);
@@ -124,11 +139,11 @@ vec3 rsm_gather_sampled(vec3 p, vec3 n, float pattern, uint count, float seed) {
     // inverse of j: a 2D low-discrepancy sequence over patterns, so any prefix of them covers
     // both dimensions evenly and no rotation repeats (a fixed angle step would repeat every
     // 360 / step patterns). Patterns are small non-negative integers: the conversion is exact.
-    uint j = uint(pattern);
+    uint j = pattern;
     float angle = TWO_PI * (float(bitfieldReverse(j) >> 8) * (1.0 / 16777216.0) + seed);
     uint shift = j * INV_GOLDEN_RATIO_FIXED;
     vec3 sum = vec3(0.0);
-    for (uint i = 0u; i < count; ++i) {
+    for (uint i = first; i < end; ++i) {
         vec2 u = r2_point(i, shift);
         float u1 = u.x;
         float u2 = u.y;
@@ -140,18 +155,26 @@ vec3 rsm_gather_sampled(vec3 p, vec3 n, float pattern, uint count, float seed) {
         float weight = max(r, r0) * max(r, r0) / (density * r0 * r0);
         sum += weight * vpl_term(p, n, ivec2(floor(x)));
     }
-    return sum / float(max(count, 1u));
+    return sum / float(max(end - first, 1u));
 }
 
-// The configured gather for `patterns` consecutive patterns starting at `first`.
-vec3 rsm_gather(vec3 p, vec3 n, float first, uint patterns, ivec2 pixel) {
+// Pattern `pattern` at `pixel` from the pixel's share of the VPLs: every VPL with
+// interleave 1. With interleave N > 1 (Keller & Heidrich 2001) the VPLs split into N^2
+// shares, and the pixels of each N x N block take different ones: slot
+// s = (x mod N) + N (y mod N), share (s + pattern) mod N^2. Any N x N window holds every share
+// of the pattern once (interleave.glsl puts them back together for new pixels), and over N^2
+// consecutive patterns every pixel takes every share, so its own accumulated shares converge
+// to the whole gather.
+vec3 rsm_gather(vec3 p, vec3 n, uint pattern, ivec2 pixel, uint interleave) {
+    uint shares = interleave * interleave;
+    uvec2 slot = uvec2(pixel) % interleave;
+    uint share = (slot.x + interleave * slot.y + pattern % shares) % shares;
     uint vpls = frame.vpl_count;
-    if (vpls == 0u) return rsm_gather_all(p, n);
-    // Per-pixel rotation: interleaved gradient noise (Jimenez 2014), stable per pixel.
-    float seed = fract(52.9829189 * fract(dot(vec2(pixel), vec2(0.06711056, 0.00583715))));
-    vec3 sum = vec3(0.0);
-    for (uint j = 0u; j < patterns; ++j) sum += rsm_gather_sampled(p, n, first + float(j), vpls, seed);
-    return sum / float(max(patterns, 1u));
+    if (vpls == 0u) return rsm_gather_all(p, n, uvec2(share % interleave, share / interleave), interleave);
+    // Per-block rotation: interleaved gradient noise (Jimenez 2014), stable per block.
+    float seed = interleaved_gradient_noise(pixel / int(interleave));
+    // vpls <= 16384 and shares <= 64 (RenderConfig::validate): no overflow.
+    return rsm_gather_sampled(p, n, pattern, share * vpls / shares, (share + 1u) * vpls / shares, seed);
 }
 
 #endif // RSM_GATHER_GLSL

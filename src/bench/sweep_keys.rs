@@ -31,6 +31,7 @@ pub enum Key {
     RotationLimit,
     Epsilon,
     Vpls,
+    Interleave,
     Visibility,
     HalfRes,
     Pcf,
@@ -39,7 +40,7 @@ pub enum Key {
 
 impl Key {
     /// Every key, in the order `help_table` lists them.
-    pub const ALL: [Key; 15] = [
+    pub const ALL: [Key; 16] = [
         Key::AoSamples,
         Key::AoEstimator,
         Key::AoRadius,
@@ -51,6 +52,7 @@ impl Key {
         Key::RotationLimit,
         Key::Epsilon,
         Key::Vpls,
+        Key::Interleave,
         Key::Visibility,
         Key::HalfRes,
         Key::Pcf,
@@ -71,6 +73,7 @@ impl Key {
             Key::RotationLimit => "temporal.rotation_limit",
             Key::Epsilon => "temporal.epsilon",
             Key::Vpls => "indirect.vpls",
+            Key::Interleave => "indirect.interleave",
             Key::Visibility => "indirect.visibility",
             Key::HalfRes => "indirect.half_res",
             Key::Pcf => "pcf",
@@ -97,6 +100,7 @@ impl Key {
             Key::RotationLimit => "patterns per pixel before it counts as converged",
             Key::Epsilon => "disocclusion threshold: pixel footprints, or abs: world units",
             Key::Vpls => "VPLs gathered per pixel and frame; all = every RSM texel (--vpls)",
+            Key::Interleave => "interleaved gather: NxN blocks share the VPLs (--interleave)",
             Key::Visibility => "screen-space visibility test per VPL (--vpl-visibility)",
             Key::HalfRes => "indirect gather at half resolution (--half-res)",
             Key::Pcf => "shadow filtering kernel (--pcf)",
@@ -118,6 +122,7 @@ impl Key {
             Key::RotationLimit => "integer 1..=2048",
             Key::Epsilon => "NUMBER|abs:NUMBER",
             Key::Vpls => "integer 1..=16384|all",
+            Key::Interleave => "integer 1..=8",
             Key::Pcf => "hard|9|SQUARE (25, 49, ...)|disc:N",
             Key::RsmSize => "integer 1..=16384",
         }
@@ -195,6 +200,7 @@ pub fn apply(config: &mut RenderConfig, key: Key, value: &str) -> Result<()> {
             Key::AoPatterns => config.ao.patterns = n,
             Key::RotationLimit => config.temporal.rotation_limit = n,
             Key::Vpls => config.indirect.vpls = n,
+            Key::Interleave => config.indirect.interleave = n,
             _ => config.rsm_size = n,
         },
         Setting::Flag(on) => match key {
@@ -351,6 +357,7 @@ impl Setting {
             Key::RsmSize => count(crate::renderer::MAX_SIZE),
             Key::RotationLimit => parse_pattern_count(v).map(Setting::Count),
             Key::Vpls => parse_vpls(v).map(Setting::Count),
+            Key::Interleave => count(crate::renderer::config::IndirectConfig::MAX_INTERLEAVE),
             Key::Refresh => Refresh::from_str(v, false).map(Setting::Refresh),
             Key::RefreshBudget => parse_fraction(v).map(Setting::Budget),
             Key::Reuse | Key::Visibility | Key::HalfRes => parse_on_off(v).map(Setting::Flag),
@@ -429,6 +436,7 @@ mod tests {
                 c.temporal.epsilon = Epsilon::Absolute { epsilon: 0.1 }
             }),
             (Key::Vpls, "all", |c| c.indirect.vpls = 0),
+            (Key::Interleave, "2", |c| c.indirect.interleave = 2),
             (Key::Visibility, "on", |c| c.indirect.visibility = true),
             (Key::HalfRes, "off", |c| c.indirect.half_res = false),
             (Key::Pcf, "9", |c| c.pcf = Pcf::NINE),

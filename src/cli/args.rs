@@ -119,6 +119,10 @@ pub struct SceneArgs {
     /// Screen-space visibility test of each VPL (Lin 2013 section 3.3.1; about halves speed).
     #[arg(long)]
     pub vpl_visibility: bool,
+    /// Interleaved VPL gather: the pixels of each NxN block gather disjoint VPL subsets and a
+    /// geometry-aware NxN filter combines them (1 = off, up to 8).
+    #[arg(long, default_value_t = IndirectConfig::default().interleave, value_parser = clap::value_parser!(u32).range(1..=IndirectConfig::MAX_INTERLEAVE as i64))]
+    pub interleave: u32,
     /// Gather indirect light at half resolution with geometry-aware upsampling.
     #[arg(long, default_value = "on", value_parser = parse_on_off, action = clap::ArgAction::Set)]
     pub half_res: bool,
@@ -188,6 +192,7 @@ impl SceneArgs {
                 vpls: self.vpls,
                 visibility: self.vpl_visibility,
                 half_res: self.half_res,
+                interleave: self.interleave,
                 ..IndirectConfig::default()
             },
             temporal: TemporalConfig {

@@ -45,7 +45,10 @@ macro_rules! gather_inputs {
     };
 }
 
-const LOWRES_GATHER: &[Bind] = gather_inputs![Bind::new(6, LOWRES, Use::BufferWrite)];
+const LOWRES_GATHER: &[Bind] = gather_inputs![
+    Bind::new(6, LOWRES, Use::BufferWrite),
+    Bind::new(7, Slot::State, Use::StorageRead),
+];
 
 const UPSAMPLE: &[Bind] = gather_inputs![
     Bind::new(6, LOWRES, Use::BufferRead),

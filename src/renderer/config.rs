@@ -71,6 +71,10 @@ pub struct IndirectConfig {
     pub visibility: bool,
     /// Gather at half resolution, upsample geometry-aware, fix up discarded pixels.
     pub half_res: bool,
+    /// Interleaved sampling (Keller & Heidrich 2001): the pixels of each N x N block gather
+    /// disjoint subsets of the VPLs (vpls / N^2 each) and a geometry-aware N x N filter puts
+    /// them back together. 1 = every pixel gathers every VPL.
+    pub interleave: u32,
     /// What the passes compute per pixel: the gather, or a test ramp. Not on the command line
     /// and not in reports.
     #[serde(skip)]
@@ -90,6 +94,10 @@ pub enum IndirectInput {
 }
 
 impl IndirectConfig {
+    /// Largest interleaving block side: the reconstruction window must fit in the 9x9
+    /// low-resolution tile of a block.
+    pub const MAX_INTERLEAVE: u32 = 8;
+
     /// Nearest step of each VPL's screen-space visibility march [px]: eq 8's log spacing
     /// starting one and a half pixels out, like SSAO's default, so the march leaves the
     /// receiver's own pixel before testing depth.
@@ -102,6 +110,7 @@ impl Default for IndirectConfig {
             vpls: 512,
             visibility: false,
             half_res: true,
+            interleave: 1,
             input: IndirectInput::Gather,
         }
     }
@@ -349,6 +358,21 @@ impl RenderConfig {
                 self.indirect.vpls
             ));
         }
+        let il = self.indirect.interleave;
+        if !(1..=IndirectConfig::MAX_INTERLEAVE).contains(&il) {
+            return bad(format!(
+                "interleaving block side {il} outside 1..={}",
+                IndirectConfig::MAX_INTERLEAVE
+            ));
+        }
+        if self.indirect.vpls != 0 && self.indirect.vpls < il * il {
+            return bad(format!(
+                "{} VPLs cannot be split among the {} pixels of a {il}x{il} interleaving block                  (use at least {} VPLs or a smaller --interleave)",
+                self.indirect.vpls,
+                il * il,
+                il * il
+            ));
+        }
         if self.indirect.vpls == 0 && self.rsm_size > 128 {
             return bad(format!(
                 "--vpls all gathers every RSM texel: use --rsm-size 128 or less (got {})",
@@ -467,5 +491,17 @@ mod tests {
             c.ao.near_px = near;
             assert!(c.validate().is_err(), "near_px {near}");
         }
+        for (interleave, vpls, valid) in [(0, 512, false), (9, 512, false), (8, 64, true)] {
+            let mut c = ok;
+            (c.indirect.interleave, c.indirect.vpls) = (interleave, vpls);
+            assert_eq!(c.validate().is_ok(), valid, "interleave {interleave}");
+        }
+        // Every pixel of a block needs at least one VPL of its own.
+        let mut c = ok;
+        (c.indirect.interleave, c.indirect.vpls) = (4, 15);
+        assert!(c.validate().unwrap_err().to_string().contains("4x4"));
+        c.indirect.vpls = 0; // every RSM texel (with a small enough map)
+        c.rsm_size = 64;
+        assert!(c.validate().is_ok());
     }
 }

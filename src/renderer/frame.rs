@@ -91,6 +91,7 @@ pub fn frame_block(config: &RenderConfig, f: &FrameInputs<'_>) -> FrameBlock {
         vpl_count: ind.vpls,
         vpl_visibility: ind.visibility as u32,
         vpl_march_near_px: IndirectConfig::MARCH_NEAR_PX,
+        vpl_interleave: ind.interleave,
         // Exact equality: an unmoved camera reuses each history texel as is, decided here
         // rather than by a pixel threshold on eq 1, whose fp32 error grows with coordinates.
         camera_static: (view_proj == f.prev_view_proj) as u32,
