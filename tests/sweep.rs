@@ -174,3 +174,47 @@ fn unknown_keys_and_values_list_the_valid_ones() {
         "{stderr}"
     );
 }
+
+/// `--warmup converged`: three rotation limits of frames along the path before its time 0
+/// (here 3 x 4 on a one-second orbit), reported in sweep.md and per row in sweep.json.
+#[test]
+fn converged_warmup_runs_along_the_path() {
+    let out = tmp("sweep-converged");
+    let cache = tmp("cache-converged");
+    let run = ssgi()
+        .args(["sweep", "--scene", "cornell-box", "--size", "32x32"])
+        .args([
+            "--path",
+            "orbit:1s",
+            "--frames",
+            "2",
+            "--warmup",
+            "converged",
+        ])
+        .args([
+            "--rotation-limit",
+            "4",
+            "--rsm-size",
+            "64",
+            "--effects",
+            "ao",
+        ])
+        .args(["--vary", "temporal.reuse=on", "--out"])
+        .arg(&out)
+        .arg("--cache-dir")
+        .arg(&cache)
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&run.stderr);
+    assert!(run.status.success(), "sweep failed:\n{stderr}");
+    let md = std::fs::read_to_string(out.join("sweep.md")).unwrap();
+    assert!(
+        md.contains("after 12 warmup frames along the path before its time 0"),
+        "{md}"
+    );
+    let json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("sweep.json")).unwrap()).unwrap();
+    let row = &json["rows"][0];
+    assert!(row["warmup_settled"].is_boolean(), "{row}");
+    assert_eq!(json["header"]["warmup_along_path"], true);
+}

@@ -51,8 +51,7 @@ fn header(r: &TableReport) -> String {
          | | |\n|---|---|\n\
          | device | {} ({}) |\n| driver | {} |\n| Vulkan | {} |\n| resolution | {}x{} |\n\
          | frames shown | {} |\n\
-         | frames | {} measured per row ({:.2} s of the path at {} fps), after {} warmup frames at \
-         the path's first camera |\n\
+         | frames | {} measured per row ({:.2} s of the path at {} fps), after {} warmup frames {} |\n\
          | timing | median per-frame GPU time from timestamp queries, ms; fps = 1000 / ms |\n\
          | thesis | {} |\n\n",
         r.command,
@@ -71,6 +70,11 @@ fn header(r: &TableReport) -> String {
         r.frames as f32 / r.fps,
         r.fps,
         r.warmup,
+        if r.warmup_along_path {
+            "along the path before its time 0 (`--warmup converged`)"
+        } else {
+            "at the path's first camera"
+        },
         r.thesis_setup,
     );
     md += &format!(

@@ -4,7 +4,7 @@
 //! frame's buffers for the error columns.
 
 use super::metrics::Channels;
-use super::Report;
+use super::{warmup, Report};
 use crate::error::Result;
 use crate::frontend::progress::Progress;
 use crate::frontend::sink::FrameSink;
@@ -89,6 +89,11 @@ pub struct RunSpec<'a> {
     pub path: &'a CameraPath,
     pub frames: u32,
     pub warmup: u32,
+    /// Warm up along the path, over the `warmup` frames leading up to its time 0 (at negative
+    /// times: orbits and dollies are periodic, keyframe paths hold their first key), so the
+    /// cache enters the measured frames in its moving steady state; otherwise held at the
+    /// path's first camera. Either way the measured frames are the same.
+    pub warmup_along_path: bool,
     /// Frame i of the path is shown at i / fps seconds.
     pub fps: f32,
     /// Also read the buffers after the warmup frames (the reference row compares its last
@@ -119,6 +124,9 @@ pub struct Measured {
     pub last: LastFrame,
     /// The buffers after the warmup frames, when asked for.
     pub after_warmup: Option<LastFrame>,
+    /// Whether the effects' work counters had settled by the end of the warmup
+    /// (`warmup::settled` over its last two rotation limits of frames).
+    pub warmup_settled: bool,
 }
 
 /// The camera of the last frame of a `frames`-frame run along `path` at `fps`.
@@ -152,8 +160,14 @@ pub fn measure(
     let mut timings = Vec::with_capacity((spec.warmup + frames) as usize);
     let first = spec.path.camera_at(&base, &bounds, 0.0);
     sink.begin(spec.label);
-    for _ in 0..spec.warmup {
-        timings.extend(sink.frame(&mut renderer, &first)?);
+    for i in 0..spec.warmup {
+        let camera = if spec.warmup_along_path {
+            let before = (spec.warmup - i) as f32 / spec.fps;
+            spec.path.camera_at(&base, &bounds, -before)
+        } else {
+            first
+        };
+        timings.extend(sink.frame(&mut renderer, &camera)?);
         bar.inc();
     }
     let after_warmup = if spec.snapshot_after_warmup {
@@ -171,6 +185,16 @@ pub fn measure(
     timings.extend(renderer.finish()?);
     bar.finish();
     let last = read_frame(&mut renderer, camera)?;
+    let warmup_work: Vec<u64> = timings
+        .iter()
+        .filter(|t| t.frame < spec.warmup as u64)
+        .map(warmup::work)
+        .collect();
+    let warmup_settled = warmup::settled(
+        &warmup_work,
+        spec.config.temporal.rotation_limit.max(4) as usize,
+        spec.config.width as u64 * spec.config.height as u64,
+    );
     let config = serde_json::json!({
         "scene": renderer.scene.name,
         "path": spec.path.name(),
@@ -178,6 +202,8 @@ pub fn measure(
         "seconds": frames as f32 / spec.fps,
         "frames": frames,
         "warmup": spec.warmup,
+        "warmup_along_path": spec.warmup_along_path,
+        "warmup_settled": warmup_settled,
         "render": spec.config,
         "triangles": renderer.scene.mesh.triangle_count(),
         "device_type": ctx.info.device_type,
@@ -199,6 +225,7 @@ pub fn measure(
         report,
         last,
         after_warmup,
+        warmup_settled,
     })
 }
 

@@ -1,5 +1,6 @@
 //! What a table run was asked for, independent of the command line.
 
+use crate::bench::warmup::Warmup;
 use crate::renderer::config::Effects;
 use std::path::PathBuf;
 
@@ -7,9 +8,9 @@ use std::path::PathBuf;
 pub struct TableOptions {
     /// Render size (width, height).
     pub size: (u32, u32),
-    /// Frames measured per row along the path, after `warmup` frames at its first camera.
+    /// Frames measured per row along the path, after the warmup (`warmup::before_path`).
     pub frames: u32,
-    pub warmup: u32,
+    pub warmup: Warmup,
     /// Frame i of the path is shown at i / fps seconds.
     pub fps: f32,
     /// Camera path override (table-specific meaning; `None`: the table's default).

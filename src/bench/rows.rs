@@ -210,6 +210,8 @@ pub struct SceneRun<'a> {
     pub path: &'a CameraPath,
     pub frames: u32,
     pub warmup: u32,
+    /// Warm up along the path before its time 0 (`RunSpec::warmup_along_path`).
+    pub warmup_along_path: bool,
     pub fps: f32,
     pub progress: bool,
 }
@@ -238,6 +240,7 @@ pub fn measure_rows(
             path: &held,
             frames: REFERENCE_FRAMES,
             warmup: 1,
+            warmup_along_path: false,
             fps: run.fps,
             snapshot_after_warmup: true,
             progress: run.progress,
@@ -260,6 +263,7 @@ pub fn measure_rows(
                 path: run.path,
                 frames,
                 warmup: run.warmup,
+                warmup_along_path: run.warmup_along_path,
                 fps: run.fps,
                 snapshot_after_warmup: false,
                 progress: run.progress,

@@ -36,6 +36,8 @@ pub struct SweepRow {
     pub converged: BTreeMap<String, BufferError>,
     /// Per buffer: whether this row is on the Pareto front of (time, ground-truth error).
     pub pareto: BTreeMap<String, bool>,
+    /// The work counters had settled by the end of the warmup (`warmup::settled`).
+    pub warmup_settled: bool,
     #[serde(skip)]
     pub last: Option<LastFrame>,
 }
@@ -45,6 +47,8 @@ pub struct SweepSpec<'a> {
     pub path: &'a CameraPath,
     pub frames: u32,
     pub warmup: u32,
+    /// Warm up along the path before its time 0 (`RunSpec::warmup_along_path`).
+    pub warmup_along_path: bool,
     pub fps: f32,
     pub combinations: Vec<(Label, RenderConfig)>,
     pub progress: bool,
@@ -110,6 +114,7 @@ pub fn run(
                 path: spec.path,
                 frames,
                 warmup: spec.warmup,
+                warmup_along_path: spec.warmup_along_path,
                 fps: spec.fps,
                 snapshot_after_warmup: false,
                 progress: false,
@@ -129,6 +134,7 @@ pub fn run(
                     path: &held,
                     frames: REFERENCE_FRAMES,
                     warmup: 1,
+                    warmup_along_path: false,
                     fps: spec.fps,
                     snapshot_after_warmup: true,
                     progress: false,
@@ -169,6 +175,7 @@ pub fn run(
                 .map(|(b, e)| (b.name().to_string(), e))
                 .collect(),
             pareto: BTreeMap::new(),
+            warmup_settled: measured.warmup_settled,
             last: Some(measured.last),
         });
         bar.inc(1);

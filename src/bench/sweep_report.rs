@@ -21,6 +21,9 @@ pub struct SweepHeader {
     pub size: [u32; 2],
     pub frames: u32,
     pub warmup: u32,
+    /// The warmup ran along the path before its time 0 (`--warmup converged`), not held at
+    /// its first camera.
+    pub warmup_along_path: bool,
     /// Path time per frame: frame i at i / fps seconds.
     pub fps: f32,
     pub device: String,
@@ -97,7 +100,7 @@ pub fn markdown(
 ) -> String {
     let mut s = format!(
         "# Sweep: {} along `{}`\n\n`{}`\n\n{}x{}, {} measured frames ({:.2} s of the path at {} fps) \
-         after {} warmup frames; \
+         after {} warmup frames {}; \
          device {} (driver {}). Times are medians of per-frame GPU time over the measured \
          frames, all measured in this one process. Errors are of the last frame, against the \
          CPU ground truth (`ssgi reference`) and against the converged estimator of the same \
@@ -111,9 +114,28 @@ pub fn markdown(
         header.frames as f32 / header.fps,
         header.fps,
         header.warmup,
+        if header.warmup_along_path {
+            "along the path before its time 0 (`--warmup converged`: the moving steady state)"
+        } else {
+            "at the path's first camera"
+        },
         header.device,
         header.driver
     );
+    let unsettled: Vec<String> = rows
+        .iter()
+        .filter(|r| header.warmup_along_path && !r.warmup_settled)
+        .map(|r| {
+            let pairs: Vec<String> = r.label.iter().map(|(k, v)| format!("{k}={v}")).collect();
+            pairs.join(", ")
+        })
+        .collect();
+    if !unsettled.is_empty() {
+        s += &format!(
+            "**The work counters had not settled by the end of the warmup for:** {}.\n\n",
+            unsettled.join("; ")
+        );
+    }
     s += "## Ground truth\n\n| buffer | samples/pixel | standard error | bound (1/10 of smallest error) | met |\n|---|---|---|---|---|\n";
     for (b, q) in quality {
         s += &format!(

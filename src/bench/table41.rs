@@ -87,6 +87,8 @@ pub fn run(
         loaded.push((s, load(s, opts.assets.as_deref())?));
     }
     let base = super::rows::base_config(opts.size.0, opts.size.1, opts.effects);
+    let (warmup, warmup_along_path) =
+        super::warmup::before_path(opts.warmup, base.temporal.rotation_limit);
     let mut report = TableReport::new(
         Header {
             table: "thesis-4.1",
@@ -95,7 +97,8 @@ pub fn run(
             present_mode: sink.present_mode(),
             base_config: base,
             frames: opts.frames,
-            warmup: opts.warmup,
+            warmup,
+            warmup_along_path,
             fps: opts.fps,
         },
         SETUP,
@@ -110,7 +113,8 @@ pub fn run(
                 base,
                 path: &path,
                 frames: opts.frames,
-                warmup: opts.warmup,
+                warmup,
+                warmup_along_path,
                 fps: opts.fps,
                 progress: opts.progress,
             },

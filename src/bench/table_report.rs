@@ -153,6 +153,8 @@ pub struct TableReport {
     pub height: u32,
     pub frames: u32,
     pub warmup: u32,
+    /// The warmup ran along the path before its time 0 (`--warmup converged`).
+    pub warmup_along_path: bool,
     /// Path time per frame: frame i at i / fps seconds.
     pub fps: f32,
     /// The configuration every row starts from (rows change reuse, patterns, PCF).
@@ -175,6 +177,7 @@ pub struct Header<'a> {
     pub base_config: RenderConfig,
     pub frames: u32,
     pub warmup: u32,
+    pub warmup_along_path: bool,
     /// Path time per frame: frame i at i / fps seconds.
     pub fps: f32,
 }
@@ -223,6 +226,7 @@ impl TableReport {
             height: h.base_config.height,
             frames: h.frames,
             warmup: h.warmup,
+            warmup_along_path: h.warmup_along_path,
             fps: h.fps,
             base_config: h.base_config,
             reference: REFERENCE.to_string(),

@@ -131,6 +131,8 @@ pub fn run(
         loaded.push((w, path, path_name, scene));
     }
     let base = super::rows::base_config(opts.size.0, opts.size.1, opts.effects);
+    let (warmup, warmup_along_path) =
+        super::warmup::before_path(opts.warmup, base.temporal.rotation_limit);
     let mut report = TableReport::new(
         Header {
             table: "thesis-walkthroughs",
@@ -139,7 +141,8 @@ pub fn run(
             present_mode: sink.present_mode(),
             base_config: base,
             frames: opts.frames,
-            warmup: opts.warmup,
+            warmup,
+            warmup_along_path,
             fps: opts.fps,
         },
         SETUP,
@@ -163,7 +166,8 @@ pub fn run(
                 base,
                 path: &path,
                 frames: opts.frames,
-                warmup: opts.warmup,
+                warmup,
+                warmup_along_path,
                 fps: opts.fps,
                 progress: opts.progress,
             },

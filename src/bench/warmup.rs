@@ -38,6 +38,26 @@ pub fn parse_warmup(s: &str) -> std::result::Result<Warmup, String> {
     }
 }
 
+/// Rotation limits of path frames a `converged` warmup of a sweep or table renders before the
+/// measured frames: one cycle for the first pixels to converge, one for the work to repeat,
+/// one to check that it does (`settled` compares the last two).
+pub const STEADY_CYCLES: u32 = 3;
+
+/// The warmup of runs that must all measure the same frames (sweeps and tables compare every
+/// run's last frame with one ground truth): `Frames(n)` is n frames held at the path's first
+/// camera; `Converged` is the `STEADY_CYCLES` rotation limits of path leading up to its time
+/// 0, along the path (`RunSpec::warmup_along_path`), at most `MAX_CONVERGED_WARMUP` frames.
+/// Returns (frames, along the path).
+pub fn before_path(w: Warmup, rotation_limit: u32) -> (u32, bool) {
+    match w {
+        Warmup::Frames(n) => (n, false),
+        Warmup::Converged => (
+            (STEADY_CYCLES * rotation_limit.max(4)).min(MAX_CONVERGED_WARMUP),
+            true,
+        ),
+    }
+}
+
 /// How the warmup went, for the report.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
 pub struct Outcome {

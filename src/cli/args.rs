@@ -411,9 +411,11 @@ pub struct TableArgs {
     /// Frames measured per row along the camera path, at least 1.
     #[arg(long, default_value_t = 120, value_parser = parse_frame_count)]
     pub frames: u32,
-    /// Frames rendered first at the path's first camera and left out of the statistics.
-    #[arg(long, default_value_t = 10)]
-    pub warmup: u32,
+    /// Frames rendered first and left out of the statistics: N held at the path's first
+    /// camera, or `converged`: three rotation limits of frames along the path before its
+    /// time 0, so the measured frames see the cache's moving steady state.
+    #[arg(long, default_value = "10", value_parser = crate::bench::warmup::parse_warmup)]
+    pub warmup: Warmup,
     /// Frame rate of path time (frame i at i / fps seconds along the path).
     #[arg(long, default_value_t = crate::scene::path::DEFAULT_FPS, value_parser = parse_fps)]
     pub fps: f32,
@@ -554,10 +556,12 @@ pub struct SweepArgs {
     /// Frames measured per combination along the path, at least 1.
     #[arg(long, default_value_t = 60, value_parser = parse_frame_count)]
     pub frames: u32,
-    /// Frames at the path's first camera before measuring, so the cache reaches steady state
-    /// (default: the rotation limit + 4, every pattern accumulated once).
-    #[arg(long)]
-    pub warmup: Option<u32>,
+    /// Frames before measuring: N frames held at the path's first camera (default: the
+    /// rotation limit + 4, every pattern accumulated once), or `converged`: three rotation
+    /// limits of frames along the path before its time 0, so the cache enters the measured
+    /// frames in its moving steady state (reported per combination: settled or not).
+    #[arg(long, value_parser = crate::bench::warmup::parse_warmup)]
+    pub warmup: Option<Warmup>,
     /// KEY=V1,V2,...: a configuration key and its values (repeatable; every combination runs,
     /// the first --vary outermost). `ssgi sweep --list-keys` lists the keys.
     #[arg(long = "vary", value_name = "KEY=VALUES")]

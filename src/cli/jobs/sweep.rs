@@ -5,6 +5,7 @@ use crate::bench::measure::last_camera;
 use crate::bench::sweep::{run, SweepSpec};
 use crate::bench::sweep_keys::{combinations, help_table, parse_vary};
 use crate::bench::sweep_report::{maps_readme_text, write, SweepHeader};
+use crate::bench::warmup::{before_path, Warmup};
 use crate::cli::args::{Cli, SweepArgs};
 use crate::error::Result;
 use crate::reference::run::Session;
@@ -26,14 +27,15 @@ pub fn sweep(cli: &Cli, args: &SweepArgs) -> Result<()> {
     let base = args.scene.render_config();
     let combos = combinations(&base, &varies)?;
     let (scene, path) = load(cli, &args.scene)?;
-    let warmup = args.warmup.unwrap_or_else(|| {
-        combos
-            .iter()
-            .map(|(_, c)| c.temporal.rotation_limit)
-            .max()
-            .unwrap_or(36)
-            + 4
-    });
+    let longest_cycle = combos
+        .iter()
+        .map(|(_, c)| c.temporal.rotation_limit)
+        .max()
+        .unwrap_or(36);
+    let (warmup, warmup_along_path) = before_path(
+        args.warmup.unwrap_or(Warmup::Frames(longest_cycle + 4)),
+        longest_cycle,
+    );
     // The ground truth of the last frame, with the base configuration's AO definition (one
     // ground truth serves every combination, so the radius cannot vary).
     let camera = last_camera(&scene, &path, args.frames, args.scene.fps);
@@ -66,6 +68,7 @@ pub fn sweep(cli: &Cli, args: &SweepArgs) -> Result<()> {
         path: &path,
         frames: args.frames,
         warmup,
+        warmup_along_path,
         fps: args.scene.fps,
         combinations: combos,
         progress: true,
@@ -79,6 +82,7 @@ pub fn sweep(cli: &Cli, args: &SweepArgs) -> Result<()> {
         size: [w, h],
         frames: args.frames,
         warmup,
+        warmup_along_path,
         fps: args.scene.fps,
         device: ctx.info.name.clone(),
         driver: ctx.info.driver.clone(),

@@ -3,6 +3,7 @@
 
 use super::common::{context_options, finish};
 use crate::bench::markdown::WALKTHROUGH_LEGEND;
+use crate::bench::warmup::Warmup;
 use crate::bench::{output, table41, walkthrough, TableOptions};
 use crate::cli::args::{Cli, TableArgs, TableName};
 use crate::error::{Error, Result};
@@ -28,7 +29,11 @@ fn command_line() -> String {
 }
 
 pub fn table(cli: &Cli, args: &TableArgs) -> Result<()> {
-    if args.frames == 0 || args.frames > MAX_FRAMES || args.warmup > MAX_FRAMES {
+    let warmup_frames = match args.warmup {
+        Warmup::Frames(n) => n,
+        Warmup::Converged => 0,
+    };
+    if args.frames == 0 || args.frames > MAX_FRAMES || warmup_frames > MAX_FRAMES {
         return Err(Error::Config(format!(
             "--frames must be in 1..={MAX_FRAMES} and --warmup at most {MAX_FRAMES}"
         )));
