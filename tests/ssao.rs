@@ -856,3 +856,67 @@ fn ao_radius_follows_view_depth_across_the_image() {
     }
     common::assert_clean(&ctx);
 }
+
+/// AO and shadows work from the reprojection's compacted pixel list: after a camera step, with
+/// every accumulation stage present (converged, accumulating, new), each pass computes exactly
+/// as many pixels as its state image marks new or accumulating (refresh off, so no tile adds
+/// to the count), the three lanes listed in one dispatch.
+#[test]
+fn pixel_list_holds_exactly_the_pixels_that_need_work() {
+    let ctx = common::context();
+    let size = 64;
+    let mut r = renderer(
+        &ctx,
+        cornell_box(),
+        RenderConfig {
+            pcf: Pcf::NINE,
+            effects: Effects::ALL,
+            ..config(size, no_refresh(), AoConfig::default())
+        },
+    );
+    let c0 = r.scene.camera;
+    for _ in 0..40 {
+        r.render_frame(&c0).unwrap();
+    }
+    // A step, a few frames to accumulate, another step: converged, accumulating and new
+    // pixels side by side.
+    let step = |k: f32| Camera {
+        position: c0.position + Vec3::new(0.05 * k, 0.0, 0.0),
+        target: c0.target + Vec3::new(0.05 * k, 0.0, 0.0),
+        ..c0
+    };
+    let mut timings: Vec<FrameTiming> = Vec::new();
+    for camera in [step(1.0), step(1.0), step(1.0), step(2.0)] {
+        timings.extend(r.render_frame(&camera).unwrap());
+    }
+    timings.extend(r.finish().unwrap());
+    let last = timings.last().unwrap();
+    for (id, counter) in [
+        (EffectId::Ao, "ssao_computed_pixels"),
+        (EffectId::Direct, "shadow_computed_pixels"),
+    ] {
+        let state = r.read_state(id).unwrap();
+        let mut by_state = [0u64; 5];
+        for y in 0..size {
+            for x in 0..size {
+                by_state[(state.texel(x, y)[0] as usize).min(4)] += 1;
+            }
+        }
+        // STATE_ACCUMULATING = 1, STATE_NEW = 2 (shaders/include/temporal.glsl).
+        let needing_work = by_state[1] + by_state[2];
+        let computed = last
+            .counters
+            .iter()
+            .find(|(n, _)| *n == counter)
+            .map(|c| c.1)
+            .unwrap();
+        eprintln!("{id:?}: states {by_state:?}, computed {computed}");
+        assert!(
+            by_state[0] > 0 && by_state[1] > 0 && by_state[2] > 0,
+            "{by_state:?}"
+        );
+        assert_eq!(computed, needing_work, "{id:?}: states {by_state:?}");
+    }
+    drop(r);
+    common::assert_clean(&ctx);
+}

@@ -13,6 +13,7 @@ use crate::passes::compute::{ComputePass, Dispatch};
 use crate::passes::decl::{Bind, Slot, Use};
 use crate::passes::{PassId, PassLayout};
 use crate::renderer::config::RenderConfig;
+use crate::renderer::counters::PIXELS_DISPATCH_OFFSET;
 use crate::renderer::effect::{self, TemporalEffect};
 use crate::renderer::targets::{Target, Targets, AO_FORMAT};
 use crate::renderer::temporal::random_vectors;
@@ -63,7 +64,7 @@ fn layouts() -> Vec<PassLayout> {
     vec![
         ComputePass::layout(
             PassId::Ssao,
-            &shaders::SSAO_ACCUMULATE_COMP_BLOCKS,
+            &shaders::SSAO_ACCUMULATE_COMP_PIXELS,
             ACCUMULATE,
         ),
         ComputePass::layout(
@@ -116,7 +117,7 @@ impl AoEffect {
             Access::ComputeSampledRead,
         )?;
         let (module, binds) = if reuse {
-            (&shaders::SSAO_ACCUMULATE_COMP_BLOCKS, ACCUMULATE)
+            (&shaders::SSAO_ACCUMULATE_COMP_PIXELS, ACCUMULATE)
         } else {
             (&shaders::SSAO_FULL_COMP, FULL)
         };
@@ -251,7 +252,12 @@ impl Effect for AoEffect {
         let push = self.push.to_bytes();
         // The every-pixel baseline has no work list and no push constants.
         let (push, dispatch): (&[u8], _) = if self.reuse {
-            (&push, Dispatch::Indirect { offset: 0 })
+            (
+                &push,
+                Dispatch::Indirect {
+                    offset: PIXELS_DISPATCH_OFFSET,
+                },
+            )
         } else {
             (&[], every_pixel(info))
         };

@@ -14,6 +14,7 @@ use crate::passes::compute::{ComputePass, Dispatch};
 use crate::passes::decl::{Bind, Slot, Use};
 use crate::passes::{PassId, PassLayout};
 use crate::renderer::config::RenderConfig;
+use crate::renderer::counters::PIXELS_DISPATCH_OFFSET;
 use crate::renderer::effect::{self, TemporalEffect};
 use crate::renderer::pcf::PcfKernel;
 use crate::renderer::targets::{Target, Targets, AO_FORMAT, DIRECT_FORMAT};
@@ -66,7 +67,7 @@ fn layouts() -> Vec<PassLayout> {
         ComputePass::layout(PassId::Shadow, &shaders::SHADOW_FULL_COMP, SHADOW_FULL),
         ComputePass::layout(
             PassId::Shadow,
-            &shaders::SHADOW_ACCUMULATE_COMP_BLOCKS,
+            &shaders::SHADOW_ACCUMULATE_COMP_PIXELS,
             SHADOW_ACCUMULATE,
         ),
         ComputePass::layout(
@@ -124,7 +125,7 @@ impl DirectEffect {
                     s.ctx,
                     s.pool,
                     PassId::Shadow,
-                    &shaders::SHADOW_ACCUMULATE_COMP_BLOCKS,
+                    &shaders::SHADOW_ACCUMULATE_COMP_PIXELS,
                     SHADOW_ACCUMULATE,
                 )?,
                 refresh: ComputePass::new(
@@ -287,7 +288,9 @@ impl Effect for DirectEffect {
                 &reuse.accumulate,
                 &reuse.direct_from_history,
                 &push,
-                Dispatch::Indirect { offset: 0 },
+                Dispatch::Indirect {
+                    offset: PIXELS_DISPATCH_OFFSET,
+                },
             ),
             None => (&self.shadow_full, &self.direct, &[], every_pixel(info)),
         };
