@@ -61,8 +61,9 @@ void main() {
     barrier();
 #ifdef FIXUP
     uint i = gl_GlobalInvocationID.x;
-    bool in_range = i < counters.listed_pixels;
-    ivec2 pixel = in_range ? listed_pixel(i) : ivec2(0);
+    bool in_range = i < counters.fixup_pixels;
+    uint packed = in_range ? counters.data[counters.max_blocks + i] : 0u;
+    ivec2 pixel = ivec2(packed & 0xffffu, packed >> 16);
 #else
     ivec2 pixel = block_pixel(gl_WorkGroupID.x, gl_LocalInvocationID.xy);
     bool in_range = !outside_frame(pixel);

@@ -64,9 +64,9 @@ void main() {
     bool discarded = weight_sum <= 0.0;
     imageStore(discard_mask, pixel, uvec4(discarded ? 1u : 0u));
     if (discarded) {
-        uint slot = atomicAdd(counters.listed_pixels, 1u);
+        uint slot = atomicAdd(counters.fixup_pixels, 1u);
         counters.data[counters.max_blocks + slot] = uint(pixel.x) | (uint(pixel.y) << 16);
-        if (slot % 64u == 0u) atomicAdd(counters.pixels_dispatch_x, 1u);
+        if (slot % 64u == 0u) atomicAdd(counters.fixup_dispatch_x, 1u);
         return;
     }
     merge(pixel, imageLoad(history, pixel), sum / weight_sum, false);

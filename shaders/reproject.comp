@@ -4,10 +4,7 @@
 // world-position and normal histories (eqs 2-3, FACING_ACCEPT) are read and computed once;
 // then each effect (a "lane": its history, moments, state, counters and push constants)
 // resamples its own history with that result, gets its per-pixel state, and lists its work
-// (the effect pass's indirect dispatch): the blocks holding pixels that need work, or, for a
-// lane with `list pixels` set, the new and accumulating pixels themselves, compacted per group
-// (one atomic per group reserves its run of the list) so the effect's pass has no idle
-// invocations.
+// blocks (the effect pass's indirect dispatch).
 //
 // LANES (1-3) is the number of temporal effects the renderer was built with, in registry
 // order; a lane whose effect does not reproject this frame has `active` 0 and is left alone.
@@ -53,7 +50,7 @@ layout(push_constant) uniform Reproject {
     uvec4 refresh_rect_0; // lane k's refresh tile (x0, y0, x1, y1) [px]; empty = none
     uvec4 refresh_rect_1;
     uvec4 refresh_rect_2;
-    uvec4 lane_0;         // lane k: (active, history_valid, log2 of the work-block side, list pixels)
+    uvec4 lane_0;         // lane k: (active, history_valid, log2 of the work-block side, 0)
     uvec4 lane_1;
     uvec4 lane_2;
 } lanes;
@@ -79,12 +76,6 @@ struct Reprojected {
 // with no history, per lane.
 shared uint quadrant_mask[LANES];
 shared uint group_disoccluded[LANES];
-// Pixels of this group in each lane's pixel list, and where the group's run starts.
-shared uint group_listed[LANES];
-shared uint group_base[LANES];
-
-// No slot in the pixel list.
-const uint NO_SLOT = 0xffffffffu;
 
 bool tap_valid(ivec2 t, vec3 p, vec3 n, float eps) {
     if (outside_frame(t)) return false;
@@ -185,8 +176,6 @@ bool needs_work(uint state) {
         imageStore(moments_cur_##k, pixel, moments);                                           \
         imageStore(state_out_##k, pixel, uvec4(state));                                        \
         if (needs_work(state)) atomicOr(quadrant_mask[k], quadrant_bit);                       \
-        if (lanes.lane_##k.w != 0u && (state == STATE_NEW || state == STATE_ACCUMULATING))     \
-            list_slot[k] = atomicAdd(group_listed[k], 1u);                                     \
     }
 
 // Work block `q` of this group in the lane's list: 16x16 blocks are the whole group (q = 0
@@ -204,17 +193,8 @@ uint listed_quadrants(uint mask, uint shift) {
     if (lanes.lane_##k.x != 0u) {                                                              \
         if (group_disoccluded[k] > 0u)                                                         \
             atomicAdd(counters_##k.disoccluded_pixels, group_disoccluded[k]);                  \
-        uint n = group_listed[k];                                                              \
-        if (n > 0u) {                                                                          \
-            uint base = atomicAdd(counters_##k.listed_pixels, n);                              \
-            group_base[k] = base;                                                              \
-            /* The list's 64-pixel groups that start inside this run. */                       \
-            uint groups = (base + n + 63u) / 64u - (base + 63u) / 64u;                         \
-            if (groups > 0u) atomicAdd(counters_##k.pixels_dispatch_x, groups);                \
-        }                                                                                      \
         uint shift = lanes.lane_##k.z;                                                         \
-        /* A pixel-listed lane's pass needs no blocks (its refresh has its own dispatch). */   \
-        uint mask = lanes.lane_##k.w != 0u ? 0u : listed_quadrants(quadrant_mask[k], shift);   \
+        uint mask = listed_quadrants(quadrant_mask[k], shift);                                 \
         for (uint q = 0u; q < 4u; ++q) {                                                       \
             if ((mask & (1u << q)) == 0u) continue;                                            \
             uvec2 b = listed_block(q, shift);                                                  \
@@ -227,11 +207,8 @@ void main() {
     if (gl_LocalInvocationIndex < uint(LANES)) {
         quadrant_mask[gl_LocalInvocationIndex] = 0u;
         group_disoccluded[gl_LocalInvocationIndex] = 0u;
-        group_listed[gl_LocalInvocationIndex] = 0u;
     }
     barrier();
-    uint list_slot[LANES];
-    for (int k = 0; k < LANES; ++k) list_slot[k] = NO_SLOT;
     ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
     if (!outside_frame(pixel)) {
         Reprojected r = reproject(pixel);
@@ -255,16 +232,4 @@ void main() {
         LANE_LIST(2)
 #endif
     }
-    barrier();
-    uint packed = uint(pixel.x) | (uint(pixel.y) << 16);
-    if (list_slot[0] != NO_SLOT)
-        counters_0.data[counters_0.max_blocks + group_base[0] + list_slot[0]] = packed;
-#if LANES > 1
-    if (list_slot[1] != NO_SLOT)
-        counters_1.data[counters_1.max_blocks + group_base[1] + list_slot[1]] = packed;
-#endif
-#if LANES > 2
-    if (list_slot[2] != NO_SLOT)
-        counters_2.data[counters_2.max_blocks + group_base[2] + list_slot[2]] = packed;
-#endif
 }

@@ -1,11 +1,11 @@
 #version 460
-// PCF soft shadows with temporal reuse (Lin 2013 section 3.4). `pixels`: over the pixel list the
-// reprojection compacted (the new and accumulating pixels, 64 per workgroup), one disc pattern
-// (patterns.glsl) per pixel, merged into the history (temporal.glsl). `refresh`: one workgroup per pixel
+// PCF soft shadows with temporal reuse (Lin 2013 section 3.4). `blocks`: over the 8x8 blocks
+// the reprojection listed, one disc pattern (patterns.glsl) per pixel that is new or
+// accumulating, merged into the history (temporal.glsl). `refresh`: one workgroup per pixel
 // of the refresh tile (refresh.glsl) recomputes it as the mean of every pattern up to the
 // rotation limit, the estimator accumulation converges to, blended in along the tile's feather
-// ramp (refresh_weight); it runs after `pixels`, whose list holds no refresh pixel.
-// @permutation pixels: PIXELS
+// ramp (refresh_weight); it runs after `blocks`, which leaves refresh pixels alone.
+// @permutation blocks: BLOCKS
 // @permutation refresh: REFRESH
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_samplerless_texture_functions : require
@@ -53,26 +53,27 @@ void main() {
     atomicAdd(counters.refresh_evaluations, limit);
 }
 #else
-layout(local_size_x = 64) in;
+layout(local_size_x = 8, local_size_y = 8) in;
 
 shared uint group_computed;
 
 void main() {
     if (gl_LocalInvocationIndex == 0u) group_computed = 0u;
     barrier();
-    // The reprojection listed exactly the new and accumulating pixels.
-    uint i = gl_GlobalInvocationID.x;
-    if (i < counters.listed_pixels) {
-        ivec2 pixel = listed_pixel(i);
-        vec3 p = texelFetch(g_position, pixel, 0).xyz;
-        vec3 n = texelFetch(g_normal, pixel, 0).xyz;
-        vec4 h = imageLoad(history, pixel);
-        vec4 m = imageLoad(moments, pixel);
-        float fresh = shadow_visibility(p, n, h.a, pixel);
-        vec2 result = accumulate(h.r, h.a, fresh, m);
-        imageStore(history, pixel, vec4(clamp(result.x, 0.0, 1.0), 0.0, 0.0, result.y));
-        imageStore(moments, pixel, m);
-        atomicAdd(group_computed, 1u);
+    ivec2 pixel = block_pixel(gl_WorkGroupID.x, gl_LocalInvocationID.xy);
+    if (!outside_frame(pixel)) {
+        uint state = imageLoad(state_in, pixel).r;
+        if (state == STATE_NEW || state == STATE_ACCUMULATING) {
+            vec3 p = texelFetch(g_position, pixel, 0).xyz;
+            vec3 n = texelFetch(g_normal, pixel, 0).xyz;
+            vec4 h = imageLoad(history, pixel);
+            vec4 m = imageLoad(moments, pixel);
+            float fresh = shadow_visibility(p, n, h.a, pixel);
+            vec2 result = accumulate(h.r, h.a, fresh, m);
+            imageStore(history, pixel, vec4(clamp(result.x, 0.0, 1.0), 0.0, 0.0, result.y));
+            imageStore(moments, pixel, m);
+            atomicAdd(group_computed, 1u);
+        }
     }
     barrier();
     if (gl_LocalInvocationIndex == 0u && group_computed > 0u)

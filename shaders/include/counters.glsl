@@ -4,13 +4,11 @@
 //   dispatch_x, _y, _z        work blocks listed (indirect dispatch x), y = z = 1
 //   disoccluded_pixels        pixels that failed eq 3 (or had no history)
 //   computed_pixels           pixels the effect evaluated (low-resolution ones for half res)
-//   listed_pixels             pixels listed one by one: the full-resolution fix-ups of
-//                             half-resolution indirect light; the new and accumulating pixels
-//                             of AO and shadows (compacted by the reprojection)
-//   max_blocks                size of the block list; the pixel list follows it in `data`
-//   pixels_dispatch_x, _y, _z ceil(listed_pixels / 64), y = z = 1
+//   fixup_pixels              full-resolution fix-ups (half-resolution indirect light)
+//   max_blocks                size of the block list; the fix-up list follows it in `data`
+//   fixup_dispatch_x, _y, _z  ceil(fixup_pixels / 64), y = z = 1
 //   refresh_evaluations       pattern evaluations of the refresh tile (every pattern counts)
-//   data[]                    blocks (x | y << 16), then listed pixels (x | y << 16)
+//   data[]                    blocks (x | y << 16), then fix-up pixels (x | y << 16)
 // COUNTERS_MEMBERS lets a pass that fills several effects' lists (the reprojection) declare
 // one block per effect with the same layout.
 #ifndef COUNTERS_GLSL
@@ -22,11 +20,11 @@
     uint dispatch_z;                                                                           \
     uint disoccluded_pixels;                                                                   \
     uint computed_pixels;                                                                      \
-    uint listed_pixels;                                                                        \
+    uint fixup_pixels;                                                                         \
     uint max_blocks;                                                                           \
-    uint pixels_dispatch_x;                                                                    \
-    uint pixels_dispatch_y;                                                                    \
-    uint pixels_dispatch_z;                                                                    \
+    uint fixup_dispatch_x;                                                                     \
+    uint fixup_dispatch_y;                                                                     \
+    uint fixup_dispatch_z;                                                                     \
     uint refresh_evaluations;                                                                  \
     uint data[];
 
@@ -37,14 +35,6 @@
 layout(set = 1, binding = COUNTERS_BINDING, std430) buffer Counters {
     COUNTERS_MEMBERS
 } counters;
-#endif
-
-#ifndef COUNTERS_LANES
-// Full-resolution pixel `i` of the pixel list (i < counters.listed_pixels).
-ivec2 listed_pixel(uint i) {
-    uint packed = counters.data[counters.max_blocks + i];
-    return ivec2(packed & 0xffffu, packed >> 16);
-}
 #endif
 
 #endif // COUNTERS_GLSL

@@ -13,7 +13,6 @@ use crate::passes::compute::{ComputePass, Dispatch};
 use crate::passes::decl::{Bind, Slot, Use};
 use crate::passes::{PassId, PassLayout};
 use crate::renderer::config::RenderConfig;
-use crate::renderer::counters::PIXELS_DISPATCH_OFFSET;
 use crate::renderer::effect::{self, TemporalEffect};
 use crate::renderer::targets::{Target, Targets, AO_FORMAT};
 use crate::renderer::temporal::random_vectors;
@@ -64,7 +63,7 @@ fn layouts() -> Vec<PassLayout> {
     vec![
         ComputePass::layout(
             PassId::Ssao,
-            &shaders::SSAO_ACCUMULATE_COMP_PIXELS,
+            &shaders::SSAO_ACCUMULATE_COMP_BLOCKS,
             ACCUMULATE,
         ),
         ComputePass::layout(
@@ -117,7 +116,7 @@ impl AoEffect {
             Access::ComputeSampledRead,
         )?;
         let (module, binds) = if reuse {
-            (&shaders::SSAO_ACCUMULATE_COMP_PIXELS, ACCUMULATE)
+            (&shaders::SSAO_ACCUMULATE_COMP_BLOCKS, ACCUMULATE)
         } else {
             (&shaders::SSAO_FULL_COMP, FULL)
         };
@@ -252,12 +251,7 @@ impl Effect for AoEffect {
         let push = self.push.to_bytes();
         // The every-pixel baseline has no work list and no push constants.
         let (push, dispatch): (&[u8], _) = if self.reuse {
-            (
-                &push,
-                Dispatch::Indirect {
-                    offset: PIXELS_DISPATCH_OFFSET,
-                },
-            )
+            (&push, Dispatch::Indirect { offset: 0 })
         } else {
             (&[], every_pixel(info))
         };

@@ -14,7 +14,6 @@ use crate::passes::compute::{ComputePass, Dispatch};
 use crate::passes::decl::{Bind, Slot, Use};
 use crate::passes::{PassId, PassLayout};
 use crate::renderer::config::RenderConfig;
-use crate::renderer::counters::PIXELS_DISPATCH_OFFSET;
 use crate::renderer::effect::{self, TemporalEffect};
 use crate::renderer::pcf::PcfKernel;
 use crate::renderer::targets::{Target, Targets, AO_FORMAT, DIRECT_FORMAT};
@@ -67,7 +66,7 @@ fn layouts() -> Vec<PassLayout> {
         ComputePass::layout(PassId::Shadow, &shaders::SHADOW_FULL_COMP, SHADOW_FULL),
         ComputePass::layout(
             PassId::Shadow,
-            &shaders::SHADOW_ACCUMULATE_COMP_PIXELS,
+            &shaders::SHADOW_ACCUMULATE_COMP_BLOCKS,
             SHADOW_ACCUMULATE,
         ),
         ComputePass::layout(
@@ -125,7 +124,7 @@ impl DirectEffect {
                     s.ctx,
                     s.pool,
                     PassId::Shadow,
-                    &shaders::SHADOW_ACCUMULATE_COMP_PIXELS,
+                    &shaders::SHADOW_ACCUMULATE_COMP_BLOCKS,
                     SHADOW_ACCUMULATE,
                 )?,
                 refresh: ComputePass::new(
@@ -288,9 +287,7 @@ impl Effect for DirectEffect {
                 &reuse.accumulate,
                 &reuse.direct_from_history,
                 &push,
-                Dispatch::Indirect {
-                    offset: PIXELS_DISPATCH_OFFSET,
-                },
+                Dispatch::Indirect { offset: 0 },
             ),
             None => (&self.shadow_full, &self.direct, &[], every_pixel(info)),
         };

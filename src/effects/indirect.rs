@@ -14,7 +14,7 @@ use crate::passes::compute::{ComputePass, Dispatch};
 use crate::passes::decl::{Bind, Slot, Use};
 use crate::passes::{PassId, PassLayout};
 use crate::renderer::config::RenderConfig;
-use crate::renderer::counters::PIXELS_DISPATCH_OFFSET;
+use crate::renderer::counters::FIXUP_DISPATCH_OFFSET;
 use crate::renderer::effect::{self, TemporalEffect};
 use crate::renderer::targets::{Target, Targets, STATE_FORMAT};
 use crate::renderer::temporal::Sampling;
@@ -295,7 +295,7 @@ impl Effect for IndirectEffect {
                 run(
                     &h.fixup,
                     Dispatch::Indirect {
-                        offset: PIXELS_DISPATCH_OFFSET,
+                        offset: FIXUP_DISPATCH_OFFSET,
                     },
                 );
             }

@@ -77,8 +77,6 @@ pub struct LaneFrame {
     pub history_valid: bool,
     /// log2 of the effect's work-block side.
     pub block_shift: u32,
-    /// List the work pixels one by one (`Listing::Pixels`) instead of the blocks.
-    pub list_pixels: bool,
     /// Refresh tile (x0, y0, x1, y1) [px]; empty = none.
     pub refresh_rect: [u32; 4],
 }
@@ -87,12 +85,7 @@ pub struct LaneFrame {
 pub fn push(lanes: &[LaneFrame]) -> ReprojectPush {
     let lane = |k: usize| {
         lanes.get(k).map_or([0; 4], |l| {
-            [
-                l.active as u32,
-                l.history_valid as u32,
-                l.block_shift,
-                l.list_pixels as u32,
-            ]
+            [l.active as u32, l.history_valid as u32, l.block_shift, 0]
         })
     };
     let rect = |k: usize| lanes.get(k).map_or([0; 4], |l| l.refresh_rect);
@@ -205,10 +198,9 @@ mod tests {
             active: true,
             history_valid: true,
             block_shift: 4,
-            list_pixels: true,
             refresh_rect: [1, 2, 3, 4],
         }]);
-        assert_eq!(p.lane_0, [1, 1, 4, 1]);
+        assert_eq!(p.lane_0, [1, 1, 4, 0]);
         assert_eq!(p.refresh_rect_0, [1, 2, 3, 4]);
         assert_eq!(p.lane_1, [0; 4]);
         assert_eq!(p.lane_2, [0; 4]);

@@ -13,8 +13,8 @@ use std::sync::Arc;
 
 /// Bytes of the header before the work lists.
 const HEADER_BYTES: u64 = CountersHeader::SIZE as u64;
-/// Byte offset of the indirect dispatch arguments over the pixel list (64 pixels per group).
-pub const PIXELS_DISPATCH_OFFSET: u64 = CountersHeader::OFFSET_PIXELS_DISPATCH_X as u64;
+/// Byte offset of the fix-up pass's indirect dispatch arguments.
+pub const FIXUP_DISPATCH_OFFSET: u64 = CountersHeader::OFFSET_FIXUP_DISPATCH_X as u64;
 
 /// A header field an effect reports.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -23,8 +23,8 @@ pub enum Counter {
     Disoccluded,
     /// Pixels the effect evaluated (low-resolution ones at half resolution).
     Computed,
-    /// Pixels listed one by one (indirect light: the full-resolution fix-ups).
-    Listed,
+    /// Full-resolution fix-ups.
+    Fixup,
     /// Pattern evaluations spent on the refresh tile (each refreshed evaluation counts every
     /// pattern it averages).
     Refresh,
@@ -35,24 +35,24 @@ impl Counter {
         match self {
             Counter::Disoccluded => h.disoccluded_pixels,
             Counter::Computed => h.computed_pixels,
-            Counter::Listed => h.listed_pixels,
+            Counter::Fixup => h.fixup_pixels,
             Counter::Refresh => h.refresh_evaluations,
         }
     }
 }
 
-/// The device-side buffer: header, one entry per work block, then `pixels` entries for the
-/// pixel list.
+/// The device-side buffer: header, one entry per work block, then (when `fixups`) one entry
+/// per pixel for the fix-up list.
 pub fn create_gpu_buffer(
     ctx: &Arc<Context>,
     name: &str,
     max_blocks: u32,
-    pixels: u32,
+    fixups: u32,
 ) -> Result<Buffer> {
     Buffer::new(
         ctx,
         name,
-        HEADER_BYTES + (max_blocks as u64 + pixels as u64) * 4,
+        HEADER_BYTES + (max_blocks as u64 + fixups as u64) * 4,
         vk::BufferUsageFlags::STORAGE_BUFFER
             | vk::BufferUsageFlags::INDIRECT_BUFFER
             | vk::BufferUsageFlags::TRANSFER_DST
@@ -71,11 +71,11 @@ pub fn record_reset(rec: &Recorder<'_>, tracker: &mut Tracker, gpu: &Buffer, max
         dispatch_z: 1,
         disoccluded_pixels: 0,
         computed_pixels: 0,
-        listed_pixels: 0,
+        fixup_pixels: 0,
         max_blocks,
-        pixels_dispatch_x: 0,
-        pixels_dispatch_y: 1,
-        pixels_dispatch_z: 1,
+        fixup_dispatch_x: 0,
+        fixup_dispatch_y: 1,
+        fixup_dispatch_z: 1,
         refresh_evaluations: 0,
     };
     rec.update_buffer(gpu, &header.to_bytes());

@@ -13,24 +13,10 @@ use crate::vk::{Buffer, Context, Image, ImageDesc, Tracker};
 use ash::vk;
 use std::sync::Arc;
 
-/// How the reprojection hands an effect its work.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Listing {
-    /// The work blocks (side 2^block_shift) holding pixels that need work, one workgroup each:
-    /// for passes that need whole blocks (the half-resolution gather and its upsampling).
-    Blocks,
-    /// The new and accumulating pixels themselves, compacted per reprojection group into the
-    /// pixel list: 64 per workgroup, so no invocation idles where few pixels of a block need
-    /// work (after a small camera move, the thin bands along disocclusions).
-    Pixels,
-}
-
 /// What differs between effects.
 #[derive(Clone, Copy, Debug)]
 pub struct EffectKind {
     pub name: &'static str,
-    /// How the reprojection lists the work.
-    pub listing: Listing,
     /// log2 of the work-block side: 3 (8x8) or 4 (16x16).
     pub block_shift: u32,
     /// Largest side of the refresh tile (the thesis: 64 for SSAO and shadows, 16 for indirect
@@ -42,16 +28,8 @@ pub struct EffectKind {
     pub fixups: bool,
 }
 
-impl EffectKind {
-    /// Whether the counters buffer holds a pixel list (work pixels or fix-ups).
-    pub fn pixel_list(&self) -> bool {
-        self.fixups || self.listing == Listing::Pixels
-    }
-}
-
 pub const AO: EffectKind = EffectKind {
     name: "ao",
-    listing: Listing::Pixels,
     block_shift: 3,
     refresh_tile: 64,
     counters: &[
@@ -64,7 +42,6 @@ pub const AO: EffectKind = EffectKind {
 
 pub const SHADOW: EffectKind = EffectKind {
     name: "shadow",
-    listing: Listing::Pixels,
     block_shift: 3,
     refresh_tile: 64,
     counters: &[
@@ -76,12 +53,11 @@ pub const SHADOW: EffectKind = EffectKind {
 
 pub const INDIRECT: EffectKind = EffectKind {
     name: "indirect",
-    listing: Listing::Blocks,
     block_shift: 4,
     refresh_tile: 16,
     counters: &[
         ("indirect_computed_pixels", Counter::Computed),
-        ("indirect_fixup_pixels", Counter::Listed),
+        ("indirect_fixup_pixels", Counter::Fixup),
         ("indirect_refresh_evaluations", Counter::Refresh),
     ],
     fixups: true,
@@ -142,7 +118,7 @@ impl TemporalEffect {
         let side = 1u32 << kind.block_shift;
         // Blocks are listed by 16x16 reprojection groups, so count whole groups.
         let max_blocks = width.div_ceil(16) * height.div_ceil(16) * (16 / side) * (16 / side);
-        let list = if kind.pixel_list() { width * height } else { 0 };
+        let fixups = if kind.fixups { width * height } else { 0 };
         Ok(Self {
             kind,
             history: PingPong::new([
@@ -158,7 +134,7 @@ impl TemporalEffect {
                 ctx,
                 &format!("{}.counters", kind.name),
                 max_blocks,
-                list,
+                fixups,
             )?,
             max_blocks,
             schedule: RefreshSchedule::with_tile(width, height, tile),

@@ -8,7 +8,7 @@ use crate::error::Result;
 use crate::passes::decl::Resolve;
 use crate::passes::reproject::{LaneFrame, ReprojectPass, MAX_LANES};
 use crate::passes::PassId;
-use crate::renderer::effect::{Listing, TemporalEffect};
+use crate::renderer::effect::TemporalEffect;
 use crate::renderer::targets::Targets;
 use crate::vk::{Context, DescriptorPool};
 use std::sync::Arc;
@@ -100,7 +100,6 @@ impl Reprojection {
                 active: e.reprojects(info),
                 history_valid: push.history_valid != 0,
                 block_shift: t.kind.block_shift,
-                list_pixels: t.kind.listing == Listing::Pixels,
                 refresh_rect: push.refresh_rect,
             };
             count += 1;
