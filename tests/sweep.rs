@@ -14,20 +14,34 @@ fn tmp(name: &str) -> std::path::PathBuf {
     dir.join(name)
 }
 
+/// Run `ssgi ARGS --out <tmp>/NAME --cache-dir <tmp>/NAME-cache`; fails the test unless it
+/// succeeds. Returns the output directory.
+fn run_sweep(name: &str, args: &[&str]) -> std::path::PathBuf {
+    let out = tmp(name);
+    let run = ssgi()
+        .args(args)
+        .arg("--out")
+        .arg(&out)
+        .arg("--cache-dir")
+        .arg(tmp(&format!("{name}-cache")))
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&run.stderr);
+    assert!(run.status.success(), "sweep failed:\n{stderr}");
+    out
+}
+
 #[test]
 fn sweep_two_keys_by_two_values() {
-    let out = tmp("sweep");
-    let cache = tmp("cache");
-    let run = ssgi()
-        .args([
+    let out = run_sweep(
+        "sweep",
+        &[
             "--validation",
             "sweep",
             "--scene",
             "cornell-box",
             "--size",
             "32x32",
-        ])
-        .args([
             "--path",
             "static",
             "--frames",
@@ -36,16 +50,14 @@ fn sweep_two_keys_by_two_values() {
             "2",
             "--rsm-size",
             "64",
-        ])
-        .args(["--effects", "direct,ao", "--vary", "temporal.reuse=on,off"])
-        .args(["--vary", "ao.samples=8,16", "--out"])
-        .arg(&out)
-        .arg("--cache-dir")
-        .arg(&cache)
-        .output()
-        .unwrap();
-    let stderr = String::from_utf8_lossy(&run.stderr);
-    assert!(run.status.success(), "sweep failed:\n{stderr}");
+            "--effects",
+            "direct,ao",
+            "--vary",
+            "temporal.reuse=on,off",
+            "--vary",
+            "ao.samples=8,16",
+        ],
+    );
     for f in [
         "sweep.csv",
         "sweep.json",
@@ -54,7 +66,7 @@ fn sweep_two_keys_by_two_values() {
         "sweep_final.png",
         "sweep_ao.png",
     ] {
-        assert!(out.join(f).is_file(), "{f} missing; stderr:\n{stderr}");
+        assert!(out.join(f).is_file(), "{f} missing");
     }
     let readme = std::fs::read_to_string(out.join("README.md")).unwrap();
     assert!(readme.contains("--vary ao.samples=8,16"), "{readme}");
@@ -128,7 +140,7 @@ fn sweep_two_keys_by_two_values() {
         .args(["--frames", "4", "--out"])
         .arg(tmp("reference"))
         .arg("--cache-dir")
-        .arg(&cache)
+        .arg(tmp("sweep-cache"))
         .output()
         .unwrap();
     let stderr = String::from_utf8_lossy(&again.stderr);
@@ -179,34 +191,30 @@ fn unknown_keys_and_values_list_the_valid_ones() {
 /// (here 3 x 4 on a one-second orbit), reported in sweep.md and per row in sweep.json.
 #[test]
 fn converged_warmup_runs_along_the_path() {
-    let out = tmp("sweep-converged");
-    let cache = tmp("cache-converged");
-    let run = ssgi()
-        .args(["sweep", "--scene", "cornell-box", "--size", "32x32"])
-        .args([
+    let out = run_sweep(
+        "sweep-converged",
+        &[
+            "sweep",
+            "--scene",
+            "cornell-box",
+            "--size",
+            "32x32",
             "--path",
             "orbit:1s",
             "--frames",
             "2",
             "--warmup",
             "converged",
-        ])
-        .args([
             "--rotation-limit",
             "4",
             "--rsm-size",
             "64",
             "--effects",
             "ao",
-        ])
-        .args(["--vary", "temporal.reuse=on", "--out"])
-        .arg(&out)
-        .arg("--cache-dir")
-        .arg(&cache)
-        .output()
-        .unwrap();
-    let stderr = String::from_utf8_lossy(&run.stderr);
-    assert!(run.status.success(), "sweep failed:\n{stderr}");
+            "--vary",
+            "temporal.reuse=on",
+        ],
+    );
     let md = std::fs::read_to_string(out.join("sweep.md")).unwrap();
     assert!(
         md.contains("after 12 warmup frames along the path before its time 0"),
