@@ -90,7 +90,7 @@ pub struct RunSpec<'a> {
     pub frames: u32,
     pub warmup: u32,
     /// Warm up along the path, over the `warmup` frames leading up to its time 0 (at negative
-    /// times: orbits and dollies are periodic, keyframe paths hold their first key), so the
+    /// times: orbits and dollies are periodic, keyframe paths are walked backwards), so the
     /// cache enters the measured frames in its moving steady state; otherwise held at the
     /// path's first camera. Either way the measured frames are the same.
     pub warmup_along_path: bool,

@@ -226,11 +226,13 @@ fn check_keyframes(keys: &[Keyframe]) -> Result<(), String> {
 }
 
 /// Position and target `elapsed` seconds after the first keyframe. None only for an empty
-/// list.
+/// list. Before the first key (negative `elapsed`, a warmup along the path) the path is
+/// mirrored: the camera walks it backwards at the same speed, so a warmup sees the motion the
+/// measured frames will see and stays where the keyframes are valid (inside a building).
 fn interpolate(keys: &[Keyframe], elapsed: f32) -> Option<(Vec3, Vec3)> {
     let first = keys.first()?;
     let last = keys.last()?;
-    let time = first.time + elapsed.max(0.0);
+    let time = first.time + elapsed.abs();
     let pair = |k: &Keyframe| (Vec3::from(k.position), Vec3::from(k.target));
     // The segment [a, b] holding `time`; equal times (a cut) take the later key.
     let Some(i) = keys.windows(2).position(|w| time < w[1].time) else {
@@ -366,6 +368,9 @@ mod tests {
         assert!(at(3.0).abs_diff_eq(Vec3::new(1.0, 2.0, 0.0), 1e-6));
         // Held after the last keyframe.
         assert!(at(10.0).abs_diff_eq(Vec3::new(1.0, 2.0, 0.0), 1e-6));
+        // Walked backwards before the first (a warmup along the path).
+        assert!(at(-0.5).abs_diff_eq(at(0.5), 1e-6));
+        assert!(at(-2.0).abs_diff_eq(at(2.0), 1e-6));
     }
 
     #[test]
