@@ -19,6 +19,10 @@
 layout(set = 1, binding = 0) uniform texture2D g_position;
 layout(set = 1, binding = 1) uniform texture2D g_normal;
 layout(set = 1, binding = 2) uniform texture2D random_vectors;
+// ao_position_chain.comp's point-sampled levels 1-3 of g_position (far taps).
+layout(set = 1, binding = 7) uniform texture2D g_position_1;
+layout(set = 1, binding = 8) uniform texture2D g_position_2;
+layout(set = 1, binding = 9) uniform texture2D g_position_3;
 layout(set = 1, binding = 3, r32ui) uniform readonly uimage2D state_in;
 layout(set = 1, binding = 4, rgba32f) uniform image2D history;
 layout(set = 1, binding = 6, rgba32f) uniform image2D moments;

@@ -856,3 +856,59 @@ fn ao_radius_follows_view_depth_across_the_image() {
     }
     common::assert_clean(&ctx);
 }
+
+/// `--ao-position-mips 3`: every level texel holds the G-buffer position of the pixel at its
+/// centre (a CPU point sampling of the read-back G-buffer, clamped at the image's edge), and
+/// the AO whose far taps read them stays close to the exact taps' AO but is not the same
+/// image (so the levels are what the far taps read). 196 px: eq 8's far step is 49 px, which
+/// reads level 2, and the level sizes (98, 49, 25) are not all halves.
+#[test]
+fn position_levels_point_sample_the_gbuffer_and_keep_the_ao() {
+    let ctx = common::context();
+    let size = 196u32;
+    let no_reuse = TemporalConfig {
+        reuse: false,
+        ..Default::default()
+    };
+    let ao = |position_mips| AoConfig {
+        patterns: 8,
+        position_mips,
+        ..Default::default()
+    };
+    let mut exact = renderer(&ctx, cornell_box(), config(size, no_reuse, ao(0)));
+    run(&mut exact, 1);
+    let exact_ao = ao_values(&mut exact);
+    assert!(!exact.has_target(Target::AoPositionLevel1));
+    drop(exact);
+
+    let mut r = renderer(&ctx, cornell_box(), config(size, no_reuse, ao(3)));
+    run(&mut r, 1);
+    let pos = r.read(Target::GPosition).unwrap();
+    let levels = [
+        Target::AoPositionLevel1,
+        Target::AoPositionLevel2,
+        Target::AoPositionLevel3,
+    ];
+    for (l, target) in (1u32..).zip(levels) {
+        let img = r.read(target).unwrap();
+        let side = size.div_ceil(1 << l);
+        assert_eq!((img.width, img.height), (side, side), "level {l}");
+        for y in 0..side {
+            for x in 0..side {
+                let centre = |t: u32| (t * (1 << l) + (1 << (l - 1))).min(size - 1);
+                assert_eq!(
+                    img.texel(x, y),
+                    pos.texel(centre(x), centre(y)),
+                    "level {l} texel ({x}, {y})"
+                );
+            }
+        }
+    }
+    let mips_ao = ao_values(&mut r);
+    let error = rmse(&mips_ao, &exact_ao);
+    eprintln!("AO with position levels against exact taps: RMSE {error}");
+    assert!(error > 0.0, "far taps did not read the levels");
+    assert!(error < 0.01, "RMSE {error} against the exact taps");
+    drop(r);
+    common::assert_clean(&ctx);
+}

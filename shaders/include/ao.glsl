@@ -1,11 +1,35 @@
 // SSAO estimators. Both return occlusion in [0, 1] for one sampling pattern; `pattern` indexes
 // the pattern sequences of patterns.glsl (rotation and range scale, or the sphere's points).
-// Requires g_position and random_vectors to be declared by the including shader.
+// Requires g_position, g_position_1..3 (ao_position_chain.comp's levels) and random_vectors to
+// be declared by the including shader.
 #ifndef AO_GLSL
 #define AO_GLSL
 
 #include "frame.glsl"
 #include "patterns.glsl"
+
+// log2 of the tap distance, in pixels, below which a tap reads the full-resolution G-buffer;
+// each doubling beyond it reads one level coarser (XeGTAO's depth MIP offset, 3.3). A level-L
+// texel's position lies at most 2^(L-1) px from the tap, under 1/19 of the tap's distance, so
+// the tap's direction changes by at most about 3 degrees whatever the resolution.
+const float AO_MIP_OFFSET = 3.3;
+
+// Most steps per direction of the thesis estimator (AoConfig::directions_steps: 4 from 16
+// samples up, else 2).
+const uint AO_MAX_STEPS = 4u;
+
+// The G-buffer position a tap at `q_pixel`, `dist_px` pixels from the shaded pixel, reads:
+// the full-resolution image, or with --ao-position-mips a point-sampled level for far taps,
+// which keeps far taps of neighbouring pixels in a few cache lines.
+vec4 ao_tap_position(ivec2 q_pixel, float dist_px) {
+    uint mips = frame.ao_position_mips;
+    if (mips == 0u || dist_px < exp2(AO_MIP_OFFSET + 1.0))
+        return texelFetch(g_position, q_pixel, 0);
+    uint level = min(uint(log2(dist_px) - AO_MIP_OFFSET), mips);
+    if (level == 1u) return texelFetch(g_position_1, q_pixel >> 1, 0);
+    if (level == 2u) return texelFetch(g_position_2, q_pixel >> 2, 0);
+    return texelFetch(g_position_3, q_pixel >> 3, 0);
+}
 
 // Per-pixel rotation from the 4x4 random-vector texture (unit 2D vectors).
 vec2 pixel_rotation(ivec2 pixel) {
@@ -22,6 +46,7 @@ float ao_thesis(ivec2 pixel, vec3 p, vec3 n, uint pattern) {
     uint dirs = frame.ao_directions;
     uint steps = frame.ao_steps;
     float radius = frame.ao_radius;
+    float inv_radius = 1.0 / radius;
     // View depth (clip w of a perspective projection): a sphere's projected size follows the
     // depth along the view axis, not the distance, which is larger towards the image corners.
     float depth = max((frame.view_proj * vec4(p, 1.0)).w, 1e-30);
@@ -37,16 +62,24 @@ float ao_thesis(ivec2 pixel, vec3 p, vec3 n, uint pattern) {
     // The 4x4 random vectors perturb the pattern per pixel (the thesis's Figure 3.8 b).
     vec2 rot = rotate2(pixel_rotation(pixel), vec2(cos(angle), sin(angle)));
     vec2 center = vec2(pixel) + 0.5;
+    // Eq 8's steps are the same in every direction: computed once (pow is dear on a CPU
+    // device), at most AO_MAX_STEPS of them (AoConfig::directions_steps).
+    float step_px[AO_MAX_STEPS];
+    for (uint i = 0u; i < steps; ++i)
+        step_px[i] = ao_step_px(i, steps, near_px, far_px) * scale;
+    // Directions 2 pi d / dirs, each the previous one turned by 2 pi / dirs: one sin/cos pair
+    // per pixel instead of one per direction (the rounding this accumulates over even 1024
+    // directions is below 1e-4 of a radian).
+    vec2 turn = vec2(cos(TWO_PI / float(dirs)), sin(TWO_PI / float(dirs)));
+    vec2 dir = rot;
     float sum = 0.0;
-    for (uint d = 0u; d < dirs; ++d) {
-        float a = TWO_PI * float(d) / float(dirs);
-        vec2 dir = rotate2(vec2(cos(a), sin(a)), rot);
+    for (uint d = 0u; d < dirs; ++d, dir = rotate2(dir, turn)) {
         for (uint i = 0u; i < steps; ++i) {
-            float s = ao_step_px(i, steps, near_px, far_px) * scale; // eq 8
+            float s = step_px[i];
             ivec2 q_pixel = ivec2(floor(center + dir * s));
             if (outside_frame(q_pixel))
                 continue;
-            vec4 q = texelFetch(g_position, q_pixel, 0);
+            vec4 q = ao_tap_position(q_pixel, s);
             if (q.w == 0.0) continue;
             vec3 v = q.xyz - p;
             float d2 = dot(v, v);
@@ -54,8 +87,9 @@ float ao_thesis(ivec2 pixel, vec3 p, vec3 n, uint pattern) {
             // one pixel's footprint at any depth.
             if (d2 <= 1e-12 * depth * depth) continue;
             float len = sqrt(d2);
-            float x = len / radius;
-            sum += max(dot(n, v / len), 0.0) / (1.0 + frame.ao_atten_a * x + frame.ao_atten_b * x * x);
+            float x = len * inv_radius;
+            // max(n . v/|v|, 0) / D(x), with one division.
+            sum += max(dot(n, v), 0.0) / (len * (1.0 + frame.ao_atten_a * x + frame.ao_atten_b * x * x));
         }
     }
     return sum / float(dirs * steps);
@@ -80,10 +114,11 @@ float ao_crytek(ivec2 pixel, vec3 p, uint pattern) {
         vec4 clip = frame.view_proj * vec4(s, 1.0);
         if (clip.w <= 0.0) continue;
         vec2 uv = clip.xy / clip.w * 0.5 + 0.5;
-        ivec2 q_pixel = texel_of(uv * vec2(frame.size), vec2(frame.size));
+        vec2 q_screen = uv * vec2(frame.size);
+        ivec2 q_pixel = texel_of(q_screen, vec2(frame.size));
         if (outside_frame(q_pixel))
             continue;
-        vec4 q = texelFetch(g_position, q_pixel, 0);
+        vec4 q = ao_tap_position(q_pixel, distance(q_screen, vec2(pixel) + 0.5));
         if (q.w == 0.0) continue;
         float scene_depth = (frame.view_proj * vec4(q.xyz, 1.0)).w;
         float gap = clip.w - scene_depth;

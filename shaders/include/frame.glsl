@@ -42,6 +42,7 @@ layout(set = 0, binding = 0, std140) uniform Frame {
     uint ao_samples;           // crytek estimator: samples in the sphere
     uint ao_patterns;          // patterns per evaluation (1, or many for references)
     uint ao_estimator;         // 0 thesis, 1 crytek
+    uint ao_position_mips;     // far AO taps read point-sampled position levels up to this (0 = off)
     uint vpl_count;            // VPLs per gather (0 = every RSM texel)
     uint vpl_visibility;       // screen-space visibility test of each VPL (0/1)
     float vpl_march_near_px;   // nearest step of that visibility march [px]

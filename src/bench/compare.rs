@@ -10,7 +10,15 @@ use std::collections::BTreeMap;
 /// Pass groups whose summed per-frame time is compared.
 pub const GROUPS: &[(&str, &[PassId])] = &[
     ("reproject", &[PassId::Reproject]),
-    ("ao", &[PassId::Ssao, PassId::SsaoRefresh, PassId::Blur]),
+    (
+        "ao",
+        &[
+            PassId::AoPositionChain,
+            PassId::Ssao,
+            PassId::SsaoRefresh,
+            PassId::Blur,
+        ],
+    ),
     ("shadow", &[PassId::Shadow, PassId::ShadowRefresh]),
     ("direct", &[PassId::Direct]),
     (

@@ -7,7 +7,7 @@ use crate::cli::args::{
     parse_pattern_count, parse_vpls, AccumulateMode,
 };
 use crate::error::{Error, Result};
-use crate::renderer::config::{Accumulate, AoEstimator, Refresh};
+use crate::renderer::config::{Accumulate, AoConfig, AoEstimator, Refresh};
 use crate::renderer::frame::Pcf;
 use crate::renderer::RenderConfig;
 use clap::ValueEnum;
@@ -24,6 +24,7 @@ pub enum Key {
     AoEstimator,
     AoRadius,
     AoPatterns,
+    AoPositionMips,
     Reuse,
     Accumulate,
     Refresh,
@@ -40,11 +41,12 @@ pub enum Key {
 
 impl Key {
     /// Every key, in the order `help_table` lists them.
-    pub const ALL: [Key; 16] = [
+    pub const ALL: [Key; 17] = [
         Key::AoSamples,
         Key::AoEstimator,
         Key::AoRadius,
         Key::AoPatterns,
+        Key::AoPositionMips,
         Key::Reuse,
         Key::Accumulate,
         Key::Refresh,
@@ -66,6 +68,7 @@ impl Key {
             Key::AoEstimator => "ao.estimator",
             Key::AoRadius => "ao.radius",
             Key::AoPatterns => "ao.patterns",
+            Key::AoPositionMips => "ao.position_mips",
             Key::Reuse => "temporal.reuse",
             Key::Accumulate => "temporal.accumulate",
             Key::Refresh => "temporal.refresh",
@@ -87,6 +90,9 @@ impl Key {
             Key::AoEstimator => "SSAO estimator (--ao)",
             Key::AoRadius => "SSAO sampling radius, fraction of the scene's bounding radius",
             Key::AoPatterns => "SSAO patterns evaluated at once per frame",
+            Key::AoPositionMips => {
+                "far SSAO taps read position levels up to this; 0 = off (--ao-position-mips)"
+            }
             Key::Reuse => "reverse-reprojection reuse; off = no-reuse baseline (--reuse)",
             Key::Accumulate => {
                 "history merge, default parameter if none; mean alone caps at the rotation limit"
@@ -115,6 +121,7 @@ impl Key {
             Key::AoEstimator => "thesis|crytek",
             Key::AoRadius => "number in (0, 10]",
             Key::AoPatterns => "integer 1..=1024",
+            Key::AoPositionMips => "integer 0..=3",
             Key::Reuse | Key::Visibility | Key::HalfRes => "on|off",
             Key::Refresh => "feathered|on|hard|off",
             Key::RefreshBudget => "PERCENT% or fraction in (0, 100]",
@@ -198,6 +205,7 @@ pub fn apply(config: &mut RenderConfig, key: Key, value: &str) -> Result<()> {
         Setting::Count(n) => match key {
             Key::AoSamples => config.ao.samples = n,
             Key::AoPatterns => config.ao.patterns = n,
+            Key::AoPositionMips => config.ao.position_mips = n,
             Key::RotationLimit => config.temporal.rotation_limit = n,
             Key::Vpls => config.indirect.vpls = n,
             Key::Interleave => config.indirect.interleave = n,
@@ -354,6 +362,13 @@ impl Setting {
         match key {
             Key::AoSamples => count(4096),
             Key::AoPatterns => count(1024),
+            Key::AoPositionMips => match v.parse::<u32>() {
+                Ok(n) if n <= AoConfig::MAX_POSITION_MIPS => Ok(Setting::Count(n)),
+                _ => Err(format!(
+                    "not an integer in 0..={}",
+                    AoConfig::MAX_POSITION_MIPS
+                )),
+            },
             Key::RsmSize => count(crate::renderer::MAX_SIZE),
             Key::RotationLimit => parse_pattern_count(v).map(Setting::Count),
             Key::Vpls => parse_vpls(v).map(Setting::Count),
@@ -423,6 +438,7 @@ mod tests {
             }),
             (Key::AoRadius, "0.5", |c| c.ao.radius = 0.5),
             (Key::AoPatterns, "8", |c| c.ao.patterns = 8),
+            (Key::AoPositionMips, "2", |c| c.ao.position_mips = 2),
             (Key::Reuse, "off", |c| c.temporal.reuse = false),
             (Key::Accumulate, "ema:0.25", |c| {
                 c.temporal.accumulate = Accumulate::Ema { alpha: 0.25 }

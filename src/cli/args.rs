@@ -88,6 +88,10 @@ pub struct SceneArgs {
     /// SSAO samples per pattern (thesis: 8 directions x 4 steps for 32).
     #[arg(long, default_value_t = 32)]
     pub ao_samples: u32,
+    /// Far SSAO taps read point-sampled levels of the G-buffer position, up to this level
+    /// (0 = off: every tap reads the full-resolution G-buffer, the estimator as published).
+    #[arg(long, default_value_t = AoConfig::default().position_mips, value_parser = clap::value_parser!(u32).range(0..=AoConfig::MAX_POSITION_MIPS as i64))]
+    pub ao_position_mips: u32,
     /// How fresh estimates merge into the history: gated (running mean of the patterns,
     /// restarted on a change beyond --gate standard deviations), confidence (eqs 4-5 as the
     /// thesis writes them), ema, mean.
@@ -186,6 +190,7 @@ impl SceneArgs {
             ao: AoConfig {
                 estimator: self.ao_estimator,
                 samples: self.ao_samples,
+                position_mips: self.ao_position_mips,
                 ..AoConfig::default()
             },
             indirect: IndirectConfig {

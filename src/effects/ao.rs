@@ -1,7 +1,9 @@
 //! SSAO (Lin 2013 eqs 6-8, or Mittring's sphere). With reuse: an indirect dispatch over the
 //! blocks the reprojection listed, one pattern per pixel merged into the AO history (the
 //! gated running mean, or eqs 4-5), refresh tiles recomputed as the mean of every pattern. Without reuse: every pixel with a fixed
-//! pattern (or many patterns, for references), then the thesis's 5x5 Gaussian blur.
+//! pattern (or many patterns, for references), then the thesis's 5x5 Gaussian blur. With
+//! `--ao-position-mips`, a pass first writes point-sampled levels of the G-buffer position that
+//! far taps read.
 
 use super::effect::{
     every_pixel, refresh_dispatch, Effect, EffectId, FrameInfo, Recording, Registration, Setup,
@@ -14,7 +16,7 @@ use crate::passes::decl::{Bind, Slot, Use};
 use crate::passes::{PassId, PassLayout};
 use crate::renderer::config::RenderConfig;
 use crate::renderer::effect::{self, TemporalEffect};
-use crate::renderer::targets::{Target, Targets, AO_FORMAT};
+use crate::renderer::targets::{Target, Targets, AO_FORMAT, GBUFFER_COLOR_FORMATS};
 use crate::renderer::temporal::random_vectors;
 use crate::renderer::temporal::Sampling;
 use crate::shaders::{self, EffectPush};
@@ -27,6 +29,10 @@ const RANDOM: Slot = Slot::Own(0);
 /// Without reuse: this frame's AO, and its blur.
 const RAW: Slot = Slot::Own(1);
 const BLURRED: Slot = Slot::Own(2);
+/// Point-sampled levels 1-3 of the G-buffer position (far taps).
+const LEVEL1: Slot = Slot::Own(3);
+const LEVEL2: Slot = Slot::Own(4);
+const LEVEL3: Slot = Slot::Own(5);
 
 const ACCUMULATE: &[Bind] = &[
     Bind::new(0, Slot::GPosition, Use::Sampled),
@@ -36,6 +42,9 @@ const ACCUMULATE: &[Bind] = &[
     Bind::new(4, Slot::History, Use::StorageReadWrite),
     Bind::new(5, Slot::Counters, Use::WorkList),
     Bind::new(6, Slot::Moments, Use::StorageReadWrite),
+    Bind::new(7, LEVEL1, Use::Sampled),
+    Bind::new(8, LEVEL2, Use::Sampled),
+    Bind::new(9, LEVEL3, Use::Sampled),
 ];
 
 const FULL: &[Bind] = &[
@@ -44,6 +53,16 @@ const FULL: &[Bind] = &[
     Bind::new(2, RANDOM, Use::Sampled),
     Bind::new(3, RAW, Use::StorageWrite),
     Bind::new(4, Slot::Counters, Use::BufferReadWrite),
+    Bind::new(7, LEVEL1, Use::Sampled),
+    Bind::new(8, LEVEL2, Use::Sampled),
+    Bind::new(9, LEVEL3, Use::Sampled),
+];
+
+const CHAIN: &[Bind] = &[
+    Bind::new(0, Slot::GPosition, Use::Sampled),
+    Bind::new(1, LEVEL1, Use::StorageWrite),
+    Bind::new(2, LEVEL2, Use::StorageWrite),
+    Bind::new(3, LEVEL3, Use::StorageWrite),
 ];
 
 const BLUR: &[Bind] = &[
@@ -73,6 +92,11 @@ fn layouts() -> Vec<PassLayout> {
         ),
         ComputePass::layout(PassId::Ssao, &shaders::SSAO_FULL_COMP, FULL),
         ComputePass::layout(PassId::Blur, &shaders::BLUR_COMP, BLUR),
+        ComputePass::layout(
+            PassId::AoPositionChain,
+            &shaders::AO_POSITION_CHAIN_COMP,
+            CHAIN,
+        ),
     ]
 }
 
@@ -81,6 +105,9 @@ struct Sized {
     temporal: TemporalEffect,
     raw: Image,
     blurred: Image,
+    /// Levels 1-3 of the position chain (created whatever `position_mips` is: the SSAO passes
+    /// bind them either way, and they are small).
+    levels: [Image; 3],
 }
 
 pub struct AoEffect {
@@ -90,6 +117,8 @@ pub struct AoEffect {
     refresh: Option<ComputePass>,
     /// The no-reuse baseline's blur (single-pattern runs only; references are not blurred).
     blur: Option<ComputePass>,
+    /// Writes the position levels (`--ao-position-mips` above 0).
+    chain: Option<ComputePass>,
     random: Image,
     sized: Sized,
     push: EffectPush,
@@ -131,6 +160,17 @@ impl AoEffect {
         } else {
             None
         };
+        let chain = if s.config.ao.position_mips > 0 {
+            Some(ComputePass::new(
+                s.ctx,
+                s.pool,
+                PassId::AoPositionChain,
+                &shaders::AO_POSITION_CHAIN_COMP,
+                CHAIN,
+            )?)
+        } else {
+            None
+        };
         let refresh = if reuse {
             Some(ComputePass::new(
                 s.ctx,
@@ -147,6 +187,7 @@ impl AoEffect {
             ssao: ComputePass::new(s.ctx, s.pool, PassId::Ssao, module, binds)?,
             refresh,
             blur,
+            chain,
             random,
             sized: Self::create_sized(s.ctx, s.config)?,
             push: EffectPush::default(),
@@ -154,6 +195,21 @@ impl AoEffect {
     }
 
     fn create_sized(ctx: &Arc<Context>, c: &RenderConfig) -> Result<Sized> {
+        let level = |l: u32| {
+            let side = |n: u32| n.div_ceil(1 << l);
+            Image::new(
+                ctx,
+                &format!("ao.position_level{l}"),
+                ImageDesc {
+                    width: side(c.width),
+                    height: side(c.height),
+                    format: GBUFFER_COLOR_FORMATS[0],
+                    usage: vk::ImageUsageFlags::STORAGE
+                        | vk::ImageUsageFlags::SAMPLED
+                        | vk::ImageUsageFlags::TRANSFER_SRC,
+                },
+            )
+        };
         let image = |name: &str| {
             Image::new(
                 ctx,
@@ -172,13 +228,14 @@ impl AoEffect {
             temporal: TemporalEffect::new(ctx, effect::AO, c, Sampling::FullRes)?,
             raw: image("ao.raw")?,
             blurred: image("ao.blurred")?,
+            levels: [level(1)?, level(2)?, level(3)?],
         })
     }
 
     fn resources<'a>(
         &'a self,
         targets: &'a Targets,
-        own: &'a [[&'a Image; 2]; 3],
+        own: &'a [[&'a Image; 2]; 6],
     ) -> EffectResources<'a> {
         EffectResources {
             targets,
@@ -188,12 +245,16 @@ impl AoEffect {
         }
     }
 
-    fn own(&self) -> [[&Image; 2]; 3] {
+    fn own(&self) -> [[&Image; 2]; 6] {
         let s = &self.sized;
+        let [l1, l2, l3] = &s.levels;
         [
             [&self.random, &self.random],
             [&s.raw, &s.raw],
             [&s.blurred, &s.blurred],
+            [l1, l1],
+            [l2, l2],
+            [l3, l3],
         ]
     }
 }
@@ -217,6 +278,9 @@ impl Effect for AoEffect {
         }
         if let Some(b) = &self.blur {
             b.bind(ctx, &res)?;
+        }
+        if let Some(c) = &self.chain {
+            c.bind(ctx, &res)?;
         }
         Ok(())
     }
@@ -255,6 +319,16 @@ impl Effect for AoEffect {
         } else {
             (&[], every_pixel(info))
         };
+        if let Some(chain) = &self.chain {
+            let d = &self.sized.levels[0].desc;
+            let level1 = Dispatch::Pixels {
+                width: d.width,
+                height: d.height,
+            };
+            r.timed(PassId::AoPositionChain, |rec, tr| {
+                chain.record(rec, tr, info.frame, &res, &[], level1)
+            });
+        }
         r.timed(PassId::Ssao, |rec, tr| {
             self.ssao.record(rec, tr, info.frame, &res, push, dispatch)
         });
@@ -286,6 +360,10 @@ impl Effect for AoEffect {
         match target {
             Target::Ao => Some(self.term(parity).1),
             Target::State => Some(&self.sized.temporal.state),
+            // Only when the chain writes them (otherwise they hold nothing).
+            Target::AoPositionLevel1 if self.chain.is_some() => Some(&self.sized.levels[0]),
+            Target::AoPositionLevel2 if self.chain.is_some() => Some(&self.sized.levels[1]),
+            Target::AoPositionLevel3 if self.chain.is_some() => Some(&self.sized.levels[2]),
             _ => None,
         }
     }

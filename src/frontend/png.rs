@@ -66,7 +66,12 @@ pub fn visualize(target: Target, data: &ImageData, bounds: &Aabb) -> Vec<u8> {
         .iter()
         .flat_map(|t| {
             let rgb = match target {
-                Target::GPosition | Target::GPositionHistory | Target::RsmPosition => {
+                Target::GPosition
+                | Target::GPositionHistory
+                | Target::RsmPosition
+                | Target::AoPositionLevel1
+                | Target::AoPositionLevel2
+                | Target::AoPositionLevel3 => {
                     if t[3] == 0.0 {
                         [0.0; 3]
                     } else {

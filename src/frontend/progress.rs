@@ -1,13 +1,24 @@
-//! A progress bar that stays hidden for runs shorter than a second.
+//! Progress of long runs on stderr: a bar on a terminal that stays hidden for runs shorter
+//! than a second, and a plain line every 30 seconds otherwise (a log, CI, `nohup`), where a
+//! redrawn bar would be invisible or garbage.
 
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
+use std::io::IsTerminal;
 use std::time::{Duration, Instant};
+
+/// Seconds between two progress lines when stderr is not a terminal.
+const LINE_EVERY: Duration = Duration::from_secs(30);
 
 pub struct Progress {
     bar: ProgressBar,
     start: Instant,
     shown: bool,
     enabled: bool,
+    terminal: bool,
+    label: String,
+    total: u64,
+    done: u64,
+    last_line: Instant,
 }
 
 impl Progress {
@@ -19,19 +30,42 @@ impl Progress {
             bar.set_style(style.progress_chars("=> "));
         }
         bar.set_message(label.to_string());
+        let now = Instant::now();
         Self {
             bar,
-            start: Instant::now(),
+            start: now,
             shown: false,
             enabled,
+            terminal: std::io::stderr().is_terminal(),
+            label: label.to_string(),
+            total,
+            done: 0,
+            last_line: now,
         }
     }
 
     pub fn inc(&mut self) {
         self.bar.inc(1);
-        if self.enabled && !self.shown && self.start.elapsed() > Duration::from_secs(1) {
-            self.bar.set_draw_target(ProgressDrawTarget::stderr());
-            self.shown = true;
+        self.done += 1;
+        if !self.enabled {
+            return;
+        }
+        if self.terminal {
+            if !self.shown && self.start.elapsed() > Duration::from_secs(1) {
+                self.bar.set_draw_target(ProgressDrawTarget::stderr());
+                self.shown = true;
+            }
+        } else if self.last_line.elapsed() >= LINE_EVERY {
+            self.last_line = Instant::now();
+            let secs = self.start.elapsed().as_secs_f64();
+            eprintln!(
+                "{}: {}/{} frames, {:.0} s ({:.2} s per frame)",
+                self.label,
+                self.done,
+                self.total,
+                secs,
+                secs / self.done as f64
+            );
         }
     }
 

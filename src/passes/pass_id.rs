@@ -16,6 +16,8 @@ pub enum PassId {
     ShadowRefresh,
     /// Direct spot light times the shadow visibility.
     Direct,
+    /// Point-sampled levels of the G-buffer position for SSAO's far taps (--ao-position-mips).
+    AoPositionChain,
     /// Screen-space ambient occlusion.
     Ssao,
     /// The AO's refresh tile, every pattern, spread over threads.
@@ -35,13 +37,14 @@ pub enum PassId {
 }
 
 impl PassId {
-    pub const ALL: [PassId; 14] = [
+    pub const ALL: [PassId; 15] = [
         PassId::LightView,
         PassId::GBuffer,
         PassId::Reproject,
         PassId::Shadow,
         PassId::ShadowRefresh,
         PassId::Direct,
+        PassId::AoPositionChain,
         PassId::Ssao,
         PassId::SsaoRefresh,
         PassId::Blur,
@@ -60,6 +63,7 @@ impl PassId {
             PassId::ShadowRefresh => "shadow_refresh",
             PassId::Direct => "direct",
             PassId::Reproject => "reproject",
+            PassId::AoPositionChain => "ao_position_chain",
             PassId::Ssao => "ssao",
             PassId::SsaoRefresh => "ssao_refresh",
             PassId::Blur => "blur",

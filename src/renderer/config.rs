@@ -263,6 +263,9 @@ pub struct AoConfig {
     pub near_px: f32,
     /// Patterns evaluated at once (1 in normal runs; references use many).
     pub patterns: u32,
+    /// Far taps read point-sampled levels of the G-buffer position, up to this level (0: every
+    /// tap reads the full-resolution G-buffer, the estimator as published).
+    pub position_mips: u32,
 }
 
 impl Default for AoConfig {
@@ -274,11 +277,15 @@ impl Default for AoConfig {
             attenuation: [0.0, 1.0],
             near_px: 1.5,
             patterns: 1,
+            position_mips: 0,
         }
     }
 }
 
 impl AoConfig {
+    /// Most point-sampled position levels (`ao_position_chain.comp` writes levels 1-3).
+    pub const MAX_POSITION_MIPS: u32 = 3;
+
     /// Directions and steps per direction of the thesis estimator for `samples`.
     pub fn directions_steps(&self) -> (u32, u32) {
         let steps = if self.samples >= 16 { 4 } else { 2 };
@@ -330,6 +337,13 @@ impl RenderConfig {
         if !(1..=4096).contains(&ao.samples) {
             return bad(format!("AO samples {} outside 1..=4096", ao.samples));
         }
+        if ao.position_mips > AoConfig::MAX_POSITION_MIPS {
+            return bad(format!(
+                "AO position levels {} outside 0..={}",
+                ao.position_mips,
+                AoConfig::MAX_POSITION_MIPS
+            ));
+        }
         if !(1..=1024).contains(&ao.patterns) {
             return bad(format!("AO patterns {} outside 1..=1024", ao.patterns));
         }
@@ -367,7 +381,8 @@ impl RenderConfig {
         }
         if self.indirect.vpls != 0 && self.indirect.vpls < il * il {
             return bad(format!(
-                "{} VPLs cannot be split among the {} pixels of a {il}x{il} interleaving block                  (use at least {} VPLs or a smaller --interleave)",
+                "{} VPLs cannot be split among the {} pixels of a {il}x{il} interleaving block \
+                 (use at least {} VPLs or a smaller --interleave)",
                 self.indirect.vpls,
                 il * il,
                 il * il

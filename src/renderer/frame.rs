@@ -84,6 +84,7 @@ pub fn frame_block(config: &RenderConfig, f: &FrameInputs<'_>) -> FrameBlock {
         ao_steps,
         ao_samples: ao.samples,
         ao_patterns: ao.patterns,
+        ao_position_mips: ao.position_mips,
         ao_estimator: match ao.estimator {
             AoEstimator::Thesis => 0,
             AoEstimator::Crytek => 1,

@@ -144,10 +144,14 @@ pub enum Target {
     DiscardMask,
     /// Reprojection state per pixel (Figure 4.10's recompute mask).
     State,
+    /// The point-sampled G-buffer position levels SSAO's far taps read (--ao-position-mips).
+    AoPositionLevel1,
+    AoPositionLevel2,
+    AoPositionLevel3,
 }
 
 impl Target {
-    pub const ALL: [Target; 17] = [
+    pub const ALL: [Target; 20] = [
         Target::Output,
         Target::Direct,
         Target::GPosition,
@@ -165,6 +169,9 @@ impl Target {
         Target::Indirect,
         Target::DiscardMask,
         Target::State,
+        Target::AoPositionLevel1,
+        Target::AoPositionLevel2,
+        Target::AoPositionLevel3,
     ];
 
     pub fn name(self) -> &'static str {
@@ -186,6 +193,9 @@ impl Target {
             Target::Indirect => "indirect",
             Target::DiscardMask => "discard_mask",
             Target::State => "recompute_mask",
+            Target::AoPositionLevel1 => "ao_position_level1",
+            Target::AoPositionLevel2 => "ao_position_level2",
+            Target::AoPositionLevel3 => "ao_position_level3",
         }
     }
 }
@@ -242,7 +252,10 @@ impl Targets {
             | Target::Shadow
             | Target::Indirect
             | Target::DiscardMask
-            | Target::State => return None,
+            | Target::State
+            | Target::AoPositionLevel1
+            | Target::AoPositionLevel2
+            | Target::AoPositionLevel3 => return None,
         })
     }
 }
