@@ -1,6 +1,7 @@
 #version 460
 // Composite and tonemap: ambient x albedo x the product of the visibility terms, plus the
-// radiance terms, Reinhard tonemap, sRGB encode. The effects' images arrive as numbered terms
+// radiance terms, Reinhard tonemap, sRGB encode. An SSDO term's modulation factor (a) darkens
+// the ambient light and the direct radiance; its bounce (rgb) adds as irradiance. The effects' images arrive as numbered terms
 // with a kind each (src/effects/effect.rs `TermKind`), so no effect combination needs a variant.
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_samplerless_texture_functions : require
@@ -19,6 +20,7 @@ layout(constant_id = 4) const uint KIND3 = 0u;
 const uint TERM_RADIANCE = 0u;
 const uint TERM_AMBIENT_VISIBILITY = 1u;
 const uint TERM_VPL_IRRADIANCE = 2u;
+const uint TERM_SSDO = 3u;
 
 layout(set = 1, binding = 0) uniform texture2D g_position;
 layout(set = 1, binding = 1) uniform texture2D g_albedo;
@@ -33,9 +35,15 @@ float visibility_of(uint kind, vec4 t) {
     return kind == TERM_AMBIENT_VISIBILITY ? t.r : 1.0;
 }
 
+// SSDO's modulation factor of a term (1 for other kinds).
+float modulation_of(uint kind, vec4 t) {
+    return kind == TERM_SSDO ? t.a : 1.0;
+}
+
 // Radiance a term adds for a receiver of albedo `albedo`.
-vec3 radiance_of(uint kind, vec4 t, vec3 albedo) {
-    if (kind == TERM_RADIANCE) return t.rgb;
+vec3 radiance_of(uint kind, vec4 t, vec3 albedo, float modulation) {
+    if (kind == TERM_RADIANCE) return t.rgb * modulation;
+    if (kind == TERM_SSDO) return albedo / PI * t.rgb;
     // Eq 9 treats a VPL as emitting Phi cos / d^2; a diffuse emitter of flux Phi has intensity
     // Phi cos / pi, hence the 1/pi, and the receiver reflects albedo / pi of it.
     if (kind == TERM_VPL_IRRADIANCE) return albedo / PI * t.rgb / PI;
@@ -61,15 +69,19 @@ void main() {
         vec4 t1 = count > 1u ? texelFetch(term1, pixel, 0) : vec4(0.0);
         vec4 t2 = count > 2u ? texelFetch(term2, pixel, 0) : vec4(0.0);
         vec4 t3 = count > 3u ? texelFetch(term3, pixel, 0) : vec4(0.0);
+        float m = modulation_of(KIND0, t0);
+        if (count > 1u) m *= modulation_of(KIND1, t1);
+        if (count > 2u) m *= modulation_of(KIND2, t2);
+        if (count > 3u) m *= modulation_of(KIND3, t3);
         float visibility = visibility_of(KIND0, t0);
         if (count > 1u) visibility *= visibility_of(KIND1, t1);
         if (count > 2u) visibility *= visibility_of(KIND2, t2);
         if (count > 3u) visibility *= visibility_of(KIND3, t3);
-        color = frame.ambient * albedo * visibility;
-        color += radiance_of(KIND0, t0, albedo);
-        if (count > 1u) color += radiance_of(KIND1, t1, albedo);
-        if (count > 2u) color += radiance_of(KIND2, t2, albedo);
-        if (count > 3u) color += radiance_of(KIND3, t3, albedo);
+        color = frame.ambient * albedo * visibility * m;
+        color += radiance_of(KIND0, t0, albedo, m);
+        if (count > 1u) color += radiance_of(KIND1, t1, albedo, m);
+        if (count > 2u) color += radiance_of(KIND2, t2, albedo, m);
+        if (count > 3u) color += radiance_of(KIND3, t3, albedo, m);
     }
     // Non-finite input must not reach the image as garbage: show it as black.
     if (any(isnan(color)) || any(isinf(color))) color = vec3(0.0);

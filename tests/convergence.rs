@@ -87,6 +87,7 @@ impl Effect {
             direct: matches!(self, Effect::Shadow),
             ao: matches!(self, Effect::Ao),
             indirect: matches!(self, Effect::Indirect),
+            ssdo: false,
         };
         RenderConfig {
             width: SIZE,

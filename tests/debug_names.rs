@@ -21,6 +21,7 @@ fn a_validation_error_names_the_image_and_the_pass() {
             direct: true,
             ao: false,
             indirect: false,
+            ssdo: false,
         },
         ..Default::default()
     };

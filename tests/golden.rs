@@ -46,6 +46,7 @@ fn combinations() -> Vec<(String, Effects)> {
             direct: bits & 1 != 0,
             ao: bits & 2 != 0,
             indirect: bits & 4 != 0,
+            ssdo: false,
         };
         let names: Vec<&str> = [("direct", e.direct), ("ao", e.ao), ("indirect", e.indirect)]
             .into_iter()

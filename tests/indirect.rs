@@ -27,8 +27,10 @@ fn config(size: u32, rsm: u32, indirect: IndirectConfig, temporal: TemporalConfi
             direct: false,
             ao: false,
             indirect: true,
+            ssdo: false,
         },
         indirect,
+        ssdo: Default::default(),
         temporal,
         ..Default::default()
     }

@@ -21,6 +21,8 @@ const PCF_DISC: u32 = 0;
 const CRYTEK_BALL: u32 = 1;
 const THESIS_PATTERN: u32 = 2;
 const EQ8_STEPS: u32 = 3;
+const RADICAL_INVERSES: u32 = 4;
+const HALTON_HEMISPHERE: u32 = 5;
 
 /// The acceptance bound of issue 18: the radial distribution of the used offsets within 2%
 /// of the uniform-area CDF.
@@ -29,7 +31,7 @@ const UNIFORM_TOLERANCE: f32 = 0.02;
 /// The probe's output for `patterns` patterns from `first` at `pixels` pixels: one vec4 per
 /// tap, pattern-major, pixel-major (pixel y is (y, 3y)).
 fn probe(ctx: &Arc<Context>, push: ProbePush, pixels: u32) -> Vec<[f32; 4]> {
-    let taps = if push.kind == THESIS_PATTERN {
+    let taps = if push.kind == THESIS_PATTERN || push.kind >= RADICAL_INVERSES {
         1
     } else {
         push.count
@@ -404,6 +406,118 @@ fn eq8_steps_run_from_near_to_far() {
             );
         }
         assert_eq!(out[0][0], near, "the first step is near");
+    }
+    common::assert_clean(&ctx);
+}
+
+/// Eq 6 on the CPU in f64: n's digits in `base` mirrored about the point.
+fn radical_inverse(mut n: u32, base: u32) -> f64 {
+    let (mut r, mut f) = (0.0, 1.0 / base as f64);
+    while n != 0 {
+        r += f * (n % base) as f64;
+        n /= base;
+        f /= base as f64;
+    }
+    r
+}
+
+fn halton_probe(ctx: &Arc<Context>, kind: u32, first: u32, count: u32, rows: u32) -> Vec<[f32; 4]> {
+    probe(
+        ctx,
+        ProbePush {
+            kind,
+            count: 1,
+            first_pattern: first,
+            patterns: count,
+            near_px: 0.0,
+            far_px: 0.0,
+        },
+        rows,
+    )
+}
+
+/// Szentandrasi's Halton sampling (issue 13): the shader's radical inverses equal eq 6 for the
+/// first 1,000 indices in bases 2, 3 and 5, and eq 8's period holds for the documented period
+/// 10 of the direction's bases 2 and 5: |phi_b(i) - phi_b(i + 10 m)| < 1 / b.
+#[test]
+fn halton_radical_inverses_follow_eq6_and_the_period_of_eq8() {
+    let ctx = common::context();
+    let n = 1000u32;
+    let out = halton_probe(&ctx, RADICAL_INVERSES, 0, n + 50, 1);
+    for i in 0..n {
+        for (c, base) in [(0, 2u32), (1, 3), (2, 5)] {
+            let expected = radical_inverse(i, base);
+            let got = out[i as usize][c] as f64;
+            // f32 digits accumulated in float: within a few ulps of the definition.
+            assert!(
+                (got - expected).abs() <= 4.0 * f32::EPSILON as f64 * expected.max(1e-30),
+                "phi_{base}({i}) = {got}, eq 6 gives {expected}"
+            );
+        }
+    }
+    for i in 0..n as usize {
+        for m in 1..=5usize {
+            let j = i + 10 * m;
+            for (c, base) in [(0, 2.0f32), (2, 5.0)] {
+                let d = (out[i][c] - out[j][c]).abs();
+                assert!(
+                    d < 1.0 / base,
+                    "eq 8, base {base}: |phi({i}) - phi({j})| = {d}"
+                );
+            }
+        }
+    }
+    common::assert_clean(&ctx);
+}
+
+/// The hemisphere directions the estimators use are unit vectors on the normal's side,
+/// uniform in solid angle (cos theta uniform in [0, 1], the azimuth uniform) over each of 8
+/// pixels' first 500 samples (50 periods), whatever the pixel's shift; the steps are uniform
+/// in [0, 1).
+#[test]
+fn halton_hemisphere_is_uniform_in_solid_angle() {
+    let ctx = common::context();
+    let rows = 8u32;
+    let count = 500u32;
+    let out = halton_probe(&ctx, HALTON_HEMISPHERE, 0, count, rows);
+    for y in 0..rows {
+        let a = 0.7 * y as f32;
+        let n = glam::Vec3::new(
+            a.sin() * (2.3 * a).cos(),
+            a.cos(),
+            a.sin() * (2.3 * a).sin(),
+        )
+        .normalize();
+        let row = &out[(y * count) as usize..((y + 1) * count) as usize];
+        let mut cos_t = Vec::new();
+        let mut azimuth = Vec::new();
+        let mut steps = Vec::new();
+        // A fixed tangent to measure the azimuth from.
+        let t = n.any_orthonormal_vector();
+        let b = n.cross(t);
+        for o in row {
+            let w = glam::Vec3::new(o[0], o[1], o[2]);
+            assert!(
+                (w.length() - 1.0).abs() < 1e-5,
+                "row {y}: |omega| = {}",
+                w.length()
+            );
+            let c = w.dot(n);
+            assert!(c >= -1e-6, "row {y}: omega below the surface ({c})");
+            cos_t.push(c.clamp(0.0, 1.0));
+            azimuth.push((w.dot(b).atan2(w.dot(t)) / TAU).rem_euclid(1.0));
+            steps.push(o[3]);
+            assert!((0.0..1.0).contains(&o[3]), "row {y}: step {}", o[3]);
+        }
+        let (kc, ka, ks) = (
+            ks_uniform(&cos_t),
+            kuiper_uniform(&azimuth),
+            ks_uniform(&steps),
+        );
+        eprintln!("row {y}: KS cos theta {kc}, Kuiper azimuth {ka}, KS step {ks}");
+        assert!(kc < UNIFORM_TOLERANCE, "row {y}: cos theta KS {kc}");
+        assert!(ka < UNIFORM_TOLERANCE, "row {y}: azimuth Kuiper {ka}");
+        assert!(ks < UNIFORM_TOLERANCE, "row {y}: step KS {ks}");
     }
     common::assert_clean(&ctx);
 }

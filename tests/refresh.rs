@@ -22,6 +22,7 @@ fn config(size: u32) -> RenderConfig {
         effects: Effects::ALL,
         ao: Default::default(),
         indirect: Default::default(),
+        ssdo: Default::default(),
         temporal: TemporalConfig::default(),
     }
 }
@@ -143,11 +144,13 @@ fn converged_view_does_not_flicker_while_refreshing() {
             direct: false,
             ao: true,
             indirect: false,
+            ssdo: false,
         },
         ao: AoConfig {
             patterns: 32,
             ..Default::default()
         },
+        ssdo: Default::default(),
         temporal: TemporalConfig {
             reuse: false,
             ..Default::default()

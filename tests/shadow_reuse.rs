@@ -27,7 +27,9 @@ fn config(pcf: Pcf, reuse: bool) -> RenderConfig {
             direct: true,
             ao: false,
             indirect: false,
+            ssdo: false,
         },
+        ssdo: Default::default(),
         temporal: TemporalConfig {
             reuse,
             ..Default::default()

@@ -26,9 +26,11 @@ fn config(size: u32, temporal: TemporalConfig, ao: AoConfig) -> RenderConfig {
             direct: false,
             ao: true,
             indirect: false,
+            ssdo: false,
         },
         ao,
         indirect: Default::default(),
+        ssdo: Default::default(),
         temporal,
     }
 }
@@ -435,6 +437,7 @@ fn shared_reprojection_matches_each_effect_alone() {
         direct,
         ao,
         indirect,
+        ssdo: false,
     };
     let alone = [
         (EffectId::Direct, Target::Shadow, only(true, false, false)),

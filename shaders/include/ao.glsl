@@ -1,12 +1,13 @@
 // SSAO estimators. Both return occlusion in [0, 1] for one sampling pattern; `pattern` indexes
 // the pattern sequences of patterns.glsl (rotation and range scale, or the sphere's points).
-// Requires g_position, g_position_1..3 (ao_position_chain.comp's levels) and random_vectors to
-// be declared by the including shader.
+// Requires g_position, g_normal, g_position_1..3 (ao_position_chain.comp's levels) and
+// random_vectors to be declared by the including shader.
 #ifndef AO_GLSL
 #define AO_GLSL
 
 #include "frame.glsl"
 #include "patterns.glsl"
+#include "hemisphere.glsl"
 
 // log2 of the tap distance, in pixels, below which a tap reads the full-resolution G-buffer;
 // each doubling beyond it reads one level coarser (XeGTAO's depth MIP offset, 3.3). A level-L
@@ -130,13 +131,30 @@ float ao_crytek(ivec2 pixel, vec3 p, uint pattern) {
     return occluded / float(count);
 }
 
+// Szentandrasi section 3.1: K points p + r omega in the hemisphere around the normal (Halton
+// directions, bases 2 and 5, and random steps r in [0, r_max)), back-projected; the occlusion
+// is the fraction that lie behind the visible surface (hemisphere.glsl). Pattern j takes
+// Halton indices j K .. j K + K - 1, so accumulated patterns continue one sequence.
+float ao_szentandrasi(ivec2 pixel, vec3 p, vec3 n, uint pattern) {
+    uint count = frame.ao_samples;
+    float r_max = frame.ao_radius;
+    float occluded = 0.0;
+    for (uint k = 0u; k < count; ++k) {
+        vec4 w = hemisphere_sample(pattern * count + k, pixel, n, r_max);
+        if (hemisphere_tap(p + w.w * w.xyz, r_max).occluded) occluded += 1.0;
+    }
+    return occluded / float(max(count, 1u));
+}
+
 // Occlusion averaged over `patterns` consecutive patterns starting at `first` (a whole number:
 // pattern indices arrive as floats from the history's count channel, exact below 2^24).
 float ao_estimate(ivec2 pixel, vec3 p, vec3 n, float first, uint patterns) {
     float sum = 0.0;
     for (uint j = 0u; j < patterns; ++j) {
         uint pattern = uint(first) + j;
-        sum += frame.ao_estimator == 1u ? ao_crytek(pixel, p, pattern) : ao_thesis(pixel, p, n, pattern);
+        if (frame.ao_estimator == 1u) sum += ao_crytek(pixel, p, pattern);
+        else if (frame.ao_estimator == 2u) sum += ao_szentandrasi(pixel, p, n, pattern);
+        else sum += ao_thesis(pixel, p, n, pattern);
     }
     return sum / float(max(patterns, 1u));
 }

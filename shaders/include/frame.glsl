@@ -41,12 +41,16 @@ layout(set = 0, binding = 0, std140) uniform Frame {
     uint ao_steps;             // thesis estimator: steps per direction
     uint ao_samples;           // crytek estimator: samples in the sphere
     uint ao_patterns;          // patterns per evaluation (1, or many for references)
-    uint ao_estimator;         // 0 thesis, 1 crytek
+    uint ao_estimator;         // 0 thesis, 1 crytek, 2 szentandrasi
     uint ao_position_mips;     // far AO taps read point-sampled position levels up to this (0 = off)
     uint vpl_count;            // VPLs per gather (0 = every RSM texel)
     uint vpl_visibility;       // screen-space visibility test of each VPL (0/1)
     float vpl_march_near_px;   // nearest step of that visibility march [px]
     uint vpl_interleave;       // interleaved gather: block side N, one VPL subset per pixel (1 = off)
+    uint ssdo_samples;         // SSDO hemisphere samples per pixel (K)
+    float ssdo_radius;         // SSDO hemisphere radius r_max, world units
+    uint ssdo_filter_radius;   // half side of SSDO's separable bilateral filter (0 = off)
+    uint direct_enabled;       // 1 when the direct effect runs (SSDO's senders add its light)
     uint camera_static;        // 1 when prev_view_proj equals view_proj exactly (CPU test)
     uint indirect_ramp;        // test input: indirect passes output world position (0/1)
 } frame;

@@ -30,6 +30,10 @@ pub const GROUPS: &[(&str, &[PassId])] = &[
             PassId::IndirectRefresh,
         ],
     ),
+    (
+        "ssdo",
+        &[PassId::Ssdo, PassId::SsdoBounce, PassId::SsdoBilateral],
+    ),
     ("total", &[]),
 ];
 

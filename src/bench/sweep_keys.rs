@@ -3,11 +3,11 @@
 //! `--reuse`, ...), so a sweep accepts exactly what a single run accepts.
 
 use crate::cli::args::{
-    parse_bias, parse_ema_alpha, parse_epsilon, parse_fraction, parse_gate, parse_on_off,
-    parse_pattern_count, parse_vpls, AccumulateMode,
+    parse_bias, parse_bilateral, parse_ema_alpha, parse_epsilon, parse_fraction, parse_gate,
+    parse_on_off, parse_pattern_count, parse_vpls, AccumulateMode,
 };
 use crate::error::{Error, Result};
-use crate::renderer::config::{Accumulate, AoConfig, AoEstimator, Refresh};
+use crate::renderer::config::{Accumulate, AoConfig, AoEstimator, Refresh, SsdoConfig, SsdoForm};
 use crate::renderer::frame::Pcf;
 use crate::renderer::RenderConfig;
 use clap::ValueEnum;
@@ -37,11 +37,15 @@ pub enum Key {
     HalfRes,
     Pcf,
     RsmSize,
+    SsdoForm,
+    SsdoSamples,
+    SsdoRadius,
+    SsdoFilter,
 }
 
 impl Key {
     /// Every key, in the order `help_table` lists them.
-    pub const ALL: [Key; 17] = [
+    pub const ALL: [Key; 21] = [
         Key::AoSamples,
         Key::AoEstimator,
         Key::AoRadius,
@@ -59,6 +63,10 @@ impl Key {
         Key::HalfRes,
         Key::Pcf,
         Key::RsmSize,
+        Key::SsdoForm,
+        Key::SsdoSamples,
+        Key::SsdoRadius,
+        Key::SsdoFilter,
     ];
 
     /// The name given to `--vary`: the field's path in `RenderConfig`.
@@ -81,6 +89,10 @@ impl Key {
             Key::HalfRes => "indirect.half_res",
             Key::Pcf => "pcf",
             Key::RsmSize => "rsm_size",
+            Key::SsdoForm => "ssdo.form",
+            Key::SsdoSamples => "ssdo.samples",
+            Key::SsdoRadius => "ssdo.radius",
+            Key::SsdoFilter => "ssdo.filter",
         }
     }
 
@@ -111,6 +123,10 @@ impl Key {
             Key::HalfRes => "indirect gather at half resolution (--half-res)",
             Key::Pcf => "shadow filtering kernel (--pcf)",
             Key::RsmSize => "side of the (reflective) shadow map in texels (--rsm-size)",
+            Key::SsdoForm => "SSDO in one pass or Ritschel's two (--ssdo)",
+            Key::SsdoSamples => "SSDO hemisphere samples per pixel (--ssdo-samples)",
+            Key::SsdoRadius => "SSDO hemisphere radius, fraction of the scene's bounding radius",
+            Key::SsdoFilter => "SSDO's separable bilateral filter side (--bilateral)",
         }
     }
 
@@ -118,7 +134,7 @@ impl Key {
     pub fn syntax(self) -> &'static str {
         match self {
             Key::AoSamples => "integer 1..=4096",
-            Key::AoEstimator => "thesis|crytek",
+            Key::AoEstimator => "thesis|crytek|szentandrasi",
             Key::AoRadius => "number in (0, 10]",
             Key::AoPatterns => "integer 1..=1024",
             Key::AoPositionMips => "integer 0..=3",
@@ -132,6 +148,10 @@ impl Key {
             Key::Interleave => "integer 1..=8",
             Key::Pcf => "hard|9|SQUARE (25, 49, ...)|disc:N",
             Key::RsmSize => "integer 1..=16384",
+            Key::SsdoForm => "one-step|two-step",
+            Key::SsdoSamples => "integer 1..=4096",
+            Key::SsdoRadius => "number in (0, 10]",
+            Key::SsdoFilter => "odd integer 1..=31|off",
         }
     }
 
@@ -209,6 +229,7 @@ pub fn apply(config: &mut RenderConfig, key: Key, value: &str) -> Result<()> {
             Key::RotationLimit => config.temporal.rotation_limit = n,
             Key::Vpls => config.indirect.vpls = n,
             Key::Interleave => config.indirect.interleave = n,
+            Key::SsdoSamples => config.ssdo.samples = n,
             _ => config.rsm_size = n,
         },
         Setting::Flag(on) => match key {
@@ -216,7 +237,10 @@ pub fn apply(config: &mut RenderConfig, key: Key, value: &str) -> Result<()> {
             Key::Visibility => config.indirect.visibility = on,
             _ => config.indirect.half_res = on,
         },
+        Setting::Radius(r) if key == Key::SsdoRadius => config.ssdo.radius = r,
         Setting::Radius(r) => config.ao.radius = r,
+        Setting::Form(f) => config.ssdo.form = f,
+        Setting::Filter(side) => config.ssdo.filter = side,
         Setting::Estimator(e) => config.ao.estimator = e,
         Setting::Refresh(r) => config.temporal.refresh = r,
         Setting::Budget(b) => config.temporal.refresh_budget = b,
@@ -342,6 +366,8 @@ enum Setting {
     MeanOfLimit,
     Epsilon(crate::renderer::config::Epsilon),
     Pcf(Pcf),
+    Form(SsdoForm),
+    Filter(u32),
 }
 
 impl Setting {
@@ -376,7 +402,10 @@ impl Setting {
             Key::Refresh => Refresh::from_str(v, false).map(Setting::Refresh),
             Key::RefreshBudget => parse_fraction(v).map(Setting::Budget),
             Key::Reuse | Key::Visibility | Key::HalfRes => parse_on_off(v).map(Setting::Flag),
-            Key::AoRadius => match v.parse::<f32>() {
+            Key::SsdoSamples => count(SsdoConfig::MAX_SAMPLES),
+            Key::SsdoForm => SsdoForm::from_str(v, false).map(Setting::Form),
+            Key::SsdoFilter => parse_bilateral(v).map(Setting::Filter),
+            Key::AoRadius | Key::SsdoRadius => match v.parse::<f32>() {
                 Ok(r) if r.is_finite() && r > 0.0 && r <= 10.0 => Ok(Setting::Radius(r)),
                 _ => Err("not a number in (0, 10]".into()),
             },
@@ -439,6 +468,12 @@ mod tests {
             (Key::AoRadius, "0.5", |c| c.ao.radius = 0.5),
             (Key::AoPatterns, "8", |c| c.ao.patterns = 8),
             (Key::AoPositionMips, "2", |c| c.ao.position_mips = 2),
+            (Key::SsdoForm, "two-step", |c| {
+                c.ssdo.form = SsdoForm::TwoStep
+            }),
+            (Key::SsdoSamples, "50", |c| c.ssdo.samples = 50),
+            (Key::SsdoRadius, "0.1", |c| c.ssdo.radius = 0.1),
+            (Key::SsdoFilter, "off", |c| c.ssdo.filter = 0),
             (Key::Reuse, "off", |c| c.temporal.reuse = false),
             (Key::Accumulate, "ema:0.25", |c| {
                 c.temporal.accumulate = Accumulate::Ema { alpha: 0.25 }

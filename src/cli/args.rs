@@ -3,7 +3,8 @@
 
 use crate::bench::warmup::Warmup;
 use crate::renderer::config::{
-    Accumulate, AoConfig, AoEstimator, Effects, Epsilon, IndirectConfig, Refresh, TemporalConfig,
+    Accumulate, AoConfig, AoEstimator, Effects, Epsilon, IndirectConfig, Refresh, SsdoConfig,
+    SsdoForm, TemporalConfig,
 };
 use crate::renderer::frame::Pcf;
 use crate::renderer::{RenderConfig, MAX_SIZE};
@@ -75,7 +76,8 @@ pub struct SceneArgs {
     /// Side of the reflective shadow map / shadow map in texels.
     #[arg(long, default_value_t = 512)]
     pub rsm_size: u32,
-    /// Effects to render, comma-separated: direct, ao, indirect (or all).
+    /// Effects to render, comma-separated: direct, ao, indirect, ssdo (all = direct, ao,
+    /// indirect; ssdo replaces ao).
     #[arg(long, default_value = "all", value_parser = parse_effects)]
     pub effects: Effects,
     /// Temporal reuse (reverse reprojection cache): on, or off for the no-reuse baseline
@@ -141,6 +143,33 @@ pub struct SceneArgs {
     /// tiles at 256x256).
     #[arg(long, default_value = "5%", value_parser = parse_fraction)]
     pub refresh_budget: f32,
+    /// SSDO's form (with `--effects ...,ssdo`): one-step (modulation factor and bounce in one
+    /// pass, Szentandrasi section 4.1) or two-step (directional occlusion, then the bounce).
+    #[arg(long, value_enum, default_value = "one-step")]
+    pub ssdo: SsdoForm,
+    /// SSDO hemisphere samples per pixel (whole Halton periods of 10 spread evenly).
+    #[arg(long, default_value_t = SsdoConfig::default().samples, value_parser = clap::value_parser!(u32).range(1..=SsdoConfig::MAX_SAMPLES as i64))]
+    pub ssdo_samples: u32,
+    /// SSDO hemisphere radius, as a fraction of the scene's bounding radius.
+    #[arg(long, default_value_t = SsdoConfig::default().radius)]
+    pub ssdo_radius: f32,
+    /// Side of SSDO's separable geometry-aware bilateral filter (odd, up to 31), or `off`.
+    #[arg(long, default_value = "11", value_parser = parse_bilateral)]
+    pub bilateral: u32,
+}
+
+/// `--bilateral`: an odd side up to 31, or `off` (0).
+pub fn parse_bilateral(s: &str) -> Result<u32, String> {
+    if s == "off" {
+        return Ok(0);
+    }
+    match s.parse::<u32>() {
+        Ok(n) if n % 2 == 1 && n <= SsdoConfig::MAX_FILTER => Ok(n),
+        _ => Err(format!(
+            "--bilateral takes an odd side from 1 to {} or off, not {s:?}",
+            SsdoConfig::MAX_FILTER
+        )),
+    }
 }
 
 /// A share of a frame's work: `5%` or `0.05`, in (0, 100] (above 1: more than a frame, e.g.
@@ -199,6 +228,12 @@ impl SceneArgs {
                 half_res: self.half_res,
                 interleave: self.interleave,
                 ..IndirectConfig::default()
+            },
+            ssdo: SsdoConfig {
+                form: self.ssdo,
+                samples: self.ssdo_samples,
+                radius: self.ssdo_radius,
+                filter: self.bilateral,
             },
             temporal: TemporalConfig {
                 reuse: self.reuse,

@@ -245,6 +245,18 @@ impl AoEffect {
         }
     }
 
+    /// The AO visibility the composite reads for parity `parity`.
+    fn visibility(&self, parity: usize) -> &Image {
+        let s = &self.sized;
+        if self.reuse {
+            s.temporal.history.current(parity)
+        } else if self.blur.is_some() {
+            &s.blurred
+        } else {
+            &s.raw
+        }
+    }
+
     fn own(&self) -> [[&Image; 2]; 6] {
         let s = &self.sized;
         let [l1, l2, l3] = &s.levels;
@@ -344,21 +356,13 @@ impl Effect for AoEffect {
         }
     }
 
-    fn term(&self, parity: usize) -> (TermKind, &Image) {
-        let s = &self.sized;
-        let image = if self.reuse {
-            s.temporal.history.current(parity)
-        } else if self.blur.is_some() {
-            &s.blurred
-        } else {
-            &s.raw
-        };
-        (TermKind::AmbientVisibility, image)
+    fn term<'a>(&'a self, _targets: &'a Targets, parity: usize) -> (TermKind, &'a Image) {
+        (TermKind::AmbientVisibility, self.visibility(parity))
     }
 
     fn target(&self, target: Target, parity: usize, _config: &RenderConfig) -> Option<&Image> {
         match target {
-            Target::Ao => Some(self.term(parity).1),
+            Target::Ao => Some(self.visibility(parity)),
             Target::State => Some(&self.sized.temporal.state),
             // Only when the chain writes them (otherwise they hold nothing).
             Target::AoPositionLevel1 if self.chain.is_some() => Some(&self.sized.levels[0]),

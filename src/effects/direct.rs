@@ -16,7 +16,7 @@ use crate::passes::{PassId, PassLayout};
 use crate::renderer::config::RenderConfig;
 use crate::renderer::effect::{self, TemporalEffect};
 use crate::renderer::pcf::PcfKernel;
-use crate::renderer::targets::{Target, Targets, AO_FORMAT, DIRECT_FORMAT};
+use crate::renderer::targets::{Target, Targets, AO_FORMAT};
 use crate::renderer::temporal::Sampling;
 use crate::shaders::{self, EffectPush};
 use crate::vk::{Context, Image, ImageDesc};
@@ -27,7 +27,7 @@ use std::sync::Arc;
 const SHADOW: Slot = Slot::Own(0);
 /// The visibility the direct pass reads: `SHADOW`, or the accumulated history.
 const VISIBILITY: Slot = Slot::Own(1);
-const DIRECT: Slot = Slot::Own(2);
+const DIRECT: Slot = Slot::DirectLight;
 
 const SHADOW_FULL: &[Bind] = &[
     Bind::new(0, Slot::GPosition, Use::Sampled),
@@ -89,7 +89,6 @@ struct Reuse {
 
 struct Sized {
     shadow: Image,
-    direct: Image,
     /// With reuse (used while the kernel is a disc).
     temporal: Option<TemporalEffect>,
 }
@@ -171,7 +170,6 @@ impl DirectEffect {
         };
         Ok(Sized {
             shadow: image("shadow", AO_FORMAT)?,
-            direct: image("direct", DIRECT_FORMAT)?,
             temporal: if c.temporal.reuse {
                 Some(TemporalEffect::new(
                     ctx,
@@ -186,19 +184,19 @@ impl DirectEffect {
     }
 
     /// The effect's images; `VISIBILITY` is the history when `from_history`.
-    fn own(&self, from_history: bool) -> [[&Image; 2]; 3] {
+    fn own(&self, from_history: bool) -> [[&Image; 2]; 2] {
         let s = &self.sized;
         let visibility = match (&s.temporal, from_history) {
             (Some(t), true) => [t.history.current(0), t.history.current(1)],
             _ => [&s.shadow, &s.shadow],
         };
-        [[&s.shadow, &s.shadow], visibility, [&s.direct, &s.direct]]
+        [[&s.shadow, &s.shadow], visibility]
     }
 
     fn resources<'a>(
         &'a self,
         targets: &'a Targets,
-        own: &'a [[&'a Image; 2]; 3],
+        own: &'a [[&'a Image; 2]; 2],
     ) -> EffectResources<'a> {
         EffectResources {
             targets,
@@ -304,13 +302,12 @@ impl Effect for DirectEffect {
         });
     }
 
-    fn term(&self, _parity: usize) -> (TermKind, &Image) {
-        (TermKind::Radiance, &self.sized.direct)
+    fn term<'a>(&'a self, targets: &'a Targets, _parity: usize) -> (TermKind, &'a Image) {
+        (TermKind::Radiance, &targets.direct)
     }
 
     fn target(&self, target: Target, parity: usize, config: &RenderConfig) -> Option<&Image> {
         match target {
-            Target::Direct => Some(&self.sized.direct),
             Target::Shadow => Some(self.visibility(config, parity)),
             Target::State => self.sized.temporal.as_ref().map(|t| &t.state),
             _ => None,

@@ -18,6 +18,7 @@ pub enum EffectId {
     Direct,
     Ao,
     Indirect,
+    Ssdo,
 }
 
 /// How the composite adds an effect's image (the `kind` codes of shaders/composite.comp).
@@ -30,6 +31,10 @@ pub enum TermKind {
     /// Eq 9's one-bounce irradiance from VPL flux: the receiver reflects albedo/pi of it, and a
     /// VPL of flux Phi has intensity Phi cos / pi (eq 9 leaves that 1/pi out).
     VplIrradiance = 2,
+    /// SSDO: rgb = bounce irradiance (the receiver reflects albedo/pi of it), a = the
+    /// modulation factor, which darkens the ambient light and the radiance terms (Szentandrasi
+    /// section 4.1: "the diffuse and/or the ambient component").
+    Ssdo = 3,
 }
 
 /// What every effect sees of the frame being recorded.
@@ -121,7 +126,7 @@ pub trait Effect {
     fn record(&self, info: &FrameInfo<'_>, r: &mut Recording<'_>);
 
     /// The image the composite adds for frame parity `parity`, and how.
-    fn term(&self, parity: usize) -> (TermKind, &Image);
+    fn term<'a>(&'a self, targets: &'a Targets, parity: usize) -> (TermKind, &'a Image);
 
     /// The image behind a debug/readback target this effect owns, for frame parity `parity`
     /// under `config` (the configuration the frame was rendered with).

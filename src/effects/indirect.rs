@@ -305,7 +305,7 @@ impl Effect for IndirectEffect {
         }
     }
 
-    fn term(&self, parity: usize) -> (TermKind, &Image) {
+    fn term<'a>(&'a self, _targets: &'a Targets, parity: usize) -> (TermKind, &'a Image) {
         (
             TermKind::VplIrradiance,
             self.sized.temporal.history.current(parity),
@@ -314,7 +314,7 @@ impl Effect for IndirectEffect {
 
     fn target(&self, target: Target, parity: usize, _config: &RenderConfig) -> Option<&Image> {
         match target {
-            Target::Indirect => Some(self.term(parity).1),
+            Target::Indirect => Some(self.sized.temporal.history.current(parity)),
             Target::DiscardMask => Some(&self.sized.discard),
             _ => None,
         }

@@ -1,13 +1,14 @@
-//! Effects: direct light with PCF shadows, SSAO, one-bounce indirect light. Each is one module
-//! that owns its passes, its size-dependent images, its temporal history and counters, its
-//! debug views and its contribution to the composite, and is registered in [`create`] with one
-//! line. The renderer only walks the list (see docs/ARCHITECTURE.md).
+//! Effects: direct light with PCF shadows, SSAO, one-bounce indirect light, SSDO. Each is one
+//! module that owns its passes, its size-dependent images, its temporal history and counters,
+//! its debug views and its contribution to the composite, and is registered in [`create`] with
+//! one line. The renderer only walks the list (see docs/ARCHITECTURE.md).
 
 pub mod ao;
 pub mod direct;
 pub mod effect;
 pub mod indirect;
 pub mod resolve;
+pub mod ssdo;
 
 pub use effect::{
     every_pixel, refresh_dispatch, Effect, EffectId, FrameInfo, Recording, Registration, Setup,
@@ -23,6 +24,7 @@ pub const REGISTRY: &[Registration] = &[
     direct::REGISTRATION,
     ao::REGISTRATION,
     indirect::REGISTRATION,
+    ssdo::REGISTRATION,
 ];
 
 /// Every effect the configuration turns on, in registry order.

@@ -32,6 +32,7 @@ pub fn shared(t: &Targets, slot: Slot, parity: usize) -> Option<&Image> {
         Slot::RsmFlux => Target::RsmFlux,
         Slot::RsmDepth => Target::RsmDepth,
         Slot::Output => Target::Output,
+        Slot::DirectLight => Target::Direct,
         _ => return None,
     };
     t.get(target, parity)

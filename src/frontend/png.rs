@@ -51,7 +51,7 @@ pub fn visualize(target: Target, data: &ImageData, bounds: &Aabb) -> Vec<u8> {
             .map(|t| t[0])
             .filter(|d| *d < 1.0)
             .fold((f32::MAX, f32::MIN), |(a, b), d| (a.min(d), b.max(d))),
-        Target::RsmFlux => (
+        Target::RsmFlux | Target::SsdoBounce => (
             0.0,
             texels
                 .iter()
@@ -90,8 +90,10 @@ pub fn visualize(target: Target, data: &ImageData, bounds: &Aabb) -> Vec<u8> {
                     };
                     [v, v, v]
                 }
-                Target::RsmFlux => [t[0] / range, t[1] / range, t[2] / range],
+                // Scaled by the brightest channel: flux and bounce span any range.
+                Target::RsmFlux | Target::SsdoBounce => [t[0] / range, t[1] / range, t[2] / range],
                 Target::Ao | Target::Shadow => [t[0], t[0], t[0]],
+                Target::SsdoModulation => [t[3], t[3], t[3]],
                 Target::DiscardMask => [t[0], 0.0, 0.0],
                 // Figure 4.10: red where recomputed from scratch (disoccluded), blue for the
                 // refresh tile, yellow accumulating, grey converged, black background.

@@ -1,6 +1,7 @@
 //! What the viewer's keys control: the displayed buffer, effect switches and temporal reuse,
 //! and how they map onto a renderer configuration.
 
+use crate::renderer::config::SsdoConfig;
 use crate::renderer::frame::Pcf;
 use crate::renderer::targets::Target;
 use crate::renderer::RenderConfig;
@@ -13,13 +14,13 @@ ssgi view keys:
   Q E                            move down / up
   Shift / Ctrl (held)            move 4x faster / 4x slower
   Tab / Shift+Tab                cycle the displayed buffer (final, direct, shadow, AO,
-                                 indirect, G-buffer normal / albedo / position; raw
-                                 values clamped to 0..1)
+                                 indirect, SSDO bounce, G-buffer normal / albedo /
+                                 position; raw values clamped to 0..1)
   P                              soft (PCF) / hard shadows
   1 2                            toggle AO / indirect light (rebuilds the renderer:
                                  temporal histories start over)
-  3 4                            toggle SSDO / spatial filter (not in the renderer yet:
-                                 the state is kept and reported)
+  3 4                            toggle SSDO (in place of AO) / its bilateral filter
+                                 (rebuild the renderer)
   R                              temporal reuse on / off (rebuilds the renderer)
   C                              print the camera as a keyframe (for --path files)
   H                              print this help
@@ -27,20 +28,21 @@ ssgi view keys:
 
 /// Buffers the viewer can show, in cycling order. Depth targets cannot be blitted to a colour
 /// image and are left out; a target whose format lacks BLIT_SRC support is skipped.
-pub const DISPLAY_CYCLE: [(Target, &str); 8] = [
+pub const DISPLAY_CYCLE: [(Target, &str); 9] = [
     (Target::Output, "final"),
     (Target::Direct, "direct"),
     (Target::Shadow, "shadow"),
     (Target::Ao, "ao"),
     (Target::Indirect, "indirect"),
+    (Target::SsdoBounce, "ssdo bounce"),
     (Target::GNormal, "normal"),
     (Target::GAlbedo, "albedo"),
     (Target::GPosition, "position"),
 ];
 
-/// Effect switches. `soft_shadows` (the PCF kernel), `ao` and `indirect` reach the renderer
-/// through [`ViewState::config`]; `ssdo` and `filter` are kept and shown in the title until the
-/// renderer grows those effects.
+/// Effect switches, reaching the renderer through [`ViewState::config`]: `soft_shadows` (the
+/// PCF kernel), `ao`, `indirect`, `ssdo` (exclusive with `ao`) and `filter` (SSDO's bilateral
+/// filter).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct EffectToggles {
     pub soft_shadows: bool,
@@ -59,6 +61,8 @@ pub struct ViewState {
     pub temporal_reuse: bool,
     /// The PCF kernel to use when soft shadows are on (the one the run started with).
     soft_pcf: Pcf,
+    /// The bilateral filter's side when it is on (the run's, or the default).
+    filter_side: u32,
 }
 
 impl ViewState {
@@ -71,11 +75,16 @@ impl ViewState {
                 soft_shadows: soft,
                 ao: config.effects.ao,
                 indirect: config.effects.indirect,
-                ssdo: false,
-                filter: false,
+                ssdo: config.effects.ssdo,
+                filter: config.ssdo.filter > 0,
             },
             temporal_reuse: config.temporal.reuse,
             soft_pcf: if soft { config.pcf } else { Pcf::DEFAULT },
+            filter_side: if config.ssdo.filter > 0 {
+                config.ssdo.filter
+            } else {
+                SsdoConfig::default().filter
+            },
         }
     }
 
@@ -89,6 +98,12 @@ impl ViewState {
         };
         config.effects.ao = self.effects.ao;
         config.effects.indirect = self.effects.indirect;
+        config.effects.ssdo = self.effects.ssdo;
+        config.ssdo.filter = if self.effects.filter {
+            self.filter_side
+        } else {
+            0
+        };
         config.temporal.reuse = self.temporal_reuse;
         config
     }
@@ -125,7 +140,9 @@ impl ViewState {
 /// Whether a renderer made with `current` must be rebuilt to run `wanted`: effects and temporal
 /// reuse choose passes and targets at creation; the PCF kernel changes in place.
 pub fn needs_rebuild(current: &RenderConfig, wanted: &RenderConfig) -> bool {
-    current.effects != wanted.effects || current.temporal.reuse != wanted.temporal.reuse
+    current.effects != wanted.effects
+        || current.temporal.reuse != wanted.temporal.reuse
+        || current.ssdo != wanted.ssdo
 }
 
 /// A viewer command, from a key (`window/keys.rs`) or from a test script.
@@ -215,7 +232,7 @@ mod tests {
                 if base.effects.ao { "-ao" } else { "ao" },
                 "indirect",
                 "ssdo",
-                "-filter",
+                "filter",
                 if base.temporal.reuse {
                     "-reuse"
                 } else {
@@ -223,5 +240,14 @@ mod tests {
                 }
             ]
         );
+        // SSDO and its filter reach the configuration, and rebuild the renderer.
+        v.effects.ao = false;
+        v.effects.filter = false;
+        let wanted = v.config(&base);
+        assert!(wanted.effects.ssdo && !wanted.effects.ao);
+        assert_eq!(wanted.ssdo.filter, 0);
+        v.effects.filter = true;
+        assert_eq!(v.config(&base).ssdo.filter, base.ssdo.filter);
+        assert!(needs_rebuild(&base, &wanted));
     }
 }

@@ -29,6 +29,8 @@ pub enum Slot {
     GDepth,
     /// The composite's RGBA8 output.
     Output,
+    /// The direct effect's outgoing radiance (written by it, read by SSDO's bounce).
+    DirectLight,
     /// The temporal effect's history written this frame (rgb value, a = estimates).
     History,
     /// Last frame's history of the same effect.

@@ -32,12 +32,19 @@ pub enum PassId {
     IndirectFixup,
     /// Indirect light's refresh tile at full resolution, every pattern, spread over threads.
     IndirectRefresh,
+    /// SSDO: modulation factor and bounce in one pass, or the two-step form's directional
+    /// occlusion pass.
+    Ssdo,
+    /// The two-step SSDO's bounce pass.
+    SsdoBounce,
+    /// SSDO's separable bilateral filter (both directions).
+    SsdoBilateral,
     /// Composite + tonemap into the output image.
     Composite,
 }
 
 impl PassId {
-    pub const ALL: [PassId; 15] = [
+    pub const ALL: [PassId; 18] = [
         PassId::LightView,
         PassId::GBuffer,
         PassId::Reproject,
@@ -52,6 +59,9 @@ impl PassId {
         PassId::IndirectUpsample,
         PassId::IndirectFixup,
         PassId::IndirectRefresh,
+        PassId::Ssdo,
+        PassId::SsdoBounce,
+        PassId::SsdoBilateral,
         PassId::Composite,
     ];
 
@@ -71,6 +81,9 @@ impl PassId {
             PassId::IndirectUpsample => "indirect_upsample",
             PassId::IndirectFixup => "indirect_fixup",
             PassId::IndirectRefresh => "indirect_refresh",
+            PassId::Ssdo => "ssdo",
+            PassId::SsdoBounce => "ssdo_bounce",
+            PassId::SsdoBilateral => "ssdo_bilateral",
             PassId::Composite => "composite",
         }
     }

@@ -26,40 +26,94 @@ pub struct Effects {
     pub ao: bool,
     /// One-bounce indirect light from the reflective shadow map.
     pub indirect: bool,
+    /// Screen-space directional occlusion and its near-field bounce (Szentandrasi); it darkens
+    /// the ambient light as AO does, so the two are exclusive.
+    pub ssdo: bool,
 }
 
 impl Effects {
+    /// The thesis's effects (`all`).
     pub const ALL: Effects = Effects {
         direct: true,
         ao: true,
         indirect: true,
+        ssdo: false,
+    };
+    pub const NONE: Effects = Effects {
+        direct: false,
+        ao: false,
+        indirect: false,
+        ssdo: false,
     };
 
-    /// Comma-separated list: `direct`, `ao`, `indirect`, or `all`.
+    /// Comma-separated list: `direct`, `ao`, `indirect`, `ssdo`, or `all` (the first three).
     pub fn parse(s: &str) -> std::result::Result<Effects, String> {
-        let mut e = Effects {
-            direct: false,
-            ao: false,
-            indirect: false,
-        };
+        let mut e = Effects::NONE;
         for part in s.split(',').map(str::trim).filter(|p| !p.is_empty()) {
             match part {
-                "all" => e = Effects::ALL,
+                "all" => {
+                    e.direct = true;
+                    e.ao = true;
+                    e.indirect = true;
+                }
                 "direct" => e.direct = true,
                 "ao" => e.ao = true,
                 "indirect" => e.indirect = true,
+                "ssdo" => e.ssdo = true,
                 other => {
                     return Err(format!(
-                        "unknown effect {other:?} in --effects (known: direct, ao, indirect, all)"
+                        "unknown effect {other:?} in --effects (known: direct, ao, indirect, \
+                         ssdo, all)"
                     ))
                 }
             }
         }
-        if !e.direct && !e.ao && !e.indirect {
+        if e == Effects::NONE {
             return Err("--effects selects nothing (use e.g. direct,ao,indirect)".into());
         }
         Ok(e)
     }
+}
+
+/// Which of SSDO's forms runs (Szentandrasi sections 3.2 and 4.1).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, clap::ValueEnum)]
+#[serde(rename_all = "kebab-case")]
+pub enum SsdoForm {
+    /// Section 4.1: the modulation factor and the bounce in one pass; the bounce's senders are
+    /// lit as the frame is without SSDO, the bounce darkened by the modulation factor.
+    OneStep,
+    /// Ritschel et al.'s original: a directional-occlusion pass, then a bounce pass reading it.
+    TwoStep,
+}
+
+/// Screen-space directional occlusion (Szentandrasi section 3.2, Ritschel et al. 2009).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct SsdoConfig {
+    pub form: SsdoForm,
+    /// Hemisphere samples per pixel (K): whole Halton periods of 10 keep them evenly spread.
+    pub samples: u32,
+    /// Hemisphere radius r_max as a fraction of the scene's bounding radius (scale-free).
+    pub radius: f32,
+    /// Side of the separable bilateral filter (odd), 0 = off.
+    pub filter: u32,
+}
+
+impl Default for SsdoConfig {
+    fn default() -> Self {
+        Self {
+            form: SsdoForm::OneStep,
+            samples: 20,
+            radius: 0.25,
+            filter: 11,
+        }
+    }
+}
+
+impl SsdoConfig {
+    /// Largest filter side: 31 taps per pass.
+    pub const MAX_FILTER: u32 = 31;
+    /// Most samples per pixel (one invocation loops over them; llvmpipe caps loops near 2^16).
+    pub const MAX_SAMPLES: u32 = 4096;
 }
 
 /// One-bounce indirect light (Lin 2013 section 3.3).
@@ -124,6 +178,9 @@ pub enum AoEstimator {
     Thesis,
     /// Mittring 2007: depth comparisons of points in a sphere (flat surfaces come out grey).
     Crytek,
+    /// Szentandrasi section 3.1: Halton points in the normal's hemisphere, back-projected; the
+    /// fraction behind the visible surface.
+    Szentandrasi,
 }
 
 /// Nehab et al.'s tiled refresh: one tile per frame recomputed from scratch (the mean of every
@@ -303,6 +360,7 @@ pub struct RenderConfig {
     pub effects: Effects,
     pub ao: AoConfig,
     pub indirect: IndirectConfig,
+    pub ssdo: SsdoConfig,
     pub temporal: TemporalConfig,
 }
 
@@ -316,6 +374,7 @@ impl Default for RenderConfig {
             effects: Effects::ALL,
             ao: AoConfig::default(),
             indirect: IndirectConfig::default(),
+            ssdo: SsdoConfig::default(),
             temporal: TemporalConfig::default(),
         }
     }
@@ -336,6 +395,36 @@ impl RenderConfig {
         let ao = &self.ao;
         if !(1..=4096).contains(&ao.samples) {
             return bad(format!("AO samples {} outside 1..=4096", ao.samples));
+        }
+        let ssdo = &self.ssdo;
+        if self.effects.ssdo && self.effects.ao {
+            return bad(
+                "ssdo and ao both darken the ambient light (SSDO's modulation factor is a \
+                 directional AO): enable one of them"
+                    .into(),
+            );
+        }
+        if !(1..=SsdoConfig::MAX_SAMPLES).contains(&ssdo.samples) {
+            return bad(format!(
+                "SSDO samples {} outside 1..={}",
+                ssdo.samples,
+                SsdoConfig::MAX_SAMPLES
+            ));
+        }
+        if !(ssdo.radius.is_finite() && ssdo.radius > 0.0 && ssdo.radius <= 10.0) {
+            return bad(format!(
+                "SSDO radius {} must be in (0, 10] scene radii",
+                ssdo.radius
+            ));
+        }
+        if ssdo.filter != 0
+            && (ssdo.filter.is_multiple_of(2) || ssdo.filter > SsdoConfig::MAX_FILTER)
+        {
+            return bad(format!(
+                "bilateral filter side {} must be odd and at most {} (or off)",
+                ssdo.filter,
+                SsdoConfig::MAX_FILTER
+            ));
         }
         if ao.position_mips > AoConfig::MAX_POSITION_MIPS {
             return bad(format!(

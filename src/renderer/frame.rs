@@ -88,11 +88,16 @@ pub fn frame_block(config: &RenderConfig, f: &FrameInputs<'_>) -> FrameBlock {
         ao_estimator: match ao.estimator {
             AoEstimator::Thesis => 0,
             AoEstimator::Crytek => 1,
+            AoEstimator::Szentandrasi => 2,
         },
         vpl_count: ind.vpls,
         vpl_visibility: ind.visibility as u32,
         vpl_march_near_px: IndirectConfig::MARCH_NEAR_PX,
         vpl_interleave: ind.interleave,
+        ssdo_samples: config.ssdo.samples,
+        ssdo_radius: config.ssdo.radius * f.scene_radius.max(f32::MIN_POSITIVE),
+        ssdo_filter_radius: config.ssdo.filter / 2,
+        direct_enabled: config.effects.direct as u32,
         // Exact equality: an unmoved camera reuses each history texel as is, decided here
         // rather than by a pixel threshold on eq 1, whose fp32 error grows with coordinates.
         camera_static: (view_proj == f.prev_view_proj) as u32,

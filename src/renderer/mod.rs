@@ -101,7 +101,11 @@ impl Renderer {
             tracker: &mut tracker,
         })?;
         let reprojection = Reprojection::new(ctx, &pool, &effects)?;
-        let kinds: Vec<u32> = effects.iter().map(|e| e.term(0).0 as u32).collect();
+        let targets = Targets::new(ctx, config.width, config.height, config.rsm_size)?;
+        let kinds: Vec<u32> = effects
+            .iter()
+            .map(|e| e.term(&targets, 0).0 as u32)
+            .collect();
         let composite = CompositePass::new(ctx, &pool, &kinds)?;
         // Set 0 layout: every pipeline declares the same frame binding, so any of them works.
         let frame_layout = composite.frame_layout();
@@ -120,7 +124,7 @@ impl Renderer {
         }
         let renderer = Self {
             ctx: ctx.clone(),
-            targets: Targets::new(ctx, config.width, config.height, config.rsm_size)?,
+            targets,
             config,
             scene,
             light_view,
@@ -446,7 +450,11 @@ fn resolve_target<'a>(
 fn terms<'a>(shared: &'a SharedTargets<'a>, effects: &'a [Box<dyn Effect>]) -> Terms<'a> {
     Terms {
         shared,
-        images: std::array::from_fn(|i| effects.get(i).map(|e| [e.term(0).1, e.term(1).1])),
+        images: std::array::from_fn(|i| {
+            effects
+                .get(i)
+                .map(|e| [e.term(shared.0, 0).1, e.term(shared.0, 1).1])
+        }),
     }
 }
 

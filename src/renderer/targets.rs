@@ -114,6 +114,9 @@ pub struct Targets {
     pub height: u32,
     pub gbuffer: GBuffer,
     pub rsm: Rsm,
+    /// The direct effect's outgoing radiance (rgb) and shadow visibility (a): shared, because
+    /// SSDO's bounce reads it at its senders.
+    pub direct: Image,
     pub output: Image,
 }
 
@@ -148,10 +151,13 @@ pub enum Target {
     AoPositionLevel1,
     AoPositionLevel2,
     AoPositionLevel3,
+    /// SSDO's modulation factor (a of its term) and bounce irradiance (rgb), as composited.
+    SsdoModulation,
+    SsdoBounce,
 }
 
 impl Target {
-    pub const ALL: [Target; 20] = [
+    pub const ALL: [Target; 22] = [
         Target::Output,
         Target::Direct,
         Target::GPosition,
@@ -172,6 +178,8 @@ impl Target {
         Target::AoPositionLevel1,
         Target::AoPositionLevel2,
         Target::AoPositionLevel3,
+        Target::SsdoModulation,
+        Target::SsdoBounce,
     ];
 
     pub fn name(self) -> &'static str {
@@ -196,6 +204,8 @@ impl Target {
             Target::AoPositionLevel1 => "ao_position_level1",
             Target::AoPositionLevel2 => "ao_position_level2",
             Target::AoPositionLevel3 => "ao_position_level3",
+            Target::SsdoModulation => "ssdo_modulation",
+            Target::SsdoBounce => "ssdo_bounce",
         }
     }
 }
@@ -228,6 +238,7 @@ impl Targets {
                 depth: image(ctx, "rsm.depth", r, DEPTH_FORMAT, DEPTH_READ)?,
                 size: rsm_size,
             },
+            direct: image(ctx, "direct", s, DIRECT_FORMAT, STORAGE_READ)?,
             output: image(ctx, "output", s, OUTPUT_FORMAT, STORAGE_READ)?,
         })
     }
@@ -247,15 +258,17 @@ impl Targets {
             Target::RsmNormal => &self.rsm.normal,
             Target::RsmFlux => &self.rsm.flux,
             Target::RsmDepth => &self.rsm.depth,
-            Target::Direct
-            | Target::Ao
+            Target::Direct => &self.direct,
+            Target::Ao
             | Target::Shadow
             | Target::Indirect
             | Target::DiscardMask
             | Target::State
             | Target::AoPositionLevel1
             | Target::AoPositionLevel2
-            | Target::AoPositionLevel3 => return None,
+            | Target::AoPositionLevel3
+            | Target::SsdoModulation
+            | Target::SsdoBounce => return None,
         })
     }
 }

@@ -237,18 +237,17 @@ impl App {
                 eprintln!("display: {}", view.display_name());
             }
             Action::ToggleShadows => e.soft_shadows = !e.soft_shadows,
-            Action::ToggleAo => e.ao = !e.ao,
+            // AO and SSDO both darken the ambient light: switching one on switches the other off.
+            Action::ToggleAo => {
+                e.ao = !e.ao;
+                e.ssdo &= !e.ao;
+            }
             Action::ToggleIndirect => e.indirect = !e.indirect,
             Action::ToggleSsdo => {
                 e.ssdo = !e.ssdo;
-                eprintln!("SSDO is not in the renderer yet: the switch is only recorded");
+                e.ao &= !e.ssdo;
             }
-            Action::ToggleFilter => {
-                e.filter = !e.filter;
-                eprintln!(
-                    "the spatial filter is not in the renderer yet: the switch is only recorded"
-                );
-            }
+            Action::ToggleFilter => e.filter = !e.filter,
             Action::ToggleReuse => view.temporal_reuse = !view.temporal_reuse,
             Action::PrintCamera => {
                 if let Some(c) = self

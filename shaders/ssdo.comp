@@ -1,0 +1,74 @@
+#version 460
+// SSDO (Szentandrasi sections 3.2 and 4.1). `one_step`: the modulation factor and the bounce in
+// one pass, the bounce's senders lit as the frame is without SSDO (direct light + ambient x
+// albedo) and the bounce darkened by the modulation factor. The original two steps:
+// `directional` writes the directionally occluded lighting (direct + ambient x albedo, times
+// the modulation factor; a = the factor), then `bounce` gathers the same samples' senders
+// from that image. Output: rgb = bounce irradiance, a = modulation factor.
+// @permutation one_step: ONE_STEP
+// @permutation directional: DIRECTIONAL
+// @permutation bounce: BOUNCE
+#extension GL_GOOGLE_include_directive : require
+#extension GL_EXT_samplerless_texture_functions : require
+#include "frame.glsl"
+
+layout(local_size_x = 8, local_size_y = 8) in;
+
+layout(set = 1, binding = 0) uniform texture2D g_position;
+layout(set = 1, binding = 1) uniform texture2D g_normal;
+layout(set = 1, binding = 2) uniform texture2D g_albedo;
+#ifdef BOUNCE
+// The directional step's output: the senders' radiance, a = the pixel's modulation factor.
+layout(set = 1, binding = 4) uniform texture2D lit;
+#else
+// The direct effect's outgoing radiance (read when frame.direct_enabled).
+layout(set = 1, binding = 3) uniform texture2D direct_light;
+#endif
+#ifdef DIRECTIONAL
+layout(set = 1, binding = 4, rgba16f) uniform writeonly image2D lit_out;
+#else
+layout(set = 1, binding = 5, rgba16f) uniform writeonly image2D ssdo_out;
+#endif
+
+#ifdef BOUNCE
+vec3 sender_radiance(ivec2 q) {
+    return texelFetch(lit, q, 0).rgb;
+}
+#else
+// The pixel lit as the frame is without SSDO: the direct light and the ambient it reflects.
+vec3 sender_radiance(ivec2 q) {
+    vec3 l = frame.ambient * texelFetch(g_albedo, q, 0).rgb;
+    if (frame.direct_enabled != 0u) l += texelFetch(direct_light, q, 0).rgb;
+    return l;
+}
+#endif
+
+#include "ssdo.glsl"
+
+void main() {
+    ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
+    if (outside_frame(pixel)) return;
+    vec4 position = texelFetch(g_position, pixel, 0);
+    vec4 result = vec4(0.0, 0.0, 0.0, 1.0);
+    if (position.w != 0.0) {
+        vec3 n = texelFetch(g_normal, pixel, 0).xyz;
+        uint count = frame.ssdo_samples;
+        // The same K samples every frame (Halton indices 0 .. K - 1, shifted per pixel).
+        uint first = 0u;
+#ifdef DIRECTIONAL
+        float m = ssdo_pixel(pixel, position.xyz, n, first, count, false).a;
+        result = vec4(sender_radiance(pixel) * m, m);
+#elif defined(BOUNCE)
+        vec3 e = ssdo_pixel(pixel, position.xyz, n, first, count, true).rgb;
+        result = vec4(e, texelFetch(lit, pixel, 0).a);
+#else
+        result = ssdo_pixel(pixel, position.xyz, n, first, count, true);
+        result.rgb *= result.a;
+#endif
+    }
+#ifdef DIRECTIONAL
+    imageStore(lit_out, pixel, result);
+#else
+    imageStore(ssdo_out, pixel, result);
+#endif
+}

@@ -1,0 +1,293 @@
+//! Screen-space directional occlusion (Szentandrasi sections 3.2 and 4.1, Ritschel et al.
+//! 2009): Halton samples in the normal's hemisphere, back-projected; a modulation factor (eq 2
+//! with visibility over eq 2 without) that darkens the ambient and direct light, and eq 4's
+//! near-field bounce from the visible surfaces behind occluded samples. One step (section 4.1)
+//! or the original two (directional occlusion, then the bounce from its result); then the
+//! separable geometry-aware bilateral filter. Every pixel every frame, no temporal reuse.
+
+use super::effect::TermKind;
+use super::effect::{every_pixel, Effect, EffectId, FrameInfo, Recording, Registration, Setup};
+use super::resolve::EffectResources;
+use crate::error::Result;
+use crate::passes::compute::ComputePass;
+use crate::passes::decl::{Bind, Slot, Use};
+use crate::passes::{PassId, PassLayout};
+use crate::renderer::config::{RenderConfig, SsdoForm};
+use crate::renderer::effect::TemporalEffect;
+use crate::renderer::targets::{Target, Targets, AO_FORMAT};
+use crate::shaders::{self, EffectPush};
+use crate::vk::{Context, Image, ImageDesc};
+use ash::vk;
+use std::sync::Arc;
+
+/// The two-step form's directional-occlusion output: the senders' radiance, a = modulation.
+const LIT: Slot = Slot::Own(0);
+/// SSDO's result (rgb bounce irradiance, a = modulation factor), before filtering.
+const RAW: Slot = Slot::Own(1);
+/// The horizontal filter pass's output.
+const HALF_FILTERED: Slot = Slot::Own(2);
+/// The filtered result.
+const FILTERED: Slot = Slot::Own(3);
+
+const ONE_STEP: &[Bind] = &[
+    Bind::new(0, Slot::GPosition, Use::Sampled),
+    Bind::new(1, Slot::GNormal, Use::Sampled),
+    Bind::new(2, Slot::GAlbedo, Use::Sampled),
+    Bind::new(3, Slot::DirectLight, Use::Sampled),
+    Bind::new(5, RAW, Use::StorageWrite),
+];
+
+const DIRECTIONAL: &[Bind] = &[
+    Bind::new(0, Slot::GPosition, Use::Sampled),
+    Bind::new(1, Slot::GNormal, Use::Sampled),
+    Bind::new(2, Slot::GAlbedo, Use::Sampled),
+    Bind::new(3, Slot::DirectLight, Use::Sampled),
+    Bind::new(4, LIT, Use::StorageWrite),
+];
+
+const BOUNCE: &[Bind] = &[
+    Bind::new(0, Slot::GPosition, Use::Sampled),
+    Bind::new(1, Slot::GNormal, Use::Sampled),
+    Bind::new(2, Slot::GAlbedo, Use::Sampled),
+    Bind::new(4, LIT, Use::Sampled),
+    Bind::new(5, RAW, Use::StorageWrite),
+];
+
+const FILTER_H: &[Bind] = &[
+    Bind::new(0, Slot::GPosition, Use::Sampled),
+    Bind::new(1, Slot::GNormal, Use::Sampled),
+    Bind::new(2, RAW, Use::Sampled),
+    Bind::new(3, HALF_FILTERED, Use::StorageWrite),
+];
+
+const FILTER_V: &[Bind] = &[
+    Bind::new(0, Slot::GPosition, Use::Sampled),
+    Bind::new(1, Slot::GNormal, Use::Sampled),
+    Bind::new(2, HALF_FILTERED, Use::Sampled),
+    Bind::new(3, FILTERED, Use::StorageWrite),
+];
+
+pub const REGISTRATION: Registration = Registration {
+    id: EffectId::Ssdo,
+    enabled: |c| c.effects.ssdo,
+    create: |s| Ok(Box::new(SsdoEffect::new(s)?)),
+    layouts,
+};
+
+fn layouts() -> Vec<PassLayout> {
+    vec![
+        ComputePass::layout(PassId::Ssdo, &shaders::SSDO_COMP_ONE_STEP, ONE_STEP),
+        ComputePass::layout(PassId::Ssdo, &shaders::SSDO_COMP_DIRECTIONAL, DIRECTIONAL),
+        ComputePass::layout(PassId::SsdoBounce, &shaders::SSDO_COMP_BOUNCE, BOUNCE),
+        ComputePass::layout(
+            PassId::SsdoBilateral,
+            &shaders::SSDO_BILATERAL_COMP_HORIZONTAL,
+            FILTER_H,
+        ),
+        ComputePass::layout(
+            PassId::SsdoBilateral,
+            &shaders::SSDO_BILATERAL_COMP_VERTICAL,
+            FILTER_V,
+        ),
+    ]
+}
+
+/// The passes of the configured form.
+enum Form {
+    OneStep(ComputePass),
+    TwoStep {
+        directional: ComputePass,
+        bounce: ComputePass,
+    },
+}
+
+/// Size-dependent images: [lit, raw, half filtered, filtered].
+struct Sized {
+    images: [Image; 4],
+}
+
+pub struct SsdoEffect {
+    form: Form,
+    /// Horizontal and vertical bilateral passes (`--bilateral` not off).
+    filter: Option<[ComputePass; 2]>,
+    sized: Sized,
+    push: EffectPush,
+}
+
+impl SsdoEffect {
+    pub fn new(s: &mut Setup<'_>) -> Result<Self> {
+        let pass = |id, module, binds| ComputePass::new(s.ctx, s.pool, id, module, binds);
+        let form = match s.config.ssdo.form {
+            SsdoForm::OneStep => {
+                Form::OneStep(pass(PassId::Ssdo, &shaders::SSDO_COMP_ONE_STEP, ONE_STEP)?)
+            }
+            SsdoForm::TwoStep => Form::TwoStep {
+                directional: pass(PassId::Ssdo, &shaders::SSDO_COMP_DIRECTIONAL, DIRECTIONAL)?,
+                bounce: pass(PassId::SsdoBounce, &shaders::SSDO_COMP_BOUNCE, BOUNCE)?,
+            },
+        };
+        let filter = if s.config.ssdo.filter > 0 {
+            Some([
+                pass(
+                    PassId::SsdoBilateral,
+                    &shaders::SSDO_BILATERAL_COMP_HORIZONTAL,
+                    FILTER_H,
+                )?,
+                pass(
+                    PassId::SsdoBilateral,
+                    &shaders::SSDO_BILATERAL_COMP_VERTICAL,
+                    FILTER_V,
+                )?,
+            ])
+        } else {
+            None
+        };
+        Ok(Self {
+            form,
+            filter,
+            sized: Self::create_sized(s.ctx, s.config)?,
+            push: EffectPush::default(),
+        })
+    }
+
+    fn create_sized(ctx: &Arc<Context>, c: &RenderConfig) -> Result<Sized> {
+        let image = |name: &str| {
+            Image::new(
+                ctx,
+                name,
+                ImageDesc {
+                    width: c.width,
+                    height: c.height,
+                    format: AO_FORMAT,
+                    usage: vk::ImageUsageFlags::STORAGE
+                        | vk::ImageUsageFlags::SAMPLED
+                        | vk::ImageUsageFlags::TRANSFER_SRC,
+                },
+            )
+        };
+        Ok(Sized {
+            images: [
+                image("ssdo.lit")?,
+                image("ssdo.raw")?,
+                image("ssdo.half_filtered")?,
+                image("ssdo.filtered")?,
+            ],
+        })
+    }
+
+    fn own(&self) -> [[&Image; 2]; 4] {
+        self.sized.images.each_ref().map(|i| [i, i])
+    }
+
+    fn resources<'a>(
+        &'a self,
+        targets: &'a Targets,
+        own: &'a [[&'a Image; 2]; 4],
+    ) -> EffectResources<'a> {
+        EffectResources {
+            targets,
+            temporal: None,
+            own,
+            own_buffers: &[],
+        }
+    }
+
+    /// The image the composite reads: filtered, or the raw result.
+    fn result(&self) -> &Image {
+        let [_, raw, _, filtered] = &self.sized.images;
+        if self.filter.is_some() {
+            filtered
+        } else {
+            raw
+        }
+    }
+}
+
+impl Effect for SsdoEffect {
+    fn id(&self) -> EffectId {
+        EffectId::Ssdo
+    }
+
+    fn resize(&mut self, ctx: &Arc<Context>, config: &RenderConfig) -> Result<()> {
+        self.sized = Self::create_sized(ctx, config)?;
+        Ok(())
+    }
+
+    fn bind(&self, ctx: &Context, targets: &Targets) -> Result<()> {
+        let own = self.own();
+        let res = self.resources(targets, &own);
+        match &self.form {
+            Form::OneStep(p) => p.bind(ctx, &res)?,
+            Form::TwoStep {
+                directional,
+                bounce,
+            } => {
+                directional.bind(ctx, &res)?;
+                bounce.bind(ctx, &res)?;
+            }
+        }
+        for p in self.filter.iter().flatten() {
+            p.bind(ctx, &res)?;
+        }
+        Ok(())
+    }
+
+    fn temporal(&self) -> Option<&TemporalEffect> {
+        None
+    }
+
+    fn temporal_mut(&mut self) -> Option<&mut TemporalEffect> {
+        None
+    }
+
+    fn prepare(&mut self, _info: &FrameInfo<'_>) {}
+
+    fn reprojects(&self, _info: &FrameInfo<'_>) -> bool {
+        false
+    }
+
+    fn push(&self) -> &EffectPush {
+        &self.push
+    }
+
+    fn record(&self, info: &FrameInfo<'_>, r: &mut Recording<'_>) {
+        let own = self.own();
+        let res = self.resources(info.targets, &own);
+        let all = every_pixel(info);
+        match &self.form {
+            Form::OneStep(p) => {
+                r.timed(PassId::Ssdo, |rec, tr| {
+                    p.record(rec, tr, info.frame, &res, &[], all)
+                });
+            }
+            Form::TwoStep {
+                directional,
+                bounce,
+            } => {
+                r.timed(PassId::Ssdo, |rec, tr| {
+                    directional.record(rec, tr, info.frame, &res, &[], all)
+                });
+                r.timed(PassId::SsdoBounce, |rec, tr| {
+                    bounce.record(rec, tr, info.frame, &res, &[], all)
+                });
+            }
+        }
+        if let Some([h, v]) = &self.filter {
+            r.timed(PassId::SsdoBilateral, |rec, tr| {
+                h.record(rec, tr, info.frame, &res, &[], all);
+                v.record(rec, tr, info.frame, &res, &[], all);
+            });
+        }
+    }
+
+    fn term<'a>(&'a self, _targets: &'a Targets, _parity: usize) -> (TermKind, &'a Image) {
+        (TermKind::Ssdo, self.result())
+    }
+
+    fn target(&self, target: Target, _parity: usize, _config: &RenderConfig) -> Option<&Image> {
+        match target {
+            Target::SsdoModulation | Target::SsdoBounce => Some(self.result()),
+            _ => None,
+        }
+    }
+}

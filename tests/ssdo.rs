@@ -1,0 +1,496 @@
+//! SSDO (issue 13): an open plane is neither darkened nor lit by a bounce, a floor beside the
+//! Cornell box's red wall receives a red bounce, the GPU's one-step result equals a CPU
+//! evaluation of eqs 2 and 4 with the same Halton samples on the read-back G-buffer, both forms
+//! agree where they should, and the bilateral filter smooths a plane without bleeding across a
+//! depth edge.
+
+mod common;
+
+use glam::{Mat4, Vec2, Vec3, Vec4};
+use ssgi::renderer::config::{Effects, RenderConfig, SsdoConfig, SsdoForm, TemporalConfig};
+use ssgi::renderer::pcf::Pcf;
+use ssgi::renderer::targets::Target;
+use ssgi::renderer::Renderer;
+use ssgi::scene::{cornell_box, Camera, Material, MeshBuilder, Scene, SpotLight};
+use ssgi::vk::ImageData;
+use std::sync::Arc;
+
+fn config(size: u32, ssdo: SsdoConfig) -> RenderConfig {
+    RenderConfig {
+        width: size,
+        height: size,
+        rsm_size: 256,
+        pcf: Pcf::HARD,
+        effects: Effects {
+            direct: true,
+            ssdo: true,
+            ..Effects::NONE
+        },
+        ssdo,
+        temporal: TemporalConfig {
+            reuse: false,
+            ..Default::default()
+        },
+        ..Default::default()
+    }
+}
+
+fn render(ctx: &Arc<ssgi::vk::Context>, scene: Scene, c: RenderConfig) -> Renderer {
+    let mut r = Renderer::new(ctx, scene, c).expect("renderer");
+    let camera = r.scene.camera;
+    r.render_frame(&camera).unwrap();
+    r.finish().unwrap();
+    r
+}
+
+/// A 400 m square ground plane seen from 3 m up, lit by the spot from 10 m above.
+fn open_plane() -> Scene {
+    let mut b = MeshBuilder::new();
+    let m = b.add_material(Material::colour("ground", [0.7, 0.7, 0.7]));
+    let h = 200.0;
+    b.add_flat_polygon(
+        m,
+        &[
+            Vec3::new(-h, 0.0, -h),
+            Vec3::new(-h, 0.0, h),
+            Vec3::new(h, 0.0, h),
+            Vec3::new(h, 0.0, -h),
+        ],
+        Vec3::Y,
+    );
+    let mut scene = cornell_box();
+    scene.name = "open-plane".into();
+    scene.mesh = b.build();
+    scene.camera = Camera::new(Vec3::new(0.0, 3.0, 6.0), Vec3::ZERO, 40.0, 0.1, 100.0);
+    scene.light = SpotLight {
+        position: Vec3::new(0.0, 10.0, 0.0),
+        direction: Vec3::NEG_Y,
+        ..scene.light
+    };
+    scene
+}
+
+/// Every geometry pixel's SSDO texel (bounce rgb, modulation a).
+fn ssdo_texels(r: &mut Renderer) -> Vec<Option<[f32; 4]>> {
+    let s = r.read(Target::SsdoBounce).unwrap();
+    let pos = r.read(Target::GPosition).unwrap();
+    (0..s.width * s.height)
+        .map(|i| {
+            let (x, y) = (i % s.width, i / s.width);
+            (pos.texel(x, y)[3] != 0.0).then(|| s.texel(x, y))
+        })
+        .collect()
+}
+
+#[test]
+fn open_plane_is_unmodulated_and_receives_no_bounce() {
+    let ctx = common::context();
+    for form in [SsdoForm::OneStep, SsdoForm::TwoStep] {
+        for filter in [0, 11] {
+            let ssdo = SsdoConfig {
+                form,
+                filter,
+                radius: 0.01, // 2.8 m on the 283 m plane
+                ..Default::default()
+            };
+            let mut r = render(&ctx, open_plane(), config(64, ssdo));
+            let texels: Vec<[f32; 4]> = ssdo_texels(&mut r).into_iter().flatten().collect();
+            assert!(texels.len() > 1000, "{form:?}: the plane fills the view");
+            for t in &texels {
+                assert!(
+                    (t[3] - 1.0).abs() <= 1e-3,
+                    "{form:?}, filter {filter}: modulation {}",
+                    t[3]
+                );
+                assert!(
+                    t[0] == 0.0 && t[1] == 0.0 && t[2] == 0.0,
+                    "{form:?}, filter {filter}: bounce {t:?}"
+                );
+            }
+        }
+    }
+    common::assert_clean(&ctx);
+}
+
+fn project(view_proj: Mat4, p: Vec3, size: u32) -> (u32, u32) {
+    let c = view_proj * p.extend(1.0);
+    let ndc = c.truncate() / c.w;
+    (
+        ((ndc.x * 0.5 + 0.5) * size as f32) as u32,
+        ((ndc.y * 0.5 + 0.5) * size as f32) as u32,
+    )
+}
+
+#[test]
+fn floor_beside_the_red_wall_receives_a_red_bounce() {
+    let ctx = common::context();
+    let size = 96;
+    let ssdo = SsdoConfig {
+        samples: 50,
+        ..Default::default()
+    };
+    let mut r = render(&ctx, cornell_box(), config(size, ssdo));
+    let s = r.read(Target::SsdoBounce).unwrap();
+    let vp = r.scene.camera.view_proj(1.0);
+    // The floor 5 cm from the red (left, x = -1) wall, and the middle of the floor.
+    let mean = |centre: Vec3| -> Vec3 {
+        let (cx, cy) = project(vp, centre, size);
+        let mut sum = Vec3::ZERO;
+        for y in cy - 1..=cy + 1 {
+            for x in cx - 1..=cx + 1 {
+                let t = s.texel(x, y);
+                sum += Vec3::new(t[0], t[1], t[2]);
+            }
+        }
+        sum / 9.0
+    };
+    let by_wall = mean(Vec3::new(-0.95, 0.0, 0.2));
+    eprintln!("bounce on the floor beside the red wall {by_wall}");
+    assert!(by_wall.x > 0.0, "no bounce beside the red wall");
+    assert!(
+        by_wall.x > 2.0 * by_wall.y && by_wall.x > 2.0 * by_wall.z,
+        "the bounce beside the red wall is not red: {by_wall}"
+    );
+    common::assert_clean(&ctx);
+}
+
+// ---- the CPU evaluation of eqs 2 and 4, with the shaders' Halton samples ----
+
+fn fract(x: f32) -> f32 {
+    x - x.floor()
+}
+
+/// shaders/include/patterns.glsl's interleaved gradient noise.
+fn ign(x: i32, y: i32) -> f32 {
+    fract(52.982_92 * fract(x as f32 * 0.067_110_56 + y as f32 * 0.005_837_15))
+}
+
+/// shaders/include/halton.glsl, line by line.
+fn radical_inverse(mut n: u32, base: u32) -> f32 {
+    let inv = 1.0 / base as f32;
+    let (mut f, mut r) = (inv, 0.0f32);
+    while n != 0 {
+        r += f * (n % base) as f32;
+        n /= base;
+        f *= inv;
+    }
+    r
+}
+
+fn basis_around(n: Vec3) -> (Vec3, Vec3) {
+    let s = if n.z >= 0.0 { 1.0 } else { -1.0 };
+    let a = -1.0 / (s + n.z);
+    let c = n.x * n.y * a;
+    (
+        Vec3::new(1.0 + s * n.x * n.x * a, s * c, -s * n.x),
+        Vec3::new(c, s + n.y * n.y * a, -n.y),
+    )
+}
+
+/// Sample i of pixel (x, y): the unit direction and the step r.
+fn hemisphere_sample(i: u32, x: i32, y: i32, n: Vec3, r_max: f32) -> (Vec3, f32) {
+    let shift = Vec2::new(ign(x, y), ign(y + 37, x + 11));
+    let u = Vec2::new(
+        fract(radical_inverse(i, 2) + shift.x),
+        fract(radical_inverse(i, 5) + shift.y),
+    );
+    let cos_t = u.x;
+    let sin_t = (1.0 - cos_t * cos_t).max(0.0).sqrt();
+    let phi = std::f32::consts::TAU * u.y;
+    let (t, b) = basis_around(n);
+    let omega = sin_t * (phi.cos() * t + phi.sin() * b) + cos_t * n;
+    let golden = 0x8000_0000u32.wrapping_add(i.wrapping_mul(0x9E37_79B9));
+    let unorm = (golden >> 8) as f32 / 16_777_216.0;
+    (omega, r_max * fract(unorm + fract(shift.x + shift.y)))
+}
+
+struct Buffers {
+    position: ImageData,
+    normal: ImageData,
+    albedo: ImageData,
+    direct: ImageData,
+}
+
+fn v3(t: [f32; 4]) -> Vec3 {
+    Vec3::new(t[0], t[1], t[2])
+}
+
+fn luminance(c: Vec3) -> f32 {
+    c.dot(Vec3::new(0.2126, 0.7152, 0.0722))
+}
+
+/// What the GPU computes for pixel (x, y) in one step (bounce x modulation, modulation), or
+/// None when a sample sits within a hair of a decision (a pixel edge or the occlusion test's
+/// thresholds), where fp32 rounding on the two sides may decide differently.
+fn cpu_ssdo(
+    b: &Buffers,
+    scene: &Scene,
+    vp: Mat4,
+    (x, y): (u32, u32),
+    samples: u32,
+    r_max: f32,
+) -> Option<Vec4> {
+    let size = b.position.width;
+    let p4 = b.position.texel(x, y);
+    if p4[3] == 0.0 {
+        return None;
+    }
+    let (p, n) = (v3(p4), v3(b.normal.texel(x, y)));
+    let light = &scene.light;
+    let area = std::f32::consts::PI * r_max * r_max / samples as f32;
+    let d2_floor = area / std::f32::consts::TAU;
+    let (mut lit, mut unoccluded, mut bounce) = (0.0f32, 0.0f32, Vec3::ZERO);
+    for i in 0..samples {
+        let (omega, r) = hemisphere_sample(i, x as i32, y as i32, n, r_max);
+        let s = p + r * omega;
+        // L_in: ambient plus the spot over its cosine-power lobe (shaders/include/ssdo.glsl).
+        let to_light = light.position - p;
+        let dist2 = to_light.length_squared().max(light.min_distance_sq());
+        let l = to_light.normalize();
+        let e = luminance(light.intensity) * light.spot_factor(-l) / dist2;
+        let lobe = 9.0 / std::f32::consts::TAU * omega.dot(l).max(0.0).powf(8.0);
+        let weight = (luminance(scene.ambient) + e * lobe) * n.dot(omega).max(0.0);
+        unoccluded += weight;
+        let clip = vp * s.extend(1.0);
+        let mut occluded = None;
+        if clip.w > 0.0 {
+            let px = (clip.x / clip.w * 0.5 + 0.5) * size as f32;
+            let py = (clip.y / clip.w * 0.5 + 0.5) * size as f32;
+            // 0.01 px: the pixel shift's fp32 rounding (an FMA here or there) moves a sample
+            // by about 1e-3 px at this size.
+            if (px - px.round()).abs() < 0.01 || (py - py.round()).abs() < 0.01 {
+                return None;
+            }
+            let (qx, qy) = (px.floor(), py.floor());
+            if qx >= 0.0 && qy >= 0.0 && qx < size as f32 && qy < size as f32 {
+                let (qx, qy) = (qx as u32, qy as u32);
+                let q4 = b.position.texel(qx, qy);
+                if q4[3] != 0.0 {
+                    let (q, qn) = (v3(q4), v3(b.normal.texel(qx, qy)));
+                    let height = (s - q).dot(qn);
+                    let gap = clip.w - (vp * q.extend(1.0)).w;
+                    let near_threshold = (height + 1e-4 * clip.w).abs() < 1e-4 * clip.w;
+                    if near_threshold || (gap - r_max).abs() < 1e-3 * r_max {
+                        return None;
+                    }
+                    if height < -1e-4 * clip.w && gap < r_max {
+                        occluded = Some((q, qn, qx, qy));
+                    }
+                }
+            }
+        }
+        let Some((q, qn, qx, qy)) = occluded else {
+            lit += weight;
+            continue;
+        };
+        let to_receiver = p - q;
+        let d2 = to_receiver.length_squared();
+        let dir = to_receiver.normalize();
+        let (cos_s, cos_r) = (qn.dot(dir), n.dot(-dir));
+        if cos_s <= 0.0 || cos_r <= 0.0 {
+            continue;
+        }
+        let sender = scene.ambient * v3(b.albedo.texel(qx, qy)) + v3(b.direct.texel(qx, qy));
+        bounce += sender * (area * cos_s * cos_r / d2.max(d2_floor));
+    }
+    let m = if unoccluded > 0.0 {
+        lit / unoccluded
+    } else {
+        1.0
+    };
+    Some((bounce * m).extend(m))
+}
+
+#[test]
+fn one_step_equals_a_cpu_evaluation_of_eqs_2_and_4() {
+    let ctx = common::context();
+    let size = 96u32;
+    let samples = 20;
+    let ssdo = SsdoConfig {
+        samples,
+        filter: 0,
+        ..Default::default()
+    };
+    let mut r = render(&ctx, cornell_box(), config(size, ssdo));
+    let b = Buffers {
+        position: r.read(Target::GPosition).unwrap(),
+        normal: r.read(Target::GNormal).unwrap(),
+        albedo: r.read(Target::GAlbedo).unwrap(),
+        direct: r.read(Target::Direct).unwrap(),
+    };
+    let gpu = r.read(Target::SsdoBounce).unwrap();
+    let vp = r.scene.camera.view_proj(1.0);
+    let r_max = ssdo.radius * r.scene.mesh.bounds.radius();
+    let mut checked = 0;
+    let mut with_bounce = 0;
+    for y in (4..size - 4).step_by(7) {
+        for x in (4..size - 4).step_by(7) {
+            let Some(cpu) = cpu_ssdo(&b, &r.scene, vp, (x, y), samples, r_max) else {
+                continue;
+            };
+            let g = Vec4::from(gpu.texel(x, y));
+            // The GPU result is stored in fp16 (2^-11 relative), the CPU's in f32.
+            let scale = cpu.truncate().max_element().max(1e-6);
+            let bounce_err = (g.truncate() - cpu.truncate()).abs().max_element() / scale;
+            assert!(
+                bounce_err <= 1e-3 || (g.truncate() - cpu.truncate()).abs().max_element() < 1e-6,
+                "pixel ({x}, {y}): GPU bounce {g}, CPU {cpu}"
+            );
+            assert!(
+                (g.w - cpu.w).abs() <= 1e-3 * cpu.w.max(1e-3),
+                "pixel ({x}, {y}): GPU modulation {}, CPU {}",
+                g.w,
+                cpu.w
+            );
+            checked += 1;
+            with_bounce += usize::from(cpu.truncate().max_element() > 0.0);
+        }
+    }
+    eprintln!("{checked} pixels checked, {with_bounce} with a bounce");
+    assert!(
+        checked >= 40 && with_bounce >= 10,
+        "{checked} / {with_bounce}"
+    );
+    common::assert_clean(&ctx);
+}
+
+/// The two forms see the same samples: their modulation factors agree (to fp16), and the
+/// two-step bounce (from senders darkened by their own modulation, not darkened at the
+/// receiver) differs from the one-step one where occlusion is strong.
+#[test]
+fn both_forms_share_the_modulation_factor() {
+    let ctx = common::context();
+    let run = |form| {
+        let ssdo = SsdoConfig {
+            form,
+            filter: 0,
+            ..Default::default()
+        };
+        let mut r = render(&ctx, cornell_box(), config(64, ssdo));
+        ssdo_texels(&mut r)
+    };
+    let one = run(SsdoForm::OneStep);
+    let two = run(SsdoForm::TwoStep);
+    let mut differ = 0;
+    for (a, b) in one.iter().zip(&two) {
+        let (Some(a), Some(b)) = (a, b) else {
+            assert_eq!(a.is_some(), b.is_some());
+            continue;
+        };
+        assert!(
+            (a[3] - b[3]).abs() <= 1e-3,
+            "modulation {} vs {}",
+            a[3],
+            b[3]
+        );
+        differ += usize::from(a[..3] != b[..3]);
+    }
+    assert!(differ > 0, "the two forms' bounces are identical");
+    common::assert_clean(&ctx);
+}
+
+/// Two parallel walls 0.5 m apart, the near one over x >= 0, seen head-on: the far wall's
+/// pixels beside the edge are occluded by the near wall, the near wall's are not.
+fn stepped_walls() -> Scene {
+    let mut b = MeshBuilder::new();
+    let m = b.add_material(Material::colour("wall", [0.7, 0.7, 0.7]));
+    let h = 10.0;
+    for (x0, z) in [(-h, 0.0), (0.0, 0.5)] {
+        b.add_flat_polygon(
+            m,
+            &[
+                Vec3::new(x0, -h, z),
+                Vec3::new(h, -h, z),
+                Vec3::new(h, h, z),
+                Vec3::new(x0, h, z),
+            ],
+            Vec3::Z,
+        );
+    }
+    let mut scene = cornell_box();
+    scene.name = "stepped-walls".into();
+    scene.mesh = b.build();
+    scene.camera = Camera::new(Vec3::new(0.0, 0.0, 3.0), Vec3::ZERO, 60.0, 0.1, 100.0);
+    scene.light = SpotLight {
+        position: Vec3::new(0.0, 0.0, 6.0),
+        direction: Vec3::NEG_Z,
+        ..scene.light
+    };
+    scene
+}
+
+/// The bilateral filter: on the far wall the noise of the modulation factor along the edge
+/// (where the true value is the same) drops by at least 4x at 11x11; beside the depth edge the
+/// near wall stays unoccluded (1 within 1%) and the far wall's band keeps its mean within 1%.
+#[test]
+fn bilateral_filter_smooths_planes_without_bleeding_across_edges() {
+    let ctx = common::context();
+    let size = 128u32;
+    let scene = stepped_walls();
+    let radius = 0.8 / scene.mesh.bounds.radius();
+    let run = |filter| {
+        let ssdo = SsdoConfig {
+            samples: 10,
+            radius,
+            filter,
+            ..Default::default()
+        };
+        let mut r = render(&ctx, stepped_walls(), config(size, ssdo));
+        let s = r.read(Target::SsdoModulation).unwrap();
+        (0..size * size)
+            .map(|i| s.texel(i % size, i / size)[3])
+            .collect::<Vec<f32>>()
+    };
+    let raw = run(0);
+    let filtered = run(11);
+    let at = |v: &[f32], x: u32, y: u32| v[(y * size + x) as usize];
+    // The edge is at x = 0: column size / 2. Far wall: columns left of it.
+    let edge = size / 2;
+    let rows = 16..size - 16;
+    let column_variance = |v: &[f32], x: u32| {
+        let vals: Vec<f32> = rows.clone().map(|y| at(v, x, y)).collect();
+        let mean = vals.iter().sum::<f32>() / vals.len() as f32;
+        vals.iter().map(|a| (a - mean).powi(2)).sum::<f32>() / vals.len() as f32
+    };
+    let band = |v: &[f32], xs: std::ops::Range<u32>| {
+        let mut sum = 0.0;
+        let mut n = 0;
+        for x in xs {
+            for y in rows.clone() {
+                sum += at(v, x, y);
+                n += 1;
+            }
+        }
+        sum / n as f32
+    };
+    for x in edge - 8..edge - 2 {
+        let (vr, vf) = (column_variance(&raw, x), column_variance(&filtered, x));
+        eprintln!("column {x}: variance raw {vr:.3e}, filtered {vf:.3e}");
+        assert!(vr > 0.0 && vf * 4.0 <= vr, "column {x}: {vr} -> {vf}");
+    }
+    let far = 5 + 2;
+    let (far_raw, far_filtered) = (
+        band(&raw, edge - far..edge - 2),
+        band(&filtered, edge - far..edge - 2),
+    );
+    eprintln!("far wall beside the edge: mean {far_raw} raw, {far_filtered} filtered");
+    assert!(
+        far_raw < 0.99,
+        "the far wall beside the edge is not occluded ({far_raw})"
+    );
+    assert!(
+        (far_filtered - far_raw).abs() <= 0.01 * far_raw,
+        "far wall: {far_raw} -> {far_filtered}"
+    );
+    for x in edge + 1..edge + 7 {
+        for y in rows.clone() {
+            let (r0, f0) = (at(&raw, x, y), at(&filtered, x, y));
+            assert!((r0 - 1.0).abs() <= 1e-3, "near wall ({x}, {y}) raw {r0}");
+            assert!(
+                (f0 - 1.0).abs() <= 0.01,
+                "near wall ({x}, {y}) filtered {f0}"
+            );
+        }
+    }
+    common::assert_clean(&ctx);
+}
