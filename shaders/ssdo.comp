@@ -24,6 +24,8 @@ layout(set = 1, binding = 4) uniform texture2D lit;
 // The direct effect's outgoing radiance (read when frame.direct_enabled).
 layout(set = 1, binding = 3) uniform texture2D direct_light;
 #endif
+// The pre-pass's samples per block (read when frame.ssdo_threshold_count > 0).
+layout(set = 1, binding = 6) uniform utexture2D block_samples;
 #ifdef DIRECTIONAL
 layout(set = 1, binding = 4, rgba16f) uniform writeonly image2D lit_out;
 #else
@@ -53,6 +55,8 @@ void main() {
     if (position.w != 0.0) {
         vec3 n = texelFetch(g_normal, pixel, 0).xyz;
         uint count = frame.ssdo_samples;
+        if (frame.ssdo_threshold_count > 0u)
+            count = texelFetch(block_samples, pixel / int(frame.ssdo_prepass_scale), 0).r;
         // The same K samples every frame (Halton indices 0 .. K - 1, shifted per pixel).
         uint first = 0u;
 #ifdef DIRECTIONAL

@@ -7,7 +7,9 @@
 mod common;
 
 use glam::{Mat4, Vec2, Vec3, Vec4};
-use ssgi::renderer::config::{Effects, RenderConfig, SsdoConfig, SsdoForm, TemporalConfig};
+use ssgi::renderer::config::{
+    AdaptiveSamples, Effects, RenderConfig, SsdoConfig, SsdoForm, TemporalConfig,
+};
 use ssgi::renderer::pcf::Pcf;
 use ssgi::renderer::targets::Target;
 use ssgi::renderer::Renderer;
@@ -492,5 +494,87 @@ fn bilateral_filter_smooths_planes_without_bleeding_across_edges() {
             );
         }
     }
+    common::assert_clean(&ctx);
+}
+
+/// The adaptive pre-pass (`--ssdo-samples adaptive`): every block's count equals a CPU
+/// evaluation of the change measure on the read-back G-buffer (creases: 1 - n . n'; steps:
+/// distance from the centre's tangent plane in block sizes), planes take the fewest samples and
+/// the box's edges and corners more.
+#[test]
+fn adaptive_counts_follow_creases_and_edges() {
+    let ctx = common::context();
+    let size = 96u32;
+    let adaptive = AdaptiveSamples::PAPER;
+    let ssdo = SsdoConfig {
+        samples: adaptive.max(),
+        adaptive: Some(adaptive),
+        filter: 0,
+        ..Default::default()
+    };
+    let mut r = render(&ctx, cornell_box(), config(size, ssdo));
+    let counts = r.read(Target::SsdoSamples).unwrap();
+    let pos = r.read(Target::GPosition).unwrap();
+    let normal = r.read(Target::GNormal).unwrap();
+    let vp = r.scene.camera.view_proj(1.0);
+    let tan_half = (0.5 * r.scene.camera.vfov_deg).to_radians().tan();
+    let scale = adaptive.scale as i32;
+    assert_eq!(counts.width, size.div_ceil(adaptive.scale));
+    let last = size as i32 - 1;
+    let (mut flat, mut busy, mut checked) = (0, 0, 0);
+    for ty in 0..counts.height as i32 {
+        for tx in 0..counts.width as i32 {
+            let c = (
+                (tx * scale + scale / 2).min(last),
+                (ty * scale + scale / 2).min(last),
+            );
+            let p4 = pos.texel(c.0 as u32, c.1 as u32);
+            let got = counts.texel(tx as u32, ty as u32)[0] as u32;
+            let mut change = 0.0f32;
+            if p4[3] != 0.0 {
+                let (p, n) = (v3(p4), v3(normal.texel(c.0 as u32, c.1 as u32)));
+                let depth = (vp * p.extend(1.0)).w;
+                let block = scale as f32 * 2.0 * tan_half * depth / size as f32;
+                for dy in -1..=1 {
+                    for dx in -1..=1 {
+                        let q = (
+                            (c.0 + dx * scale).clamp(0, last) as u32,
+                            (c.1 + dy * scale).clamp(0, last) as u32,
+                        );
+                        let q4 = pos.texel(q.0, q.1);
+                        if q4[3] == 0.0 {
+                            continue;
+                        }
+                        let qn = v3(normal.texel(q.0, q.1));
+                        let crease = 1.0 - n.dot(qn).clamp(-1.0, 1.0);
+                        let step = ((v3(q4) - p).dot(n).abs() / block).min(1.0);
+                        change = change.max(crease.max(step));
+                    }
+                }
+            }
+            // A change within 1e-4 of a threshold may round either way on the two sides.
+            if adaptive
+                .thresholds()
+                .iter()
+                .any(|t| (change - t).abs() < 1e-4)
+            {
+                continue;
+            }
+            let periods = adaptive
+                .thresholds()
+                .iter()
+                .filter(|t| change > **t)
+                .count() as u32;
+            let expected = adaptive.min + 10 * periods;
+            assert_eq!(got, expected, "block ({tx}, {ty}): change {change}");
+            checked += 1;
+            if p4[3] != 0.0 {
+                flat += usize::from(got == adaptive.min);
+                busy += usize::from(got == adaptive.max());
+            }
+        }
+    }
+    eprintln!("{checked} blocks checked: {flat} with the fewest samples, {busy} with the most");
+    assert!(flat > 100 && busy > 20, "{flat} flat, {busy} busy blocks");
     common::assert_clean(&ctx);
 }

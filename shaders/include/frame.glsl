@@ -47,7 +47,11 @@ layout(set = 0, binding = 0, std140) uniform Frame {
     uint vpl_visibility;       // screen-space visibility test of each VPL (0/1)
     float vpl_march_near_px;   // nearest step of that visibility march [px]
     uint vpl_interleave;       // interleaved gather: block side N, one VPL subset per pixel (1 = off)
-    uint ssdo_samples;         // SSDO hemisphere samples per pixel (K)
+    uint ssdo_samples;         // SSDO hemisphere samples per pixel (K), without the pre-pass
+    uint ssdo_min_samples;     // with the pre-pass: a flat block's samples (whole Halton periods)
+    uint ssdo_prepass_scale;   // with the pre-pass: its resolution divisor
+    uint ssdo_threshold_count; // thresholds in use: 0 = fixed count, no pre-pass
+    vec4 ssdo_thresholds;      // change measure above which a block takes one Halton period more
     float ssdo_radius;         // SSDO hemisphere radius r_max, world units
     uint ssdo_filter_radius;   // half side of SSDO's separable bilateral filter (0 = off)
     uint direct_enabled;       // 1 when the direct effect runs (SSDO's senders add its light)

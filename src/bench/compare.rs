@@ -32,7 +32,12 @@ pub const GROUPS: &[(&str, &[PassId])] = &[
     ),
     (
         "ssdo",
-        &[PassId::Ssdo, PassId::SsdoBounce, PassId::SsdoBilateral],
+        &[
+            PassId::SsdoSamples,
+            PassId::Ssdo,
+            PassId::SsdoBounce,
+            PassId::SsdoBilateral,
+        ],
     ),
     ("total", &[]),
 ];

@@ -3,13 +3,14 @@
 //! with visibility over eq 2 without) that darkens the ambient and direct light, and eq 4's
 //! near-field bounce from the visible surfaces behind occluded samples. One step (section 4.1)
 //! or the original two (directional occlusion, then the bounce from its result); then the
-//! separable geometry-aware bilateral filter. Every pixel every frame, no temporal reuse.
+//! separable geometry-aware bilateral filter. With `--ssdo-samples adaptive`, a pre-pass first
+//! picks each block's sample count. Every pixel every frame, no temporal reuse.
 
 use super::effect::TermKind;
 use super::effect::{every_pixel, Effect, EffectId, FrameInfo, Recording, Registration, Setup};
 use super::resolve::EffectResources;
 use crate::error::Result;
-use crate::passes::compute::ComputePass;
+use crate::passes::compute::{ComputePass, Dispatch};
 use crate::passes::decl::{Bind, Slot, Use};
 use crate::passes::{PassId, PassLayout};
 use crate::renderer::config::{RenderConfig, SsdoForm};
@@ -28,6 +29,8 @@ const RAW: Slot = Slot::Own(1);
 const HALF_FILTERED: Slot = Slot::Own(2);
 /// The filtered result.
 const FILTERED: Slot = Slot::Own(3);
+/// The pre-pass's samples per block (r32ui, 1/scale resolution; 1x1 without the pre-pass).
+const BLOCK_SAMPLES: Slot = Slot::Own(4);
 
 const ONE_STEP: &[Bind] = &[
     Bind::new(0, Slot::GPosition, Use::Sampled),
@@ -35,6 +38,7 @@ const ONE_STEP: &[Bind] = &[
     Bind::new(2, Slot::GAlbedo, Use::Sampled),
     Bind::new(3, Slot::DirectLight, Use::Sampled),
     Bind::new(5, RAW, Use::StorageWrite),
+    Bind::new(6, BLOCK_SAMPLES, Use::Sampled),
 ];
 
 const DIRECTIONAL: &[Bind] = &[
@@ -43,6 +47,7 @@ const DIRECTIONAL: &[Bind] = &[
     Bind::new(2, Slot::GAlbedo, Use::Sampled),
     Bind::new(3, Slot::DirectLight, Use::Sampled),
     Bind::new(4, LIT, Use::StorageWrite),
+    Bind::new(6, BLOCK_SAMPLES, Use::Sampled),
 ];
 
 const BOUNCE: &[Bind] = &[
@@ -51,6 +56,13 @@ const BOUNCE: &[Bind] = &[
     Bind::new(2, Slot::GAlbedo, Use::Sampled),
     Bind::new(4, LIT, Use::Sampled),
     Bind::new(5, RAW, Use::StorageWrite),
+    Bind::new(6, BLOCK_SAMPLES, Use::Sampled),
+];
+
+const PREPASS: &[Bind] = &[
+    Bind::new(0, Slot::GPosition, Use::Sampled),
+    Bind::new(1, Slot::GNormal, Use::Sampled),
+    Bind::new(2, BLOCK_SAMPLES, Use::StorageWrite),
 ];
 
 const FILTER_H: &[Bind] = &[
@@ -79,6 +91,7 @@ fn layouts() -> Vec<PassLayout> {
         ComputePass::layout(PassId::Ssdo, &shaders::SSDO_COMP_ONE_STEP, ONE_STEP),
         ComputePass::layout(PassId::Ssdo, &shaders::SSDO_COMP_DIRECTIONAL, DIRECTIONAL),
         ComputePass::layout(PassId::SsdoBounce, &shaders::SSDO_COMP_BOUNCE, BOUNCE),
+        ComputePass::layout(PassId::SsdoSamples, &shaders::SSDO_SAMPLES_COMP, PREPASS),
         ComputePass::layout(
             PassId::SsdoBilateral,
             &shaders::SSDO_BILATERAL_COMP_HORIZONTAL,
@@ -101,15 +114,17 @@ enum Form {
     },
 }
 
-/// Size-dependent images: [lit, raw, half filtered, filtered].
+/// Size-dependent images: [lit, raw, half filtered, filtered, samples per block].
 struct Sized {
-    images: [Image; 4],
+    images: [Image; 5],
 }
 
 pub struct SsdoEffect {
     form: Form,
     /// Horizontal and vertical bilateral passes (`--bilateral` not off).
     filter: Option<[ComputePass; 2]>,
+    /// The adaptive sample count's pre-pass.
+    prepass: Option<ComputePass>,
     sized: Sized,
     push: EffectPush,
 }
@@ -142,9 +157,18 @@ impl SsdoEffect {
         } else {
             None
         };
+        let prepass = match s.config.ssdo.adaptive {
+            Some(_) => Some(pass(
+                PassId::SsdoSamples,
+                &shaders::SSDO_SAMPLES_COMP,
+                PREPASS,
+            )?),
+            None => None,
+        };
         Ok(Self {
             form,
             filter,
+            prepass,
             sized: Self::create_sized(s.ctx, s.config)?,
             push: EffectPush::default(),
         })
@@ -165,24 +189,41 @@ impl SsdoEffect {
                 },
             )
         };
+        // One texel per pre-pass block (a 1x1 placeholder when the count is fixed: the SSDO
+        // passes bind it either way and do not read it).
+        let scale = c.ssdo.adaptive.map(|a| a.scale);
+        let side = |n: u32| scale.map_or(1, |s| n.div_ceil(s));
+        let samples = Image::new(
+            ctx,
+            "ssdo.block_samples",
+            ImageDesc {
+                width: side(c.width),
+                height: side(c.height),
+                format: vk::Format::R32_UINT,
+                usage: vk::ImageUsageFlags::STORAGE
+                    | vk::ImageUsageFlags::SAMPLED
+                    | vk::ImageUsageFlags::TRANSFER_SRC,
+            },
+        )?;
         Ok(Sized {
             images: [
                 image("ssdo.lit")?,
                 image("ssdo.raw")?,
                 image("ssdo.half_filtered")?,
                 image("ssdo.filtered")?,
+                samples,
             ],
         })
     }
 
-    fn own(&self) -> [[&Image; 2]; 4] {
+    fn own(&self) -> [[&Image; 2]; 5] {
         self.sized.images.each_ref().map(|i| [i, i])
     }
 
     fn resources<'a>(
         &'a self,
         targets: &'a Targets,
-        own: &'a [[&'a Image; 2]; 4],
+        own: &'a [[&'a Image; 2]; 5],
     ) -> EffectResources<'a> {
         EffectResources {
             targets,
@@ -194,7 +235,7 @@ impl SsdoEffect {
 
     /// The image the composite reads: filtered, or the raw result.
     fn result(&self) -> &Image {
-        let [_, raw, _, filtered] = &self.sized.images;
+        let [_, raw, _, filtered, _] = &self.sized.images;
         if self.filter.is_some() {
             filtered
         } else {
@@ -226,7 +267,7 @@ impl Effect for SsdoEffect {
                 bounce.bind(ctx, &res)?;
             }
         }
-        for p in self.filter.iter().flatten() {
+        for p in self.filter.iter().flatten().chain(&self.prepass) {
             p.bind(ctx, &res)?;
         }
         Ok(())
@@ -254,6 +295,16 @@ impl Effect for SsdoEffect {
         let own = self.own();
         let res = self.resources(info.targets, &own);
         let all = every_pixel(info);
+        if let Some(p) = &self.prepass {
+            let d = &self.sized.images[4].desc;
+            let blocks = Dispatch::Pixels {
+                width: d.width,
+                height: d.height,
+            };
+            r.timed(PassId::SsdoSamples, |rec, tr| {
+                p.record(rec, tr, info.frame, &res, &[], blocks)
+            });
+        }
         match &self.form {
             Form::OneStep(p) => {
                 r.timed(PassId::Ssdo, |rec, tr| {
@@ -287,6 +338,7 @@ impl Effect for SsdoEffect {
     fn target(&self, target: Target, _parity: usize, _config: &RenderConfig) -> Option<&Image> {
         match target {
             Target::SsdoModulation | Target::SsdoBounce => Some(self.result()),
+            Target::SsdoSamples if self.prepass.is_some() => Some(&self.sized.images[4]),
             _ => None,
         }
     }

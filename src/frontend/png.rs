@@ -94,6 +94,8 @@ pub fn visualize(target: Target, data: &ImageData, bounds: &Aabb) -> Vec<u8> {
                 Target::RsmFlux | Target::SsdoBounce => [t[0] / range, t[1] / range, t[2] / range],
                 Target::Ao | Target::Shadow => [t[0], t[0], t[0]],
                 Target::SsdoModulation => [t[3], t[3], t[3]],
+                // Samples per block: 50 (the paper's most) is white.
+                Target::SsdoSamples => [t[0] / 50.0, t[0] / 50.0, t[0] / 50.0],
                 Target::DiscardMask => [t[0], 0.0, 0.0],
                 // Figure 4.10: red where recomputed from scratch (disoccluded), blue for the
                 // refresh tile, yellow accumulating, grey converged, black background.

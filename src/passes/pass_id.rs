@@ -32,6 +32,8 @@ pub enum PassId {
     IndirectFixup,
     /// Indirect light's refresh tile at full resolution, every pattern, spread over threads.
     IndirectRefresh,
+    /// SSDO's pre-pass: samples per block from the normal and depth changes.
+    SsdoSamples,
     /// SSDO: modulation factor and bounce in one pass, or the two-step form's directional
     /// occlusion pass.
     Ssdo,
@@ -44,7 +46,7 @@ pub enum PassId {
 }
 
 impl PassId {
-    pub const ALL: [PassId; 18] = [
+    pub const ALL: [PassId; 19] = [
         PassId::LightView,
         PassId::GBuffer,
         PassId::Reproject,
@@ -59,6 +61,7 @@ impl PassId {
         PassId::IndirectUpsample,
         PassId::IndirectFixup,
         PassId::IndirectRefresh,
+        PassId::SsdoSamples,
         PassId::Ssdo,
         PassId::SsdoBounce,
         PassId::SsdoBilateral,
@@ -81,6 +84,7 @@ impl PassId {
             PassId::IndirectUpsample => "indirect_upsample",
             PassId::IndirectFixup => "indirect_fixup",
             PassId::IndirectRefresh => "indirect_refresh",
+            PassId::SsdoSamples => "ssdo_samples",
             PassId::Ssdo => "ssdo",
             PassId::SsdoBounce => "ssdo_bounce",
             PassId::SsdoBilateral => "ssdo_bilateral",

@@ -154,10 +154,12 @@ pub enum Target {
     /// SSDO's modulation factor (a of its term) and bounce irradiance (rgb), as composited.
     SsdoModulation,
     SsdoBounce,
+    /// The adaptive pre-pass's samples per block.
+    SsdoSamples,
 }
 
 impl Target {
-    pub const ALL: [Target; 22] = [
+    pub const ALL: [Target; 23] = [
         Target::Output,
         Target::Direct,
         Target::GPosition,
@@ -180,6 +182,7 @@ impl Target {
         Target::AoPositionLevel3,
         Target::SsdoModulation,
         Target::SsdoBounce,
+        Target::SsdoSamples,
     ];
 
     pub fn name(self) -> &'static str {
@@ -206,6 +209,7 @@ impl Target {
             Target::AoPositionLevel3 => "ao_position_level3",
             Target::SsdoModulation => "ssdo_modulation",
             Target::SsdoBounce => "ssdo_bounce",
+            Target::SsdoSamples => "ssdo_samples",
         }
     }
 }
@@ -268,7 +272,8 @@ impl Targets {
             | Target::AoPositionLevel2
             | Target::AoPositionLevel3
             | Target::SsdoModulation
-            | Target::SsdoBounce => return None,
+            | Target::SsdoBounce
+            | Target::SsdoSamples => return None,
         })
     }
 }
