@@ -915,3 +915,51 @@ fn position_levels_point_sample_the_gbuffer_and_keep_the_ao() {
     drop(r);
     common::assert_clean(&ctx);
 }
+
+/// A resampled history holds as many estimates as the blend of its taps' means
+/// (1 / sum w^2 / n, reproject.comp's blend_count), not its weakest tap's: panning slowly
+/// over a converged view, the pixels still accumulating are those that entered the image in
+/// the last rotation limit of frames, instead of a young band that the weakest-tap rule
+/// widened by about a pixel every frame. 64x64 front view of the Cornell box's back wall
+/// panned 0.25 px per frame for 30 frames, refresh off.
+#[test]
+fn young_counts_do_not_spread_along_the_flow() {
+    let ctx = common::context();
+    let size = 64u32;
+    let mut r = renderer(
+        &ctx,
+        cornell_box(),
+        config(size, no_refresh(), AoConfig::default()),
+    );
+    run(&mut r, 40);
+    let mut camera = r.scene.camera;
+    // The world width of a pixel on the back wall (the camera looks straight at it).
+    let depth = camera.position.z + 1.0;
+    let pixel = 2.0 * depth * (0.5 * camera.vfov_deg).to_radians().tan() / size as f32;
+    let mut timings = Vec::new();
+    for _ in 0..30 {
+        camera.position.x += 0.25 * pixel;
+        camera.target.x += 0.25 * pixel;
+        timings.extend(r.render_frame(&camera).unwrap());
+    }
+    timings.extend(r.finish().unwrap());
+    let computed: Vec<u64> = timings
+        .iter()
+        .map(|t| {
+            t.counters
+                .iter()
+                .find(|(n, _)| *n == "ssao_computed_pixels")
+                .map_or(0, |c| c.1)
+        })
+        .collect();
+    let last = *computed.last().unwrap();
+    eprintln!("SSAO pixels computed while panning: {computed:?}");
+    // 30 frames at 0.25 px: about 8 new columns, plus silhouettes inside the box; the weakest
+    // tap rule had grown the young band by about 30 columns more.
+    assert!(
+        last < 16 * size as u64,
+        "{last} pixels still accumulating after 30 frames ({} columns)",
+        last / size as u64
+    );
+    common::assert_clean(&ctx);
+}
