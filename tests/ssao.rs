@@ -12,7 +12,7 @@ use ssgi::renderer::config::{
 use ssgi::renderer::pcf::Pcf;
 use ssgi::renderer::targets::Target;
 use ssgi::renderer::Renderer;
-use ssgi::scene::{cornell_box, Camera, Material, MeshBuilder, Scene, SpotLight};
+use ssgi::scene::{cornell_box, Camera, Material, MeshBuilder, Scene};
 use ssgi::vk::{FrameTiming, ImageData};
 use std::sync::Arc;
 
@@ -40,38 +40,6 @@ fn no_refresh() -> TemporalConfig {
         refresh: Refresh::Off,
         ..Default::default()
     }
-}
-
-/// A 400 m square ground plane seen from 3 m up: nothing occludes anything.
-fn open_plane() -> Scene {
-    let mut b = MeshBuilder::new();
-    let m = b.add_material(Material::colour("ground", [0.7, 0.7, 0.7]));
-    let h = 200.0;
-    b.add_flat_polygon(
-        m,
-        &[
-            Vec3::new(-h, 0.0, -h),
-            Vec3::new(-h, 0.0, h),
-            Vec3::new(h, 0.0, h),
-            Vec3::new(h, 0.0, -h),
-        ],
-        Vec3::Y,
-    );
-    let mut scene = cornell_box();
-    scene.name = "open-plane".into();
-    scene.mesh = b.build();
-    scene.camera = Camera::new(
-        Vec3::new(0.0, 3.0, 6.0),
-        Vec3::new(0.0, 0.0, 0.0),
-        40.0,
-        0.1,
-        100.0,
-    );
-    scene.light = SpotLight {
-        position: Vec3::new(0.0, 10.0, 0.0),
-        ..scene.light
-    };
-    scene
 }
 
 fn run(r: &mut Renderer, frames: u32) -> Vec<FrameTiming> {
@@ -110,7 +78,7 @@ fn open_plane_is_unoccluded() {
         };
         let mut r = renderer(
             &ctx,
-            open_plane(),
+            common::open_plane(),
             config(96, temporal, AoConfig::default()),
         );
         run(&mut r, 4);
@@ -139,7 +107,7 @@ fn open_plane_is_unoccluded() {
         reuse: false,
         ..Default::default()
     };
-    let mut r = renderer(&ctx, open_plane(), config(96, temporal, ao));
+    let mut r = renderer(&ctx, common::open_plane(), config(96, temporal, ao));
     run(&mut r, 1);
     let values = ao_values(&mut r);
     let mut centre: Vec<f32> = (32..64)

@@ -45,33 +45,6 @@ fn render(ctx: &Arc<ssgi::vk::Context>, scene: Scene, c: RenderConfig) -> Render
     r
 }
 
-/// A 400 m square ground plane seen from 3 m up, lit by the spot from 10 m above.
-fn open_plane() -> Scene {
-    let mut b = MeshBuilder::new();
-    let m = b.add_material(Material::colour("ground", [0.7, 0.7, 0.7]));
-    let h = 200.0;
-    b.add_flat_polygon(
-        m,
-        &[
-            Vec3::new(-h, 0.0, -h),
-            Vec3::new(-h, 0.0, h),
-            Vec3::new(h, 0.0, h),
-            Vec3::new(h, 0.0, -h),
-        ],
-        Vec3::Y,
-    );
-    let mut scene = cornell_box();
-    scene.name = "open-plane".into();
-    scene.mesh = b.build();
-    scene.camera = Camera::new(Vec3::new(0.0, 3.0, 6.0), Vec3::ZERO, 40.0, 0.1, 100.0);
-    scene.light = SpotLight {
-        position: Vec3::new(0.0, 10.0, 0.0),
-        direction: Vec3::NEG_Y,
-        ..scene.light
-    };
-    scene
-}
-
 /// Every geometry pixel's SSDO texel (bounce rgb, modulation a).
 fn ssdo_texels(r: &mut Renderer) -> Vec<Option<[f32; 4]>> {
     let s = r.read(Target::SsdoBounce).unwrap();
@@ -95,7 +68,7 @@ fn open_plane_is_unmodulated_and_receives_no_bounce() {
                 radius: 0.01, // 2.8 m on the 283 m plane
                 ..Default::default()
             };
-            let mut r = render(&ctx, open_plane(), config(64, ssdo));
+            let mut r = render(&ctx, common::open_plane(), config(64, ssdo));
             let texels: Vec<[f32; 4]> = ssdo_texels(&mut r).into_iter().flatten().collect();
             assert!(texels.len() > 1000, "{form:?}: the plane fills the view");
             for t in &texels {

@@ -66,3 +66,33 @@ pub fn cornell_from_above(x: f32, z: f32, vfov_deg: f32) -> Scene {
 pub fn read(r: &mut Renderer, t: Target) -> ImageData {
     r.read(t).expect("readback")
 }
+
+/// A 400 m square ground plane seen from 3 m up, lit by the spot straight down from 10 m
+/// above: nothing occludes anything.
+pub fn open_plane() -> Scene {
+    use glam::Vec3;
+    use ssgi::scene::{Material, MeshBuilder, SpotLight};
+    let mut b = MeshBuilder::new();
+    let m = b.add_material(Material::colour("ground", [0.7, 0.7, 0.7]));
+    let h = 200.0;
+    b.add_flat_polygon(
+        m,
+        &[
+            Vec3::new(-h, 0.0, -h),
+            Vec3::new(-h, 0.0, h),
+            Vec3::new(h, 0.0, h),
+            Vec3::new(h, 0.0, -h),
+        ],
+        Vec3::Y,
+    );
+    let mut scene = ssgi::scene::cornell_box();
+    scene.name = "open-plane".into();
+    scene.mesh = b.build();
+    scene.camera = Camera::new(Vec3::new(0.0, 3.0, 6.0), Vec3::ZERO, 40.0, 0.1, 100.0);
+    scene.light = SpotLight {
+        position: Vec3::new(0.0, 10.0, 0.0),
+        direction: Vec3::NEG_Y,
+        ..scene.light
+    };
+    scene
+}
