@@ -189,7 +189,14 @@ fn bad_flags_get_clear_errors() {
         "--rsm-size 128",
     );
     fails_with(&["render", "--vpls", "0"], "--vpls");
-    fails_with(&["render", "--effects", "ssdo"], "unknown effect");
+    fails_with(&["render", "--effects", "ssdp"], "unknown effect");
+    fails_with(&["render", "--effects", "ao,ssdo"], "both darken");
+    fails_with(&["render", "--bilateral", "4"], "odd side");
+    fails_with(
+        &["render", "--ssdo-samples", "adaptive:15-50"],
+        "multiples of 10",
+    );
+    fails_with(&["render", "--ao-position-mips", "4"], "--ao-position-mips");
     fails_with(&["render", "--epsilon", "abs:-1"], "--epsilon");
     fails_with(&["render", "--ema-alpha", "2"], "--ema-alpha");
     fails_with(&["render", "--bias", "nan"], "--bias");
