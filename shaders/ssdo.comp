@@ -4,7 +4,9 @@
 // albedo) and the bounce darkened by the modulation factor. The original two steps:
 // `directional` writes the directionally occluded lighting (direct + ambient x albedo, times
 // the modulation factor; a = the factor), then `bounce` gathers the same samples' senders
-// from that image. Output: rgb = bounce irradiance, a = modulation factor.
+// from that image. Output: rgb = bounce irradiance, a = modulation factor. At 1/scale
+// resolution (--ssdo-scale 0.5) texel t shades the G-buffer's pixel t * scale, the samples still
+// project to full-resolution pixels, and each texel keeps its own Halton shift.
 // @permutation one_step: ONE_STEP
 // @permutation directional: DIRECTIONAL
 // @permutation bounce: BOUNCE
@@ -33,8 +35,9 @@ layout(set = 1, binding = 5, rgba16f) uniform writeonly image2D ssdo_out;
 #endif
 
 #ifdef BOUNCE
+// `lit` is at SSDO's resolution: the texel covering full-resolution pixel q.
 vec3 sender_radiance(ivec2 q) {
-    return texelFetch(lit, q, 0).rgb;
+    return texelFetch(lit, q / int(frame.ssdo_scale), 0).rgb;
 }
 #else
 // The pixel lit as the frame is without SSDO: the direct light and the ambient it reflects.
@@ -47,9 +50,16 @@ vec3 sender_radiance(ivec2 q) {
 
 #include "ssdo.glsl"
 
+#ifdef DIRECTIONAL
+#define SSDO_OUT lit_out
+#else
+#define SSDO_OUT ssdo_out
+#endif
+
 void main() {
-    ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
-    if (outside_frame(pixel)) return;
+    ivec2 texel = ivec2(gl_GlobalInvocationID.xy);
+    if (any(greaterThanEqual(texel, imageSize(SSDO_OUT)))) return;
+    ivec2 pixel = texel * int(frame.ssdo_scale);
     vec4 position = texelFetch(g_position, pixel, 0);
     vec4 result = vec4(0.0, 0.0, 0.0, 1.0);
     if (position.w != 0.0) {
@@ -60,19 +70,15 @@ void main() {
         // The same K samples every frame (Halton indices 0 .. K - 1, shifted per pixel).
         uint first = 0u;
 #ifdef DIRECTIONAL
-        float m = ssdo_pixel(pixel, position.xyz, n, first, count, false).a;
+        float m = ssdo_pixel(texel, position.xyz, n, first, count, false).a;
         result = vec4(sender_radiance(pixel) * m, m);
 #elif defined(BOUNCE)
-        vec3 e = ssdo_pixel(pixel, position.xyz, n, first, count, true).rgb;
-        result = vec4(e, texelFetch(lit, pixel, 0).a);
+        vec3 e = ssdo_pixel(texel, position.xyz, n, first, count, true).rgb;
+        result = vec4(e, texelFetch(lit, texel, 0).a);
 #else
-        result = ssdo_pixel(pixel, position.xyz, n, first, count, true);
+        result = ssdo_pixel(texel, position.xyz, n, first, count, true);
         result.rgb *= result.a;
 #endif
     }
-#ifdef DIRECTIONAL
-    imageStore(lit_out, pixel, result);
-#else
-    imageStore(ssdo_out, pixel, result);
-#endif
+    imageStore(SSDO_OUT, texel, result);
 }

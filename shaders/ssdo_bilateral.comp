@@ -7,6 +7,8 @@
 //    footprint the pixel's world size at the centre's depth: 0 on the same plane at any slant
 //    and any scale, so planes are smoothed fully and a depth edge not at all;
 //  - exp(-((1 - n . n') / 0.1)^2): 0.98 at 10 degrees between the normals, 1e-44 at 90.
+// At SSDO's 1/scale resolution, texel t stands for the G-buffer's pixel t * scale and a
+// footprint is scale pixels wide.
 // @permutation horizontal: HORIZONTAL
 // @permutation vertical: VERTICAL
 #extension GL_GOOGLE_include_directive : require
@@ -28,18 +30,20 @@ const ivec2 AXIS = ivec2(0, 1);
 
 void main() {
     ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
-    if (outside_frame(pixel)) return;
+    ivec2 grid = imageSize(dst);
+    if (any(greaterThanEqual(pixel, grid))) return;
+    int scale = int(frame.ssdo_scale);
     vec4 centre = texelFetch(src, pixel, 0);
-    vec4 position = texelFetch(g_position, pixel, 0);
+    vec4 position = texelFetch(g_position, pixel * scale, 0);
     int radius = int(frame.ssdo_filter_radius);
     if (position.w == 0.0 || radius == 0) {
         imageStore(dst, pixel, centre);
         return;
     }
     vec3 p = position.xyz;
-    vec3 n = texelFetch(g_normal, pixel, 0).xyz;
+    vec3 n = texelFetch(g_normal, pixel * scale, 0).xyz;
     float depth = max((frame.view_proj * vec4(p, 1.0)).w, 1e-30);
-    float footprint = 2.0 * frame.tan_half_fov * depth / float(frame.size.y);
+    float footprint = float(scale) * 2.0 * frame.tan_half_fov * depth / float(frame.size.y);
     float inv_plane = 1.0 / (2.0 * footprint);
     float sigma = float(2 * radius + 1) / 4.0;
     float inv_two_sigma2 = 1.0 / (2.0 * sigma * sigma);
@@ -48,10 +52,10 @@ void main() {
     for (int k = -radius; k <= radius; ++k) {
         if (k == 0) continue;
         ivec2 q = pixel + k * AXIS;
-        if (outside_frame(q)) continue;
-        vec4 qp = texelFetch(g_position, q, 0);
+        if (any(greaterThanEqual(uvec2(q), uvec2(grid)))) continue;
+        vec4 qp = texelFetch(g_position, q * scale, 0);
         if (qp.w == 0.0) continue;
-        vec3 qn = texelFetch(g_normal, q, 0).xyz;
+        vec3 qn = texelFetch(g_normal, q * scale, 0).xyz;
         float h = dot(qp.xyz - p, n) * inv_plane;
         float c = (1.0 - clamp(dot(n, qn), 0.0, 1.0)) * 10.0;
         float w = exp(-float(k * k) * inv_two_sigma2 - h * h - c * c);

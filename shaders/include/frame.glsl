@@ -54,6 +54,7 @@ layout(set = 0, binding = 0, std140) uniform Frame {
     vec4 ssdo_thresholds;      // change measure above which a block takes one Halton period more
     float ssdo_radius;         // SSDO hemisphere radius r_max, world units
     uint ssdo_filter_radius;   // half side of SSDO's separable bilateral filter (0 = off)
+    uint ssdo_scale;           // SSDO's resolution divisor: its texel t samples pixel t * scale
     uint direct_enabled;       // 1 when the direct effect runs (SSDO's senders add its light)
     uint camera_static;        // 1 when prev_view_proj equals view_proj exactly (CPU test)
     uint indirect_ramp;        // test input: indirect passes output world position (0/1)

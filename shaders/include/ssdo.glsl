@@ -40,8 +40,9 @@ float ssdo_incident(vec3 p, vec3 omega) {
 // P_s - P. Eq 4 as printed also multiplies by delta omega; A_s cos / d^2 is already the
 // patch's solid angle, so that factor is left out, as in Ritschel et al.'s eq. d^2 is floored
 // at A_s / (2 pi), where the patch would subtend a whole hemisphere: scale-free, since A_s
-// scales with r_max^2. Returns (bounce rgb, modulation).
-vec4 ssdo_pixel(ivec2 pixel, vec3 p, vec3 n, uint first_sample, uint count, bool bounce) {
+// scales with r_max^2. `texel` (SSDO's grid) picks the Halton shift. Returns (bounce rgb,
+// modulation).
+vec4 ssdo_pixel(ivec2 texel, vec3 p, vec3 n, uint first_sample, uint count, bool bounce) {
     float r_max = frame.ssdo_radius;
     float area = PI * r_max * r_max / float(max(count, 1u));
     float d2_floor = area / TWO_PI;
@@ -49,7 +50,7 @@ vec4 ssdo_pixel(ivec2 pixel, vec3 p, vec3 n, uint first_sample, uint count, bool
     float unoccluded = 0.0;
     vec3 e_bounce = vec3(0.0);
     for (uint k = 0u; k < count; ++k) {
-        vec4 w = hemisphere_sample(first_sample + k, pixel, n, r_max);
+        vec4 w = hemisphere_sample(first_sample + k, texel, n, r_max);
         HemisphereTap tap = hemisphere_tap(p + w.w * w.xyz, r_max);
         float weight = ssdo_incident(p, w.xyz) * max(dot(n, w.xyz), 0.0);
         unoccluded += weight;

@@ -37,6 +37,7 @@ pub const GROUPS: &[(&str, &[PassId])] = &[
             PassId::Ssdo,
             PassId::SsdoBounce,
             PassId::SsdoBilateral,
+            PassId::SsdoUpsample,
         ],
     ),
     ("total", &[]),

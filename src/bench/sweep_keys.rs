@@ -4,7 +4,7 @@
 
 use crate::cli::args::{
     parse_bias, parse_bilateral, parse_ema_alpha, parse_epsilon, parse_fraction, parse_gate,
-    parse_on_off, parse_pattern_count, parse_vpls, AccumulateMode,
+    parse_on_off, parse_pattern_count, parse_ssdo_scale, parse_vpls, AccumulateMode,
 };
 use crate::error::{Error, Result};
 use crate::renderer::config::{Accumulate, AoConfig, AoEstimator, Refresh, SsdoConfig, SsdoForm};
@@ -41,11 +41,12 @@ pub enum Key {
     SsdoSamples,
     SsdoRadius,
     SsdoFilter,
+    SsdoScale,
 }
 
 impl Key {
     /// Every key, in the order `help_table` lists them.
-    pub const ALL: [Key; 21] = [
+    pub const ALL: [Key; 22] = [
         Key::AoSamples,
         Key::AoEstimator,
         Key::AoRadius,
@@ -67,6 +68,7 @@ impl Key {
         Key::SsdoSamples,
         Key::SsdoRadius,
         Key::SsdoFilter,
+        Key::SsdoScale,
     ];
 
     /// The name given to `--vary`: the field's path in `RenderConfig`.
@@ -93,6 +95,7 @@ impl Key {
             Key::SsdoSamples => "ssdo.samples",
             Key::SsdoRadius => "ssdo.radius",
             Key::SsdoFilter => "ssdo.filter",
+            Key::SsdoScale => "ssdo.scale",
         }
     }
 
@@ -127,6 +130,7 @@ impl Key {
             Key::SsdoSamples => "SSDO hemisphere samples per pixel (--ssdo-samples)",
             Key::SsdoRadius => "SSDO hemisphere radius, fraction of the scene's bounding radius",
             Key::SsdoFilter => "SSDO's separable bilateral filter side (--bilateral)",
+            Key::SsdoScale => "SSDO's resolution, upsampled when half (--ssdo-scale)",
         }
     }
 
@@ -152,6 +156,7 @@ impl Key {
             Key::SsdoSamples => "integer 1..=4096",
             Key::SsdoRadius => "number in (0, 10]",
             Key::SsdoFilter => "odd integer 1..=31|off",
+            Key::SsdoScale => "1|0.5",
         }
     }
 
@@ -241,6 +246,7 @@ pub fn apply(config: &mut RenderConfig, key: Key, value: &str) -> Result<()> {
         Setting::Radius(r) => config.ao.radius = r,
         Setting::Form(f) => config.ssdo.form = f,
         Setting::Filter(side) => config.ssdo.filter = side,
+        Setting::Divisor(d) => config.ssdo.scale = d,
         Setting::Estimator(e) => config.ao.estimator = e,
         Setting::Refresh(r) => config.temporal.refresh = r,
         Setting::Budget(b) => config.temporal.refresh_budget = b,
@@ -368,6 +374,8 @@ enum Setting {
     Pcf(Pcf),
     Form(SsdoForm),
     Filter(u32),
+    /// A resolution divisor.
+    Divisor(u32),
 }
 
 impl Setting {
@@ -405,6 +413,7 @@ impl Setting {
             Key::SsdoSamples => count(SsdoConfig::MAX_SAMPLES),
             Key::SsdoForm => SsdoForm::from_str(v, false).map(Setting::Form),
             Key::SsdoFilter => parse_bilateral(v).map(Setting::Filter),
+            Key::SsdoScale => parse_ssdo_scale(v).map(Setting::Divisor),
             Key::AoRadius | Key::SsdoRadius => match v.parse::<f32>() {
                 Ok(r) if r.is_finite() && r > 0.0 && r <= 10.0 => Ok(Setting::Radius(r)),
                 _ => Err("not a number in (0, 10]".into()),
@@ -474,6 +483,7 @@ mod tests {
             (Key::SsdoSamples, "50", |c| c.ssdo.samples = 50),
             (Key::SsdoRadius, "0.1", |c| c.ssdo.radius = 0.1),
             (Key::SsdoFilter, "off", |c| c.ssdo.filter = 0),
+            (Key::SsdoScale, "0.5", |c| c.ssdo.scale = 2),
             (Key::Reuse, "off", |c| c.temporal.reuse = false),
             (Key::Accumulate, "ema:0.25", |c| {
                 c.temporal.accumulate = Accumulate::Ema { alpha: 0.25 }

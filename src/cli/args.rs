@@ -166,6 +166,10 @@ pub struct SceneArgs {
     /// Side of SSDO's separable geometry-aware bilateral filter (odd, up to 31), or `off`.
     #[arg(long, default_value = "11", value_parser = parse_bilateral)]
     pub bilateral: u32,
+    /// Resolution of SSDO and its filter: 1 (full) or 0.5 (half, then joint bilateral
+    /// upsampling with a 3x3 geometry-aware kernel).
+    #[arg(long, default_value = "1", value_parser = parse_ssdo_scale)]
+    pub ssdo_scale: u32,
 }
 
 /// `--ssdo-samples`: a fixed count, or per block from the pre-pass.
@@ -209,6 +213,17 @@ pub fn parse_ssdo_samples(s: &str) -> Result<SsdoSamples, String> {
         _ => Err(format!(
             "--ssdo-samples takes a count, `adaptive` or `adaptive:MIN-MAX` (multiples of {period}, \
              one to four periods apart), not {s:?}"
+        )),
+    }
+}
+
+/// `--ssdo-scale`: `1` or `0.5` (also `1/2`), returned as the resolution divisor.
+pub fn parse_ssdo_scale(s: &str) -> Result<u32, String> {
+    match s.trim() {
+        "1" | "1.0" => Ok(1),
+        "0.5" | ".5" | "1/2" => Ok(2),
+        _ => Err(format!(
+            "--ssdo-scale takes 1 (full resolution) or 0.5 (half), not {s:?}"
         )),
     }
 }
@@ -306,6 +321,7 @@ impl SceneArgs {
                 },
                 radius: self.ssdo_radius,
                 filter: self.bilateral,
+                scale: self.ssdo_scale,
             },
             temporal: TemporalConfig {
                 reuse: self.reuse,

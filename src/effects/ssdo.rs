@@ -4,7 +4,9 @@
 //! near-field bounce from the visible surfaces behind occluded samples. One step (section 4.1)
 //! or the original two (directional occlusion, then the bounce from its result); then the
 //! separable geometry-aware bilateral filter. With `--ssdo-samples adaptive`, a pre-pass first
-//! picks each block's sample count. Every pixel every frame, no temporal reuse.
+//! picks each block's sample count. With `--ssdo-scale 0.5` SSDO and its filter run at half
+//! resolution and a joint bilateral upsampling brings the result to the frame's. Every pixel
+//! every frame, no temporal reuse.
 
 use super::effect::TermKind;
 use super::effect::{every_pixel, Effect, EffectId, FrameInfo, Recording, Registration, Setup};
@@ -31,6 +33,8 @@ const HALF_FILTERED: Slot = Slot::Own(2);
 const FILTERED: Slot = Slot::Own(3);
 /// The pre-pass's samples per block (r32ui, 1/scale resolution; 1x1 without the pre-pass).
 const BLOCK_SAMPLES: Slot = Slot::Own(4);
+/// The half-resolution result upsampled to the frame (1x1 at full resolution).
+const UPSAMPLED: Slot = Slot::Own(5);
 
 const ONE_STEP: &[Bind] = &[
     Bind::new(0, Slot::GPosition, Use::Sampled),
@@ -79,6 +83,17 @@ const FILTER_V: &[Bind] = &[
     Bind::new(3, FILTERED, Use::StorageWrite),
 ];
 
+const fn upsample(src: Slot) -> [Bind; 4] {
+    [
+        Bind::new(0, Slot::GPosition, Use::Sampled),
+        Bind::new(1, Slot::GNormal, Use::Sampled),
+        Bind::new(2, src, Use::Sampled),
+        Bind::new(3, UPSAMPLED, Use::StorageWrite),
+    ]
+}
+const UPSAMPLE_FILTERED: &[Bind] = &upsample(FILTERED);
+const UPSAMPLE_RAW: &[Bind] = &upsample(RAW);
+
 pub const REGISTRATION: Registration = Registration {
     id: EffectId::Ssdo,
     enabled: |c| c.effects.ssdo,
@@ -102,6 +117,16 @@ fn layouts() -> Vec<PassLayout> {
             &shaders::SSDO_BILATERAL_COMP_VERTICAL,
             FILTER_V,
         ),
+        ComputePass::layout(
+            PassId::SsdoUpsample,
+            &shaders::SSDO_UPSAMPLE_COMP,
+            UPSAMPLE_RAW,
+        ),
+        ComputePass::layout(
+            PassId::SsdoUpsample,
+            &shaders::SSDO_UPSAMPLE_COMP,
+            UPSAMPLE_FILTERED,
+        ),
     ]
 }
 
@@ -114,9 +139,9 @@ enum Form {
     },
 }
 
-/// Size-dependent images: [lit, raw, half filtered, filtered, samples per block].
+/// Size-dependent images: [lit, raw, half filtered, filtered, samples per block, upsampled].
 struct Sized {
-    images: [Image; 5],
+    images: [Image; 6],
 }
 
 pub struct SsdoEffect {
@@ -125,6 +150,8 @@ pub struct SsdoEffect {
     filter: Option<[ComputePass; 2]>,
     /// The adaptive sample count's pre-pass.
     prepass: Option<ComputePass>,
+    /// Joint bilateral upsampling (`--ssdo-scale 0.5`).
+    upsample: Option<ComputePass>,
     sized: Sized,
     push: EffectPush,
 }
@@ -165,23 +192,38 @@ impl SsdoEffect {
             )?),
             None => None,
         };
+        let upsample = if s.config.ssdo.scale > 1 {
+            let binds = if filter.is_some() {
+                UPSAMPLE_FILTERED
+            } else {
+                UPSAMPLE_RAW
+            };
+            Some(pass(
+                PassId::SsdoUpsample,
+                &shaders::SSDO_UPSAMPLE_COMP,
+                binds,
+            )?)
+        } else {
+            None
+        };
         Ok(Self {
             form,
             filter,
             prepass,
+            upsample,
             sized: Self::create_sized(s.ctx, s.config)?,
             push: EffectPush::default(),
         })
     }
 
     fn create_sized(ctx: &Arc<Context>, c: &RenderConfig) -> Result<Sized> {
-        let image = |name: &str| {
+        let image = |name: &str, divisor: u32| {
             Image::new(
                 ctx,
                 name,
                 ImageDesc {
-                    width: c.width,
-                    height: c.height,
+                    width: c.width.div_ceil(divisor),
+                    height: c.height.div_ceil(divisor),
                     format: AO_FORMAT,
                     usage: vk::ImageUsageFlags::STORAGE
                         | vk::ImageUsageFlags::SAMPLED
@@ -205,25 +247,30 @@ impl SsdoEffect {
                     | vk::ImageUsageFlags::TRANSFER_SRC,
             },
         )?;
+        // SSDO's grid: 1/scale of the frame.
+        let grid = c.ssdo.scale;
+        // A 1x1 placeholder at full resolution, where nothing is upsampled.
+        let upsampled = if grid > 1 { 1 } else { c.width.max(c.height) };
         Ok(Sized {
             images: [
-                image("ssdo.lit")?,
-                image("ssdo.raw")?,
-                image("ssdo.half_filtered")?,
-                image("ssdo.filtered")?,
+                image("ssdo.lit", grid)?,
+                image("ssdo.raw", grid)?,
+                image("ssdo.half_filtered", grid)?,
+                image("ssdo.filtered", grid)?,
                 samples,
+                image("ssdo.upsampled", upsampled)?,
             ],
         })
     }
 
-    fn own(&self) -> [[&Image; 2]; 5] {
+    fn own(&self) -> [[&Image; 2]; 6] {
         self.sized.images.each_ref().map(|i| [i, i])
     }
 
     fn resources<'a>(
         &'a self,
         targets: &'a Targets,
-        own: &'a [[&'a Image; 2]; 5],
+        own: &'a [[&'a Image; 2]; 6],
     ) -> EffectResources<'a> {
         EffectResources {
             targets,
@@ -233,10 +280,12 @@ impl SsdoEffect {
         }
     }
 
-    /// The image the composite reads: filtered, or the raw result.
+    /// The image the composite reads: upsampled, filtered, or the raw result.
     fn result(&self) -> &Image {
-        let [_, raw, _, filtered, _] = &self.sized.images;
-        if self.filter.is_some() {
+        let [_, raw, _, filtered, _, upsampled] = &self.sized.images;
+        if self.upsample.is_some() {
+            upsampled
+        } else if self.filter.is_some() {
             filtered
         } else {
             raw
@@ -267,7 +316,8 @@ impl Effect for SsdoEffect {
                 bounce.bind(ctx, &res)?;
             }
         }
-        for p in self.filter.iter().flatten().chain(&self.prepass) {
+        let others = self.filter.iter().flatten();
+        for p in others.chain(&self.prepass).chain(&self.upsample) {
             p.bind(ctx, &res)?;
         }
         Ok(())
@@ -294,7 +344,11 @@ impl Effect for SsdoEffect {
     fn record(&self, info: &FrameInfo<'_>, r: &mut Recording<'_>) {
         let own = self.own();
         let res = self.resources(info.targets, &own);
-        let all = every_pixel(info);
+        let grid = &self.sized.images[1].desc;
+        let all = Dispatch::Pixels {
+            width: grid.width,
+            height: grid.height,
+        };
         if let Some(p) = &self.prepass {
             let d = &self.sized.images[4].desc;
             let blocks = Dispatch::Pixels {
@@ -327,6 +381,11 @@ impl Effect for SsdoEffect {
             r.timed(PassId::SsdoBilateral, |rec, tr| {
                 h.record(rec, tr, info.frame, &res, &[], all);
                 v.record(rec, tr, info.frame, &res, &[], all);
+            });
+        }
+        if let Some(p) = &self.upsample {
+            r.timed(PassId::SsdoUpsample, |rec, tr| {
+                p.record(rec, tr, info.frame, &res, &[], every_pixel(info))
             });
         }
     }

@@ -41,12 +41,14 @@ pub enum PassId {
     SsdoBounce,
     /// SSDO's separable bilateral filter (both directions).
     SsdoBilateral,
+    /// Joint bilateral upsampling of half-resolution SSDO (--ssdo-scale 0.5).
+    SsdoUpsample,
     /// Composite + tonemap into the output image.
     Composite,
 }
 
 impl PassId {
-    pub const ALL: [PassId; 19] = [
+    pub const ALL: [PassId; 20] = [
         PassId::LightView,
         PassId::GBuffer,
         PassId::Reproject,
@@ -65,6 +67,7 @@ impl PassId {
         PassId::Ssdo,
         PassId::SsdoBounce,
         PassId::SsdoBilateral,
+        PassId::SsdoUpsample,
         PassId::Composite,
     ];
 
@@ -88,6 +91,7 @@ impl PassId {
             PassId::Ssdo => "ssdo",
             PassId::SsdoBounce => "ssdo_bounce",
             PassId::SsdoBilateral => "ssdo_bilateral",
+            PassId::SsdoUpsample => "ssdo_upsample",
             PassId::Composite => "composite",
         }
     }

@@ -147,6 +147,9 @@ pub struct SsdoConfig {
     pub radius: f32,
     /// Side of the separable bilateral filter (odd), 0 = off.
     pub filter: u32,
+    /// Resolution divisor of the SSDO passes and the filter (1, or 2: half resolution, joint
+    /// bilateral upsampling to the frame).
+    pub scale: u32,
 }
 
 impl Default for SsdoConfig {
@@ -157,6 +160,7 @@ impl Default for SsdoConfig {
             adaptive: None,
             radius: 0.25,
             filter: 11,
+            scale: 1,
         }
     }
 }
@@ -520,6 +524,12 @@ impl RenderConfig {
                 "bilateral filter side {} must be odd and at most {} (or off)",
                 ssdo.filter,
                 SsdoConfig::MAX_FILTER
+            ));
+        }
+        if !(1..=2).contains(&ssdo.scale) {
+            return bad(format!(
+                "SSDO resolution divisor {} must be 1 (full) or 2 (half resolution)",
+                ssdo.scale
             ));
         }
         if ao.position_mips > AoConfig::MAX_POSITION_MIPS {

@@ -101,6 +101,7 @@ pub fn frame_block(config: &RenderConfig, f: &FrameInputs<'_>) -> FrameBlock {
         ssdo_thresholds: config.ssdo.adaptive.map_or([0.0; 4], |a| a.thresholds),
         ssdo_radius: config.ssdo.radius * f.scene_radius.max(f32::MIN_POSITIVE),
         ssdo_filter_radius: config.ssdo.filter / 2,
+        ssdo_scale: config.ssdo.scale,
         direct_enabled: config.effects.direct as u32,
         // Exact equality: an unmoved camera reuses each history texel as is, decided here
         // rather than by a pixel threshold on eq 1, whose fp32 error grows with coordinates.
