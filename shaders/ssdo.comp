@@ -32,6 +32,12 @@ layout(set = 1, binding = 6) uniform utexture2D block_samples;
 layout(set = 1, binding = 4, rgba16f) uniform writeonly image2D lit_out;
 #else
 layout(set = 1, binding = 5, rgba16f) uniform writeonly image2D ssdo_out;
+// The pass that finishes SSDO counts its pixels and samples (computed_pixels, samples), summed
+// per workgroup first so the buffer sees one atomic per group.
+#define COUNTERS_BINDING 7
+#include "counters.glsl"
+shared uint group_pixels;
+shared uint group_samples;
 #endif
 
 #ifdef BOUNCE
@@ -56,15 +62,15 @@ vec3 sender_radiance(ivec2 q) {
 #define SSDO_OUT ssdo_out
 #endif
 
-void main() {
-    ivec2 texel = ivec2(gl_GlobalInvocationID.xy);
-    if (any(greaterThanEqual(texel, imageSize(SSDO_OUT)))) return;
+// Shades one texel; returns the samples it took (0 for background).
+uint shade(ivec2 texel) {
     ivec2 pixel = texel * int(frame.ssdo_scale);
     vec4 position = texelFetch(g_position, pixel, 0);
     vec4 result = vec4(0.0, 0.0, 0.0, 1.0);
+    uint count = 0u;
     if (position.w != 0.0) {
         vec3 n = texelFetch(g_normal, pixel, 0).xyz;
-        uint count = frame.ssdo_samples;
+        count = frame.ssdo_samples;
         if (frame.ssdo_threshold_count > 0u)
             count = texelFetch(block_samples, pixel / int(frame.ssdo_prepass_scale), 0).r;
         // The same K samples every frame (Halton indices 0 .. K - 1, shifted per pixel).
@@ -81,4 +87,29 @@ void main() {
 #endif
     }
     imageStore(SSDO_OUT, texel, result);
+    return count;
+}
+
+void main() {
+    ivec2 texel = ivec2(gl_GlobalInvocationID.xy);
+    bool inside = all(lessThan(texel, imageSize(SSDO_OUT)));
+#ifdef DIRECTIONAL
+    if (inside) shade(texel);
+#else
+    if (gl_LocalInvocationIndex == 0u) {
+        group_pixels = 0u;
+        group_samples = 0u;
+    }
+    barrier();
+    uint count = inside ? shade(texel) : 0u;
+    if (count > 0u) {
+        atomicAdd(group_pixels, 1u);
+        atomicAdd(group_samples, count);
+    }
+    barrier();
+    if (gl_LocalInvocationIndex == 0u && group_pixels > 0u) {
+        atomicAdd(counters.computed_pixels, group_pixels);
+        atomicAdd(counters.samples, group_samples);
+    }
+#endif
 }

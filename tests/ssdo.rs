@@ -39,11 +39,21 @@ fn config(size: u32, ssdo: SsdoConfig) -> RenderConfig {
 }
 
 fn render(ctx: &Arc<ssgi::vk::Context>, scene: Scene, c: RenderConfig) -> Renderer {
+    render_counted(ctx, scene, c).0
+}
+
+/// One frame, and the GPU counters it reported.
+fn render_counted(
+    ctx: &Arc<ssgi::vk::Context>,
+    scene: Scene,
+    c: RenderConfig,
+) -> (Renderer, Vec<(&'static str, u64)>) {
     let mut r = Renderer::new(ctx, scene, c).expect("renderer");
     let camera = r.scene.camera;
     r.render_frame(&camera).unwrap();
-    r.finish().unwrap();
-    r
+    let timings = r.finish().unwrap();
+    let counters = timings.last().expect("a frame's timing").counters.clone();
+    (r, counters)
 }
 
 /// Every geometry pixel's SSDO texel (bounce rgb, modulation a).
@@ -486,7 +496,7 @@ fn adaptive_counts_follow_creases_and_edges() {
         filter: 0,
         ..Default::default()
     };
-    let mut r = render(&ctx, cornell_box(), config(size, ssdo));
+    let (mut r, counters) = render_counted(&ctx, cornell_box(), config(size, ssdo));
     let counts = r.read(Target::SsdoSamples).unwrap();
     let pos = r.read(Target::GPosition).unwrap();
     let normal = r.read(Target::GNormal).unwrap();
@@ -550,6 +560,27 @@ fn adaptive_counts_follow_creases_and_edges() {
     }
     eprintln!("{checked} blocks checked: {flat} with the fewest samples, {busy} with the most");
     assert!(flat > 100 && busy > 20, "{flat} flat, {busy} busy blocks");
+    // The GPU counters (the timing report's) count the geometry pixels and their blocks' samples.
+    let (mut pixels, mut samples) = (0u64, 0u64);
+    for y in 0..size {
+        for x in 0..size {
+            if pos.texel(x, y)[3] != 0.0 {
+                pixels += 1;
+                samples += counts.texel(x / adaptive.scale, y / adaptive.scale)[0] as u64;
+            }
+        }
+    }
+    let counter = |name| counters.iter().find(|(n, _)| *n == name).map(|c| c.1);
+    assert_eq!(
+        counter("ssdo_computed_pixels"),
+        Some(pixels),
+        "{counters:?}"
+    );
+    assert_eq!(counter("ssdo_samples"), Some(samples), "{counters:?}");
+    eprintln!(
+        "mean samples per pixel {:.2} (GPU counters)",
+        samples as f64 / pixels as f64
+    );
     common::assert_clean(&ctx);
 }
 

@@ -8,6 +8,7 @@
 //   max_blocks                size of the block list; the fix-up list follows it in `data`
 //   fixup_dispatch_x, _y, _z  ceil(fixup_pixels / 64), y = z = 1
 //   refresh_evaluations       pattern evaluations of the refresh tile (every pattern counts)
+//   samples                   hemisphere samples taken (SSDO: their sum over computed_pixels)
 //   data[]                    blocks (x | y << 16), then fix-up pixels (x | y << 16)
 // COUNTERS_MEMBERS lets a pass that fills several effects' lists (the reprojection) declare
 // one block per effect with the same layout.
@@ -26,6 +27,7 @@
     uint fixup_dispatch_y;                                                                     \
     uint fixup_dispatch_z;                                                                     \
     uint refresh_evaluations;                                                                  \
+    uint samples;                                                                              \
     uint data[];
 
 #ifndef COUNTERS_LANES

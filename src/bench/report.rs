@@ -8,6 +8,8 @@
 //!                 "recorded", "skipped" } ],          // over measured frames (after warmup);
 //!                                                     // times are null if never recorded
 //!   "total":  { "median_ms", "mean_ms", "p95_ms", "fps_equivalent" },  // sum of passes per frame
+//!   "counter_means": { name: mean },  // each counter's mean over measured frames, and
+//!                                     // ssdo_samples_per_pixel = ssdo_samples / ssdo_computed_pixels
 //!   "frames": [ { "index", "warmup", "passes": { name: ms }, "skipped": [name],
 //!                 "counters": { name: n } } ] }     // every frame, warmup ones marked
 //! ```
@@ -60,7 +62,33 @@ pub struct Report {
     pub measured_frames: usize,
     pub passes: Vec<PassRow>,
     pub total: TotalRow,
+    pub counter_means: BTreeMap<String, f64>,
     pub frames: Vec<FrameRow>,
+}
+
+/// Each counter's mean over the measured frames that report it, and the derived mean SSDO
+/// sample count per computed pixel (a ratio of sums: frames weigh by their pixels).
+fn counter_means(measured: &[&FrameTiming]) -> BTreeMap<String, f64> {
+    let mut sums: BTreeMap<String, (f64, usize)> = BTreeMap::new();
+    for t in measured {
+        for (name, v) in &t.counters {
+            let e = sums.entry(name.to_string()).or_default();
+            e.0 += *v as f64;
+            e.1 += 1;
+        }
+    }
+    let mut means: BTreeMap<String, f64> = sums
+        .iter()
+        .map(|(n, (sum, count))| (n.clone(), sum / *count as f64))
+        .collect();
+    if let (Some((samples, _)), Some((pixels, _))) =
+        (sums.get("ssdo_samples"), sums.get("ssdo_computed_pixels"))
+    {
+        if *pixels > 0.0 {
+            means.insert("ssdo_samples_per_pixel".into(), samples / pixels);
+        }
+    }
+    means
 }
 
 fn fps(ms: Option<f64>) -> Option<f64> {
@@ -154,6 +182,7 @@ impl Report {
                 p95_ms: s.map(|s| s.p95),
                 fps_equivalent: fps(s.map(|s| s.median)),
             },
+            counter_means: counter_means(&measured),
             frames,
         }
     }
@@ -190,6 +219,44 @@ impl Report {
             f(self.total.p95_ms),
             f1(self.total.fps_equivalent)
         );
+        if !self.counter_means.is_empty() {
+            let means: Vec<String> = self
+                .counter_means
+                .iter()
+                .map(|(n, v)| format!("{n} {v:.1}"))
+                .collect();
+            out += &format!("counters (mean per frame): {}\n", means.join(", "));
+        }
         out
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn frame(counters: Vec<(&'static str, u64)>) -> FrameTiming {
+        FrameTiming {
+            frame: 0,
+            passes: Vec::new(),
+            skipped: Vec::new(),
+            counters,
+        }
+    }
+
+    #[test]
+    fn counter_means_average_and_ssdo_ratio_weighs_by_pixels() {
+        let a = frame(vec![("ssdo_computed_pixels", 100), ("ssdo_samples", 1000)]);
+        let b = frame(vec![("ssdo_computed_pixels", 300), ("ssdo_samples", 15000)]);
+        let m = counter_means(&[&a, &b]);
+        assert_eq!(m["ssdo_computed_pixels"], 200.0);
+        assert_eq!(m["ssdo_samples"], 8000.0);
+        // 16000 samples over 400 pixels, not the mean of 10 and 50.
+        assert_eq!(m["ssdo_samples_per_pixel"], 40.0);
+        let none = counter_means(&[&frame(vec![
+            ("ssdo_computed_pixels", 0),
+            ("ssdo_samples", 0),
+        ])]);
+        assert!(!none.contains_key("ssdo_samples_per_pixel"));
     }
 }

@@ -111,6 +111,29 @@ pub trait Effect {
         self.temporal().is_some()
     }
 
+    /// Copy this frame's counters for reading when `slot` comes round again (by default the
+    /// temporal machinery's, on frames that use it).
+    fn copy_counters(
+        &mut self,
+        rec: &Recorder<'_>,
+        tracker: &mut Tracker,
+        slot: usize,
+        config: &RenderConfig,
+    ) {
+        if self.counts(config) {
+            if let Some(t) = self.temporal_mut() {
+                t.copy_counters(rec, tracker, slot);
+            }
+        }
+    }
+
+    /// The counters of the frame that last used `slot` (its fence has signalled).
+    fn collect_counters(&mut self, slot: usize) -> Vec<(&'static str, u64)> {
+        self.temporal_mut()
+            .map(|t| t.readback.collect(slot))
+            .unwrap_or_default()
+    }
+
     /// Before recording: draw the frame's refresh tile and push constants.
     fn prepare(&mut self, info: &FrameInfo<'_>);
 

@@ -15,11 +15,14 @@ use crate::error::Result;
 use crate::passes::compute::{ComputePass, Dispatch};
 use crate::passes::decl::{Bind, Slot, Use};
 use crate::passes::{PassId, PassLayout};
+use crate::renderer::config::FRAMES_IN_FLIGHT;
 use crate::renderer::config::{RenderConfig, SsdoForm};
+use crate::renderer::counters::{self, Counter, CounterReadback};
 use crate::renderer::effect::TemporalEffect;
 use crate::renderer::targets::{Target, Targets, AO_FORMAT};
 use crate::shaders::{self, EffectPush};
-use crate::vk::{Context, Image, ImageDesc};
+use crate::vk::cmd::Recorder;
+use crate::vk::{Buffer, Context, Image, ImageDesc, Tracker};
 use ash::vk;
 use std::sync::Arc;
 
@@ -35,6 +38,15 @@ const FILTERED: Slot = Slot::Own(3);
 const BLOCK_SAMPLES: Slot = Slot::Own(4);
 /// The half-resolution result upsampled to the frame (1x1 at full resolution).
 const UPSAMPLED: Slot = Slot::Own(5);
+/// Pixels computed and samples taken this frame (the counters header, no work lists).
+const COUNTERS: Slot = Slot::OwnBuffer(0);
+
+/// Report names of the counters the finishing pass (one step, or the bounce) fills; the mean
+/// sample count per pixel is their ratio (`ssdo_samples_per_pixel` in the report).
+pub const SSDO_COUNTERS: &[(&str, Counter)] = &[
+    ("ssdo_computed_pixels", Counter::Computed),
+    ("ssdo_samples", Counter::Samples),
+];
 
 const ONE_STEP: &[Bind] = &[
     Bind::new(0, Slot::GPosition, Use::Sampled),
@@ -43,6 +55,7 @@ const ONE_STEP: &[Bind] = &[
     Bind::new(3, Slot::DirectLight, Use::Sampled),
     Bind::new(5, RAW, Use::StorageWrite),
     Bind::new(6, BLOCK_SAMPLES, Use::Sampled),
+    Bind::new(7, COUNTERS, Use::BufferReadWrite),
 ];
 
 const DIRECTIONAL: &[Bind] = &[
@@ -61,6 +74,7 @@ const BOUNCE: &[Bind] = &[
     Bind::new(4, LIT, Use::Sampled),
     Bind::new(5, RAW, Use::StorageWrite),
     Bind::new(6, BLOCK_SAMPLES, Use::Sampled),
+    Bind::new(7, COUNTERS, Use::BufferReadWrite),
 ];
 
 const PREPASS: &[Bind] = &[
@@ -152,6 +166,8 @@ pub struct SsdoEffect {
     prepass: Option<ComputePass>,
     /// Joint bilateral upsampling (`--ssdo-scale 0.5`).
     upsample: Option<ComputePass>,
+    counters: Buffer,
+    readback: CounterReadback,
     sized: Sized,
     push: EffectPush,
 }
@@ -211,6 +227,8 @@ impl SsdoEffect {
             filter,
             prepass,
             upsample,
+            counters: counters::create_gpu_buffer(s.ctx, "ssdo.counters", 0, 0)?,
+            readback: CounterReadback::new(s.ctx, FRAMES_IN_FLIGHT)?,
             sized: Self::create_sized(s.ctx, s.config)?,
             push: EffectPush::default(),
         })
@@ -271,12 +289,13 @@ impl SsdoEffect {
         &'a self,
         targets: &'a Targets,
         own: &'a [[&'a Image; 2]; 6],
+        buffers: &'a [&'a Buffer; 1],
     ) -> EffectResources<'a> {
         EffectResources {
             targets,
             temporal: None,
             own,
-            own_buffers: &[],
+            own_buffers: buffers,
         }
     }
 
@@ -305,7 +324,8 @@ impl Effect for SsdoEffect {
 
     fn bind(&self, ctx: &Context, targets: &Targets) -> Result<()> {
         let own = self.own();
-        let res = self.resources(targets, &own);
+        let buffers = [&self.counters];
+        let res = self.resources(targets, &own, &buffers);
         match &self.form {
             Form::OneStep(p) => p.bind(ctx, &res)?,
             Form::TwoStep {
@@ -331,6 +351,21 @@ impl Effect for SsdoEffect {
         None
     }
 
+    fn copy_counters(
+        &mut self,
+        rec: &Recorder<'_>,
+        tracker: &mut Tracker,
+        slot: usize,
+        _config: &RenderConfig,
+    ) {
+        self.readback
+            .record_copy(rec, tracker, &self.counters, slot, SSDO_COUNTERS);
+    }
+
+    fn collect_counters(&mut self, slot: usize) -> Vec<(&'static str, u64)> {
+        self.readback.collect(slot)
+    }
+
     fn prepare(&mut self, _info: &FrameInfo<'_>) {}
 
     fn reprojects(&self, _info: &FrameInfo<'_>) -> bool {
@@ -343,8 +378,10 @@ impl Effect for SsdoEffect {
 
     fn record(&self, info: &FrameInfo<'_>, r: &mut Recording<'_>) {
         let own = self.own();
-        let res = self.resources(info.targets, &own);
+        let buffers = [&self.counters];
+        let res = self.resources(info.targets, &own, &buffers);
         let grid = &self.sized.images[1].desc;
+        counters::record_reset(&r.rec, r.tracker, &self.counters, 0);
         let all = Dispatch::Pixels {
             width: grid.width,
             height: grid.height,

@@ -28,6 +28,8 @@ pub enum Counter {
     /// Pattern evaluations spent on the refresh tile (each refreshed evaluation counts every
     /// pattern it averages).
     Refresh,
+    /// Hemisphere samples taken over the computed pixels (SSDO).
+    Samples,
 }
 
 impl Counter {
@@ -37,6 +39,7 @@ impl Counter {
             Counter::Computed => h.computed_pixels,
             Counter::Fixup => h.fixup_pixels,
             Counter::Refresh => h.refresh_evaluations,
+            Counter::Samples => h.samples,
         }
     }
 }
@@ -77,6 +80,7 @@ pub fn record_reset(rec: &Recorder<'_>, tracker: &mut Tracker, gpu: &Buffer, max
         fixup_dispatch_y: 1,
         fixup_dispatch_z: 1,
         refresh_evaluations: 0,
+        samples: 0,
     };
     rec.update_buffer(gpu, &header.to_bytes());
 }

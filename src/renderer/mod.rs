@@ -313,9 +313,7 @@ impl Renderer {
     fn collect_counters(&mut self, slot: usize) -> Vec<(&'static str, u64)> {
         let mut counters = Vec::new();
         for e in &mut self.effects {
-            if let Some(t) = e.temporal_mut() {
-                counters.extend(t.readback.collect(slot));
-            }
+            counters.extend(e.collect_counters(slot));
         }
         counters
     }
@@ -344,10 +342,8 @@ impl Renderer {
     fn copy_counters(&mut self, cmd: vk::CommandBuffer, slot: usize) {
         let rec = Recorder::new(&self.ctx, cmd);
         let config = self.config;
-        for e in self.effects.iter_mut().filter(|e| e.counts(&config)) {
-            if let Some(t) = e.temporal_mut() {
-                t.copy_counters(&rec, &mut self.tracker, slot);
-            }
+        for e in &mut self.effects {
+            e.copy_counters(&rec, &mut self.tracker, slot, &config);
         }
     }
 
