@@ -6,10 +6,13 @@
 // the modulation factor; a = the factor), then `bounce` gathers the same samples' senders
 // from that image. Output: rgb = bounce irradiance, a = modulation factor. At 1/scale
 // resolution (--ssdo-scale 0.5) texel t shades the G-buffer's pixel t * scale, the samples still
-// project to full-resolution pixels, and each texel keeps its own Halton shift.
+// project to full-resolution pixels, and each texel keeps its own Halton shift. `ssao`: section
+// 3.1's SSAO with the same samples, the unoccluded fraction in all four channels (the
+// composite darkens only the ambient light with it, as with AO).
 // @permutation one_step: ONE_STEP
 // @permutation directional: DIRECTIONAL
 // @permutation bounce: BOUNCE
+// @permutation ssao: SSAO
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_samplerless_texture_functions : require
 #include "frame.glsl"
@@ -81,6 +84,14 @@ uint shade(ivec2 texel) {
 #elif defined(BOUNCE)
         vec3 e = ssdo_pixel(texel, position.xyz, n, first, count, true).rgb;
         result = vec4(e, texelFetch(lit, texel, 0).a);
+#elif defined(SSAO)
+        float r_max = frame.ssdo_radius;
+        float occluded = 0.0;
+        for (uint k = 0u; k < count; ++k) {
+            vec4 w = hemisphere_sample(first + k, texel, n, r_max);
+            if (hemisphere_tap(position.xyz + w.w * w.xyz, r_max).occluded) occluded += 1.0;
+        }
+        result = vec4(1.0 - occluded / float(max(count, 1u)));
 #else
         result = ssdo_pixel(texel, position.xyz, n, first, count, true);
         result.rgb *= result.a;

@@ -205,8 +205,8 @@ fn luminance(c: Vec3) -> f32 {
     c.dot(Vec3::new(0.2126, 0.7152, 0.0722))
 }
 
-/// What the GPU computes for pixel (x, y) in one step (bounce x modulation, modulation), or
-/// None when a sample sits within a hair of a decision (a pixel edge or the occlusion test's
+/// What the GPU computes for pixel (x, y) in one step (bounce x modulation, modulation), and
+/// with `--ssdo ssao` (the unoccluded fraction of the same samples), or None when a sample sits within a hair of a decision (a pixel edge or the occlusion test's
 /// thresholds), where fp32 rounding on the two sides may decide differently.
 fn cpu_ssdo(
     b: &Buffers,
@@ -215,7 +215,7 @@ fn cpu_ssdo(
     (x, y): (u32, u32),
     samples: u32,
     r_max: f32,
-) -> Option<Vec4> {
+) -> Option<(Vec4, f32)> {
     let size = b.position.width;
     let p4 = b.position.texel(x, y);
     if p4[3] == 0.0 {
@@ -226,6 +226,7 @@ fn cpu_ssdo(
     let area = std::f32::consts::PI * r_max * r_max / samples as f32;
     let d2_floor = area / std::f32::consts::TAU;
     let (mut lit, mut unoccluded, mut bounce) = (0.0f32, 0.0f32, Vec3::ZERO);
+    let mut free = 0u32;
     for i in 0..samples {
         let (omega, r) = hemisphere_sample(i, x as i32, y as i32, n, r_max);
         let s = p + r * omega;
@@ -267,6 +268,7 @@ fn cpu_ssdo(
         }
         let Some((q, qn, qx, qy)) = occluded else {
             lit += weight;
+            free += 1;
             continue;
         };
         let to_receiver = p - q;
@@ -284,7 +286,7 @@ fn cpu_ssdo(
     } else {
         1.0
     };
-    Some((bounce * m).extend(m))
+    Some(((bounce * m).extend(m), free as f32 / samples as f32))
 }
 
 #[test]
@@ -311,7 +313,7 @@ fn one_step_equals_a_cpu_evaluation_of_eqs_2_and_4() {
     let mut with_bounce = 0;
     for y in (4..size - 4).step_by(7) {
         for x in (4..size - 4).step_by(7) {
-            let Some(cpu) = cpu_ssdo(&b, &r.scene, vp, (x, y), samples, r_max) else {
+            let Some((cpu, _)) = cpu_ssdo(&b, &r.scene, vp, (x, y), samples, r_max) else {
                 continue;
             };
             let g = Vec4::from(gpu.texel(x, y));
@@ -337,6 +339,53 @@ fn one_step_equals_a_cpu_evaluation_of_eqs_2_and_4() {
         checked >= 40 && with_bounce >= 10,
         "{checked} / {with_bounce}"
     );
+    common::assert_clean(&ctx);
+}
+
+/// `--ssdo ssao` (section 3.1 on SSDO's pipeline): every channel holds the unoccluded fraction
+/// of the same Halton samples, equal to a CPU evaluation on the read-back G-buffer; there is no
+/// bounce target, and the result is the frame's AO.
+#[test]
+fn ssao_form_equals_a_cpu_evaluation_of_section_3_1() {
+    let ctx = common::context();
+    let size = 96u32;
+    let samples = 20;
+    let ssdo = SsdoConfig {
+        form: SsdoForm::Ssao,
+        samples,
+        filter: 0,
+        ..Default::default()
+    };
+    let mut r = render(&ctx, cornell_box(), config(size, ssdo));
+    let b = Buffers {
+        position: r.read(Target::GPosition).unwrap(),
+        normal: r.read(Target::GNormal).unwrap(),
+        albedo: r.read(Target::GAlbedo).unwrap(),
+        direct: r.read(Target::Direct).unwrap(),
+    };
+    let gpu = r.read(Target::Ao).unwrap();
+    assert!(r.read(Target::SsdoBounce).is_err(), "SSAO has no bounce");
+    let vp = r.scene.camera.view_proj(1.0);
+    let r_max = ssdo.radius * r.scene.mesh.bounds.radius();
+    let (mut checked, mut occluded) = (0, 0);
+    for y in (4..size - 4).step_by(5) {
+        for x in (4..size - 4).step_by(5) {
+            let Some((_, cpu)) = cpu_ssdo(&b, &r.scene, vp, (x, y), samples, r_max) else {
+                continue;
+            };
+            let g = gpu.texel(x, y);
+            for c in g {
+                assert!(
+                    (c - cpu).abs() <= 1e-3,
+                    "pixel ({x}, {y}): GPU {g:?}, CPU {cpu}"
+                );
+            }
+            checked += 1;
+            occluded += usize::from(cpu < 1.0);
+        }
+    }
+    eprintln!("{checked} pixels checked, {occluded} occluded");
+    assert!(checked >= 100 && occluded >= 20, "{checked} / {occluded}");
     common::assert_clean(&ctx);
 }
 

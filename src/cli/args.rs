@@ -144,7 +144,8 @@ pub struct SceneArgs {
     #[arg(long, default_value = "5%", value_parser = parse_fraction)]
     pub refresh_budget: f32,
     /// SSDO's form (with `--effects ...,ssdo`): one-step (modulation factor and bounce in one
-    /// pass, Szentandrasi section 4.1) or two-step (directional occlusion, then the bounce).
+    /// pass, Szentandrasi section 4.1), two-step (directional occlusion, then the bounce), or
+    /// ssao (section 3.1's SSAO on SSDO's samples, filter and resolution; ambient only).
     #[arg(long, value_enum, default_value = "one-step")]
     pub ssdo: SsdoForm,
     /// SSDO hemisphere samples per pixel (whole Halton periods of 10 spread evenly), or

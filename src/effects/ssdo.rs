@@ -146,7 +146,8 @@ fn layouts() -> Vec<PassLayout> {
 
 /// The passes of the configured form.
 enum Form {
-    OneStep(ComputePass),
+    /// One pass: one-step SSDO, or SSAO.
+    Single(ComputePass),
     TwoStep {
         directional: ComputePass,
         bounce: ComputePass,
@@ -166,6 +167,8 @@ pub struct SsdoEffect {
     prepass: Option<ComputePass>,
     /// Joint bilateral upsampling (`--ssdo-scale 0.5`).
     upsample: Option<ComputePass>,
+    /// `--ssdo ssao`: the result is ambient visibility, no bounce.
+    ssao: bool,
     counters: Buffer,
     readback: CounterReadback,
     sized: Sized,
@@ -177,8 +180,9 @@ impl SsdoEffect {
         let pass = |id, module, binds| ComputePass::new(s.ctx, s.pool, id, module, binds);
         let form = match s.config.ssdo.form {
             SsdoForm::OneStep => {
-                Form::OneStep(pass(PassId::Ssdo, &shaders::SSDO_COMP_ONE_STEP, ONE_STEP)?)
+                Form::Single(pass(PassId::Ssdo, &shaders::SSDO_COMP_ONE_STEP, ONE_STEP)?)
             }
+            SsdoForm::Ssao => Form::Single(pass(PassId::Ssdo, &shaders::SSDO_COMP_SSAO, ONE_STEP)?),
             SsdoForm::TwoStep => Form::TwoStep {
                 directional: pass(PassId::Ssdo, &shaders::SSDO_COMP_DIRECTIONAL, DIRECTIONAL)?,
                 bounce: pass(PassId::SsdoBounce, &shaders::SSDO_COMP_BOUNCE, BOUNCE)?,
@@ -227,6 +231,7 @@ impl SsdoEffect {
             filter,
             prepass,
             upsample,
+            ssao: s.config.ssdo.form == SsdoForm::Ssao,
             counters: counters::create_gpu_buffer(s.ctx, "ssdo.counters", 0, 0)?,
             readback: CounterReadback::new(s.ctx, FRAMES_IN_FLIGHT)?,
             sized: Self::create_sized(s.ctx, s.config)?,
@@ -327,7 +332,7 @@ impl Effect for SsdoEffect {
         let buffers = [&self.counters];
         let res = self.resources(targets, &own, &buffers);
         match &self.form {
-            Form::OneStep(p) => p.bind(ctx, &res)?,
+            Form::Single(p) => p.bind(ctx, &res)?,
             Form::TwoStep {
                 directional,
                 bounce,
@@ -397,7 +402,7 @@ impl Effect for SsdoEffect {
             });
         }
         match &self.form {
-            Form::OneStep(p) => {
+            Form::Single(p) => {
                 r.timed(PassId::Ssdo, |rec, tr| {
                     p.record(rec, tr, info.frame, &res, &[], all)
                 });
@@ -428,12 +433,19 @@ impl Effect for SsdoEffect {
     }
 
     fn term<'a>(&'a self, _targets: &'a Targets, _parity: usize) -> (TermKind, &'a Image) {
-        (TermKind::Ssdo, self.result())
+        if self.ssao {
+            // rgba = the unoccluded fraction: the composite reads red, as for AO.
+            (TermKind::AmbientVisibility, self.result())
+        } else {
+            (TermKind::Ssdo, self.result())
+        }
     }
 
     fn target(&self, target: Target, _parity: usize, _config: &RenderConfig) -> Option<&Image> {
         match target {
-            Target::SsdoModulation | Target::SsdoBounce => Some(self.result()),
+            Target::SsdoModulation => Some(self.result()),
+            Target::SsdoBounce if !self.ssao => Some(self.result()),
+            Target::Ao if self.ssao => Some(self.result()),
             Target::SsdoSamples if self.prepass.is_some() => Some(&self.sized.images[4]),
             _ => None,
         }

@@ -84,6 +84,10 @@ pub enum SsdoForm {
     OneStep,
     /// Ritschel et al.'s original: a directional-occlusion pass, then a bounce pass reading it.
     TwoStep,
+    /// Section 3.1's SSAO on SSDO's pipeline (same Halton samples, pre-pass, filter, half
+    /// resolution and upsampling): the unoccluded fraction, which darkens the ambient light
+    /// only, and no bounce. The SSAO rows of the paper's Table 1.
+    Ssao,
 }
 
 /// Szentandrasi's pre-pass (sections 4.2-4.3): each block of `scale` x `scale` pixels takes
