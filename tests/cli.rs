@@ -192,6 +192,10 @@ fn bad_flags_get_clear_errors() {
     fails_with(&["render", "--effects", "ssdp"], "unknown effect");
     fails_with(&["render", "--effects", "ao,ssdo"], "both darken");
     fails_with(&["render", "--bilateral", "4"], "odd side");
+    fails_with(
+        &["table", "szentandrasi-1", "--effects", "all"],
+        "leave out --effects",
+    );
     fails_with(&["render", "--ssdo-scale", "0.25"], "--ssdo-scale takes 1");
     fails_with(&["render", "--ssdo-scale", "nan"], "--ssdo-scale takes 1");
     fails_with(

@@ -371,3 +371,106 @@ fn missing_scene_files_name_the_file_and_the_fix() {
     }
     std::fs::remove_dir_all(&empty).ok();
 }
+
+/// `ssgi table szentandrasi-1` at 64x48: the paper's three scenes and seven rows in order, its
+/// numbers beside ours, every time and error finite, the sample counters matching each row's
+/// setting (the adaptive row between 20 and 50), the passes each row needs (two steps: the
+/// bounce pass; subsampling: the upsampling), one PNG per row and one CSV line per row.
+#[test]
+fn szentandrasi_1_end_to_end() {
+    let assets = assets();
+    let out = out_dir("szentandrasi-1");
+    let output = Command::new(env!("CARGO_BIN_EXE_ssgi"))
+        .arg("--validation")
+        .arg("--assets")
+        .arg(&assets)
+        .args(["table", "szentandrasi-1", "--size", "64x48"])
+        .args(["--frames", "2", "--warmup", "1", "--out"])
+        .arg(&out)
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert!(output.status.success(), "ssgi table failed:\n{stderr}");
+    assert!(
+        !stderr.contains("vulkan: ["),
+        "validation messages:\n{stderr}"
+    );
+    let text = std::fs::read_to_string(out.join("report.json")).unwrap();
+    let report: Value = serde_json::from_str(&text).unwrap();
+    assert_eq!(report["version"], 1);
+    assert_eq!(report["table"], "szentandrasi-1");
+    assert_eq!(
+        (report["width"].as_u64(), report["height"].as_u64()),
+        (Some(64), Some(48))
+    );
+    assert_eq!(report["reference_samples"], 1024);
+    let scenes = report["scenes"].as_array().unwrap();
+    let names: Vec<&str> = scenes.iter().map(|s| s["name"].as_str().unwrap()).collect();
+    assert_eq!(names, ["Pyramids", "Cornell box", "Dragon"]);
+    assert!(scenes[2]["note"]
+        .as_str()
+        .unwrap()
+        .contains("not available"));
+    let labels = [
+        "SSAO no subsampling",
+        "SSDO 2 steps",
+        "SSDO no subsampling",
+        "SSAO",
+        "SSDO",
+        "SSDO",
+        "SSDO with preprocessing",
+    ];
+    for (si, s) in scenes.iter().enumerate() {
+        let name = names[si];
+        let rows = s["rows"].as_array().unwrap();
+        let got: Vec<&str> = rows.iter().map(|r| r["label"].as_str().unwrap()).collect();
+        assert_eq!(got, labels, "{name}");
+        for r in rows {
+            let label = r["label"].as_str().unwrap();
+            let (total, ssdo) = (num(&r["total_ms"]), num(&r["ssdo_ms"]));
+            assert!(
+                total > 0.0 && ssdo > 0.0 && ssdo < total,
+                "{name} {label}: {r}"
+            );
+            assert!((num(&r["fps"]) - 1000.0 / total).abs() < 1e-6);
+            let rmse = num(&r["final_rmse"]);
+            assert!((0.0..0.2).contains(&rmse), "{name} {label}: RMSE {rmse}");
+            let spp = num(&r["samples_per_pixel"]);
+            if r["adaptive"] == true {
+                assert!((20.0..=50.0).contains(&spp), "{name} {label}: {spp}");
+            } else {
+                assert_eq!(spp, num(&r["samples"]), "{name} {label}");
+            }
+            let passes: Vec<&str> = r["report"]["passes"]
+                .as_array()
+                .unwrap()
+                .iter()
+                .map(|p| p["name"].as_str().unwrap())
+                .collect();
+            assert_eq!(
+                passes.contains(&"ssdo_upsample"),
+                r["subsampling"] == true,
+                "{name} {label}: {passes:?}"
+            );
+            assert_eq!(passes.contains(&"ssdo_bounce"), r["form"] == "two-step");
+            assert!(passes.contains(&"ssdo_bilateral"), "{name} {label}");
+            assert_eq!(png_size(&out.join(r["image"].as_str().unwrap())), (64, 48));
+        }
+        assert_eq!(num(&rows[0]["time_over_first"]), 1.0);
+        let ratios = s["ratios"].as_array().unwrap();
+        assert_eq!(ratios.len(), 5);
+        let paper = [115.0 / 90.5, 127.0 / 83.0, 113.0 / 74.0][si];
+        assert!((num(&ratios[0]["paper"]) - paper).abs() < 1e-9, "{name}");
+        let ours = num(&ratios[0]["ours_total"]);
+        assert!(
+            (num(&rows[4]["total_ms"]) / num(&rows[3]["total_ms"]) - ours).abs() < 1e-9,
+            "{name}"
+        );
+    }
+    assert_eq!(num(&scenes[1]["rows"][0]["paper_fps"]), 77.0);
+    let csv = std::fs::read_to_string(out.join("szentandrasi-1.csv")).unwrap();
+    assert_eq!(csv.lines().count(), 1 + 3 * 7);
+    let md = std::fs::read_to_string(out.join("report.md")).unwrap();
+    assert!(md.contains("SSDO with preprocessing") && md.contains("Paper fps"));
+    std::fs::remove_dir_all(&out).ok();
+}

@@ -1,4 +1,4 @@
-//! Benchmark runs: timing aggregation and reports, and the thesis's tables (`ssgi table`):
+//! Benchmark runs: timing aggregation and reports, and the papers' tables (`ssgi table`):
 //! measured rows, error against converged references, Markdown/JSON/CSV reports, PNG plots.
 
 pub mod compare;
@@ -21,8 +21,10 @@ pub mod stats;
 pub mod sweep;
 pub mod sweep_keys;
 pub mod sweep_report;
+pub mod szentandrasi;
 pub mod table41;
 pub mod table_report;
+pub mod table_szentandrasi;
 pub mod thesis;
 pub mod walkthrough;
 pub mod warmup;

@@ -503,13 +503,31 @@ pub enum TableName {
     /// Sponza, Sibenik, Conference walkthroughs, per-frame (thesis Tables 4.2-4.4, Fig. 4.10).
     #[value(name = "thesis-walkthroughs")]
     ThesisWalkthroughs,
+    /// Szentandrasi et al. Table 1: SSAO and SSDO rows on Pyramids, Cornell box, Dragon.
+    #[value(name = "szentandrasi-1")]
+    Szentandrasi1,
 }
 
 impl TableName {
+    /// Size, frames and warmup when the command line leaves them out.
+    pub fn defaults(self) -> ((u32, u32), u32, Warmup) {
+        match self {
+            TableName::Thesis41 | TableName::ThesisWalkthroughs => {
+                ((512, 512), 120, Warmup::Frames(10))
+            }
+            TableName::Szentandrasi1 => (
+                crate::bench::szentandrasi::PAPER_SIZE,
+                20,
+                Warmup::Frames(2),
+            ),
+        }
+    }
+
     pub fn name(self) -> &'static str {
         match self {
             TableName::Thesis41 => "thesis-4.1",
             TableName::ThesisWalkthroughs => "thesis-walkthroughs",
+            TableName::Szentandrasi1 => "szentandrasi-1",
         }
     }
 
@@ -522,6 +540,7 @@ impl TableName {
             TableName::ThesisWalkthroughs => {
                 "Thesis Tables 4.2-4.4 and Figure 4.10: Sponza, Sibenik and Conference walkthroughs"
             }
+            TableName::Szentandrasi1 => crate::bench::table_szentandrasi::TITLE,
         }
     }
 }
@@ -534,29 +553,33 @@ pub struct TableArgs {
     /// Output directory for report.md, report.json, CSV and PNG files (default out/<table>).
     #[arg(long, value_name = "DIR")]
     pub out: Option<PathBuf>,
-    /// Image size, WIDTHxHEIGHT.
-    #[arg(long, default_value = "512x512", value_parser = parse_size)]
-    pub size: (u32, u32),
-    /// Frames measured per row along the camera path, at least 1.
-    #[arg(long, default_value_t = 120, value_parser = parse_frame_count)]
-    pub frames: u32,
+    /// Image size, WIDTHxHEIGHT (default 512x512; szentandrasi-1: the paper's 1024x768).
+    #[arg(long, value_parser = parse_size)]
+    pub size: Option<(u32, u32)>,
+    /// Frames measured per row along the camera path, at least 1 (default 120;
+    /// szentandrasi-1: 20).
+    #[arg(long, value_parser = parse_frame_count)]
+    pub frames: Option<u32>,
     /// Frames rendered first and left out of the statistics: N held at the path's first
     /// camera, or `converged`: three rotation limits of frames along the path before its
-    /// time 0, so the measured frames see the cache's moving steady state.
-    #[arg(long, default_value = "10", value_parser = crate::bench::warmup::parse_warmup)]
-    pub warmup: Warmup,
+    /// time 0, so the measured frames see the cache's moving steady state (default 10;
+    /// szentandrasi-1, which has no cache: 2).
+    #[arg(long, value_parser = crate::bench::warmup::parse_warmup)]
+    pub warmup: Option<Warmup>,
     /// Frame rate of path time (frame i at i / fps seconds along the path).
     #[arg(long, default_value_t = crate::scene::path::DEFAULT_FPS, value_parser = parse_fps)]
     pub fps: f32,
     /// thesis-4.1: static, orbit, dolly, or a keyframe file, for all four scenes (default:
     /// paths/box.json, compiled in). thesis-walkthroughs: a directory holding sponza.json,
     /// sibenik.json and conference.json (default: those of paths/, compiled in).
+    /// szentandrasi-1: a path for all three scenes (default static, as the paper measured).
     #[arg(long, value_name = "P")]
     pub path: Option<String>,
-    /// Effects to render, comma-separated: direct, ao, indirect (or all). Leaving one out drops
-    /// its columns (e.g. `direct,ao` on a slow device).
-    #[arg(long, default_value = "all", value_parser = Effects::parse)]
-    pub effects: Effects,
+    /// Effects to render, comma-separated: direct, ao, indirect (or all; the default). Leaving
+    /// one out drops its columns (e.g. `direct,ao` on a slow device). Not for szentandrasi-1,
+    /// whose rows choose theirs (direct light and SSDO).
+    #[arg(long, value_parser = Effects::parse)]
+    pub effects: Option<Effects>,
     /// Present every frame to a window (present mode immediate, else mailbox, else fifo) and
     /// time that; Escape or closing the window aborts the table.
     #[arg(long)]

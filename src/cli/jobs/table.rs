@@ -1,13 +1,14 @@
-//! `ssgi table <thesis-4.1|thesis-walkthroughs>`: measure a thesis table's rows, offscreen or
-//! presented, and write its report, CSV and plots.
+//! `ssgi table <thesis-4.1|thesis-walkthroughs|szentandrasi-1>`: measure a paper table's rows,
+//! offscreen or presented, and write its report, CSV and plots.
 
 use super::common::{context_options, finish};
 use crate::bench::markdown::WALKTHROUGH_LEGEND;
 use crate::bench::warmup::Warmup;
-use crate::bench::{output, table41, walkthrough, TableOptions};
+use crate::bench::{output, table41, table_szentandrasi, walkthrough, TableOptions};
 use crate::cli::args::{Cli, TableArgs, TableName};
 use crate::error::{Error, Result};
 use crate::frontend::presenter::open_sink;
+use crate::renderer::config::Effects;
 use crate::scene::asset_dir_from_env;
 use std::path::PathBuf;
 
@@ -29,11 +30,22 @@ fn command_line() -> String {
 }
 
 pub fn table(cli: &Cli, args: &TableArgs) -> Result<()> {
-    let warmup_frames = match args.warmup {
+    let (default_size, default_frames, default_warmup) = args.table.defaults();
+    let size = args.size.unwrap_or(default_size);
+    let frames = args.frames.unwrap_or(default_frames);
+    let warmup = args.warmup.unwrap_or(default_warmup);
+    if args.table == TableName::Szentandrasi1 && args.effects.is_some() {
+        return Err(Error::Config(
+            "szentandrasi-1's rows choose their effects (direct light and SSDO): leave out \
+             --effects"
+                .into(),
+        ));
+    }
+    let warmup_frames = match warmup {
         Warmup::Frames(n) => n,
         Warmup::Converged => 0,
     };
-    if args.frames == 0 || args.frames > MAX_FRAMES || warmup_frames > MAX_FRAMES {
+    if frames == 0 || frames > MAX_FRAMES || warmup_frames > MAX_FRAMES {
         return Err(Error::Config(format!(
             "--frames must be in 1..={MAX_FRAMES} and --warmup at most {MAX_FRAMES}"
         )));
@@ -43,12 +55,12 @@ pub fn table(cli: &Cli, args: &TableArgs) -> Result<()> {
         .clone()
         .unwrap_or_else(|| PathBuf::from("out").join(args.table.name()));
     let opts = TableOptions {
-        size: args.size,
-        frames: args.frames,
-        warmup: args.warmup,
+        size,
+        frames,
+        warmup,
         fps: args.fps,
         path: args.path.clone(),
-        effects: args.effects,
+        effects: args.effects.unwrap_or(Effects::ALL),
         assets: cli.assets.clone().or_else(asset_dir_from_env),
         progress: true,
         command: command_line(),
@@ -56,13 +68,25 @@ pub fn table(cli: &Cli, args: &TableArgs) -> Result<()> {
     let window = args
         .window
         .then(|| format!("ssgi table {}", args.table.name()));
-    let (ctx, mut sink) = open_sink(window, args.size, context_options(cli))?;
+    let (ctx, mut sink) = open_sink(window, size, context_options(cli))?;
     let (mut report, extra_md) = match args.table {
         TableName::Thesis41 => (table41::run(&ctx, sink.as_mut(), &opts)?, ""),
         TableName::ThesisWalkthroughs => (
             walkthrough::run(&ctx, sink.as_mut(), &opts, &out)?,
             WALKTHROUGH_LEGEND,
         ),
+        // Its own report (rows of configurations, not reuse vs no reuse).
+        TableName::Szentandrasi1 => {
+            let written = table_szentandrasi::run(&ctx, sink.as_mut(), &opts, &out)?;
+            if sink.present_mode().is_some() {
+                eprintln!("presented {} frames to the window", sink.frames_presented());
+            }
+            drop(sink);
+            for path in written {
+                eprintln!("wrote {}", path.display());
+            }
+            return finish(&ctx);
+        }
     };
     if sink.present_mode().is_some() {
         eprintln!("presented {} frames to the window", sink.frames_presented());

@@ -1,0 +1,464 @@
+//! `ssgi table szentandrasi-1`: the paper's Table 1 rows on its three scenes, timed per pass,
+//! with the paper's frame rates and the ratios between rows beside ours, and each row's error
+//! against a 1024-sample reference of its family. Writes report.json, report.md,
+//! szentandrasi-1.csv and the last frame of every row as PNG.
+//!
+//! JSON, version 1 (later versions only add fields):
+//! ```text
+//! { "version", "table", "command", "ssgi_version", "device", "driver", "device_type",
+//!   "window", "present_mode", "width", "height", "frames", "warmup", "fps", "path",
+//!   "reference_samples", "notes": [str],
+//!   "scenes": [ { "spec", "name", "paper_faces", "triangles", "note",
+//!                 "rows": [ { "label", "paper_samples", "form", "samples", "adaptive",
+//!                             "subsampling", "filter", "paper_fps", "total_ms", "ssdo_ms",
+//!                             "fps", "time_over_first", "paper_time_over_first",
+//!                             "samples_per_pixel", "final_rmse", "image",
+//!                             "report": <bench report, see report.rs> } ],
+//!                 "ratios": [ { "what", "numerator", "denominator", "ours_total",
+//!                               "ours_ssdo", "paper" } ] } ] }
+//! ```
+
+use super::compare::GROUPS;
+use super::measure::{held_at, last_camera, measure, Buffer, RunSpec};
+use super::metrics::{image_error, Channels};
+use super::output::{file_stem, write_text};
+use super::rows::group_ms;
+use super::stats::summarize;
+use super::szentandrasi::{PaperRow, PaperScene, RATIOS, REFERENCE_SAMPLES, ROWS, SCENES};
+use super::warmup::before_path;
+use super::{Report, TableOptions};
+use crate::error::{Error, Result};
+use crate::frontend::sink::FrameSink;
+use crate::renderer::config::SsdoForm;
+use crate::scene::{load_scene, CameraPath, Scene};
+use crate::vk::{Context, ImageData};
+use serde::Serialize;
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+
+pub const TABLE: &str = "szentandrasi-1";
+pub const TITLE: &str =
+    "Szentandrási et al. Table 1: SSAO and SSDO frame rates (Pyramids, Cornell box, Dragon)";
+
+#[derive(Clone, Debug, Serialize)]
+pub struct RowResult {
+    pub label: &'static str,
+    pub paper_samples: &'static str,
+    pub form: SsdoForm,
+    pub samples: u32,
+    pub adaptive: bool,
+    pub subsampling: bool,
+    pub filter: u32,
+    pub paper_fps: f64,
+    /// Median over the measured frames of the per-frame sum of every pass.
+    pub total_ms: Option<f64>,
+    /// Median of the SSDO passes' per-frame sum (pre-pass, SSDO, bounce, filter, upsampling).
+    pub ssdo_ms: Option<f64>,
+    pub fps: Option<f64>,
+    /// Frame time over the first row's (SSAO without subsampling).
+    pub time_over_first: Option<f64>,
+    pub paper_time_over_first: f64,
+    /// Mean hemisphere samples per computed pixel (GPU counters).
+    pub samples_per_pixel: Option<f64>,
+    /// RMSE of the final image (RGB in 0..1, geometry pixels) against the reference.
+    pub final_rmse: Option<f64>,
+    /// The last frame, relative to the output directory.
+    pub image: String,
+    pub report: Report,
+}
+
+#[derive(Clone, Debug, Serialize)]
+pub struct RatioResult {
+    pub what: &'static str,
+    pub numerator: &'static str,
+    pub denominator: &'static str,
+    /// Frame time ratio.
+    pub ours_total: Option<f64>,
+    /// Ratio of the SSDO passes' times alone.
+    pub ours_ssdo: Option<f64>,
+    /// The paper's, as the inverse ratio of its frame rates, per scene.
+    pub paper: f64,
+}
+
+#[derive(Clone, Debug, Serialize)]
+pub struct SceneResult {
+    pub spec: &'static str,
+    pub name: &'static str,
+    pub paper_faces: u32,
+    pub triangles: usize,
+    pub note: Option<&'static str>,
+    pub rows: Vec<RowResult>,
+    pub ratios: Vec<RatioResult>,
+}
+
+#[derive(Clone, Debug, Serialize)]
+pub struct TableReport {
+    pub version: u32,
+    pub table: &'static str,
+    pub command: String,
+    pub ssgi_version: &'static str,
+    pub device: String,
+    pub driver: String,
+    pub device_type: String,
+    pub window: bool,
+    pub present_mode: Option<&'static str>,
+    pub width: u32,
+    pub height: u32,
+    pub frames: u32,
+    pub warmup: u32,
+    pub fps: f32,
+    pub path: String,
+    pub reference_samples: u32,
+    pub notes: Vec<String>,
+    pub scenes: Vec<SceneResult>,
+}
+
+/// Median of a group's per-frame time over the measured frames.
+fn group_median(report: &Report, group: &str) -> Option<f64> {
+    let passes = GROUPS.iter().find(|(g, _)| *g == group)?.1;
+    let times: Vec<f64> = report
+        .frames
+        .iter()
+        .filter(|f| !f.warmup)
+        .filter_map(|f| group_ms(f, passes))
+        .collect();
+    summarize(&times).map(|s| s.median)
+}
+
+fn ratio(a: Option<f64>, b: Option<f64>) -> Option<f64> {
+    match (a, b) {
+        (Some(a), Some(b)) if b > 0.0 => Some(a / b),
+        _ => None,
+    }
+}
+
+fn final_image(m: &super::measure::Measured) -> Result<&ImageData> {
+    m.last
+        .buffer(Buffer::Final)
+        .ok_or_else(|| Error::Config("the run read back no output image".into()))
+}
+
+/// Everything measured for one scene.
+struct SceneContext<'a> {
+    ctx: &'a Arc<Context>,
+    opts: &'a TableOptions,
+    path: &'a CameraPath,
+    warmup: u32,
+    warmup_along_path: bool,
+    out: &'a Path,
+}
+
+fn run_scene(
+    c: &SceneContext<'_>,
+    sink: &mut dyn FrameSink,
+    index: usize,
+    paper: &PaperScene,
+    scene: &Scene,
+) -> Result<SceneResult> {
+    let (w, h) = c.opts.size;
+    // The references (one per family) at the rows' last camera.
+    let camera = last_camera(scene, c.path, c.opts.frames, c.opts.fps);
+    let held = held_at(&camera);
+    let mut references: Vec<(SsdoForm, ImageData)> = Vec::new();
+    for row in &ROWS {
+        let config = row.reference_config(w, h);
+        if references.iter().any(|(f, _)| *f == config.ssdo.form) {
+            continue;
+        }
+        let label = format!(
+            "{}: {REFERENCE_SAMPLES}-sample reference ({:?})",
+            paper.name, config.ssdo.form
+        );
+        let m = measure(
+            c.ctx,
+            sink,
+            scene,
+            &RunSpec {
+                label: &label,
+                config,
+                path: &held,
+                frames: 1,
+                warmup: 0,
+                warmup_along_path: false,
+                fps: c.opts.fps,
+                snapshot_after_warmup: false,
+                progress: c.opts.progress,
+            },
+        )?;
+        references.push((config.ssdo.form, final_image(&m)?.clone()));
+    }
+    let mut rows: Vec<RowResult> = Vec::new();
+    for (i, row) in ROWS.iter().enumerate() {
+        let config = row.config(w, h);
+        let label = format!("{}: {} ({})", paper.name, row.label, row.paper_samples);
+        let m = measure(
+            c.ctx,
+            sink,
+            scene,
+            &RunSpec {
+                label: &label,
+                config,
+                path: c.path,
+                frames: c.opts.frames,
+                warmup: c.warmup,
+                warmup_along_path: c.warmup_along_path,
+                fps: c.opts.fps,
+                snapshot_after_warmup: false,
+                progress: c.opts.progress,
+            },
+        )?;
+        let image = final_image(&m)?;
+        let family = row.reference_config(w, h).ssdo.form;
+        let reference = &references
+            .iter()
+            .find(|(f, _)| *f == family)
+            .expect("a reference per family")
+            .1;
+        let error = image_error(image, reference, Channels::Rgb, Some(&m.last.geometry))?;
+        let name = format!("{}-{}.png", file_stem(paper.spec), i + 1);
+        if let Some(rgba) = image.rgba8() {
+            crate::frontend::png::write_rgba8(
+                &c.out.join(&name),
+                image.width,
+                image.height,
+                &rgba,
+            )?;
+        }
+        let total_ms = m.report.total.median_ms;
+        let first_ms = rows.first().and_then(|r| r.total_ms).or(total_ms);
+        rows.push(RowResult {
+            label: row.label,
+            paper_samples: row.paper_samples,
+            form: row.form,
+            samples: row.samples,
+            adaptive: row.adaptive,
+            subsampling: row.subsampling,
+            filter: config.ssdo.filter,
+            paper_fps: row.paper_fps[index],
+            total_ms,
+            ssdo_ms: group_median(&m.report, "ssdo"),
+            fps: total_ms.filter(|t| *t > 0.0).map(|t| 1000.0 / t),
+            time_over_first: ratio(total_ms, first_ms),
+            paper_time_over_first: row.paper_time_over(&ROWS[0], index),
+            samples_per_pixel: m
+                .report
+                .counter_means
+                .get("ssdo_samples_per_pixel")
+                .copied(),
+            final_rmse: error.rmse,
+            image: name,
+            report: m.report,
+        });
+    }
+    let ratios = RATIOS
+        .iter()
+        .map(|r| {
+            let (a, b) = (&rows[r.numerator], &rows[r.denominator]);
+            let (pa, pb): (&PaperRow, &PaperRow) = (&ROWS[r.numerator], &ROWS[r.denominator]);
+            RatioResult {
+                what: r.what,
+                numerator: a.label,
+                denominator: b.label,
+                ours_total: ratio(a.total_ms, b.total_ms),
+                ours_ssdo: ratio(a.ssdo_ms, b.ssdo_ms),
+                paper: pa.paper_time_over(pb, index),
+            }
+        })
+        .collect();
+    Ok(SceneResult {
+        spec: paper.spec,
+        name: paper.name,
+        paper_faces: paper.faces,
+        triangles: scene.mesh.triangle_count(),
+        note: paper.note,
+        rows,
+        ratios,
+    })
+}
+
+/// Measure the table and write its files into `out`; returns the paths written.
+pub fn run(
+    ctx: &Arc<Context>,
+    sink: &mut dyn FrameSink,
+    opts: &TableOptions,
+    out: &Path,
+) -> Result<Vec<PathBuf>> {
+    let (path, path_spec) = match opts.path.as_deref() {
+        Some(p) => (CameraPath::parse(p)?, p.to_string()),
+        None => (CameraPath::Static, "static".to_string()),
+    };
+    // Load every scene before rendering anything: a missing file fails in seconds.
+    let mut scenes = Vec::new();
+    for s in &SCENES {
+        scenes.push(load_scene(s.spec, opts.assets.as_deref())?);
+    }
+    std::fs::create_dir_all(out)
+        .map_err(|e| Error::Config(format!("cannot create {}: {e}", out.display())))?;
+    let base = ROWS[0].config(opts.size.0, opts.size.1);
+    let (warmup, warmup_along_path) = before_path(opts.warmup, base.temporal.rotation_limit);
+    let c = SceneContext {
+        ctx,
+        opts,
+        path: &path,
+        warmup,
+        warmup_along_path,
+        out,
+    };
+    let mut results = Vec::new();
+    for (i, (paper, scene)) in SCENES.iter().zip(&scenes).enumerate() {
+        let r = run_scene(&c, sink, i, paper, scene)?;
+        eprintln!("{}", summary_line(&r));
+        results.push(r);
+    }
+    let mut notes: Vec<String> = vec![
+        "Every row renders direct light (spot light, 9-tap PCF) and the SSDO effect, without the \
+         cache: every pixel every frame, as the paper measured. Frame time is the sum of the \
+         GPU time of every pass; the paper's numbers are whole-frame rates on an ATI Radeon HD \
+         4850, so compare the ratios between rows, not absolute rates."
+            .into(),
+        "Every row has the 11x11 bilateral filter; rows with subsampling run SSAO/SSDO and the \
+         filter at half width and height and upsample with a 3x3 joint bilateral kernel. \
+         \"SSDO 2 steps\" runs at full resolution (see src/bench/szentandrasi.rs for why)."
+            .into(),
+        format!(
+            "Error: RMSE of the final image (RGB in 0..1 over geometry pixels) against a \
+             {REFERENCE_SAMPLES}-sample, full-resolution, unfiltered result of the row's family \
+             (SSAO rows against SSAO, SSDO rows against one-step SSDO) at the same camera. It \
+             counts noise, the filter's blur and the subsampling's loss, not the screen-space \
+             approximation itself."
+        ),
+    ];
+    notes.extend(SCENES.iter().filter_map(|s| s.note).map(str::to_string));
+    let report = TableReport {
+        version: 1,
+        table: TABLE,
+        command: opts.command.clone(),
+        ssgi_version: env!("CARGO_PKG_VERSION"),
+        device: ctx.info.name.clone(),
+        driver: ctx.info.driver.clone(),
+        device_type: ctx.info.device_type.clone(),
+        window: sink.present_mode().is_some(),
+        present_mode: sink.present_mode(),
+        width: opts.size.0,
+        height: opts.size.1,
+        frames: opts.frames,
+        warmup,
+        fps: opts.fps,
+        path: path_spec,
+        reference_samples: REFERENCE_SAMPLES,
+        notes,
+        scenes: results,
+    };
+    write_reports(out, &report)
+}
+
+fn summary_line(s: &SceneResult) -> String {
+    let fps: Vec<String> = s
+        .rows
+        .iter()
+        .map(|r| r.fps.map_or("-".into(), |f| format!("{f:.1}")))
+        .collect();
+    format!("{}: fps per row {}", s.name, fps.join(" / "))
+}
+
+fn write_reports(out: &Path, r: &TableReport) -> Result<Vec<PathBuf>> {
+    let json = serde_json::to_string_pretty(r)
+        .map_err(|e| Error::Config(format!("JSON encoding failed: {e}")))?;
+    let files = [
+        (out.join("report.json"), json),
+        (out.join("report.md"), markdown(r)),
+        (out.join(format!("{TABLE}.csv")), csv(r)),
+    ];
+    let mut written = Vec::new();
+    for (path, text) in files {
+        write_text(&path, &text)?;
+        written.push(path);
+    }
+    Ok(written)
+}
+
+fn opt(v: Option<f64>, digits: usize) -> String {
+    v.map_or("-".into(), |v| format!("{v:.digits$}"))
+}
+
+fn markdown(r: &TableReport) -> String {
+    let mut md = format!("# {TITLE}\n\n");
+    md += &format!("Command: `{}`\n\n", r.command);
+    md += &format!(
+        "Device: {} ({}), {}x{}, {} frames measured per row after {} warmup frames, camera path \
+         `{}` at {} fps, ssgi {}.\n\n",
+        r.device, r.driver, r.width, r.height, r.frames, r.warmup, r.path, r.fps, r.ssgi_version
+    );
+    for s in &r.scenes {
+        md += &format!(
+            "## {} ({} triangles; the paper's: {} faces)\n\n",
+            s.name, s.triangles, s.paper_faces
+        );
+        md +=
+            "| Row | Samples (paper) | Mean samples/px | Subsampling | SSDO passes ms | Frame ms \
+               | fps | Paper fps | Time / first row | Paper | Final RMSE |\n";
+        md += "|---|---|---|---|---|---|---|---|---|---|---|\n";
+        for row in &s.rows {
+            md += &format!(
+                "| {} | {} | {} | {} | {} | {} | {} | {} | {} | {:.2} | {} |\n",
+                row.label,
+                row.paper_samples,
+                opt(row.samples_per_pixel, 1),
+                if row.subsampling { "2x" } else { "no" },
+                opt(row.ssdo_ms, 2),
+                opt(row.total_ms, 2),
+                opt(row.fps, 1),
+                row.paper_fps,
+                opt(row.time_over_first, 2),
+                row.paper_time_over_first,
+                opt(row.final_rmse, 4),
+            );
+        }
+        md += "\n| Frame time ratio | Ours (frame) | Ours (SSDO passes) | Paper |\n|---|---|---|---|\n";
+        for q in &s.ratios {
+            md += &format!(
+                "| {} | {} | {} | {:.2} |\n",
+                q.what,
+                opt(q.ours_total, 2),
+                opt(q.ours_ssdo, 2),
+                q.paper
+            );
+        }
+        let images: Vec<String> = s.rows.iter().map(|r| format!("`{}`", r.image)).collect();
+        md += &format!("\nLast frames: {}.\n\n", images.join(", "));
+    }
+    md += "## Notes\n\n";
+    for n in &r.notes {
+        md += &format!("- {n}\n");
+    }
+    md
+}
+
+fn csv(r: &TableReport) -> String {
+    let mut out = String::from(
+        "scene,row,label,paper_samples,samples_per_pixel,subsampling,form,ssdo_ms,total_ms,fps,\
+         paper_fps,time_over_first,paper_time_over_first,final_rmse\n",
+    );
+    for s in &r.scenes {
+        for (i, row) in s.rows.iter().enumerate() {
+            out += &format!(
+                "{},{},{},{},{},{},{:?},{},{},{},{},{},{:.4},{}\n",
+                s.spec,
+                i + 1,
+                row.label,
+                row.paper_samples,
+                opt(row.samples_per_pixel, 3),
+                row.subsampling,
+                row.form,
+                opt(row.ssdo_ms, 4),
+                opt(row.total_ms, 4),
+                opt(row.fps, 3),
+                row.paper_fps,
+                opt(row.time_over_first, 4),
+                row.paper_time_over_first,
+                opt(row.final_rmse, 5),
+            );
+        }
+    }
+    out
+}
