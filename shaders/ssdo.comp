@@ -79,21 +79,15 @@ uint shade(ivec2 texel) {
         // The same K samples every frame (Halton indices 0 .. K - 1, shifted per pixel).
         uint first = 0u;
 #ifdef DIRECTIONAL
-        float m = ssdo_pixel(texel, position.xyz, n, first, count, false).a;
+        float m = ssdo_pixel(texel, position.xyz, n, first, count, count, false).a;
         result = vec4(sender_radiance(pixel) * m, m);
 #elif defined(BOUNCE)
-        vec3 e = ssdo_pixel(texel, position.xyz, n, first, count, true).rgb;
+        vec3 e = ssdo_pixel(texel, position.xyz, n, first, count, count, true).rgb;
         result = vec4(e, texelFetch(lit, texel, 0).a);
 #elif defined(SSAO)
-        float r_max = frame.ssdo_radius;
-        float occluded = 0.0;
-        for (uint k = 0u; k < count; ++k) {
-            vec4 w = hemisphere_sample(first + k, texel, n, r_max);
-            if (hemisphere_tap(position.xyz + w.w * w.xyz, r_max).occluded) occluded += 1.0;
-        }
-        result = vec4(1.0 - occluded / float(max(count, 1u)));
+        result = vec4(ssao_pixel(texel, position.xyz, n, first, count));
 #else
-        result = ssdo_pixel(texel, position.xyz, n, first, count, true);
+        result = ssdo_pixel(texel, position.xyz, n, first, count, count, true);
         result.rgb *= result.a;
 #endif
     }

@@ -196,6 +196,14 @@ fn bad_flags_get_clear_errors() {
         &["table", "szentandrasi-1", "--effects", "all"],
         "leave out --effects",
     );
+    fails_with(
+        &["render", "--effects", "direct,ssdo", "--ssdo", "two-step"],
+        "two steps need --reuse off",
+    );
+    fails_with(
+        &["render", "--effects", "direct,ssdo", "--ssdo-scale", "0.5"],
+        "--ssdo-scale 0.5 needs --reuse off",
+    );
     fails_with(&["render", "--ssdo-scale", "0.25"], "--ssdo-scale takes 1");
     fails_with(&["render", "--ssdo-scale", "nan"], "--ssdo-scale takes 1");
     fails_with(

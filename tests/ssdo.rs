@@ -764,3 +764,108 @@ fn upsampling_does_not_bleed_across_edges() {
     assert!((bh - bf).abs() <= 0.03 * bf, "far wall: {bf} -> {bh}");
     common::assert_clean(&ctx);
 }
+
+/// With the cache (`--reuse on`, beyond the paper): on a static view the accumulated modulation
+/// factor and bounce converge, after the rotation limit's patterns of K samples, to what one
+/// uncached pass with all those samples computes (the mean of the patterns' ratios against the
+/// ratio of their sums: close, not equal), and converged pixels cost nothing: the last frames
+/// compute no pixel and take no sample. Under motion every history value stays finite.
+#[test]
+fn cached_ssdo_converges_to_the_many_sample_result_and_then_skips() {
+    let ctx = common::context();
+    let size = 64u32;
+    let k = 10;
+    for form in [SsdoForm::OneStep, SsdoForm::Ssao] {
+        let mut c = config(
+            size,
+            SsdoConfig {
+                form,
+                samples: k,
+                filter: 0,
+                ..Default::default()
+            },
+        );
+        c.temporal.reuse = true;
+        let limit = c.temporal.rotation_limit;
+        let mut r = Renderer::new(&ctx, cornell_box(), c).expect("renderer");
+        let camera = r.scene.camera;
+        let mut timings = Vec::new();
+        for _ in 0..limit + 4 {
+            r.render_frame(&camera).unwrap();
+            timings.extend(r.finish().unwrap());
+        }
+        let counter = |t: &ssgi::vk::FrameTiming, name| {
+            t.counters.iter().find(|(n, _)| *n == name).map(|c| c.1)
+        };
+        assert_eq!(
+            counter(&timings[0], "ssdo_samples"),
+            Some(u64::from(size * size * k))
+        );
+        for t in &timings[limit as usize + 1..] {
+            assert_eq!(
+                counter(t, "ssdo_computed_pixels"),
+                Some(0),
+                "frame {}",
+                t.frame
+            );
+            assert_eq!(counter(t, "ssdo_samples"), Some(0), "frame {}", t.frame);
+        }
+        let cached = r.read(Target::SsdoModulation).unwrap();
+        let pos = r.read(Target::GPosition).unwrap();
+        let mut u = config(
+            size,
+            SsdoConfig {
+                form,
+                samples: k * limit,
+                filter: 0,
+                ..Default::default()
+            },
+        );
+        u.temporal.reuse = false;
+        let mut reference = render(&ctx, cornell_box(), u);
+        let once = reference.read(Target::SsdoModulation).unwrap();
+        let (mut dm, mut db, mut n, mut rms) = (0.0f64, 0.0f64, 0usize, 0.0f64);
+        for y in 0..size {
+            for x in 0..size {
+                if pos.texel(x, y)[3] == 0.0 {
+                    continue;
+                }
+                let (a, b) = (cached.texel(x, y), once.texel(x, y));
+                dm += f64::from(a[3] - b[3]).powi(2);
+                db += (v3(a) - v3(b)).length_squared() as f64 / 3.0;
+                rms += v3(b).length_squared() as f64 / 3.0;
+                n += 1;
+            }
+        }
+        let (dm, db) = ((dm / n as f64).sqrt(), (db / n as f64).sqrt());
+        let rms = (rms / n as f64).sqrt();
+        eprintln!(
+            "{form:?}: cached vs {} samples at once: RMSE factor {dm:.4}, bounce {db:.4}",
+            k * limit
+        );
+        assert!(
+            dm <= 0.01 && db <= 0.1 * rms,
+            "{form:?}: RMSE {dm}, {db} (RMS {rms})"
+        );
+    }
+    // Orbiting: histories resampled every frame stay finite.
+    let mut c = config(size, SsdoConfig::default());
+    c.temporal.reuse = true;
+    let mut r = Renderer::new(&ctx, cornell_box(), c).expect("renderer");
+    let base = r.scene.camera;
+    for i in 0..12 {
+        let angle = i as f32 * 0.03;
+        let mut camera = base;
+        let offset = camera.position - camera.target;
+        camera.position = camera.target + glam::Quat::from_rotation_y(angle) * offset;
+        r.render_frame(&camera).unwrap();
+    }
+    r.finish().unwrap();
+    let s = r.read(Target::SsdoModulation).unwrap();
+    for y in 0..size {
+        for x in 0..size {
+            assert!(s.texel(x, y).iter().all(|v| v.is_finite()), "({x}, {y})");
+        }
+    }
+    common::assert_clean(&ctx);
+}

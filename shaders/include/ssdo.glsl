@@ -40,12 +40,16 @@ float ssdo_incident(vec3 p, vec3 omega) {
 // P_s - P. Eq 4 as printed also multiplies by delta omega; A_s cos / d^2 is already the
 // patch's solid angle, so that factor is left out, as in Ritschel et al.'s eq. d^2 is floored
 // at A_s / (2 pi), where the patch would subtend a whole hemisphere: scale-free, since A_s
-// scales with r_max^2. `texel` (SSDO's grid) picks the Halton shift. Returns (bounce rgb,
-// modulation).
-vec4 ssdo_pixel(ivec2 texel, vec3 p, vec3 n, uint first_sample, uint count, bool bounce) {
+// scales with r_max^2. The floor takes the patch of the estimate's whole sample set,
+// `floor_count` samples: K for one pass; with the cache, which averages patterns of K samples
+// into one estimate of K times the rotation limit, that many, so the accumulated bounce
+// converges to the many-sample one rather than to a K-sample floor's (36x larger at K = 10).
+// `texel` (SSDO's grid) picks the Halton shift. Returns (bounce rgb, modulation).
+vec4 ssdo_pixel(ivec2 texel, vec3 p, vec3 n, uint first_sample, uint count, uint floor_count,
+                bool bounce) {
     float r_max = frame.ssdo_radius;
     float area = PI * r_max * r_max / float(max(count, 1u));
-    float d2_floor = area / TWO_PI;
+    float d2_floor = PI * r_max * r_max / float(max(floor_count, 1u)) / TWO_PI;
     float lit = 0.0;
     float unoccluded = 0.0;
     vec3 e_bounce = vec3(0.0);
@@ -69,6 +73,18 @@ vec4 ssdo_pixel(ivec2 texel, vec3 p, vec3 n, uint first_sample, uint count, bool
     }
     float modulation = unoccluded > 0.0 ? lit / unoccluded : 1.0;
     return vec4(e_bounce, modulation);
+}
+
+// Section 3.1's SSAO with the same samples: the fraction of the `count` points from Halton index
+// `first_sample` that are not occluded.
+float ssao_pixel(ivec2 texel, vec3 p, vec3 n, uint first_sample, uint count) {
+    float r_max = frame.ssdo_radius;
+    float occluded = 0.0;
+    for (uint k = 0u; k < count; ++k) {
+        vec4 w = hemisphere_sample(first_sample + k, texel, n, r_max);
+        if (hemisphere_tap(p + w.w * w.xyz, r_max).occluded) occluded += 1.0;
+    }
+    return 1.0 - occluded / float(max(count, 1u));
 }
 
 #endif // SSDO_GLSL

@@ -74,17 +74,25 @@ vec4 merged_moments(vec4 moments, float w, float l2) {
     return moments;
 }
 
-// Merge a fresh scalar estimate into the history value `old` that holds `n` estimates;
-// `moments` (mean squared value, pending gate crossing, estimates in the mean) is updated in
-// place. Returns (value, count).
-vec2 accumulate(float old, float n, float fresh, inout vec4 moments) {
-    fresh = clamp(fresh, -HISTORY_MAX, HISTORY_MAX);
+// Weight of a fresh scalar estimate (already clamped) merged into the history value `old`
+// that holds `n` estimates: 1 for an empty history. `moments` (mean squared value, pending gate
+// crossing, estimates in the mean) is updated in place; its w is left to the caller (0 after a
+// restart from an empty history).
+float merge_weight(float old, float n, float fresh, inout vec4 moments) {
     if (n < 0.5) {
         moments = vec4(fresh * fresh, 0.0, 1.0, 0.0);
-        return vec2(fresh, 1.0);
+        return 1.0;
     }
     float w = fresh_weight(n, abs(old - fresh), old, fresh, moments);
     moments = merged_moments(moments, w, fresh * fresh);
+    return w;
+}
+
+// Merge a fresh scalar estimate into the history value `old` that holds `n` estimates;
+// `moments` is updated in place (merge_weight). Returns (value, count).
+vec2 accumulate(float old, float n, float fresh, inout vec4 moments) {
+    fresh = clamp(fresh, -HISTORY_MAX, HISTORY_MAX);
+    float w = merge_weight(old, n, fresh, moments);
     return vec2(old + w * (fresh - old), n + 1.0);
 }
 

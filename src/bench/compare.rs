@@ -36,6 +36,8 @@ pub const GROUPS: &[(&str, &[PassId])] = &[
             PassId::SsdoSamples,
             PassId::Ssdo,
             PassId::SsdoBounce,
+            PassId::SsdoRefresh,
+            PassId::SsdoResolve,
             PassId::SsdoBilateral,
             PassId::SsdoUpsample,
         ],

@@ -9,7 +9,9 @@
 //! every frame, no temporal reuse.
 
 use super::effect::TermKind;
-use super::effect::{every_pixel, Effect, EffectId, FrameInfo, Recording, Registration, Setup};
+use super::effect::{
+    every_pixel, refresh_dispatch, Effect, EffectId, FrameInfo, Recording, Registration, Setup,
+};
 use super::resolve::EffectResources;
 use crate::error::Result;
 use crate::passes::compute::{ComputePass, Dispatch};
@@ -18,8 +20,9 @@ use crate::passes::{PassId, PassLayout};
 use crate::renderer::config::FRAMES_IN_FLIGHT;
 use crate::renderer::config::{RenderConfig, SsdoForm};
 use crate::renderer::counters::{self, Counter, CounterReadback};
-use crate::renderer::effect::TemporalEffect;
+use crate::renderer::effect::{self, TemporalEffect};
 use crate::renderer::targets::{Target, Targets, AO_FORMAT};
+use crate::renderer::temporal::Sampling;
 use crate::shaders::{self, EffectPush};
 use crate::vk::cmd::Recorder;
 use crate::vk::{Buffer, Context, Image, ImageDesc, Tracker};
@@ -97,6 +100,27 @@ const FILTER_V: &[Bind] = &[
     Bind::new(3, FILTERED, Use::StorageWrite),
 ];
 
+/// With the cache: one pattern per listed pixel merged into the history (and the refresh tile).
+const ACCUMULATE: &[Bind] = &[
+    Bind::new(0, Slot::GPosition, Use::Sampled),
+    Bind::new(1, Slot::GNormal, Use::Sampled),
+    Bind::new(2, Slot::GAlbedo, Use::Sampled),
+    Bind::new(3, Slot::DirectLight, Use::Sampled),
+    Bind::new(4, Slot::State, Use::StorageRead),
+    Bind::new(5, Slot::History, Use::StorageReadWrite),
+    Bind::new(6, Slot::Counters, Use::WorkList),
+    Bind::new(7, Slot::Moments, Use::StorageReadWrite),
+    Bind::new(8, BLOCK_SAMPLES, Use::Sampled),
+];
+
+/// With the cache: history and moments into the image the filter and composite read.
+const RESOLVE: &[Bind] = &[
+    Bind::new(0, Slot::GPosition, Use::Sampled),
+    Bind::new(1, Slot::History, Use::Sampled),
+    Bind::new(2, Slot::Moments, Use::Sampled),
+    Bind::new(3, RAW, Use::StorageWrite),
+];
+
 const fn upsample(src: Slot) -> [Bind; 4] {
     [
         Bind::new(0, Slot::GPosition, Use::Sampled),
@@ -118,9 +142,40 @@ pub const REGISTRATION: Registration = Registration {
 fn layouts() -> Vec<PassLayout> {
     vec![
         ComputePass::layout(PassId::Ssdo, &shaders::SSDO_COMP_ONE_STEP, ONE_STEP),
+        ComputePass::layout(PassId::Ssdo, &shaders::SSDO_COMP_SSAO, ONE_STEP),
         ComputePass::layout(PassId::Ssdo, &shaders::SSDO_COMP_DIRECTIONAL, DIRECTIONAL),
         ComputePass::layout(PassId::SsdoBounce, &shaders::SSDO_COMP_BOUNCE, BOUNCE),
         ComputePass::layout(PassId::SsdoSamples, &shaders::SSDO_SAMPLES_COMP, PREPASS),
+        ComputePass::layout(
+            PassId::Ssdo,
+            &shaders::SSDO_ACCUMULATE_COMP_BLOCKS,
+            ACCUMULATE,
+        ),
+        ComputePass::layout(
+            PassId::Ssdo,
+            &shaders::SSDO_ACCUMULATE_COMP_BLOCKS_SSAO,
+            ACCUMULATE,
+        ),
+        ComputePass::layout(
+            PassId::SsdoRefresh,
+            &shaders::SSDO_ACCUMULATE_COMP_REFRESH,
+            ACCUMULATE,
+        ),
+        ComputePass::layout(
+            PassId::SsdoRefresh,
+            &shaders::SSDO_ACCUMULATE_COMP_REFRESH_SSAO,
+            ACCUMULATE,
+        ),
+        ComputePass::layout(
+            PassId::SsdoResolve,
+            &shaders::SSDO_ACCUMULATE_COMP_RESOLVE,
+            RESOLVE,
+        ),
+        ComputePass::layout(
+            PassId::SsdoResolve,
+            &shaders::SSDO_ACCUMULATE_COMP_RESOLVE_SSAO,
+            RESOLVE,
+        ),
         ComputePass::layout(
             PassId::SsdoBilateral,
             &shaders::SSDO_BILATERAL_COMP_HORIZONTAL,
@@ -152,11 +207,20 @@ enum Form {
         directional: ComputePass,
         bounce: ComputePass,
     },
+    /// With the cache (one step or SSAO): accumulate the listed pixels, refresh a tile,
+    /// resolve every pixel.
+    Cached {
+        blocks: ComputePass,
+        refresh: ComputePass,
+        resolve: ComputePass,
+    },
 }
 
-/// Size-dependent images: [lit, raw, half filtered, filtered, samples per block, upsampled].
+/// Size-dependent images: [lit, raw, half filtered, filtered, samples per block, upsampled],
+/// and with the cache the history machinery.
 struct Sized {
     images: [Image; 6],
+    temporal: Option<TemporalEffect>,
 }
 
 pub struct SsdoEffect {
@@ -178,7 +242,29 @@ pub struct SsdoEffect {
 impl SsdoEffect {
     pub fn new(s: &mut Setup<'_>) -> Result<Self> {
         let pass = |id, module, binds| ComputePass::new(s.ctx, s.pool, id, module, binds);
+        let ssao = s.config.ssdo.form == SsdoForm::Ssao;
         let form = match s.config.ssdo.form {
+            // RenderConfig::validate keeps the cache to full-resolution one step and SSAO.
+            _ if s.config.temporal.reuse => {
+                let (blocks, refresh, resolve) = if ssao {
+                    (
+                        &shaders::SSDO_ACCUMULATE_COMP_BLOCKS_SSAO,
+                        &shaders::SSDO_ACCUMULATE_COMP_REFRESH_SSAO,
+                        &shaders::SSDO_ACCUMULATE_COMP_RESOLVE_SSAO,
+                    )
+                } else {
+                    (
+                        &shaders::SSDO_ACCUMULATE_COMP_BLOCKS,
+                        &shaders::SSDO_ACCUMULATE_COMP_REFRESH,
+                        &shaders::SSDO_ACCUMULATE_COMP_RESOLVE,
+                    )
+                };
+                Form::Cached {
+                    blocks: pass(PassId::Ssdo, blocks, ACCUMULATE)?,
+                    refresh: pass(PassId::SsdoRefresh, refresh, ACCUMULATE)?,
+                    resolve: pass(PassId::SsdoResolve, resolve, RESOLVE)?,
+                }
+            }
             SsdoForm::OneStep => {
                 Form::Single(pass(PassId::Ssdo, &shaders::SSDO_COMP_ONE_STEP, ONE_STEP)?)
             }
@@ -231,7 +317,7 @@ impl SsdoEffect {
             filter,
             prepass,
             upsample,
-            ssao: s.config.ssdo.form == SsdoForm::Ssao,
+            ssao,
             counters: counters::create_gpu_buffer(s.ctx, "ssdo.counters", 0, 0)?,
             readback: CounterReadback::new(s.ctx, FRAMES_IN_FLIGHT)?,
             sized: Self::create_sized(s.ctx, s.config)?,
@@ -283,6 +369,16 @@ impl SsdoEffect {
                 samples,
                 image("ssdo.upsampled", upsampled)?,
             ],
+            temporal: if c.temporal.reuse {
+                Some(TemporalEffect::new(
+                    ctx,
+                    effect::SSDO,
+                    c,
+                    Sampling::FullRes,
+                )?)
+            } else {
+                None
+            },
         })
     }
 
@@ -298,7 +394,7 @@ impl SsdoEffect {
     ) -> EffectResources<'a> {
         EffectResources {
             targets,
-            temporal: None,
+            temporal: self.sized.temporal.as_ref(),
             own,
             own_buffers: buffers,
         }
@@ -340,6 +436,15 @@ impl Effect for SsdoEffect {
                 directional.bind(ctx, &res)?;
                 bounce.bind(ctx, &res)?;
             }
+            Form::Cached {
+                blocks,
+                refresh,
+                resolve,
+            } => {
+                blocks.bind(ctx, &res)?;
+                refresh.bind(ctx, &res)?;
+                resolve.bind(ctx, &res)?;
+            }
         }
         let others = self.filter.iter().flatten();
         for p in others.chain(&self.prepass).chain(&self.upsample) {
@@ -349,13 +454,14 @@ impl Effect for SsdoEffect {
     }
 
     fn temporal(&self) -> Option<&TemporalEffect> {
-        None
+        self.sized.temporal.as_ref()
     }
 
     fn temporal_mut(&mut self) -> Option<&mut TemporalEffect> {
-        None
+        self.sized.temporal.as_mut()
     }
 
+    /// With the cache, the temporal machinery's counters; without, SSDO's own.
     fn copy_counters(
         &mut self,
         rec: &Recorder<'_>,
@@ -363,18 +469,36 @@ impl Effect for SsdoEffect {
         slot: usize,
         _config: &RenderConfig,
     ) {
-        self.readback
-            .record_copy(rec, tracker, &self.counters, slot, SSDO_COUNTERS);
+        match &mut self.sized.temporal {
+            Some(t) => t.copy_counters(rec, tracker, slot),
+            None => self
+                .readback
+                .record_copy(rec, tracker, &self.counters, slot, SSDO_COUNTERS),
+        }
     }
 
     fn collect_counters(&mut self, slot: usize) -> Vec<(&'static str, u64)> {
-        self.readback.collect(slot)
+        match &mut self.sized.temporal {
+            Some(t) => t.readback.collect(slot),
+            None => self.readback.collect(slot),
+        }
     }
 
-    fn prepare(&mut self, _info: &FrameInfo<'_>) {}
+    fn prepare(&mut self, info: &FrameInfo<'_>) {
+        let refresh = info.config.temporal.refresh;
+        if let Some(t) = &mut self.sized.temporal {
+            // The senders' radiance and L_in follow the light: a light change refreshes too.
+            self.push = t.frame_push(
+                info.reusing(),
+                refresh,
+                0,
+                info.camera_moved || info.light_changed,
+            );
+        }
+    }
 
     fn reprojects(&self, _info: &FrameInfo<'_>) -> bool {
-        false
+        self.sized.temporal.is_some()
     }
 
     fn push(&self) -> &EffectPush {
@@ -386,7 +510,10 @@ impl Effect for SsdoEffect {
         let buffers = [&self.counters];
         let res = self.resources(info.targets, &own, &buffers);
         let grid = &self.sized.images[1].desc;
-        counters::record_reset(&r.rec, r.tracker, &self.counters, 0);
+        // With the cache the reprojection resets the temporal counters.
+        if self.sized.temporal.is_none() {
+            counters::record_reset(&r.rec, r.tracker, &self.counters, 0);
+        }
         let all = Dispatch::Pixels {
             width: grid.width,
             height: grid.height,
@@ -416,6 +543,25 @@ impl Effect for SsdoEffect {
                 });
                 r.timed(PassId::SsdoBounce, |rec, tr| {
                     bounce.record(rec, tr, info.frame, &res, &[], all)
+                });
+            }
+            Form::Cached {
+                blocks,
+                refresh,
+                resolve,
+            } => {
+                let push = self.push.to_bytes();
+                r.timed(PassId::Ssdo, |rec, tr| {
+                    let listed = Dispatch::Indirect { offset: 0 };
+                    blocks.record(rec, tr, info.frame, &res, &push, listed)
+                });
+                if let Some(tile) = refresh_dispatch(&self.push) {
+                    r.timed(PassId::SsdoRefresh, |rec, tr| {
+                        refresh.record(rec, tr, info.frame, &res, &push, tile)
+                    });
+                }
+                r.timed(PassId::SsdoResolve, |rec, tr| {
+                    resolve.record(rec, tr, info.frame, &res, &[], all)
                 });
             }
         }

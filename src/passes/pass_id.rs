@@ -39,6 +39,10 @@ pub enum PassId {
     Ssdo,
     /// The two-step SSDO's bounce pass.
     SsdoBounce,
+    /// With the cache: SSDO's refresh tile, every pattern, spread over threads.
+    SsdoRefresh,
+    /// With the cache: the accumulated bounce and factor into the image the filter reads.
+    SsdoResolve,
     /// SSDO's separable bilateral filter (both directions).
     SsdoBilateral,
     /// Joint bilateral upsampling of half-resolution SSDO (--ssdo-scale 0.5).
@@ -48,7 +52,7 @@ pub enum PassId {
 }
 
 impl PassId {
-    pub const ALL: [PassId; 20] = [
+    pub const ALL: [PassId; 22] = [
         PassId::LightView,
         PassId::GBuffer,
         PassId::Reproject,
@@ -66,6 +70,8 @@ impl PassId {
         PassId::SsdoSamples,
         PassId::Ssdo,
         PassId::SsdoBounce,
+        PassId::SsdoRefresh,
+        PassId::SsdoResolve,
         PassId::SsdoBilateral,
         PassId::SsdoUpsample,
         PassId::Composite,
@@ -90,6 +96,8 @@ impl PassId {
             PassId::SsdoSamples => "ssdo_samples",
             PassId::Ssdo => "ssdo",
             PassId::SsdoBounce => "ssdo_bounce",
+            PassId::SsdoRefresh => "ssdo_refresh",
+            PassId::SsdoResolve => "ssdo_resolve",
             PassId::SsdoBilateral => "ssdo_bilateral",
             PassId::SsdoUpsample => "ssdo_upsample",
             PassId::Composite => "composite",

@@ -536,6 +536,21 @@ impl RenderConfig {
                 ssdo.scale
             ));
         }
+        if self.effects.ssdo && self.temporal.reuse {
+            if ssdo.form == SsdoForm::TwoStep {
+                return bad(
+                    "SSDO's cache accumulates the one-step form (and --ssdo ssao): two steps \
+                     need --reuse off"
+                        .into(),
+                );
+            }
+            if ssdo.scale != 1 {
+                return bad(
+                    "SSDO's cache runs at full resolution: --ssdo-scale 0.5 needs --reuse off"
+                        .into(),
+                );
+            }
+        }
         if ao.position_mips > AoConfig::MAX_POSITION_MIPS {
             return bad(format!(
                 "AO position levels {} outside 0..={}",

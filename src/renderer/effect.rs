@@ -63,6 +63,20 @@ pub const INDIRECT: EffectKind = EffectKind {
     fixups: true,
 };
 
+/// SSDO with the cache (`--reuse on`): the factor's running mean rides in the moments' w.
+pub const SSDO: EffectKind = EffectKind {
+    name: "ssdo",
+    block_shift: 3,
+    refresh_tile: 64,
+    counters: &[
+        ("disoccluded_pixels", Counter::Disoccluded),
+        ("ssdo_computed_pixels", Counter::Computed),
+        ("ssdo_samples", Counter::Samples),
+        ("ssdo_refresh_evaluations", Counter::Refresh),
+    ],
+    fixups: false,
+};
+
 const STORAGE_READ: vk::ImageUsageFlags = vk::ImageUsageFlags::from_raw(
     vk::ImageUsageFlags::STORAGE.as_raw()
         | vk::ImageUsageFlags::SAMPLED.as_raw()
