@@ -389,6 +389,10 @@ fn markdown(r: &TableReport) -> String {
          `{}` at {} fps, ssgi {}.\n\n",
         r.device, r.driver, r.width, r.height, r.frames, r.warmup, r.path, r.fps, r.ssgi_version
     );
+    md += &match r.present_mode {
+        Some(mode) => format!("Frames shown: every frame presented to a window ({mode}).\n\n"),
+        None => "Frames shown: none (offscreen).\n\n".to_string(),
+    };
     for s in &r.scenes {
         md += &format!(
             "## {} ({} triangles; the paper's: {} faces)\n\n",
