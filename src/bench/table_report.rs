@@ -129,6 +129,7 @@ pub fn group_present(group: &str, effects: &crate::renderer::config::Effects) ->
     match group {
         "ao" => effects.ao,
         "indirect" => effects.indirect,
+        "ssdo" => effects.ssdo,
         "shadow" | "direct" => effects.direct,
         _ => true,
     }
