@@ -197,6 +197,18 @@ struct Buffers {
     direct: ImageData,
 }
 
+impl Buffers {
+    /// The G-buffer and direct light of the frame `r` last rendered.
+    fn read(r: &mut Renderer) -> Self {
+        Self {
+            position: r.read(Target::GPosition).unwrap(),
+            normal: r.read(Target::GNormal).unwrap(),
+            albedo: r.read(Target::GAlbedo).unwrap(),
+            direct: r.read(Target::Direct).unwrap(),
+        }
+    }
+}
+
 fn v3(t: [f32; 4]) -> Vec3 {
     Vec3::new(t[0], t[1], t[2])
 }
@@ -300,12 +312,7 @@ fn one_step_equals_a_cpu_evaluation_of_eqs_2_and_4() {
         ..Default::default()
     };
     let mut r = render(&ctx, cornell_box(), config(size, ssdo));
-    let b = Buffers {
-        position: r.read(Target::GPosition).unwrap(),
-        normal: r.read(Target::GNormal).unwrap(),
-        albedo: r.read(Target::GAlbedo).unwrap(),
-        direct: r.read(Target::Direct).unwrap(),
-    };
+    let b = Buffers::read(&mut r);
     let gpu = r.read(Target::SsdoBounce).unwrap();
     let vp = r.scene.camera.view_proj(1.0);
     let r_max = ssdo.radius * r.scene.mesh.bounds.radius();
@@ -357,12 +364,7 @@ fn ssao_form_equals_a_cpu_evaluation_of_section_3_1() {
         ..Default::default()
     };
     let mut r = render(&ctx, cornell_box(), config(size, ssdo));
-    let b = Buffers {
-        position: r.read(Target::GPosition).unwrap(),
-        normal: r.read(Target::GNormal).unwrap(),
-        albedo: r.read(Target::GAlbedo).unwrap(),
-        direct: r.read(Target::Direct).unwrap(),
-    };
+    let b = Buffers::read(&mut r);
     let gpu = r.read(Target::Ao).unwrap();
     assert!(r.read(Target::SsdoBounce).is_err(), "SSAO has no bounce");
     let vp = r.scene.camera.view_proj(1.0);
