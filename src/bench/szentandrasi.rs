@@ -66,7 +66,8 @@ pub struct PaperRow {
     pub adaptive: bool,
     /// Half resolution with 3x3 joint bilateral upsampling.
     pub subsampling: bool,
-    /// Frames per second on Pyramids, Cornell box, Dragon.
+    /// Frames per second on Pyramids, Cornell box, Dragon (a scene's result carries its own).
+    #[serde(skip)]
     pub paper_fps: [f64; 3],
 }
 

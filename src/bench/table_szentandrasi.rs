@@ -42,12 +42,9 @@ pub const TITLE: &str =
 
 #[derive(Clone, Debug, Serialize)]
 pub struct RowResult {
-    pub label: &'static str,
-    pub paper_samples: &'static str,
-    pub form: SsdoForm,
-    pub samples: u32,
-    pub adaptive: bool,
-    pub subsampling: bool,
+    /// The row as the paper states it (label, samples, form, subsampling).
+    #[serde(flatten)]
+    pub row: PaperRow,
     pub filter: u32,
     pub paper_fps: f64,
     /// Median over the measured frames of the per-frame sum of every pass.
@@ -227,12 +224,7 @@ fn run_scene(
         let total_ms = m.report.total.median_ms;
         let first_ms = rows.first().and_then(|r| r.total_ms).or(total_ms);
         rows.push(RowResult {
-            label: row.label,
-            paper_samples: row.paper_samples,
-            form: row.form,
-            samples: row.samples,
-            adaptive: row.adaptive,
-            subsampling: row.subsampling,
+            row: *row,
             filter: config.ssdo.filter,
             paper_fps: row.paper_fps[index],
             total_ms,
@@ -257,8 +249,8 @@ fn run_scene(
             let (pa, pb): (&PaperRow, &PaperRow) = (&ROWS[r.numerator], &ROWS[r.denominator]);
             RatioResult {
                 what: r.what,
-                numerator: a.label,
-                denominator: b.label,
+                numerator: a.row.label,
+                denominator: b.row.label,
                 ours_total: ratio(a.total_ms, b.total_ms),
                 ours_ssdo: ratio(a.ssdo_ms, b.ssdo_ms),
                 paper: pa.paper_time_over(pb, index),
@@ -405,10 +397,10 @@ fn markdown(r: &TableReport) -> String {
         for row in &s.rows {
             md += &format!(
                 "| {} | {} | {} | {} | {} | {} | {} | {} | {} | {:.2} | {} |\n",
-                row.label,
-                row.paper_samples,
+                row.row.label,
+                row.row.paper_samples,
                 opt(row.samples_per_pixel, 1),
-                if row.subsampling { "2x" } else { "no" },
+                if row.row.subsampling { "2x" } else { "no" },
                 opt(row.ssdo_ms, 2),
                 opt(row.total_ms, 2),
                 opt(row.fps, 1),
@@ -449,11 +441,11 @@ fn csv(r: &TableReport) -> String {
                 "{},{},{},{},{},{},{:?},{},{},{},{},{},{:.4},{}\n",
                 s.spec,
                 i + 1,
-                row.label,
-                row.paper_samples,
+                row.row.label,
+                row.row.paper_samples,
                 opt(row.samples_per_pixel, 3),
-                row.subsampling,
-                row.form,
+                row.row.subsampling,
+                row.row.form,
                 opt(row.ssdo_ms, 4),
                 opt(row.total_ms, 4),
                 opt(row.fps, 3),

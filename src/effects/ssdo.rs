@@ -223,6 +223,12 @@ struct Sized {
     temporal: Option<TemporalEffect>,
 }
 
+/// The counters header the uncached passes fill, and its per-slot host copies.
+struct OwnCounters {
+    gpu: Buffer,
+    readback: CounterReadback,
+}
+
 pub struct SsdoEffect {
     form: Form,
     /// Horizontal and vertical bilateral passes (`--bilateral` not off).
@@ -233,8 +239,8 @@ pub struct SsdoEffect {
     upsample: Option<ComputePass>,
     /// `--ssdo ssao`: the result is ambient visibility, no bounce.
     ssao: bool,
-    counters: Buffer,
-    readback: CounterReadback,
+    /// Without the cache, SSDO's own counters (with it, its `TemporalEffect`'s).
+    own_counters: Option<OwnCounters>,
     sized: Sized,
     push: EffectPush,
 }
@@ -318,8 +324,14 @@ impl SsdoEffect {
             prepass,
             upsample,
             ssao,
-            counters: counters::create_gpu_buffer(s.ctx, "ssdo.counters", 0, 0)?,
-            readback: CounterReadback::new(s.ctx, FRAMES_IN_FLIGHT)?,
+            own_counters: if s.config.temporal.reuse {
+                None
+            } else {
+                Some(OwnCounters {
+                    gpu: counters::create_gpu_buffer(s.ctx, "ssdo.counters", 0, 0)?,
+                    readback: CounterReadback::new(s.ctx, FRAMES_IN_FLIGHT)?,
+                })
+            },
             sized: Self::create_sized(s.ctx, s.config)?,
             push: EffectPush::default(),
         })
@@ -390,7 +402,7 @@ impl SsdoEffect {
         &'a self,
         targets: &'a Targets,
         own: &'a [[&'a Image; 2]; 6],
-        buffers: &'a [&'a Buffer; 1],
+        buffers: &'a [&'a Buffer],
     ) -> EffectResources<'a> {
         EffectResources {
             targets,
@@ -398,6 +410,11 @@ impl SsdoEffect {
             own,
             own_buffers: buffers,
         }
+    }
+
+    /// `Slot::OwnBuffer` bindings: the counters, when SSDO keeps its own.
+    fn own_buffers(&self) -> Option<[&Buffer; 1]> {
+        self.own_counters.as_ref().map(|c| [&c.gpu])
     }
 
     /// The image the composite reads: upsampled, filtered, or the raw result.
@@ -425,8 +442,8 @@ impl Effect for SsdoEffect {
 
     fn bind(&self, ctx: &Context, targets: &Targets) -> Result<()> {
         let own = self.own();
-        let buffers = [&self.counters];
-        let res = self.resources(targets, &own, &buffers);
+        let buffers = self.own_buffers();
+        let res = self.resources(targets, &own, buffers.as_ref().map_or(&[], |b| b));
         match &self.form {
             Form::Single(p) => p.bind(ctx, &res)?,
             Form::TwoStep {
@@ -469,18 +486,20 @@ impl Effect for SsdoEffect {
         slot: usize,
         _config: &RenderConfig,
     ) {
-        match &mut self.sized.temporal {
-            Some(t) => t.copy_counters(rec, tracker, slot),
-            None => self
-                .readback
-                .record_copy(rec, tracker, &self.counters, slot, SSDO_COUNTERS),
+        if let Some(t) = &mut self.sized.temporal {
+            t.copy_counters(rec, tracker, slot);
+        }
+        if let Some(c) = &mut self.own_counters {
+            c.readback
+                .record_copy(rec, tracker, &c.gpu, slot, SSDO_COUNTERS);
         }
     }
 
     fn collect_counters(&mut self, slot: usize) -> Vec<(&'static str, u64)> {
-        match &mut self.sized.temporal {
-            Some(t) => t.readback.collect(slot),
-            None => self.readback.collect(slot),
+        match (&mut self.sized.temporal, &mut self.own_counters) {
+            (Some(t), _) => t.readback.collect(slot),
+            (None, Some(c)) => c.readback.collect(slot),
+            (None, None) => Vec::new(),
         }
     }
 
@@ -507,12 +526,12 @@ impl Effect for SsdoEffect {
 
     fn record(&self, info: &FrameInfo<'_>, r: &mut Recording<'_>) {
         let own = self.own();
-        let buffers = [&self.counters];
-        let res = self.resources(info.targets, &own, &buffers);
+        let buffers = self.own_buffers();
+        let res = self.resources(info.targets, &own, buffers.as_ref().map_or(&[], |b| b));
         let grid = &self.sized.images[1].desc;
         // With the cache the reprojection resets the temporal counters.
-        if self.sized.temporal.is_none() {
-            counters::record_reset(&r.rec, r.tracker, &self.counters, 0);
+        if let Some(c) = &self.own_counters {
+            counters::record_reset(&r.rec, r.tracker, &c.gpu, 0);
         }
         let all = Dispatch::Pixels {
             width: grid.width,
