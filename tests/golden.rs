@@ -22,7 +22,7 @@ use ssgi::renderer::config::Effects;
 use ssgi::renderer::pcf::Pcf;
 use ssgi::renderer::targets::Target;
 use ssgi::renderer::{RenderConfig, Renderer};
-use ssgi::scene::{load_scene, CameraPath};
+use ssgi::scene::{load_scene, CameraPath, Orbit};
 use std::path::{Path, PathBuf};
 
 const SIZE: u32 = 64;
@@ -77,13 +77,15 @@ fn render(scene_spec: &str, effects: Effects, reuse: bool) -> Vec<u8> {
     config.temporal.reuse = reuse;
     let mut r = Renderer::new(&ctx, scene, config).expect("renderer");
     let base = r.scene.camera;
-    let bounds = r.scene.mesh.bounds;
+    // The goldens pin the renderer, not the scenes' orbits: a turn around the mesh from the
+    // base camera, as `orbit` was when they were rendered.
+    let around = Orbit::around(r.scene.mesh.bounds.center());
     for f in 0..FRAMES {
         // One turn per ORBIT_FRAMES seconds at 1 fps: frame f is f / ORBIT_FRAMES of a turn.
         let orbit = CameraPath::Orbit {
             seconds: ORBIT_FRAMES as f32,
         };
-        let camera = orbit.camera_at(&base, &bounds, f as f32);
+        let camera = orbit.camera_at(&base, &around, f as f32);
         r.render_frame(&camera).expect("frame");
     }
     r.finish().expect("finish");

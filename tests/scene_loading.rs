@@ -4,7 +4,7 @@
 
 use glam::{Vec3, Vec4Swizzles};
 use ssgi::scene::{
-    load_obj, load_scene, pixel_to_ndc, Camera, CameraPath, Mesh, SceneError, SpotLight,
+    load_obj, load_scene, pixel_to_ndc, CameraPath, Mesh, Orbit, SceneError, SpotLight,
 };
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
@@ -219,9 +219,28 @@ fn degenerate_triangle_is_dropped_and_counted() {
     assert_eq!(m.triangle_count(), 1);
     assert_eq!(m.stats.triangles, 2);
     assert_eq!(m.stats.faces, 2);
-    assert_eq!(m.stats.dropped_degenerate, 1);
+    assert_eq!(m.stats.dropped_zero_area, 1);
+    assert_eq!(m.stats.dropped_slivers, 0);
     // Bounds cover only what is drawn: the dropped triangle's far vertex (2, 0, 0) is out.
     assert_eq!(m.bounds.max, Vec3::new(1.0, 1.0, 0.0));
+}
+
+#[test]
+fn tiny_valid_triangles_are_kept_and_slivers_counted_apart() {
+    let m = load_obj(&fixture("tiny_triangles.obj")).unwrap();
+    assert_eq!(m.stats.triangles, 4);
+    assert_eq!(m.stats.dropped_zero_area, 1);
+    assert_eq!(m.stats.dropped_slivers, 1);
+    assert_eq!(
+        m.triangle_count(),
+        2,
+        "the 1e-4 triangle of a 1000-unit model is drawn"
+    );
+    let tiny = (0..m.triangle_count())
+        .map(|t| m.triangle(t))
+        .find(|[a, b, _]| (*b - *a).length() < 1e-3)
+        .expect("the tiny triangle");
+    assert_eq!(tiny[0], Vec3::new(10.0, 10.0, 0.0));
 }
 
 #[test]
@@ -414,9 +433,10 @@ fn assets() -> PathBuf {
     ssgi::scene::asset_dir_from_env().unwrap_or_else(|| panic!("SSGI_ASSETS is not set: this test needs the papers' models (the shared scenes directory, ../shared/scenes in this workspace); tools/test sets it"))
 }
 
+/// The asset's mesh as loaded (without the ground a single model's scene adds).
 fn load_asset(name: &str, dir: &Path) -> Mesh {
-    match load_scene(name, Some(dir)) {
-        Ok(s) => s.mesh,
+    match ssgi::scene::resolve_model(name, Some(dir)).and_then(|p| load_obj(&p)) {
+        Ok(m) => m,
         Err(e) => panic!("asset {name} from {}: {e}", dir.display()),
     }
 }
@@ -437,7 +457,7 @@ fn asset_face_counts_match_sources_md() {
         assert_eq!(m.stats.faces, faces, "{name} faces");
         assert_eq!(m.stats.triangles, faces, "{name} triangles");
         assert_eq!(
-            m.triangle_count() + m.stats.dropped_degenerate,
+            m.triangle_count() + m.stats.dropped(),
             faces,
             "{name}: drawn + dropped"
         );
@@ -454,6 +474,39 @@ fn conference_loads() {
     let dir = assets();
     let m = load_asset("conference", &dir);
     assert_eq!(m.stats.triangles, 331_179);
+}
+
+/// The loader drops exactly the triangles the README's rule names, counted here from tobj's
+/// own triangulation: zero area in f64 (53,627 in conference), or a height under f32 epsilon
+/// times the longest edge.
+#[test]
+fn conference_drops_only_degenerate_triangles() {
+    let dir = assets();
+    let path = ssgi::scene::resolve_model("conference", Some(&dir)).unwrap();
+    let (models, _) = tobj::load_obj(&path, &tobj::GPU_LOAD_OPTIONS).unwrap();
+    let (mut zero, mut slivers) = (0, 0);
+    for model in &models {
+        let p = |i: u32| {
+            let k = 3 * i as usize;
+            let v = &model.mesh.positions[k..k + 3];
+            glam::DVec3::new(v[0] as f64, v[1] as f64, v[2] as f64)
+        };
+        for t in model.mesh.indices.chunks_exact(3) {
+            let [a, b, c] = [p(t[0]), p(t[1]), p(t[2])];
+            let twice_area = (b - a).cross(c - a).length();
+            let longest = (b - a).length().max((c - b).length()).max((a - c).length());
+            if twice_area == 0.0 {
+                zero += 1;
+            } else if twice_area / longest < f32::EPSILON as f64 * longest {
+                slivers += 1;
+            }
+        }
+    }
+    assert_eq!(zero, 53_627, "zero-area triangles counted from the file");
+    let m = load_asset("conference", &dir);
+    assert_eq!(m.stats.dropped_zero_area, zero);
+    assert_eq!(m.stats.dropped_slivers, slivers);
+    assert_eq!(m.triangle_count(), 331_179 - zero - slivers);
 }
 
 #[test]
@@ -609,7 +662,7 @@ fn keyframe_files_parse_and_interpolate() {
         let file = dir.write(name, text);
         let path = CameraPath::parse(file.to_str().unwrap()).unwrap();
         // Keyframe times are seconds.
-        let at = |t| path.camera_at(&base.camera, &base.mesh.bounds, t);
+        let at = |t| path.camera_at(&base.camera, &base.orbit(), t);
         assert_eq!(at(0.0).position, Vec3::new(0.0, 1.0, 3.0));
         assert!(
             at(1.0).position.abs_diff_eq(Vec3::new(1.0, 1.0, 3.0), 1e-6),
@@ -656,18 +709,30 @@ fn bad_keyframe_files_name_the_path() {
     assert!(e.contains("/no/such/path.json"), "{e}");
 }
 
+/// The built-in rooms' orbit keeps the eye inside the room, above the boxes and the box
+/// room's model, at its circle's radius; a loaded model's orbit turns around it at the base
+/// camera's distance.
 #[test]
 fn builtin_paths_from_a_scene() {
-    let s = load_scene("cornell-box", None).unwrap();
     let orbit = CameraPath::parse("orbit").unwrap();
-    let c = orbit.camera_at(&s.camera, &s.mesh.bounds, 0.0);
-    let centre = s.mesh.bounds.center();
-    let radius =
-        |c: &Camera| Vec3::new(c.position.x - centre.x, 0.0, c.position.z - centre.z).length();
-    for f in 0..8 {
-        let cf = orbit.camera_at(&s.camera, &s.mesh.bounds, f as f32 * 1.5);
-        assert!((radius(&cf) - radius(&c)).abs() < 1e-4);
-        assert_eq!(cf.position.y, s.camera.position.y);
+    let s = load_scene("cornell-box", None).unwrap();
+    let room = s.mesh.bounds;
+    let Orbit::Inside { center, radius, .. } = s.orbit() else {
+        panic!("the Cornell box orbits inside: {:?}", s.orbit());
+    };
+    for f in 0..240 {
+        let c = orbit.camera_at(&s.camera, &s.orbit(), f as f32 * 0.05);
+        let p = c.position;
+        assert!(
+            p.cmpgt(room.min).all() && p.cmplt(room.max).all(),
+            "frame {f}: {p} outside the room {room:?}"
+        );
+        let horizontal = Vec3::new(p.x - center.x, 0.0, p.z - center.z).length();
+        assert!((horizontal - radius).abs() < 1e-4);
+        // Above the short box (0.6 m) and the box room's model (0.9 m); in front of the tall
+        // box, whose footprint ends at z = 0.09.
+        assert!(p.y > 0.9 && p.z > 0.1, "frame {f}: {p}");
+        assert_eq!(c.target, center);
     }
     assert_eq!(CameraPath::parse("static").unwrap().name(), "static");
     assert_eq!(CameraPath::parse("dolly").unwrap().name(), "dolly:6s");

@@ -4,7 +4,7 @@
 //! dragon instead and says so.
 
 use crate::error::{Error, Result};
-use crate::scene::{area_weighted_normals, is_degenerate, Mesh, MeshBuilder, Vertex};
+use crate::scene::{area_weighted_normals, degeneracy, Mesh, MeshBuilder, Vertex};
 use glam::Vec3;
 use meshopt::SimplifyOptions;
 
@@ -72,13 +72,12 @@ pub fn decimate(mesh: &Mesh, target_triangles: usize) -> Result<Decimation> {
 /// A compact mesh of the triangles `indices` over `positions`, with the original material,
 /// area-weighted normals and zero-area triangles removed.
 fn rebuild(original: &Mesh, positions: &[[f32; 3]], indices: &[u32]) -> Mesh {
-    let diagonal = original.bounds.diagonal();
     let mut used: Vec<Option<u32>> = vec![None; positions.len()];
     let mut compact: Vec<Vec3> = Vec::new();
     let mut triangles: Vec<[u32; 3]> = Vec::with_capacity(indices.len() / 3);
     for tri in indices.chunks_exact(3) {
         let [a, b, c] = [tri[0], tri[1], tri[2]].map(|i| Vec3::from(positions[i as usize]));
-        if is_degenerate(a, b, c, diagonal) {
+        if degeneracy(a, b, c).is_some() {
             continue;
         }
         let t = [tri[0], tri[1], tri[2]].map(|i| {

@@ -132,7 +132,7 @@ pub struct Measured {
 /// The camera of the last frame of a `frames`-frame run along `path` at `fps`.
 pub fn last_camera(scene: &Scene, path: &CameraPath, frames: u32, fps: f32) -> Camera {
     let time = frame_time(frames.max(1) - 1, fps);
-    path.camera_at(&scene.camera, &scene.mesh.bounds, time)
+    path.camera_at(&scene.camera, &scene.orbit(), time)
 }
 
 /// A path that holds `camera` on every frame (lens and up come from the scene's camera, as for
@@ -155,15 +155,15 @@ pub fn measure(
     let frames = spec.frames.max(1);
     let mut renderer = Renderer::new(ctx, scene.clone(), spec.config)?;
     let base = renderer.scene.camera;
-    let bounds = renderer.scene.mesh.bounds;
+    let orbit = renderer.scene.orbit();
     let mut bar = Progress::new((spec.warmup + frames) as u64, spec.label, spec.progress);
     let mut timings = Vec::with_capacity((spec.warmup + frames) as usize);
-    let first = spec.path.camera_at(&base, &bounds, 0.0);
+    let first = spec.path.camera_at(&base, &orbit, 0.0);
     sink.begin(spec.label);
     for i in 0..spec.warmup {
         let camera = if spec.warmup_along_path {
             let before = (spec.warmup - i) as f32 / spec.fps;
-            spec.path.camera_at(&base, &bounds, -before)
+            spec.path.camera_at(&base, &orbit, -before)
         } else {
             first
         };
@@ -178,7 +178,7 @@ pub fn measure(
     };
     let mut camera = first;
     for i in 0..frames {
-        camera = spec.path.camera_at(&base, &bounds, frame_time(i, spec.fps));
+        camera = spec.path.camera_at(&base, &orbit, frame_time(i, spec.fps));
         timings.extend(sink.frame(&mut renderer, &camera)?);
         bar.inc();
     }

@@ -93,7 +93,7 @@ impl Walkthrough {
             NEAR_FRACTION * diagonal,
             FAR_FRACTION * diagonal,
         );
-        scene.camera = path.camera_at(&scene.camera, &b, 0.0);
+        scene.camera = path.camera_at(&scene.camera, &scene.orbit(), 0.0);
         let at = b.min + b.extent() * Vec3::from(self.light_at);
         let floor = Vec3::new(at.x, b.min.y, at.z);
         let d = at.distance(floor);

@@ -117,7 +117,7 @@ pub fn run(
     progress: bool,
 ) -> Result<(Vec<FrameTiming>, Outcome)> {
     let base = renderer.scene.camera;
-    let bounds = renderer.scene.mesh.bounds;
+    let orbit = renderer.scene.orbit();
     let (limit, mode) = match warmup {
         Warmup::Frames(n) => (n, "frames"),
         Warmup::Converged => (MAX_CONVERGED_WARMUP, "converged"),
@@ -133,7 +133,7 @@ pub fn run(
     let mut frames = 0;
     let mut steady = !converging;
     while frames < limit && !(converging && steady) {
-        let camera = path.camera_at(&base, &bounds, frame_time(frames, fps));
+        let camera = path.camera_at(&base, &orbit, frame_time(frames, fps));
         let done = sink.frame(renderer, &camera)?;
         signal.extend(done.iter().map(work));
         timings.extend(done);

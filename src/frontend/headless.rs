@@ -36,12 +36,12 @@ pub fn run_from(
     progress: bool,
 ) -> Result<Vec<FrameTiming>> {
     let base = renderer.scene.camera;
-    let bounds = renderer.scene.mesh.bounds;
+    let orbit = renderer.scene.orbit();
     let mut timings = Vec::with_capacity(frames as usize);
     let mut bar = Progress::new(frames as u64, "rendering", progress);
     sink.begin(&renderer.scene.name);
     for i in first..first.saturating_add(frames) {
-        let camera = path.camera_at(&base, &bounds, frame_time(i, fps));
+        let camera = path.camera_at(&base, &orbit, frame_time(i, fps));
         timings.extend(sink.frame(renderer, &camera)?);
         bar.inc();
     }

@@ -12,9 +12,9 @@
 //!   visibility on both segments (light → q and q → p). Eq 9's sum Σ Φ cos cos / d² is π·E₁,
 //!   which is what the renderer's indirect buffer holds before the composite's ρ/π · 1/π.
 
-use super::accel::Accel;
 use super::sampling::{cosine_hemisphere, disc_point};
 use super::surface::Surface;
+use crate::scene::accel::Accel;
 use crate::scene::{Mesh, SpotLight};
 use glam::{Vec2, Vec3};
 use std::f32::consts::PI;

@@ -3,7 +3,6 @@
 //! world-space AO, direct light with exact visibility, one diffuse bounce with full
 //! visibility, and the composited final image.
 
-pub mod accel;
 pub mod compose;
 pub mod estimate;
 pub mod estimators;
@@ -14,7 +13,7 @@ pub mod store;
 pub mod surface;
 pub mod trace;
 
-pub use accel::Accel;
+pub use crate::scene::accel::Accel;
 pub use estimators::AoDefinition;
 pub use trace::{RefBuffer, Reference, Settings};
 

@@ -2,10 +2,10 @@
 //! what the cache has, refine each buffer to a sample count or a standard-error target (with a
 //! progress bar), save back to the cache.
 
-use super::accel::Accel;
 use super::store;
 use super::trace::{direct_is_exact, RefBuffer, Reference, Settings};
 use crate::error::Result;
+use crate::scene::accel::Accel;
 use crate::scene::{Camera, Scene};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use std::path::PathBuf;

@@ -2,7 +2,7 @@
 //! normal and the albedo (material colour × texture, sRGB-decoded and bilinearly filtered with
 //! wrapping, as the renderer's R8G8B8A8_SRGB texture and its sampler give).
 
-use super::accel::Hit;
+use crate::scene::accel::Hit;
 use crate::scene::{Mesh, TextureImage};
 use glam::{Vec2, Vec3};
 

@@ -1,11 +1,11 @@
 //! The reference of one frame: primary hits through every pixel centre, then the buffers'
 //! estimates, refined in parallel over rows (rayon) by adding samples to both halves.
 
-use super::accel::Accel;
 use super::estimate::Estimate;
 use super::estimators::{ao_sample, direct_sample, indirect_sample, AoDefinition, Primary};
 use super::sampling::{r2, shift};
 use super::surface::Surface;
+use crate::scene::accel::Accel;
 use crate::scene::pixel_to_ndc;
 use crate::scene::{Camera, Scene};
 use glam::Vec2;

@@ -80,7 +80,8 @@ impl MeshBuilder {
         }
         self.stats.faces += mesh.stats.faces;
         self.stats.triangles += mesh.stats.triangles;
-        self.stats.dropped_degenerate += mesh.stats.dropped_degenerate;
+        self.stats.dropped_zero_area += mesh.stats.dropped_zero_area;
+        self.stats.dropped_slivers += mesh.stats.dropped_slivers;
         self.stats
             .warnings
             .extend(mesh.stats.warnings.iter().cloned());

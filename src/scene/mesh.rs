@@ -152,10 +152,20 @@ pub struct LoadStats {
     /// Triangles after triangulation, *before* degenerate ones were dropped. For an
     /// all-triangle OBJ this equals `faces`.
     pub triangles: usize,
-    /// Zero-area triangles that were dropped (see `obj::degenerate_area_threshold`).
-    pub dropped_degenerate: usize,
+    /// Triangles dropped for zero area (repeated or collinear corners; `obj::degeneracy`).
+    pub dropped_zero_area: usize,
+    /// Triangles dropped as slivers thinner than float precision of their own longest edge
+    /// (`obj::SLIVER_RELATIVE_HEIGHT`).
+    pub dropped_slivers: usize,
     /// Non-fatal problems (missing textures/MTL, unknown materials), human-readable.
     pub warnings: Vec<String>,
+}
+
+impl LoadStats {
+    /// Every triangle the loader dropped, for any reason.
+    pub fn dropped(&self) -> usize {
+        self.dropped_zero_area + self.dropped_slivers
+    }
 }
 
 /// Indexed triangle mesh, indices grouped by material (one [`DrawRange`] per used material).

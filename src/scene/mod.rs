@@ -6,9 +6,11 @@
 //! counter-clockwise seen from the side their normal points to; loaded meshes keep the
 //! file's winding (most OBJ exporters use the same rule).
 
+pub mod accel;
 mod builder;
 mod camera;
 mod error;
+mod framing;
 mod light;
 mod mesh;
 mod normals;
@@ -31,8 +33,8 @@ pub use mesh::{
     VERTEX_UV_OFFSET,
 };
 pub use normals::area_weighted_normals;
-pub use obj::{is_degenerate, load_obj, DEGENERATE_RELATIVE_AREA};
-pub use path::{CameraPath, Keyframe};
+pub use obj::{degeneracy, load_obj, Degeneracy, SLIVER_RELATIVE_HEIGHT};
+pub use path::{CameraPath, Keyframe, Orbit};
 pub use procedural::{
     box_room, cornell_box, cornell_camera, cornell_light, pyramids, CORNELL_GREEN, CORNELL_RED,
     CORNELL_WHITE,

@@ -3,7 +3,7 @@
 
 use super::builder::MeshBuilder;
 use super::error::SceneError;
-use super::mesh::{Aabb, Material, Mesh, Vertex};
+use super::mesh::{Material, Mesh, Vertex};
 use super::normals::area_weighted_normals;
 use super::texture::{resolve_texture_path, TextureCache};
 use super::validate::{validate_mtl, validate_obj, ObjSummary};
@@ -14,11 +14,12 @@ use std::collections::HashMap;
 use std::io::Cursor;
 use std::path::{Path, PathBuf};
 
-/// Relative area below which a triangle counts as degenerate: `area < 1e-12 × diagonal²`
-/// (diagonal of the whole model's bounding box). Scale-free by construction; 1e-12 is an
-/// edge ratio of ~1e-6, i.e. about 8 f32 ulps of the model's size, below which the triangle's
-/// normal is noise and it covers no pixel at any sensible zoom.
-pub const DEGENERATE_RELATIVE_AREA: f64 = 1e-12;
+/// A sliver's largest accepted thinness: a triangle whose height over its longest edge is
+/// below `SLIVER_RELATIVE_HEIGHT × longest edge` is dropped. `f32::EPSILON` is the relative
+/// precision of each edge vector's own components, so a thinner triangle's plane (and normal)
+/// is rounding noise. The rule looks at the triangle alone: tiny but well-shaped triangles of a
+/// large model are kept whatever their size against the model.
+pub const SLIVER_RELATIVE_HEIGHT: f64 = f32::EPSILON as f64;
 
 /// Loads an OBJ file (and its MTL files and diffuse textures) into one mesh.
 ///
@@ -267,14 +268,6 @@ fn add_geometry(
     mut materials: MaterialTable,
     builder: &mut MeshBuilder,
 ) -> Result<(), SceneError> {
-    let bounds = Aabb::from_points(
-        models
-            .iter()
-            .flat_map(|m| m.mesh.positions.chunks_exact(3))
-            .map(|p| Vec3::new(p[0], p[1], p[2])),
-    );
-    let diagonal = bounds.diagonal();
-
     for model in models {
         let m = &model.mesh;
         let positions: Vec<Vec3> = m
@@ -284,7 +277,7 @@ fn add_geometry(
             .collect();
         let n = positions.len();
         let mut triangles = Vec::with_capacity(m.indices.len() / 3);
-        let mut dropped = 0;
+        let (mut zero_area, mut slivers) = (0, 0);
         for t in m.indices.chunks_exact(3) {
             let tri = [t[0], t[1], t[2]];
             if tri.iter().any(|&i| i as usize >= n) {
@@ -294,15 +287,16 @@ fn add_geometry(
                 });
             }
             let [a, b, c] = tri.map(|i| positions[i as usize]);
-            if is_degenerate(a, b, c, diagonal) {
-                dropped += 1;
-            } else {
-                triangles.push(tri);
+            match degeneracy(a, b, c) {
+                None => triangles.push(tri),
+                Some(Degeneracy::ZeroArea) => zero_area += 1,
+                Some(Degeneracy::Sliver) => slivers += 1,
             }
         }
         let stats = builder.stats_mut();
         stats.triangles += m.indices.len() / 3;
-        stats.dropped_degenerate += dropped;
+        stats.dropped_zero_area += zero_area;
+        stats.dropped_slivers += slivers;
         if triangles.is_empty() {
             continue;
         }
@@ -377,12 +371,30 @@ fn texcoords<'m>(
     }
 }
 
-/// Is this triangle degenerate in a model whose bounding box has this diagonal? Computed in
-/// f64 so the cross product of large coordinates neither overflows nor loses the small area.
-pub fn is_degenerate(a: Vec3, b: Vec3, c: Vec3, diagonal: f32) -> bool {
-    let d = diagonal as f64;
-    let cross = (b.as_dvec3() - a.as_dvec3()).cross(c.as_dvec3() - a.as_dvec3());
-    0.5 * cross.length() < DEGENERATE_RELATIVE_AREA * d * d
+/// Why a triangle is not drawn.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Degeneracy {
+    /// Zero area: repeated or collinear corners (exact: see [`degeneracy`]).
+    ZeroArea,
+    /// Nonzero area but thinner than [`SLIVER_RELATIVE_HEIGHT`] of its own longest edge.
+    Sliver,
+}
+
+/// Is this triangle degenerate, and how? In f64: the differences of f32 corners are exact
+/// there and the products of the cross product nearly so, so "zero area" means collinear
+/// corners, not an underflow; large coordinates neither overflow nor lose a small area.
+pub fn degeneracy(a: Vec3, b: Vec3, c: Vec3) -> Option<Degeneracy> {
+    let (a, b, c) = (a.as_dvec3(), b.as_dvec3(), c.as_dvec3());
+    let twice_area = (b - a).cross(c - a).length();
+    if twice_area == 0.0 {
+        return Some(Degeneracy::ZeroArea);
+    }
+    let longest_squared = (b - a)
+        .length_squared()
+        .max((c - b).length_squared())
+        .max((a - c).length_squared());
+    // height = 2A / L; dropped when height < k L, i.e. 2A < k L².
+    (twice_area < SLIVER_RELATIVE_HEIGHT * longest_squared).then_some(Degeneracy::Sliver)
 }
 
 #[cfg(test)]
@@ -390,11 +402,19 @@ mod tests {
     use super::*;
 
     #[test]
-    fn degenerate_threshold_is_scale_free() {
-        for scale in [1e-3f32, 1.0, 1e4] {
+    fn degeneracy_depends_on_the_triangle_alone() {
+        for scale in [1e-20f32, 1e-3, 1.0, 1e4, 1e20] {
             let (a, b) = (Vec3::ZERO, Vec3::X * scale);
-            assert!(is_degenerate(a, b, Vec3::X * 2.0 * scale, 3.0 * scale));
-            assert!(!is_degenerate(a, b, Vec3::Y * 1e-4 * scale, 3.0 * scale));
+            let d = |c: Vec3| degeneracy(a, b, c * scale);
+            assert_eq!(d(Vec3::X * 2.0), Some(Degeneracy::ZeroArea), "{scale}");
+            assert_eq!(d(Vec3::X), Some(Degeneracy::ZeroArea), "{scale}");
+            assert_eq!(
+                d(Vec3::new(0.5, 1e-8, 0.0)),
+                Some(Degeneracy::Sliver),
+                "{scale}"
+            );
+            assert_eq!(d(Vec3::new(0.5, 1e-6, 0.0)), None, "{scale}");
+            assert_eq!(d(Vec3::Y * 1e-4), None, "{scale}");
         }
     }
 }

@@ -6,7 +6,6 @@
 
 use super::camera::Camera;
 use super::error::SceneError;
-use super::mesh::Aabb;
 use glam::Vec3;
 use std::path::Path;
 
@@ -37,8 +36,8 @@ struct KeyframeFile {
 #[derive(Clone, Debug, PartialEq)]
 pub enum CameraPath {
     Static,
-    /// Turns around the vertical axis through the scene centre, at the base camera's
-    /// horizontal distance and height, one turn per `seconds`.
+    /// Circles the scene's orbit axis ([`Orbit`]: around a model from outside, inside a
+    /// room), 360 degrees of travel per `seconds`.
     Orbit {
         seconds: f32,
     },
@@ -51,6 +50,83 @@ pub enum CameraPath {
 
 /// Fraction of the eye-target distance the dolly covers at its closest point.
 pub const DOLLY_FRACTION: f32 = 0.3;
+
+/// Half-angle of the sweep in a room open on one side: the camera swings this far either
+/// side of the opening's axis. At 60 degrees the built-in rooms' orbit (0.85 from the axis,
+/// looking down at it) still sees only walls and floor with a square view.
+pub const OPEN_ROOM_SWEEP_DEG: f32 = 60.0;
+
+/// Where the `orbit` path takes the camera in a scene; each scene sets its own
+/// ([`crate::scene::Scene::orbit`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Orbit {
+    /// A model seen from outside: a full turn about the vertical axis through `center`, at
+    /// the base camera's horizontal distance and height, looking at the axis at the base
+    /// target's height (the base camera's pitch). Starts at the base camera.
+    Around { center: Vec3 },
+    /// Inside a room: the eye at `height` on a circle of `radius` about the vertical axis
+    /// through `center`, looking at `center`. `open_towards`: the horizontal direction in
+    /// which the room is open (the Cornell box's missing front); the camera then starts on
+    /// that side, looking away from the opening, and sweeps ±[`OPEN_ROOM_SWEEP_DEG`] there
+    /// and back instead of turning fully and looking out. Without it the camera turns fully,
+    /// starting on the side `start` points to from the axis.
+    Inside {
+        center: Vec3,
+        radius: f32,
+        height: f32,
+        open_towards: Option<Vec3>,
+        start: Vec3,
+    },
+}
+
+impl Orbit {
+    /// A full turn around `center` from outside.
+    pub fn around(center: Vec3) -> Self {
+        Self::Around { center }
+    }
+
+    /// The camera `turns` turns' worth of travel (360 degrees each) along the orbit.
+    fn camera(&self, base: &Camera, turns: f32) -> Camera {
+        match *self {
+            Self::Around { center } => around(base, center, turns),
+            Self::Inside {
+                center,
+                radius,
+                height,
+                open_towards,
+                start,
+            } => {
+                let (axis, swing) = match open_towards {
+                    Some(open) => (open, sweep(turns, OPEN_ROOM_SWEEP_DEG.to_radians())),
+                    None => (start, std::f32::consts::TAU * turns.rem_euclid(1.0)),
+                };
+                let angle = axis.x.atan2(axis.z) + swing;
+                let out = Vec3::new(angle.sin(), 0.0, angle.cos());
+                let mut position = center + out * radius;
+                position.y = height;
+                Camera {
+                    position,
+                    target: center,
+                    ..*base
+                }
+            }
+        }
+    }
+}
+
+/// A triangle wave of amplitude `half` (radians) travelling a full turn's angle per turn:
+/// 0 -> half -> -half -> 0 over 4 half / (2 pi) turns.
+fn sweep(turns: f32, half: f32) -> f32 {
+    let travel = std::f32::consts::TAU * turns;
+    let u = (travel / (4.0 * half)).rem_euclid(1.0);
+    half * if u < 0.25 {
+        4.0 * u
+    } else if u < 0.75 {
+        2.0 - 4.0 * u
+    } else {
+        4.0 * u - 4.0
+    }
+}
 
 /// Path time of frame `frame` at `fps` frames per second.
 pub fn frame_time(frame: u32, fps: f32) -> f32 {
@@ -149,11 +225,12 @@ impl CameraPath {
         }
     }
 
-    /// The camera `time` seconds into the path; lens and up come from `base`.
-    pub fn camera_at(&self, base: &Camera, bounds: &Aabb, time: f32) -> Camera {
+    /// The camera `time` seconds into the path; lens and up come from `base`, and `orbit`
+    /// says where the scene lets an orbit go.
+    pub fn camera_at(&self, base: &Camera, orbit: &Orbit, time: f32) -> Camera {
         match self {
             Self::Static => *base,
-            Self::Orbit { seconds } => orbit(base, bounds, time / seconds),
+            Self::Orbit { seconds } => orbit.camera(base, time / seconds),
             Self::Dolly { seconds } => {
                 // Triangle wave 0 -> 1 -> 0 once per period.
                 let u = (time / seconds).rem_euclid(1.0);
@@ -176,18 +253,13 @@ impl CameraPath {
     }
 }
 
-/// The orbit after `turns` turns.
-fn orbit(base: &Camera, bounds: &Aabb, turns: f32) -> Camera {
-    let center = if bounds.is_empty() {
-        base.target
-    } else {
-        bounds.center()
-    };
+/// The outside orbit after `turns` turns.
+fn around(base: &Camera, center: Vec3, turns: f32) -> Camera {
     let offset = base.position - center;
     let mut radius = Vec3::new(offset.x, 0.0, offset.z).length();
-    // Camera right above the centre: orbit at the scene's radius instead of spinning in place.
+    // Camera right above the centre: orbit at its distance instead of spinning in place.
     if radius <= 1e-6 * offset.length() || radius == 0.0 {
-        radius = bounds.radius().max(offset.length()).max(1.0);
+        radius = offset.length();
     }
     let start = offset.x.atan2(offset.z);
     let angle = start + std::f32::consts::TAU * turns.rem_euclid(1.0);
@@ -264,11 +336,74 @@ mod tests {
         )
     }
 
-    fn bounds() -> Aabb {
-        Aabb {
-            min: Vec3::new(-1.0, 0.0, -1.0),
-            max: Vec3::new(1.0, 2.0, 1.0),
+    fn bounds() -> Orbit {
+        Orbit::around(Vec3::new(0.0, 1.0, 0.0))
+    }
+
+    /// The Cornell-style room's sweep: starts on the open side looking in, reaches the sweep's
+    /// half-angle after half-angle / 360 turns of travel, turns back, and never looks out.
+    #[test]
+    fn open_room_orbit_sweeps_without_facing_the_opening() {
+        let b = base();
+        let room = Orbit::Inside {
+            center: Vec3::new(0.0, 1.0, 0.0),
+            radius: 0.6,
+            height: 1.0,
+            open_towards: Some(Vec3::Z),
+            start: Vec3::Z,
+        };
+        let orbit = CameraPath::Orbit { seconds: 12.0 };
+        let first = orbit.camera_at(&b, &room, 0.0);
+        assert!(first.position.abs_diff_eq(Vec3::new(0.0, 1.0, 0.6), 1e-6));
+        assert_eq!(first.target, room_center());
+        // 360 degrees per 12 s: the 60-degree extreme after 2 s.
+        let edge = orbit.camera_at(&b, &room, 2.0);
+        let a = 60f32.to_radians();
+        assert!(edge
+            .position
+            .abs_diff_eq(Vec3::new(0.6 * a.sin(), 1.0, 0.6 * a.cos()), 1e-5));
+        let mut fastest = 0f32;
+        for i in 0..=720 {
+            let c = orbit.camera_at(&b, &room, i as f32 / 60.0);
+            let look = (c.target - c.position).normalize();
+            // Never looks towards the open side by more than the sweep allows.
+            assert!(look.z <= -a.cos() + 1e-5, "frame {i}: {look}");
+            assert!(((c.position - room_center()).length() - 0.6).abs() < 1e-5);
+            if i > 0 {
+                let p = orbit.camera_at(&b, &room, (i - 1) as f32 / 60.0).position;
+                fastest = fastest.max((c.position - p).length());
+            }
         }
+        // The speed of a full turn: 0.5 degrees per frame on the 0.6 circle.
+        let chord = 2.0 * 0.6 * 0.25f32.to_radians().sin();
+        assert!((fastest - chord).abs() < 1e-4, "{fastest} vs {chord}");
+        let back = orbit.camera_at(&b, &room, 8.0);
+        assert!(
+            back.position.abs_diff_eq(first.position, 1e-4),
+            "{}",
+            back.position
+        );
+    }
+
+    fn room_center() -> Vec3 {
+        Vec3::new(0.0, 1.0, 0.0)
+    }
+
+    #[test]
+    fn closed_room_orbit_turns_fully_inside() {
+        let room = Orbit::Inside {
+            center: Vec3::new(2.0, 1.0, -1.0),
+            radius: 0.5,
+            height: 1.5,
+            open_towards: None,
+            start: Vec3::X,
+        };
+        let orbit = CameraPath::Orbit { seconds: 4.0 };
+        let first = orbit.camera_at(&base(), &room, 0.0);
+        assert!(first.position.abs_diff_eq(Vec3::new(2.5, 1.5, -1.0), 1e-6));
+        assert_eq!(first.target, Vec3::new(2.0, 1.0, -1.0));
+        let half = orbit.camera_at(&base(), &room, 2.0);
+        assert!(half.position.abs_diff_eq(Vec3::new(1.5, 1.5, -1.0), 1e-5));
     }
 
     #[test]

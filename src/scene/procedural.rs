@@ -5,6 +5,7 @@ use super::builder::MeshBuilder;
 use super::camera::Camera;
 use super::light::SpotLight;
 use super::mesh::{Material, Mesh};
+use super::path::Orbit;
 use super::world::Scene;
 use glam::Vec3;
 
@@ -48,11 +49,8 @@ pub fn cornell_light() -> SpotLight {
 /// at the front (z = 0.99), without the light quad and the boxes' bottoms.
 pub fn cornell_box() -> Scene {
     let mut b = MeshBuilder::new();
-    let room = Room::add_to(
-        &mut b,
-        Vec3::new(-1.01, 0.0, -1.04),
-        Vec3::new(1.00, 1.99, 0.99),
-    );
+    let (min, max) = (Vec3::new(-1.01, 0.0, -1.04), Vec3::new(1.00, 1.99, 0.99));
+    let room = Room::add_to(&mut b, min, max);
     add_prism(&mut b, room.white, &SHORT_BOX, SHORT_BOX_HEIGHT);
     add_prism(&mut b, room.white, &TALL_BOX, TALL_BOX_HEIGHT);
     Scene {
@@ -61,6 +59,23 @@ pub fn cornell_box() -> Scene {
         camera: cornell_camera(),
         light: cornell_light(),
         ambient: DEFAULT_AMBIENT,
+        orbit: Some(room_orbit(min, max)),
+    }
+}
+
+/// The orbit of the built-in rooms, which are open at the front (+z): the eye at the Cornell
+/// camera's height, 0.85 of the half-width from the room's vertical axis, looking down at
+/// the axis 0.6 m above the floor, sweeping the back half of the room (see
+/// [`Orbit::Inside`]). Its view meets only walls, floor and ceiling, and it stays above the
+/// boxes and a model of the box room (at most 0.9 m tall).
+fn room_orbit(min: Vec3, max: Vec3) -> Orbit {
+    let c = 0.5 * (min + max);
+    Orbit::Inside {
+        center: Vec3::new(c.x, min.y + 0.6, c.z),
+        radius: 0.85 * 0.5 * (max.x - min.x).min(max.z - min.z),
+        height: cornell_camera().position.y,
+        open_towards: Some(Vec3::Z),
+        start: Vec3::Z,
     }
 }
 
@@ -203,6 +218,7 @@ pub fn pyramids() -> Scene {
         camera,
         light,
         ambient: DEFAULT_AMBIENT,
+        orbit: None,
     }
 }
 
@@ -216,7 +232,8 @@ pub const BOX_MODEL_MAX_WIDTH: f32 = 1.6;
 /// and light.
 pub fn box_room(model: &Mesh, name: &str) -> Scene {
     let mut b = MeshBuilder::new();
-    Room::add_to(&mut b, Vec3::new(-1.0, 0.0, -1.0), Vec3::new(1.0, 2.0, 1.0));
+    let (min, max) = (Vec3::new(-1.0, 0.0, -1.0), Vec3::new(1.0, 2.0, 1.0));
+    Room::add_to(&mut b, min, max);
     let ext = model.bounds.extent();
     let limits = [
         BOX_MODEL_HEIGHT / ext.y,
@@ -238,6 +255,7 @@ pub fn box_room(model: &Mesh, name: &str) -> Scene {
         camera: cornell_camera(),
         light: cornell_light(),
         ambient: DEFAULT_AMBIENT,
+        orbit: Some(room_orbit(min, max)),
     }
 }
 

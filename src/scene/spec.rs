@@ -1,10 +1,13 @@
 //! Turns a scene spec string into a [`Scene`]: built-ins, OBJ paths, asset names, `box:`.
 
-use super::camera::Camera;
+use super::accel::Accel;
+use super::builder::MeshBuilder;
 use super::error::SceneError;
+use super::framing::{interior_view, outside_view, InteriorView};
 use super::light::SpotLight;
-use super::mesh::Mesh;
+use super::mesh::{Material, Mesh};
 use super::obj::load_obj;
+use super::path::Orbit;
 use super::procedural::{box_room, cornell_box, pyramids, DEFAULT_AMBIENT};
 use super::world::Scene;
 use glam::Vec3;
@@ -158,15 +161,76 @@ fn unknown_scene(spec: &str, assets: Option<&Path>) -> SceneError {
     }
 }
 
-/// A loaded model on its own: camera on +Z framing its bounding sphere, a spot light above
-/// and in front aimed at the centre whose cone covers the bounds, with intensity = d² so the
-/// irradiance at the centre (on a surface facing the light) is 1.
+/// A loaded model on its own. A model that encloses space (a building) is seen from inside,
+/// from the eye point and direction whose view meets the fewest misses and back faces
+/// ([`interior_view`]), lit by a headlight at the eye; any other model stands on a grey ground
+/// plane twice its footprint, seen by a camera that fits its vertices from the side and
+/// height (20 or 35 degrees up) where it covers most of the view ([`outside_view`]), lit by a
+/// spot above and in front of the camera. Either light has intensity d² for the
+/// distance d to what it lights, so the irradiance there (facing the light) is 1.
 pub fn framed_model(name: String, mesh: Mesh) -> Scene {
-    let camera = Camera::framing(&mesh.bounds, AUTO_FOV_DEG);
-    let center = mesh.bounds.center();
-    let radius = mesh.bounds.radius();
+    let accel = Accel::new(&mesh);
+    match interior_view(&mesh, &accel) {
+        Some(view) => interior(name, mesh, view),
+        None => on_ground(name, mesh, &accel),
+    }
+}
+
+fn interior(name: String, mesh: Mesh, view: InteriorView) -> Scene {
+    let camera = view.camera;
+    // The cone covers the square view's corners (half-diagonal angle) with a soft margin.
+    let half = (0.5 * camera.vfov_deg).to_radians().tan();
+    let outer_deg = (half * std::f32::consts::SQRT_2).atan().to_degrees() + 5.0;
+    let light = SpotLight::aimed(
+        camera.position,
+        camera.target,
+        Vec3::splat(view.depth * view.depth),
+        outer_deg * 0.8,
+        outer_deg,
+        camera.near,
+        camera.far,
+    );
+    Scene {
+        name,
+        mesh,
+        camera,
+        light,
+        ambient: DEFAULT_AMBIENT,
+        orbit: Some(view.orbit),
+    }
+}
+
+/// Grey albedo of the ground a single model stands on.
+const GROUND_ALBEDO: [f32; 3] = [0.6, 0.6, 0.6];
+
+fn on_ground(name: String, model: Mesh, accel: &Accel) -> Scene {
+    let b = model.bounds;
+    let ext = b.extent();
+    let half = ext.x.max(ext.z).max(ext.y);
+    let (c, y) = (b.center(), b.min.y);
+    let mut builder = MeshBuilder::new();
+    builder.append(&model, 1.0, Vec3::ZERO);
+    let ground = builder.add_material(Material::colour("ground", GROUND_ALBEDO));
+    let corner = |dx: f32, dz: f32| Vec3::new(c.x + dx * half, y, c.z + dz * half);
+    builder.add_flat_polygon(
+        ground,
+        &[
+            corner(-1.0, -1.0),
+            corner(1.0, -1.0),
+            corner(1.0, 1.0),
+            corner(-1.0, 1.0),
+        ],
+        Vec3::Y,
+    );
+    let mesh = builder.build();
+    let camera = outside_view(&model, accel, AUTO_FOV_DEG, &mesh.bounds);
+    let center = camera.target;
+    let radius = b.radius();
     let distance = (camera.position - center).length();
-    let position = center + Vec3::new(0.0, 1.0, 1.0).normalize() * distance;
+    // 45 degrees up on the camera's side.
+    let side = camera.position - center;
+    let side = Vec3::new(side.x, 0.0, side.z).normalize_or(Vec3::Z);
+    let position = center + (side + Vec3::Y).normalize() * distance;
     // Half-angle under which the bounding sphere is seen, plus a margin for the soft edge.
     let sphere_deg = (radius / distance).clamp(0.0, 0.99).asin().to_degrees();
     let outer_deg = (sphere_deg + 5.0).clamp(10.0, 80.0);
@@ -185,6 +249,7 @@ pub fn framed_model(name: String, mesh: Mesh) -> Scene {
         camera,
         light,
         ambient: DEFAULT_AMBIENT,
+        orbit: Some(Orbit::around(center)),
     }
 }
 
@@ -218,15 +283,69 @@ mod tests {
         assert!(msg.contains(ASSETS_ENV));
     }
 
+    /// A 1 x 2 x 1 block, closed, normals out.
+    fn block() -> Mesh {
+        let mut b = MeshBuilder::new();
+        let m = b.add_material(Material::colour("block", [0.5; 3]));
+        let v = Vec3::new;
+        let (x0, y0, z0, x1, y1, z1) = (-0.5, 0.0, -0.5, 0.5, 2.0, 0.5);
+        for (corners, n) in [
+            (
+                [v(x0, y0, z0), v(x1, y0, z0), v(x1, y0, z1), v(x0, y0, z1)],
+                Vec3::NEG_Y,
+            ),
+            (
+                [v(x0, y1, z0), v(x1, y1, z0), v(x1, y1, z1), v(x0, y1, z1)],
+                Vec3::Y,
+            ),
+            (
+                [v(x0, y0, z0), v(x1, y0, z0), v(x1, y1, z0), v(x0, y1, z0)],
+                Vec3::NEG_Z,
+            ),
+            (
+                [v(x0, y0, z1), v(x1, y0, z1), v(x1, y1, z1), v(x0, y1, z1)],
+                Vec3::Z,
+            ),
+            (
+                [v(x0, y0, z0), v(x0, y1, z0), v(x0, y1, z1), v(x0, y0, z1)],
+                Vec3::NEG_X,
+            ),
+            (
+                [v(x1, y0, z0), v(x1, y1, z0), v(x1, y1, z1), v(x1, y0, z1)],
+                Vec3::X,
+            ),
+        ] {
+            b.add_flat_polygon(m, &corners, n);
+        }
+        b.build()
+    }
+
     #[test]
-    fn framed_model_light_gives_unit_irradiance() {
-        let mesh = cornell_box().mesh;
-        let s = framed_model("m".into(), mesh);
-        let c = s.mesh.bounds.center();
+    fn a_single_model_stands_on_a_ground_lit_at_unit_irradiance() {
+        let model = block();
+        let s = framed_model("m".into(), model.clone());
+        assert!(matches!(s.orbit(), Orbit::Around { .. }));
+        // The ground: two more triangles at the model's foot, twice its footprint (here its
+        // height, the largest extent).
+        assert_eq!(s.mesh.triangle_count(), model.triangle_count() + 2);
+        assert_eq!(s.mesh.bounds.min, Vec3::new(-2.0, 0.0, -2.0));
+        assert_eq!(s.mesh.bounds.max.y, 2.0);
+        let c = s.camera.target;
         let e = s.light.irradiance(c, -s.light.direction);
         assert!(e.abs_diff_eq(Vec3::ONE, 1e-4), "{e}");
-        // The cone covers the bounding sphere.
-        let to_corner = (s.mesh.bounds.max - s.light.position).normalize();
+        // The cone covers the model.
+        let to_corner = (model.bounds.max - s.light.position).normalize();
         assert!(s.light.spot_factor(to_corner) > 0.0);
+    }
+
+    #[test]
+    fn a_room_is_seen_from_inside_by_a_headlight() {
+        let s = framed_model("room".into(), cornell_box().mesh);
+        let p = s.camera.position;
+        assert!(p.cmpgt(s.mesh.bounds.min).all() && p.cmplt(s.mesh.bounds.max).all());
+        assert!(matches!(s.orbit(), Orbit::Inside { .. }));
+        assert_eq!(s.light.position, p);
+        let e = s.light.irradiance(s.camera.target, -s.light.direction);
+        assert!(e.abs_diff_eq(Vec3::ONE, 1e-3), "{e}");
     }
 }

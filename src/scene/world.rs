@@ -3,6 +3,7 @@
 use super::camera::Camera;
 use super::light::SpotLight;
 use super::mesh::Mesh;
+use super::path::Orbit;
 use glam::Vec3;
 
 /// Everything the renderer needs for one scene.
@@ -14,4 +15,20 @@ pub struct Scene {
     pub light: SpotLight,
     /// Constant ambient radiance added in composite (RGB).
     pub ambient: Vec3,
+    /// Where `--path orbit` goes; None: around the mesh from outside ([`Scene::orbit`]).
+    pub orbit: Option<Orbit>,
+}
+
+impl Scene {
+    /// The scene's orbit: its own, or a turn around the mesh's centre from outside (around
+    /// the camera's target for an empty mesh).
+    pub fn orbit(&self) -> Orbit {
+        self.orbit.unwrap_or_else(|| {
+            Orbit::around(if self.mesh.bounds.is_empty() {
+                self.camera.target
+            } else {
+                self.mesh.bounds.center()
+            })
+        })
+    }
 }

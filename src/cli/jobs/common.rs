@@ -30,10 +30,17 @@ pub(super) fn load_spec(cli: &Cli, spec: &str, path: &str) -> Result<(Scene, Cam
     for w in &scene.mesh.stats.warnings {
         eprintln!("warning: {w}");
     }
-    if scene.mesh.stats.dropped_degenerate > 0 {
+    let stats = &scene.mesh.stats;
+    if stats.dropped_zero_area > 0 {
         eprintln!(
-            "note: dropped {} zero-area triangles",
-            scene.mesh.stats.dropped_degenerate
+            "note: dropped {} zero-area triangles (repeated or collinear corners)",
+            stats.dropped_zero_area
+        );
+    }
+    if stats.dropped_slivers > 0 {
+        eprintln!(
+            "note: dropped {} slivers thinner than float precision of their longest edge",
+            stats.dropped_slivers
         );
     }
     let path = CameraPath::parse(path)?;

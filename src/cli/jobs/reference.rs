@@ -18,7 +18,7 @@ pub fn reference(cli: &Cli, args: &ReferenceArgs) -> Result<()> {
         )));
     }
     let time = crate::scene::path::frame_time(frame, args.fps);
-    let camera = path.camera_at(&scene.camera, &scene.mesh.bounds, time);
+    let camera = path.camera_at(&scene.camera, &scene.orbit(), time);
     let settings = Settings {
         ao: AoDefinition {
             radius: args.ao_radius * scene.mesh.bounds.radius().max(f32::MIN_POSITIVE),

@@ -2,8 +2,8 @@
 //! the `bvh` crate was made by rays per second, see docs/REFERENCE.md) with the two queries
 //! the reference needs: the closest hit with its shading attributes, and segment occlusion.
 
-use crate::scene::occlusion_span;
-use crate::scene::Mesh;
+use super::mesh::Mesh;
+use super::raycast::occlusion_span;
 use glam::{Vec2, Vec3, Vec3A};
 use obvhs::cwbvh::{builder::build_cwbvh_from_tris, CwBvh};
 use obvhs::ray::{Ray, RayHit};

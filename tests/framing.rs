@@ -1,0 +1,135 @@
+//! Default framing, checked on the G-buffer the GPU rasterizes (64x64): every shared model
+//! loaded by name is seen from a sensible place (buildings from inside with at most 5% of the
+//! pixels on background, single models filling at least 20% of the frame above their ground),
+//! and the built-in rooms' orbit never looks out of the room.
+
+mod common;
+
+use ssgi::renderer::config::Effects;
+use ssgi::renderer::pcf::Pcf;
+use ssgi::renderer::targets::Target;
+use ssgi::renderer::{RenderConfig, Renderer};
+use ssgi::scene::{asset_dir_from_env, load_scene, Camera, CameraPath, Orbit, Scene};
+use ssgi::vk::Context;
+use std::sync::Arc;
+
+const SIZE: u32 = 64;
+/// Most background pixels a view inside a closed room may have.
+const MAX_BACKGROUND: f64 = 0.05;
+/// Least share of the frame a single model must cover.
+const MIN_MODEL: f64 = 0.20;
+
+fn renderer(ctx: &Arc<Context>, scene: Scene) -> Renderer {
+    let config = RenderConfig {
+        width: SIZE,
+        height: SIZE,
+        rsm_size: 64,
+        pcf: Pcf::HARD,
+        effects: Effects {
+            direct: true,
+            ao: false,
+            indirect: false,
+            ssdo: false,
+        },
+        ..Default::default()
+    };
+    Renderer::new(ctx, scene, config).expect("renderer")
+}
+
+/// World positions of the covered pixels of `camera`'s view (G-buffer position w = 1) and the
+/// number of pixels.
+fn covered(r: &mut Renderer, camera: &Camera) -> (Vec<glam::Vec3>, usize) {
+    r.render_frame(camera).expect("frame");
+    r.finish().expect("finish");
+    let g = common::read(r, Target::GPosition);
+    let mut out = Vec::new();
+    for y in 0..g.height {
+        for x in 0..g.width {
+            let t = g.texel(x, y);
+            if t[3] > 0.5 {
+                out.push(glam::Vec3::new(t[0], t[1], t[2]));
+            }
+        }
+    }
+    (out, (g.width * g.height) as usize)
+}
+
+fn assets_scene(name: &str) -> Scene {
+    let dir = asset_dir_from_env().unwrap_or_else(|| {
+        panic!("SSGI_ASSETS is not set: this test needs the shared scenes (tools/test sets it)")
+    });
+    load_scene(name, Some(&dir)).unwrap_or_else(|e| panic!("{name}: {e}"))
+}
+
+#[test]
+fn buildings_are_seen_from_inside() {
+    let ctx = common::context();
+    for name in ["sponza", "sibenik", "conference"] {
+        let scene = assets_scene(name);
+        assert!(
+            matches!(scene.orbit(), Orbit::Inside { .. }),
+            "{name} is framed as an interior"
+        );
+        let camera = scene.camera;
+        let mut r = renderer(&ctx, scene);
+        let (hits, pixels) = covered(&mut r, &camera);
+        let background = 1.0 - hits.len() as f64 / pixels as f64;
+        assert!(
+            background <= MAX_BACKGROUND,
+            "{name}: {:.1}% background",
+            100.0 * background
+        );
+        common::assert_clean(&ctx);
+    }
+}
+
+#[test]
+fn single_models_fill_the_frame_above_their_ground() {
+    let ctx = common::context();
+    for name in ["bunny", "dragon", "buddha", "venus"] {
+        let scene = assets_scene(name);
+        assert!(matches!(scene.orbit(), Orbit::Around { .. }), "{name}");
+        let b = scene.mesh.bounds;
+        let ground = b.min.y + 1e-3 * b.extent().y;
+        let camera = scene.camera;
+        let mut r = renderer(&ctx, scene);
+        let (hits, pixels) = covered(&mut r, &camera);
+        let model = hits.iter().filter(|p| p.y > ground).count() as f64 / pixels as f64;
+        let on_ground = hits.len() as f64 / pixels as f64 - model;
+        assert!(
+            model >= MIN_MODEL,
+            "{name}: the model covers {:.1}%",
+            100.0 * model
+        );
+        assert!(on_ground > 0.0, "{name}: the ground shows");
+        common::assert_clean(&ctx);
+    }
+}
+
+/// A full cycle of the rooms' sweep (8 s at 12 s per turn), every half second.
+#[test]
+fn room_orbits_never_look_out() {
+    let ctx = common::context();
+    let orbit = CameraPath::parse("orbit").unwrap();
+    for spec in ["cornell-box", "box:bunny"] {
+        let scene = if spec == "cornell-box" {
+            load_scene(spec, None).unwrap()
+        } else {
+            assets_scene(spec)
+        };
+        let (base, rule) = (scene.camera, scene.orbit());
+        let mut r = renderer(&ctx, scene);
+        for k in 0..=16 {
+            let camera = orbit.camera_at(&base, &rule, 0.5 * k as f32);
+            let (hits, pixels) = covered(&mut r, &camera);
+            let background = 1.0 - hits.len() as f64 / pixels as f64;
+            assert!(
+                background <= MAX_BACKGROUND,
+                "{spec} at {} s: {:.1}% background",
+                0.5 * k as f32,
+                100.0 * background
+            );
+        }
+        common::assert_clean(&ctx);
+    }
+}
