@@ -133,3 +133,58 @@ fn room_orbits_never_look_out() {
         common::assert_clean(&ctx);
     }
 }
+
+/// Share of background pixels at each sampled time of `path` in `scene`.
+fn path_background(
+    ctx: &Arc<Context>,
+    scene: Scene,
+    path: &CameraPath,
+    step: f32,
+) -> Vec<(f32, f64)> {
+    let (base, rule) = (scene.camera, scene.orbit());
+    let duration = path.duration();
+    let mut r = renderer(ctx, scene);
+    let mut out = Vec::new();
+    let mut t = 0.0;
+    while t <= duration + 1e-3 {
+        let camera = path.camera_at(&base, &rule, t);
+        let (hits, pixels) = covered(&mut r, &camera);
+        out.push((t, 1.0 - hits.len() as f64 / pixels as f64));
+        t += step;
+    }
+    out
+}
+
+/// The tables' camera paths never look out of the geometry they show: the box path in the
+/// Cornell box and the box room, the walkthroughs in their buildings (as the tables load
+/// them, with their lens and light).
+#[test]
+fn table_paths_stay_inside_their_scenes() {
+    let ctx = common::context();
+    let dir = asset_dir_from_env().expect("SSGI_ASSETS is not set (tools/test sets it)");
+    let boxed = ssgi::bench::paths::BOX.parse().unwrap();
+    let mut failures = Vec::new();
+    for spec in ["cornell-box", "box:bunny"] {
+        let scene = load_scene(spec, Some(&dir)).unwrap();
+        for (t, bg) in path_background(&ctx, scene, &boxed, 0.25) {
+            if bg > MAX_BACKGROUND {
+                failures.push(format!("{spec} at {t} s: {:.1}%", 100.0 * bg));
+            }
+        }
+    }
+    for w in &ssgi::bench::walkthrough::WALKTHROUGHS {
+        let path = w.path.parse().unwrap();
+        let scene = w.load(Some(&dir), &path).unwrap();
+        for (t, bg) in path_background(&ctx, scene, &path, 1.0) {
+            if bg > MAX_BACKGROUND {
+                failures.push(format!("{} at {t} s: {:.1}%", w.name, 100.0 * bg));
+            }
+        }
+    }
+    common::assert_clean(&ctx);
+    assert!(
+        failures.is_empty(),
+        "background above 5%:\n{}",
+        failures.join("\n")
+    );
+}
