@@ -1,5 +1,8 @@
 //! The `ssgi` binary: the bench JSON report of a 16-frame run, and clear errors for bad input.
 
+#[path = "common/schema.rs"]
+mod schema;
+
 use std::process::Command;
 
 fn ssgi() -> Command {
@@ -30,6 +33,7 @@ fn converged_warmup_measures_the_steady_state() {
     assert!(stderr.contains("warmup: converged after"), "{stderr}");
     let report: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+    schema::assert_follows("bench", &report);
     let warmup = &report["config"]["warmup"];
     assert_eq!(warmup["mode"], "converged");
     assert_eq!(warmup["settled"], true);
@@ -89,6 +93,7 @@ fn bench_json_has_every_pass_and_skips_the_static_light_view() {
     }
     let report: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+    schema::assert_follows("bench", &report);
     assert_eq!(report["version"], 1);
     assert_eq!(report["width"], 64);
     assert_eq!(report["height"], 64);
@@ -309,4 +314,47 @@ fn zero_frames_is_refused_everywhere() {
             "{sub}: {stderr}"
         );
     }
+}
+
+/// `bench --compare-reuse --json` writes the README's compare-reuse format (both runs in the
+/// bench format, the groups' ratios).
+#[test]
+fn compare_reuse_json_follows_the_readme() {
+    let json = tmp("compare-reuse.json");
+    let out = ssgi()
+        .args([
+            "--validation",
+            "bench",
+            "--compare-reuse",
+            "--scene",
+            "cornell-box",
+        ])
+        .args([
+            "--size",
+            "32x32",
+            "--rsm-size",
+            "64",
+            "--effects",
+            "direct,ao",
+        ])
+        .args(["--frames", "2", "--warmup", "1", "--json"])
+        .arg(&json)
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "bench failed:\n{stderr}");
+    let report: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+    schema::assert_follows("compare-reuse", &report);
+    assert_eq!(report["runs"].as_array().map(Vec::len), Some(2));
+    // The check can fail: a report without a documented key departs from the README.
+    let mut broken = report.clone();
+    broken["runs"][1]["total"]
+        .as_object_mut()
+        .unwrap()
+        .remove("p95_ms");
+    broken["groups"]["ao"]["undocumented"] = serde_json::json!(1);
+    let errors = schema::check("compare-reuse", &broken);
+    assert_eq!(errors.len(), 2, "{errors:#?}");
+    assert!(errors[0].contains("runs[1].total.p95_ms"), "{errors:#?}");
 }

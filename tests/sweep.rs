@@ -2,6 +2,9 @@
 //! report file written, every row scored against the ground truth, a Pareto front marked;
 //! and clear errors for unknown keys and values.
 
+#[path = "common/schema.rs"]
+mod schema;
+
 use std::process::Command;
 
 fn ssgi() -> Command {
@@ -84,6 +87,7 @@ fn sweep_two_keys_by_two_values() {
     );
     let json: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(out.join("sweep.json")).unwrap()).unwrap();
+    schema::assert_follows("sweep", &json);
     let rows = json["rows"].as_array().unwrap();
     assert_eq!(rows.len(), 4);
     // First --vary outermost.
@@ -150,6 +154,7 @@ fn sweep_two_keys_by_two_values() {
         &std::fs::read_to_string(tmp("reference").join("reference.json")).unwrap(),
     )
     .unwrap();
+    schema::assert_follows("reference", &reference);
     assert_eq!(reference["covered_pixels"], 32 * 32);
     for f in [
         "ao.exr",

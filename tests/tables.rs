@@ -4,6 +4,9 @@
 //! fewer pixels than no reuse, the reference against itself has error 0, one CSV row per frame,
 //! PNG files that decode.
 
+#[path = "common/schema.rs"]
+mod schema;
+
 use serde_json::Value;
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -85,7 +88,9 @@ fn run_table(assets: &Path, run: &Run<'_>, out: &Path) -> Value {
         "validation messages:\n{stderr}"
     );
     let text = std::fs::read_to_string(out.join("report.json")).unwrap();
-    serde_json::from_str(&text).unwrap()
+    let report = serde_json::from_str(&text).unwrap();
+    schema::assert_follows("thesis-table", &report);
+    report
 }
 
 fn num(v: &Value) -> f64 {
@@ -397,6 +402,7 @@ fn szentandrasi_1_end_to_end() {
     );
     let text = std::fs::read_to_string(out.join("report.json")).unwrap();
     let report: Value = serde_json::from_str(&text).unwrap();
+    schema::assert_follows("szentandrasi-table", &report);
     assert_eq!(report["version"], 1);
     assert_eq!(report["table"], "szentandrasi-1");
     assert_eq!(

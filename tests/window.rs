@@ -13,6 +13,9 @@
 //! Xvfb on a free display number. With neither a display nor Xvfb they fail, naming what is
 //! missing (a test that cannot run must not count as passed).
 
+#[path = "common/schema.rs"]
+mod schema;
+
 use std::io::{BufRead, BufReader};
 use std::path::PathBuf;
 use std::process::{Child, Command, Output, Stdio};
@@ -351,6 +354,7 @@ fn bench_window_reports_the_present_mode() {
     let stderr = assert_clean_run(&out, "bench --window");
     let report: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+    schema::assert_follows("bench", &report);
     assert_eq!(report["config"]["window"], true);
     let mode = report["config"]["present_mode"].as_str().unwrap();
     assert!(
@@ -416,7 +420,9 @@ fn walkthrough_table(
     let run = ssgi(display, &args);
     let stderr = assert_clean_run(&run, &format!("table {extra:?}"));
     let text = std::fs::read_to_string(out.join("report.json")).unwrap();
-    (serde_json::from_str(&text).unwrap(), stderr)
+    let report = serde_json::from_str(&text).unwrap();
+    schema::assert_follows("thesis-table", &report);
+    (report, stderr)
 }
 
 /// `table --window` presents every frame of every row (reference, reuse, no reuse) of every

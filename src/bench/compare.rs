@@ -70,11 +70,10 @@ pub struct Comparison {
 
 /// Median over measured frames of the per-frame sum of `passes` (all passes when empty).
 pub fn group_median(report: &Report, passes: &[PassId]) -> Option<f64> {
-    let warmup = report.config["warmup"].as_u64().unwrap_or(0);
     let sums: Vec<f64> = report
         .frames
         .iter()
-        .filter(|f| f.index >= warmup)
+        .filter(|f| !f.warmup)
         .map(|f| {
             f.passes
                 .iter()

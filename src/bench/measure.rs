@@ -195,22 +195,28 @@ pub fn measure(
         spec.config.temporal.rotation_limit.max(4) as usize,
         spec.config.width as u64 * spec.config.height as u64,
     );
-    let config = serde_json::json!({
-        "scene": renderer.scene.name,
-        "path": spec.path.name(),
-        "fps": spec.fps,
-        "seconds": frames as f32 / spec.fps,
-        "frames": frames,
-        "warmup": spec.warmup,
-        "warmup_along_path": spec.warmup_along_path,
-        "warmup_settled": warmup_settled,
-        "render": spec.config,
-        "triangles": renderer.scene.mesh.triangle_count(),
-        "device_type": ctx.info.device_type,
-        "api_version": ctx.info.api_version,
-        "window": sink.present_mode().is_some(),
-        "present_mode": sink.present_mode(),
-    });
+    // Along the path is the tables' and sweeps' `--warmup converged`; a fixed count is held
+    // at the first camera, as bench's.
+    let outcome = warmup::Outcome {
+        mode: if spec.warmup_along_path {
+            "converged"
+        } else {
+            "frames"
+        },
+        frames: spec.warmup,
+        settled: warmup_settled || !spec.warmup_along_path,
+    };
+    let config = report_config(
+        ctx,
+        &renderer,
+        spec.path,
+        RunLength {
+            fps: spec.fps,
+            frames,
+            warmup: outcome,
+        },
+        sink.present_mode(),
+    );
     let names: Vec<&str> = PassId::ALL.iter().map(|p| p.name()).collect();
     let report = Report::new(
         &ctx.info,
@@ -226,6 +232,43 @@ pub fn measure(
         last,
         after_warmup,
         warmup_settled,
+    })
+}
+
+/// Frame rate, measured frames and warmup of a run, for its report.
+pub struct RunLength {
+    pub fps: f32,
+    pub frames: u32,
+    pub warmup: warmup::Outcome,
+}
+
+/// A report's `config` object (README: the bench format), the same for bench, tables and
+/// sweeps: the scene and path, the run's length, the render configuration and the device.
+pub fn report_config(
+    ctx: &Context,
+    renderer: &Renderer,
+    path: &CameraPath,
+    run: RunLength,
+    present_mode: Option<&'static str>,
+) -> serde_json::Value {
+    let config = &renderer.config;
+    serde_json::json!({
+        "scene": renderer.scene.name,
+        "triangles": renderer.scene.mesh.triangle_count(),
+        "path": path.name(),
+        "fps": run.fps,
+        // Path time of the measured frames (the warmup frames come first on the path).
+        "seconds": run.frames as f32 / run.fps,
+        "frames": run.frames,
+        "warmup": run.warmup,
+        "rsm_size": config.rsm_size,
+        "pcf_samples": config.pcf.samples(),
+        "pcf_radius_texels": config.pcf.radius_texels,
+        "render": config,
+        "device_type": ctx.info.device_type,
+        "api_version": ctx.info.api_version,
+        "window": present_mode.is_some(),
+        "present_mode": present_mode,
     })
 }
 

@@ -3,7 +3,7 @@
 //! JSON format, version 1 (later versions only add fields):
 //! ```text
 //! { "version": 1, "device": str, "driver": str, "width": u32, "height": u32,
-//!   "config": { scene, path, fps, seconds, frames, warmup, rsm_size, pcf_samples, pcf_radius_texels, ... },
+//!   "config": { ... },   // measure::report_config: scene, path, run length, render config, device
 //!   "passes": [ { "name", "median_ms", "mean_ms", "p95_ms", "fps_equivalent",
 //!                 "recorded", "skipped" } ],          // over measured frames (after warmup);
 //!                                                     // times are null if never recorded

@@ -10,7 +10,7 @@ use super::thesis::{table_4_1, SETUP};
 use super::TableOptions;
 use crate::error::Result;
 use crate::frontend::sink::FrameSink;
-use crate::scene::{box_room, load_scene, CameraPath, Scene};
+use crate::scene::{box_room, load_model, load_scene, CameraPath, Scene};
 use crate::vk::Context;
 use std::path::Path;
 use std::sync::Arc;
@@ -58,8 +58,8 @@ pub fn load(s: &BoxScene, assets: Option<&Path>) -> Result<(Scene, Option<String
         return Ok((load_scene(&format!("box:{}", s.asset), assets)?, None));
     };
     // The model alone (same file lookup and errors as box:<asset>), decimated, then boxed.
-    let model = load_scene(s.asset, assets)?;
-    let d = decimate(&model.mesh, target)?;
+    let (name, model) = load_model(s.asset, assets)?;
+    let d = decimate(&model, target)?;
     let note = format!(
         "{}: the thesis's {target}-face mesh is not available. This is the {}-triangle \
          Stanford dragon from the asset directory, decimated with meshoptimizer's edge-collapse \
@@ -69,7 +69,7 @@ pub fn load(s: &BoxScene, assets: Option<&Path>) -> Result<(Scene, Option<String
         d.to_triangles,
         100.0 * d.relative_error
     );
-    Ok((box_room(&d.mesh, &model.name), Some(note)))
+    Ok((box_room(&d.mesh, &name), Some(note)))
 }
 
 pub fn run(

@@ -32,8 +32,8 @@ pub struct Walkthrough {
     /// Vertical field of view of the walkthrough camera, degrees.
     pub vfov_deg: f32,
     /// Spot light under the roof, as fractions of the bounding box (0 = min, 1 = max), aimed
-    /// straight down at the floor below it, with this outer half-angle. The automatic light
-    /// of a loaded model sits outside the bounds and cannot reach a closed interior.
+    /// straight down at the floor below it, with this outer half-angle (the automatic
+    /// headlight of a building follows the camera; the table's light stays put).
     pub light_at: [f32; 3],
     pub light_outer_deg: f32,
 }

@@ -1,6 +1,7 @@
 //! The scene's triangles in a BVH (obvhs's compressed-wide CWBVH; the choice between obvhs and
 //! the `bvh` crate was made by rays per second, see docs/REFERENCE.md) with the two queries
-//! the reference needs: the closest hit with its shading attributes, and segment occlusion.
+//! the ground truth and the automatic framing need: the closest hit with its shading
+//! attributes, and segment occlusion.
 
 use super::mesh::Mesh;
 use super::raycast::occlusion_span;

@@ -41,7 +41,8 @@ pub use procedural::{
 };
 pub use raycast::{occlusion_span, Hit, OCCLUSION_RELATIVE_OFFSET, OCCLUSION_ULPS};
 pub use spec::{
-    asset_dir_from_env, list_assets, load_scene, resolve_model, ASSETS_ENV, BUILTIN_SCENES,
+    asset_dir_from_env, list_assets, load_model, load_scene, resolve_model, ASSETS_ENV,
+    BUILTIN_SCENES,
 };
 pub use validate::HUGE_COORDINATE;
 pub use world::Scene;

@@ -57,7 +57,7 @@ pub const DOLLY_FRACTION: f32 = 0.3;
 pub const OPEN_ROOM_SWEEP_DEG: f32 = 60.0;
 
 /// Where the `orbit` path takes the camera in a scene; each scene sets its own
-/// ([`crate::scene::Scene::orbit`]).
+/// (`Scene::orbit`).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Orbit {
     /// A model seen from outside: a full turn about the vertical axis through `center`, at

@@ -44,16 +44,22 @@ pub fn load_scene(spec: &str, assets: Option<&Path>) -> Result<Scene, SceneError
         "pyramids" => Ok(pyramids()),
         _ => {
             if let Some(inner) = spec.strip_prefix("box:") {
-                let path = resolve_model(inner, assets)?;
-                let mesh = load_obj(&path)?;
-                Ok(box_room(&mesh, &model_name(&path)))
+                let (name, mesh) = load_model(inner, assets)?;
+                Ok(box_room(&mesh, &name))
             } else {
-                let path = resolve_model(spec, assets)?;
-                let mesh = load_obj(&path)?;
-                Ok(framed_model(model_name(&path), mesh))
+                let (name, mesh) = load_model(spec, assets)?;
+                Ok(framed_model(name, mesh))
             }
         }
     }
+}
+
+/// The model a spec names (an OBJ path or an asset name, as [`load_scene`] finds it), alone:
+/// its name (the file stem) and its mesh as loaded, with no ground, room or framing.
+pub fn load_model(spec: &str, assets: Option<&Path>) -> Result<(String, Mesh), SceneError> {
+    let assets = assets.map(Path::to_path_buf).or_else(asset_dir_from_env);
+    let path = resolve_model(spec, assets.as_deref())?;
+    Ok((model_name(&path), load_obj(&path)?))
 }
 
 fn model_name(path: &Path) -> String {

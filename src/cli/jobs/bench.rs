@@ -3,6 +3,7 @@
 
 use super::common::{check_frames, context_options, finish, load};
 use crate::bench::compare::Comparison;
+use crate::bench::measure::{report_config, RunLength};
 use crate::bench::warmup::{self, Warmup};
 use crate::bench::Report;
 use crate::cli::args::{BenchArgs, Cli};
@@ -22,35 +23,6 @@ fn write_json(path: &std::path::Path, value: &impl serde::Serialize) -> Result<(
     crate::files::write_atomic(path, text.as_bytes())?;
     eprintln!("wrote {}", path.display());
     Ok(())
-}
-
-/// The report's `config` object for a headless or windowed bench run.
-fn bench_config(
-    args: &BenchArgs,
-    ctx: &Context,
-    renderer: &Renderer,
-    path: &CameraPath,
-    sink: &dyn FrameSink,
-    warmup: &warmup::Outcome,
-) -> serde_json::Value {
-    serde_json::json!({
-        "scene": args.scene.scene,
-        "path": path.name(),
-        "fps": args.scene.fps,
-        // Path time of the measured frames (the warmup frames come first on the path).
-        "seconds": args.frames as f32 / args.scene.fps,
-        "frames": args.frames,
-        "warmup": warmup,
-        "rsm_size": args.scene.rsm_size,
-        "pcf_samples": args.scene.pcf.samples(),
-        "pcf_radius_texels": args.scene.pcf.radius_texels,
-        "render": renderer.config,
-        "device_type": ctx.info.device_type,
-        "api_version": ctx.info.api_version,
-        "triangles": renderer.scene.mesh.indices.len() / 3,
-        "window": sink.present_mode().is_some(),
-        "present_mode": sink.present_mode(),
-    })
 }
 
 /// Warm `renderer` up along `path` as `--warmup` asks, then measure `--frames` frames; the
@@ -79,7 +51,17 @@ fn measure(
         &ctx.info,
         args.scene.size.0,
         args.scene.size.1,
-        bench_config(args, ctx, renderer, path, sink, &outcome),
+        report_config(
+            ctx,
+            renderer,
+            path,
+            RunLength {
+                fps,
+                frames: args.frames,
+                warmup: outcome,
+            },
+            sink.present_mode(),
+        ),
         &names,
         &timings,
         outcome.frames as u64,
