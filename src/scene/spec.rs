@@ -2,6 +2,7 @@
 
 use super::accel::Accel;
 use super::builder::MeshBuilder;
+use super::camera::Camera;
 use super::error::SceneError;
 use super::framing::{interior_view, outside_view, InteriorView};
 use super::light::SpotLight;
@@ -187,22 +188,34 @@ fn interior(name: String, mesh: Mesh, view: InteriorView) -> Scene {
     // The cone covers the square view's corners (half-diagonal angle) with a soft margin.
     let half = (0.5 * camera.vfov_deg).to_radians().tan();
     let outer_deg = (half * std::f32::consts::SQRT_2).atan().to_degrees() + 5.0;
-    let light = SpotLight::aimed(
-        camera.position,
-        camera.target,
-        Vec3::splat(view.depth * view.depth),
+    let light = unit_spot(camera.position, camera.target, outer_deg, &camera);
+    auto_scene(name, mesh, camera, light, view.orbit)
+}
+
+/// The automatic spot: at `position`, aimed at `target`, full intensity inside 0.8 of
+/// `outer_deg`, intensity d² for the distance d to the target (irradiance 1 there, facing
+/// the light), its shadow map over the camera's depth range.
+fn unit_spot(position: Vec3, target: Vec3, outer_deg: f32, camera: &Camera) -> SpotLight {
+    let d = position.distance(target);
+    SpotLight::aimed(
+        position,
+        target,
+        Vec3::splat(d * d),
         outer_deg * 0.8,
         outer_deg,
         camera.near,
         camera.far,
-    );
+    )
+}
+
+fn auto_scene(name: String, mesh: Mesh, camera: Camera, light: SpotLight, orbit: Orbit) -> Scene {
     Scene {
         name,
         mesh,
         camera,
         light,
         ambient: DEFAULT_AMBIENT,
-        orbit: Some(view.orbit),
+        orbit: Some(orbit),
     }
 }
 
@@ -240,23 +253,8 @@ fn on_ground(name: String, model: Mesh, accel: &Accel) -> Scene {
     // Half-angle under which the bounding sphere is seen, plus a margin for the soft edge.
     let sphere_deg = (radius / distance).clamp(0.0, 0.99).asin().to_degrees();
     let outer_deg = (sphere_deg + 5.0).clamp(10.0, 80.0);
-    let light = SpotLight::aimed(
-        position,
-        center,
-        Vec3::splat(distance * distance),
-        outer_deg * 0.8,
-        outer_deg,
-        camera.near,
-        camera.far,
-    );
-    Scene {
-        name,
-        mesh,
-        camera,
-        light,
-        ambient: DEFAULT_AMBIENT,
-        orbit: Some(Orbit::around(center)),
-    }
+    let light = unit_spot(position, center, outer_deg, &camera);
+    auto_scene(name, mesh, camera, light, Orbit::around(center))
 }
 
 #[cfg(test)]
