@@ -226,3 +226,58 @@ fn readme_keyframe_example_stays_inside_the_box() {
     }
     common::assert_clean(&ctx);
 }
+
+/// Least mean luminance (Rec. 709 weights over the sRGB-encoded 8-bit output, in 0..1) of a
+/// shared model rendered by name with nothing else set: no default render is black.
+const MIN_MEAN_LUMINANCE: f64 = 0.15;
+
+/// Every shared model (and the built-in Cornell box), rendered with the defaults (every
+/// effect, its automatic camera and light), is lit.
+#[test]
+fn default_renders_are_lit() {
+    let ctx = common::context();
+    let mut dark = Vec::new();
+    for name in [
+        "cornell-box",
+        "bunny",
+        "dragon",
+        "buddha",
+        "venus",
+        "sponza",
+        "sibenik",
+        "conference",
+    ] {
+        let scene = if name == "cornell-box" {
+            load_scene(name, None).unwrap()
+        } else {
+            assets_scene(name)
+        };
+        let camera = scene.camera;
+        let config = RenderConfig {
+            width: SIZE,
+            height: SIZE,
+            rsm_size: 128,
+            ..Default::default()
+        };
+        let mut r = Renderer::new(&ctx, scene, config).expect("renderer");
+        for _ in 0..2 {
+            r.render_frame(&camera).expect("frame");
+        }
+        r.finish().expect("finish");
+        let rgba = common::read(&mut r, Target::Output).rgba8().expect("RGBA8");
+        let luminance: f64 = rgba
+            .chunks_exact(4)
+            .map(|p| (0.2126 * p[0] as f64 + 0.7152 * p[1] as f64 + 0.0722 * p[2] as f64) / 255.0)
+            .sum::<f64>()
+            / (SIZE * SIZE) as f64;
+        if luminance < MIN_MEAN_LUMINANCE {
+            dark.push(format!("{name}: mean luminance {luminance:.3}"));
+        }
+    }
+    common::assert_clean(&ctx);
+    assert!(
+        dark.is_empty(),
+        "renders below {MIN_MEAN_LUMINANCE}:\n{}",
+        dark.join("\n")
+    );
+}
