@@ -358,3 +358,58 @@ fn compare_reuse_json_follows_the_readme() {
     assert_eq!(errors.len(), 2, "{errors:#?}");
     assert!(errors[0].contains("runs[1].total.p95_ms"), "{errors:#?}");
 }
+
+/// `--light P:T` moves the spot: aimed at the floor from above it lights the floor, aimed
+/// away from behind the back wall it leaves the room to the ambient light; bad values get clear errors.
+#[test]
+fn light_flag_places_the_spot() {
+    let direct_mean = |light: &str| {
+        let dir = tmp(&format!(
+            "light-{}",
+            light.replace([',', ':', '.', '-'], "_")
+        ));
+        let out = ssgi()
+            .args(["--validation", "render", "--scene", "cornell-box"])
+            .args(["--size", "32x32", "--rsm-size", "64", "--effects", "direct"])
+            .args(["--frames", "1", "--light", light, "--out"])
+            .arg(dir.join("out.png"))
+            .arg("--dump-gbuffer")
+            .arg(&dir)
+            .output()
+            .unwrap();
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert!(
+            out.status.success(),
+            "render --light {light} failed:\n{stderr}"
+        );
+        let img = image::open(dir.join("output.png")).unwrap().to_rgb8();
+        img.pixels()
+            .map(|p| p[0] as f64 + p[1] as f64 + p[2] as f64)
+            .sum::<f64>()
+            / (3.0 * 255.0 * img.pixels().len() as f64)
+    };
+    let down = direct_mean("0,1.9,0:0,0,0");
+    // Behind the back wall, aimed away: the room keeps only the ambient light, wherever
+    // exactly the light is.
+    let away = direct_mean("0,1,-3:0,1,-10");
+    let away_too = direct_mean("2,1,-4:2,1,-10");
+    assert!((away - away_too).abs() < 1e-3, "{away} vs {away_too}");
+    assert!(
+        down > away + 0.05,
+        "light aimed at the floor: {down} vs away {away}"
+    );
+    for (bad, needle) in [
+        ("0,1,0", "POSITION:TARGET"),
+        ("0,1:0,0,0", "x,y,z"),
+        ("0,nan,0:0,0,0", "finite"),
+        ("1,1,1:1,1,1", "same point"),
+    ] {
+        let out = ssgi()
+            .args(["render", "--size", "8x8", "--frames", "1", "--light", bad])
+            .output()
+            .unwrap();
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert!(!out.status.success(), "--light {bad} accepted");
+        assert!(stderr.contains(needle), "--light {bad}: {stderr}");
+    }
+}

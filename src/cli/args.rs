@@ -8,6 +8,7 @@ use crate::renderer::config::{
 };
 use crate::renderer::frame::Pcf;
 use crate::renderer::{RenderConfig, MAX_SIZE};
+use crate::scene::HUGE_COORDINATE;
 use clap::{Args, Parser, Subcommand};
 use std::path::PathBuf;
 
@@ -77,6 +78,11 @@ pub struct SceneArgs {
     /// Side of the reflective shadow map / shadow map in texels.
     #[arg(long, default_value_t = 512)]
     pub rsm_size: u32,
+    /// Place the spot light: POSITION:TARGET, each x,y,z in world units (e.g.
+    /// 0,1.9,0.5:0,0,0). Keeps the scene light's intensity, colour and cone; its shadow map
+    /// reaches the whole scene from there
+    #[arg(long, value_parser = parse_light)]
+    pub light: Option<LightPlacement>,
     /// Effects to render, comma-separated: direct, ao, indirect, ssdo (all = direct, ao,
     /// indirect; ssdo replaces ao).
     #[arg(long, default_value = "all", value_parser = parse_effects)]
@@ -585,6 +591,42 @@ pub struct TableArgs {
     /// time that; Escape or closing the window aborts the table.
     #[arg(long)]
     pub window: bool,
+}
+
+/// `--light POSITION:TARGET`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct LightPlacement {
+    pub position: glam::Vec3,
+    pub target: glam::Vec3,
+}
+
+pub fn parse_light(s: &str) -> std::result::Result<LightPlacement, String> {
+    let point = |part: &str, what: &str| -> std::result::Result<glam::Vec3, String> {
+        let v: Vec<f32> = part
+            .split(',')
+            .map(|c| c.trim().parse::<f32>())
+            .collect::<std::result::Result<_, _>>()
+            .map_err(|_| format!("--light: the {what} {part:?} is not x,y,z"))?;
+        match v.as_slice() {
+            [x, y, z] if v.iter().all(|c| c.is_finite() && c.abs() <= HUGE_COORDINATE) => {
+                Ok(glam::Vec3::new(*x, *y, *z))
+            }
+            [_, _, _] => Err(format!(
+                "--light: the {what} {part:?} must be finite, at most {HUGE_COORDINATE:e} from the origin on each axis"
+            )),
+            _ => Err(format!("--light: the {what} {part:?} is not x,y,z")),
+        }
+    };
+    let (position, target) = s
+        .split_once(':')
+        .ok_or_else(|| format!("--light takes POSITION:TARGET like 0,1.9,0:0,0,0, not {s:?}"))?;
+    let (position, target) = (point(position, "position")?, point(target, "target")?);
+    if position == target {
+        return Err(format!(
+            "--light: the position and the target are the same point ({position}): no direction"
+        ));
+    }
+    Ok(LightPlacement { position, target })
 }
 
 fn parse_size(s: &str) -> std::result::Result<(u32, u32), String> {

@@ -1,6 +1,7 @@
 //! Spot light: a point source with a smooth cone falloff, also the RSM/shadow-map camera.
 
 use super::camera::{view_matrix, vulkan_perspective};
+use super::mesh::Aabb;
 use glam::{Mat4, Vec3};
 
 #[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
@@ -45,6 +46,31 @@ impl SpotLight {
             outer_deg,
             near,
             far,
+        }
+    }
+
+    /// This light moved to `position` and aimed at `target` (`--light`): same intensity,
+    /// colour and cone; the shadow map's far plane pushed out to reach every corner of
+    /// `bounds` from there (5% margin), its near plane kept below a tenth of the far one.
+    pub fn placed(&self, position: Vec3, target: Vec3, bounds: &Aabb) -> Self {
+        let reach = (0..8)
+            .map(|i| {
+                let pick = |bit: usize, lo: f32, hi: f32| if i & bit == 0 { lo } else { hi };
+                let corner = Vec3::new(
+                    pick(1, bounds.min.x, bounds.max.x),
+                    pick(2, bounds.min.y, bounds.max.y),
+                    pick(4, bounds.min.z, bounds.max.z),
+                );
+                position.distance(corner)
+            })
+            .fold(0.0f32, f32::max);
+        let far = self.far.max(1.05 * reach);
+        Self {
+            position,
+            direction: (target - position).normalize_or(self.axis()),
+            near: self.near.min(0.1 * far),
+            far,
+            ..*self
         }
     }
 
@@ -188,5 +214,22 @@ mod tests {
             assert!(ndc.x.abs().max(ndc.y.abs()) > 0.9, "{ndc}");
             assert!(ndc.z > 0.0 && ndc.z < 1.0);
         }
+    }
+
+    #[test]
+    fn placed_light_reaches_the_whole_scene() {
+        let l = crate::scene::cornell_light();
+        let bounds = Aabb {
+            min: Vec3::new(-1.0, 0.0, -1.0),
+            max: Vec3::new(1.0, 2.0, 1.0),
+        };
+        let p = l.placed(Vec3::new(0.0, 1.0, 30.0), Vec3::ZERO, &bounds);
+        assert_eq!(p.intensity, l.intensity);
+        assert_eq!((p.inner_deg, p.outer_deg), (l.inner_deg, l.outer_deg));
+        assert!(p
+            .direction
+            .abs_diff_eq(Vec3::new(0.0, -1.0, -30.0).normalize(), 1e-6));
+        let farthest = Vec3::new(0.0, 1.0, 30.0).distance(Vec3::new(1.0, 2.0, -1.0));
+        assert!(p.far >= farthest && p.near < 0.1 * p.far, "{p:?}");
     }
 }

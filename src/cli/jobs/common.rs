@@ -20,7 +20,11 @@ pub(super) fn check_frames(frames: u32, what: &str) -> Result<()> {
 
 /// The scene and camera path of a run: everything before the GPU.
 pub(super) fn load(cli: &Cli, args: &SceneArgs) -> Result<(Scene, CameraPath)> {
-    load_spec(cli, &args.scene, &args.path)
+    let (mut scene, path) = load_spec(cli, &args.scene, &args.path)?;
+    if let Some(l) = args.light {
+        scene.light = scene.light.placed(l.position, l.target, &scene.mesh.bounds);
+    }
+    Ok((scene, path))
 }
 
 /// The scene `spec` and camera path `path` (warnings about the model printed).
