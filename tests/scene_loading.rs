@@ -435,8 +435,8 @@ fn assets() -> PathBuf {
 
 /// The asset's mesh as loaded (without the ground a single model's scene adds).
 fn load_asset(name: &str, dir: &Path) -> Mesh {
-    match ssgi::scene::resolve_model(name, Some(dir)).and_then(|p| load_obj(&p)) {
-        Ok(m) => m,
+    match ssgi::scene::load_model(name, Some(dir)) {
+        Ok((_, m)) => m,
         Err(e) => panic!("asset {name} from {}: {e}", dir.display()),
     }
 }
