@@ -4,7 +4,8 @@
 //! size and workgroup size, so the Rust side cannot silently disagree with the shaders.
 //!
 //! `shaders/probes/*.comp` are test probes, not passes: compiled and reflected the same way but
-//! listed in `PROBES` instead of `ALL`, so only tests create pipelines from them.
+//! listed in `PROBES` instead of `ALL`: no frame pass uses them; tests and diagnostics (the
+//! renderer's numerical audit) create pipelines from them.
 //!
 //! Permutations: a line `// @permutation <suffix>: NAME=VALUE NAME2` in a shader compiles an
 //! extra module `<STEM>_<EXT>_<SUFFIX>` with those `#define`s. Without such lines one module is

@@ -15,6 +15,7 @@ pub const GENERATED: &[(&str, &str)] = &[
     ("Material", "MaterialPush"),
     ("Probe", "ProbePush"),
     ("Reproject", "ReprojectPush"),
+    ("ImageStats", "ImageStatsPush"),
 ];
 
 #[derive(Clone, Debug, PartialEq)]

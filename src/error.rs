@@ -18,6 +18,19 @@ pub enum Error {
     MissingFeature(String),
     #[error("GPU memory allocation for '{name}' failed: {message}")]
     Allocation { name: String, message: String },
+    #[error(
+        "out of device memory: '{name}' needs {} MiB while {} MiB are held (ssgi allows itself \
+         {} MiB on this device, the device may allow less); try a smaller --size or --rsm-size",
+        bytes.div_ceil(1 << 20),
+        held.div_ceil(1 << 20),
+        limit / (1 << 20)
+    )]
+    OutOfMemory {
+        name: String,
+        bytes: u64,
+        held: u64,
+        limit: u64,
+    },
     #[error("shader and pass disagree: {0}")]
     Reflection(String),
     #[error(transparent)]
@@ -44,6 +57,8 @@ pub enum Error {
     },
     #[error("{count} Vulkan validation message(s); first: {first}")]
     Validation { count: usize, first: String },
+    #[error("interrupted: stopped cleanly; no report was written for the unfinished run")]
+    Interrupted,
 }
 
 /// What a user can do about the Vulkan results that are not bugs.

@@ -7,6 +7,7 @@ pub mod effects;
 pub mod error;
 pub mod files;
 pub mod frontend;
+pub mod interrupt;
 pub mod passes;
 pub mod reference;
 pub mod renderer;

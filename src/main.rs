@@ -5,6 +5,7 @@ use ssgi::cli::{Cli, Command};
 
 fn main() -> std::process::ExitCode {
     let cli = Cli::parse();
+    ssgi::interrupt::install();
     let result = match &cli.command {
         Command::Render(args) => ssgi::cli::render(&cli, args),
         Command::Bench(args) => ssgi::cli::bench(&cli, args),
@@ -12,9 +13,14 @@ fn main() -> std::process::ExitCode {
         Command::Table(args) => ssgi::cli::table(&cli, args),
         Command::Reference(args) => ssgi::cli::reference(&cli, args),
         Command::Sweep(args) => ssgi::cli::sweep(&cli, args),
+        Command::Stress(args) => ssgi::cli::stress(&cli, args),
     };
     match result {
         Ok(()) => std::process::ExitCode::SUCCESS,
+        Err(ssgi::Error::Interrupted) => {
+            eprintln!("{}", ssgi::Error::Interrupted);
+            std::process::ExitCode::from(ssgi::interrupt::EXIT_CODE)
+        }
         Err(e) => {
             eprintln!("error: {e}");
             std::process::ExitCode::FAILURE

@@ -413,3 +413,28 @@ fn light_flag_places_the_spot() {
         assert!(stderr.contains(needle), "--light {bad}: {stderr}");
     }
 }
+
+/// Resource exhaustion (issue 16): every effect at the largest size, or the largest shadow
+/// map, ends with a clear out-of-memory message and exit code 1, not a crash.
+#[test]
+fn huge_sizes_fail_with_an_out_of_memory_message() {
+    for args in [
+        ["--size", "16384x16384", "--rsm-size", "512"],
+        ["--size", "64x64", "--rsm-size", "16384"],
+    ] {
+        let out = ssgi()
+            .args(["render", "--effects", "all"])
+            .args(args)
+            .arg("--out")
+            .arg(tmp("huge.png"))
+            .output()
+            .unwrap();
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(1), "{args:?}: {stderr}");
+        assert!(
+            stderr.contains("out of device memory") && stderr.contains("try a smaller --size"),
+            "{args:?}: {stderr}"
+        );
+        assert!(!stderr.contains("panicked"), "{stderr}");
+    }
+}

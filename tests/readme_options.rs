@@ -99,7 +99,15 @@ fn option_tables_match_clap() {
 fn every_option_is_documented() {
     let text = readme();
     let mut missing = Vec::new();
-    let subs = ["render", "bench", "view", "table", "reference", "sweep"];
+    let subs = [
+        "render",
+        "bench",
+        "view",
+        "table",
+        "reference",
+        "sweep",
+        "stress",
+    ];
     for (sub, opts) in subs.map(|s| (s, options(Some(s)))) {
         for name in opts.keys() {
             if name == "--help" || name == "--version" {

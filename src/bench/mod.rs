@@ -18,6 +18,7 @@ pub mod report;
 pub mod rows;
 pub mod scatter;
 pub mod stats;
+pub mod stress;
 pub mod sweep;
 pub mod sweep_keys;
 pub mod sweep_report;

@@ -322,7 +322,7 @@ pub fn refine_truth_for(
     for (b, min) in smallest {
         if let Some(rb) = ground_truth::reference_buffer(b) {
             let mask = ground_truth::mask(b, &truth.reference, scene, &first.geometry);
-            truth.refine_to(rb, min / 10.0, &mask);
+            truth.refine_to(rb, min / 10.0, &mask)?;
         }
     }
     truth.save()
@@ -340,13 +340,13 @@ fn ground_truth_of<'a>(
     let mut truth = Session::start(scene, camera, w, h, settings, cache, run.progress)?;
     let effects = run.base.effects;
     if effects.ao {
-        truth.ensure(RefBuffer::Ao, TABLE_TRUTH_SAMPLES);
+        truth.ensure(RefBuffer::Ao, TABLE_TRUTH_SAMPLES)?;
     }
     if effects.direct {
-        truth.ensure(RefBuffer::Direct, 1);
+        truth.ensure(RefBuffer::Direct, 1)?;
     }
     if effects.indirect {
-        truth.ensure(RefBuffer::Indirect, TABLE_TRUTH_SAMPLES);
+        truth.ensure(RefBuffer::Indirect, TABLE_TRUTH_SAMPLES)?;
     }
     truth.save()?;
     Ok(truth)

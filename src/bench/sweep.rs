@@ -220,7 +220,7 @@ fn refine_truth(
         let (bound, met) = match (smallest, &geometry) {
             (Some(smallest), Some(m)) => {
                 let bound = smallest / 10.0;
-                (Some(bound), truth.refine_to(rb, bound, m))
+                (Some(bound), truth.refine_to(rb, bound, m)?)
             }
             _ => (None, true),
         };

@@ -51,6 +51,12 @@ pub enum Command {
     /// Run every combination of --vary values in one process and put run time against error
     /// (ground truth and converged estimator): sweep.csv/json/md and scatter plots in --out.
     Sweep(SweepArgs),
+    /// Numerical-stability matrix: extreme scales, depth ranges, cameras and lights in awkward
+    /// places, degenerate geometry, tiny sizes, rotation-limit bounds and a long jittering run,
+    /// under every effect set and both reuse modes, with validation on. Every target and
+    /// history is checked for NaN/Inf/negative values on the GPU; exits non-zero on any
+    /// failure. stress.json and stress.md in --out.
+    Stress(StressArgs),
 }
 
 #[derive(Args, Debug, Clone)]
@@ -345,6 +351,16 @@ impl SceneArgs {
 
 fn parse_frame_count_u64(s: &str) -> std::result::Result<u64, String> {
     parse_frame_count(s).map(u64::from)
+}
+
+/// `--long-frames`: 1 to 10 million.
+fn parse_long_frames(s: &str) -> std::result::Result<u64, String> {
+    match s.parse::<u64>() {
+        Ok(n) if (1..=10_000_000).contains(&n) => Ok(n),
+        _ => Err(format!(
+            "--long-frames takes a frame count in 1..=10000000, not {s:?}"
+        )),
+    }
 }
 
 /// Frames per second of path time: finite, in (0, 10000].
@@ -773,4 +789,24 @@ pub struct SweepArgs {
     /// Trace the ground truth from scratch and do not read or write the cache.
     #[arg(long)]
     pub no_cache: bool,
+}
+
+#[derive(Args, Debug)]
+pub struct StressArgs {
+    /// The quick subset: every kind of case at its small end, the variants taken in turn
+    /// (what the tests run).
+    #[arg(long)]
+    pub quick: bool,
+    /// Frames of the long jittering run, 1..=10000000 (default 100000; 2000 with --quick).
+    #[arg(long, value_parser = parse_long_frames)]
+    pub long_frames: Option<u64>,
+    /// Only the cases whose name contains this text (e.g. scale, size, long).
+    #[arg(long, value_name = "TEXT")]
+    pub only: Option<String>,
+    /// Side of the shadow map / RSM in texels.
+    #[arg(long, default_value_t = 256)]
+    pub rsm_size: u32,
+    /// Output directory.
+    #[arg(long, default_value = "out/stress")]
+    pub out: PathBuf,
 }

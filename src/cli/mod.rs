@@ -7,4 +7,4 @@ pub mod jobs;
 pub use args::{
     AccumulateMode, BenchArgs, Cli, Command, RenderArgs, SceneArgs, TableArgs, TableName, ViewArgs,
 };
-pub use jobs::{bench, reference, render, sweep, table, view};
+pub use jobs::{bench, reference, render, stress, sweep, table, view};

@@ -7,7 +7,7 @@ use crate::shaders::{DescriptorKind, ReflectedBinding, ShaderModuleInfo};
 pub const FRAME_BINDING: ReflectedBinding = ReflectedBinding {
     set: 0,
     binding: 0,
-    kind: DescriptorKind::UniformBuffer,
+    kind: DescriptorKind::StorageBuffer,
     count: 1,
 };
 

@@ -55,15 +55,16 @@ impl<'a> Session<'a> {
         })
     }
 
-    /// Refine `buffer` to at least `per_half` samples per half and pixel.
-    pub fn ensure(&mut self, buffer: RefBuffer, per_half: u32) {
+    /// Refine `buffer` to at least `per_half` samples per half and pixel. Ctrl-C stops the
+    /// tracing early with `Error::Interrupted`; the partial sums are then never saved.
+    pub fn ensure(&mut self, buffer: RefBuffer, per_half: u32) -> Result<()> {
         let per_half = match buffer {
             RefBuffer::Direct | RefBuffer::Shadow if direct_is_exact(&self.reference.settings) => 1,
             _ => per_half.min(MAX_SAMPLES_PER_HALF),
         };
         let have = self.reference.estimate(buffer).per_half;
         if have >= per_half {
-            return;
+            return Ok(());
         }
         let bar = bar(
             self.reference.height as u64,
@@ -75,25 +76,26 @@ impl<'a> Session<'a> {
         self.reference
             .refine(&self.accel, self.scene, buffer, add, &|n| bar.inc(n));
         bar.finish_and_clear();
+        crate::interrupt::check()
     }
 
     /// Refine `buffer` until its standard error over `mask` is at most `target` (absolute),
     /// doubling the samples; returns whether the target was met within the cap.
-    pub fn refine_to(&mut self, buffer: RefBuffer, target: f64, mask: &[bool]) -> bool {
+    pub fn refine_to(&mut self, buffer: RefBuffer, target: f64, mask: &[bool]) -> Result<bool> {
         loop {
             let e = self.reference.estimate(buffer);
             if e.per_half > 0 && e.standard_error(mask) <= target {
-                return true;
+                return Ok(true);
             }
             if e.per_half >= MAX_SAMPLES_PER_HALF
                 || (direct_is_exact(&self.reference.settings)
                     && matches!(buffer, RefBuffer::Direct | RefBuffer::Shadow)
                     && e.per_half > 0)
             {
-                return false;
+                return Ok(false);
             }
             let next = (e.per_half * 2).max(64);
-            self.ensure(buffer, next);
+            self.ensure(buffer, next)?;
         }
     }
 

@@ -261,6 +261,10 @@ impl Ctx<'_> {
             .zip(e0.par_chunks_mut(w).zip(e1.par_chunks_mut(w)))
             .enumerate()
             .for_each(|(y, ((r0, r1), (x0, x1)))| {
+                // Ctrl-C: leave the remaining rows; the caller discards the sums.
+                if crate::interrupt::requested() {
+                    return;
+                }
                 let mut traced = 0u64;
                 for x in 0..w {
                     let pixel = y * w + x;

@@ -1,4 +1,4 @@
-//! Per-frame constants: the `Frame` uniform block (shaders/include/frame.glsl) filled member by
+//! Per-frame constants: the `Frame` block (shaders/include/frame.glsl) filled member by
 //! member through the struct build.rs generates from it.
 
 use super::config::{AoEstimator, Epsilon, IndirectConfig, IndirectInput, RenderConfig};

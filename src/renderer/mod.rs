@@ -4,6 +4,7 @@
 //! light view (only when the light changed) → G-buffer → reprojection of every temporal effect
 //! → each effect's passes (shadow + direct, SSAO [+ blur], indirect light) → composite.
 
+pub mod audit;
 pub mod config;
 pub mod counters;
 pub mod effect;
@@ -74,6 +75,11 @@ pub struct Renderer {
     rsm_light: Option<SpotLight>,
     /// Last frame's camera view-projection, when the histories hold last frame's data.
     history: Option<Mat4>,
+    /// The last frame read last frame's G-buffer (its history was valid): until then the
+    /// G-buffer's other half holds nothing of this size and view (`audit` leaves it out).
+    last_frame_reused: bool,
+    /// The numerical audit's pipeline, built on the first `audit`.
+    audit: Option<crate::vk::Pipeline>,
     /// The last pass recorded into each slot's command buffer (device-loss reports).
     last_pass: [Option<PassId>; FRAMES_IN_FLIGHT],
     reprojection: Reprojection,
@@ -115,11 +121,13 @@ impl Renderer {
                 ctx,
                 &format!("frame.uniforms.{slot}"),
                 FrameBlock::SIZE as u64,
-                vk::BufferUsageFlags::UNIFORM_BUFFER,
+                vk::BufferUsageFlags::STORAGE_BUFFER,
                 MemoryLocation::CpuToGpu,
             )?;
             let set = pool.allocate(frame_layout, &format!("frame set 0 slot {slot}"))?;
-            SetWriter::new().uniform(0, &uniforms).write(ctx, set);
+            SetWriter::new()
+                .storage_buffer(0, &uniforms)
+                .write(ctx, set);
             frames.push(FrameResources { uniforms, set });
         }
         let renderer = Self {
@@ -139,6 +147,8 @@ impl Renderer {
             frame_index: 0,
             rsm_light: None,
             history: None,
+            last_frame_reused: false,
+            audit: None,
             last_pass: [None; FRAMES_IN_FLIGHT],
             reprojection,
             _pool: pool,
@@ -224,6 +234,8 @@ impl Renderer {
         camera: &Camera,
         mut hook: Option<FrameHook<'_>>,
     ) -> Result<Option<FrameTiming>> {
+        // Ctrl-C: stop between frames, never inside a recording.
+        crate::interrupt::check()?;
         let slot = self.next_slot();
         let cmd = self.begin_slot(slot)?;
         let previous = self.collect(slot);
@@ -290,6 +302,7 @@ impl Renderer {
         if light_changed {
             self.rsm_light = Some(self.scene.light);
         }
+        self.last_frame_reused = self.history.is_some();
         self.history = Some(view_proj);
         self.frame_index += 1;
         Ok(previous)

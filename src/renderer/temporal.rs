@@ -139,7 +139,11 @@ impl RefreshSchedule {
     /// Frames from now until every pixel has lain in the core of a tile drawn since: the rest
     /// of this cycle and four shifted cycles (feathered), or one more cycle (`shifted` false:
     /// hard tiles replace everything they cover).
+    /// 0 without a refresh (tile 0).
     pub fn frames_to_cover(&self, shifted: bool) -> u32 {
+        if self.tile == 0 {
+            return 0;
+        }
         let rest = self.order.len().saturating_sub(self.next);
         let cycles: usize = if shifted {
             (0..GRID_SHIFTS.len())

@@ -66,6 +66,9 @@ pub struct Context {
     pub queue: vk::Queue,
     pub queue_family: u32,
     pub info: DeviceInfo,
+    /// Most bytes of device memory ssgi lets itself hold (`memory_limit`): allocations past
+    /// it fail with a clear out-of-memory error instead of a driver crash or the OOM killer.
+    pub memory_limit: u64,
     allocator: ManuallyDrop<Mutex<Allocator>>,
     /// Serial of the last queue submission, and of the last one known complete.
     submitted: AtomicU64,
@@ -147,12 +150,16 @@ impl Context {
             name: "allocator".into(),
             message: e.to_string(),
         })?;
+        // SAFETY: a query on the physical device this context was created from.
+        let memory = unsafe { instance.raw.get_physical_device_memory_properties(physical) };
+        let memory_limit = memory_limit(&memory, &info, host_available_bytes());
         Ok(Arc::new(Context {
             device,
             physical,
             queue,
             queue_family,
             info,
+            memory_limit,
             allocator: ManuallyDrop::new(Mutex::new(allocator)),
             submitted: AtomicU64::new(0),
             completed: AtomicU64::new(0),
@@ -290,6 +297,38 @@ impl Drop for Context {
             self.device.destroy_device(None);
         }
     }
+}
+
+/// The device-memory budget: the largest device-local heap. A CPU device's (lavapipe's)
+/// "device memory" is host memory whatever heap size it reports (Mesa 22.3 says 2 GiB and
+/// does not enforce it): there, 90% of what the host has available now, so a huge `--size`
+/// fails with a message rather than swapping or waking the OOM killer.
+fn memory_limit(
+    memory: &vk::PhysicalDeviceMemoryProperties,
+    info: &DeviceInfo,
+    host_available: Option<u64>,
+) -> u64 {
+    let heaps =
+        &memory.memory_heaps[..(memory.memory_heap_count as usize).min(vk::MAX_MEMORY_HEAPS)];
+    let device_local = heaps
+        .iter()
+        .filter(|h| h.flags.contains(vk::MemoryHeapFlags::DEVICE_LOCAL))
+        .map(|h| h.size)
+        .max()
+        .or_else(|| heaps.iter().map(|h| h.size).max())
+        .unwrap_or(u64::MAX);
+    match (info.device_type.as_str(), host_available) {
+        ("CPU", Some(host)) => host / 10 * 9,
+        _ => device_local,
+    }
+}
+
+/// `MemAvailable` of /proc/meminfo in bytes (Linux), if readable.
+fn host_available_bytes() -> Option<u64> {
+    let text = std::fs::read_to_string("/proc/meminfo").ok()?;
+    let line = text.lines().find(|l| l.starts_with("MemAvailable:"))?;
+    let kib: u64 = line.split_whitespace().nth(1)?.parse().ok()?;
+    Some(kib * 1024)
 }
 
 fn pick_device(

@@ -17,7 +17,19 @@ fn allocate(
     location: MemoryLocation,
     linear: bool,
 ) -> Result<Allocation> {
-    ctx.allocator()
+    let mut allocator = ctx.allocator();
+    // Refuse what would pass the device-memory budget: counted over the allocator's memory
+    // blocks, so it errs on the safe side only when the request would fit a block's free room.
+    let held = allocator.generate_report().total_capacity_bytes;
+    if held.saturating_add(requirements.size) > ctx.memory_limit {
+        return Err(Error::OutOfMemory {
+            name: name.to_string(),
+            bytes: requirements.size,
+            held,
+            limit: ctx.memory_limit,
+        });
+    }
+    allocator
         .allocate(&AllocationCreateDesc {
             name,
             requirements,
@@ -25,9 +37,18 @@ fn allocate(
             linear,
             allocation_scheme: AllocationScheme::GpuAllocatorManaged,
         })
-        .map_err(|e| Error::Allocation {
-            name: name.to_string(),
-            message: e.to_string(),
+        .map_err(|e| match e {
+            // The device's own heap is full (the allocator counts it too).
+            gpu_allocator::AllocationError::OutOfMemory => Error::OutOfMemory {
+                name: name.to_string(),
+                bytes: requirements.size,
+                held,
+                limit: ctx.memory_limit,
+            },
+            e => Error::Allocation {
+                name: name.to_string(),
+                message: e.to_string(),
+            },
         })
 }
 
@@ -217,6 +238,12 @@ impl Image {
             unsafe { ctx.device.create_image_view(&view_info, None) }.vk("vkCreateImageView")?;
         ctx.names.set(image.view, name);
         Ok(image)
+    }
+
+    /// Whether anything was written since the image was created or last discarded (its
+    /// tracked layout is no longer `UNDEFINED`).
+    pub fn holds_contents(&self) -> bool {
+        self.state.get().layout != vk::ImageLayout::UNDEFINED
     }
 
     pub fn aspect(&self) -> vk::ImageAspectFlags {

@@ -34,9 +34,9 @@ pub fn reference(cli: &Cli, args: &ReferenceArgs) -> Result<()> {
     if session.from_cache {
         eprintln!("reference cache hit ({})", session.key);
     }
-    session.ensure(RefBuffer::Ao, args.ao_samples / 2);
-    session.ensure(RefBuffer::Direct, args.shadow_samples / 2);
-    session.ensure(RefBuffer::Indirect, args.indirect_samples / 2);
+    session.ensure(RefBuffer::Ao, args.ao_samples / 2)?;
+    session.ensure(RefBuffer::Direct, args.shadow_samples / 2)?;
+    session.ensure(RefBuffer::Indirect, args.indirect_samples / 2)?;
     session.save()?;
     let json = crate::reference::output::write_all(&session, &args.out)?;
     eprintln!(

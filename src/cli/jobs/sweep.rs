@@ -52,9 +52,9 @@ pub fn sweep(cli: &Cli, args: &SweepArgs) -> Result<()> {
     let cache = (!args.no_cache).then(|| args.cache_dir.clone().unwrap_or_else(default_dir));
     let (w, h) = args.scene.size;
     let mut truth = Session::start(&scene, camera, w, h, settings, cache, true)?;
-    truth.ensure(RefBuffer::Ao, DEFAULT_AO_SAMPLES);
-    truth.ensure(RefBuffer::Direct, 1);
-    truth.ensure(RefBuffer::Indirect, DEFAULT_INDIRECT_SAMPLES);
+    truth.ensure(RefBuffer::Ao, DEFAULT_AO_SAMPLES)?;
+    truth.ensure(RefBuffer::Direct, 1)?;
+    truth.ensure(RefBuffer::Indirect, DEFAULT_INDIRECT_SAMPLES)?;
     truth.save()?;
     let ctx = Context::new(&context_options(cli))?;
     eprintln!(
