@@ -110,9 +110,11 @@ fn audit_of_a_frame_matches_the_read_back_targets() {
         ("gbuffer_normal", AuditKind::Target),
         ("rsm_flux", AuditKind::Target),
         ("direct", AuditKind::Target),
-        ("indirect", AuditKind::Target),
+        ("indirect.history", AuditKind::History),
+        ("shadow", AuditKind::Target),
+        ("rsm_depth", AuditKind::Target),
     ] {
-        let a = audits.iter().find(|a| a.name.ends_with(name));
+        let a = audits.iter().find(|a| a.name == name);
         let a = a.unwrap_or_else(|| panic!("no audit of {name}: {audits:#?}"));
         assert_eq!(a.kind, kind, "{name}");
     }

@@ -58,13 +58,16 @@ impl Progress {
         } else if self.last_line.elapsed() >= LINE_EVERY {
             self.last_line = Instant::now();
             let secs = self.start.elapsed().as_secs_f64();
+            let per_frame = secs / self.done as f64;
+            // Milliseconds for fast frames (a small image on a GPU or lavapipe), else seconds.
+            let rate = if per_frame < 0.1 {
+                format!("{:.2} ms per frame", per_frame * 1e3)
+            } else {
+                format!("{per_frame:.2} s per frame")
+            };
             eprintln!(
-                "{}: {}/{} frames, {:.0} s ({:.2} s per frame)",
-                self.label,
-                self.done,
-                self.total,
-                secs,
-                secs / self.done as f64
+                "{}: {}/{} frames, {:.0} s ({rate})",
+                self.label, self.done, self.total, secs
             );
         }
     }
