@@ -10,11 +10,9 @@ use std::time::{Duration, Instant};
 
 const PREVIOUS: &str = "{\"previous\": true}\n";
 
+/// The asset directory; the test fails (never skips) when SSGI_ASSETS is not set.
 fn assets() -> PathBuf {
-    match std::env::var_os("SSGI_ASSETS").filter(|v| !v.is_empty()) {
-        Some(dir) => PathBuf::from(dir),
-        None => panic!("SSGI_ASSETS is not set: this test needs the papers' models (the shared scenes directory, ../shared/scenes in this workspace); tools/test sets it"),
-    }
+    ssgi::scene::asset_dir_from_env().unwrap_or_else(|| panic!("SSGI_ASSETS is not set: this test needs the papers' models (the shared scenes directory, ../shared/scenes in this workspace); tools/test sets it"))
 }
 
 fn out_dir(name: &str) -> PathBuf {

@@ -20,7 +20,7 @@ fn allocate(
     let mut allocator = ctx.allocator();
     // Refuse what would pass the device-memory budget: counted over the allocator's memory
     // blocks, so it errs on the safe side only when the request would fit a block's free room.
-    let held = allocator.generate_report().total_capacity_bytes;
+    let held = allocator.capacity();
     if held.saturating_add(requirements.size) > ctx.memory_limit {
         return Err(Error::OutOfMemory {
             name: name.to_string(),
