@@ -83,3 +83,67 @@ fn cornell_gbuffer_matches_ray_cast() {
 fn pyramids_gbuffer_matches_ray_cast() {
     check_scene(pyramids());
 }
+
+/// The visible side of a two-sided surface is decided per triangle, not per pixel: a quad
+/// facing the eye whose (smooth) vertex normals lean so far sideways that they turn away from
+/// the eye over part of it keeps them there. Flipping each pixel's normal towards the eye, as
+/// before, made a surface point's normal (and its AO and indirect light) depend on the view
+/// near every silhouette of a smooth model. The CPU reference agrees (`Surface::facing`).
+#[test]
+fn smooth_normals_turned_from_the_eye_are_not_flipped() {
+    use ssgi::reference::surface::Surface;
+    use ssgi::scene::{Camera, Material, MeshBuilder};
+    let lean = Vec3::new(-1.0, 0.0, 0.1).normalize();
+    let mut b = MeshBuilder::new();
+    let m = b.add_material(Material::colour("quad", [0.7, 0.7, 0.7]));
+    let h = 2.0;
+    let corners = [
+        Vec3::new(-h, -h, 0.0),
+        Vec3::new(h, -h, 0.0),
+        Vec3::new(h, h, 0.0),
+        Vec3::new(-h, h, 0.0),
+    ];
+    b.add_flat_polygon(m, &corners, lean);
+    let mut scene = cornell_box();
+    scene.name = "leaning-normals".into();
+    scene.mesh = b.build();
+    scene.camera = Camera::new(Vec3::new(0.0, 0.0, 4.0), Vec3::ZERO, 60.0, 0.1, 100.0);
+    let ctx = common::context();
+    let mut r = common::render(&ctx, scene, 32, Pcf::HARD, 1);
+    let pos = common::read(&mut r, Target::GPosition);
+    let nrm = common::read(&mut r, Target::GNormal);
+    let (mut geometry, mut turned_away) = (0, 0);
+    for y in 0..32 {
+        for x in 0..32 {
+            let p = pos.texel(x, y);
+            if p[3] == 0.0 {
+                continue;
+            }
+            geometry += 1;
+            let position = Vec3::new(p[0], p[1], p[2]);
+            let n = nrm.texel(x, y);
+            let n = Vec3::new(n[0], n[1], n[2]);
+            turned_away += (lean.dot(Vec3::new(0.0, 0.0, 4.0) - position) < 0.0) as u32;
+            assert!(
+                n.dot(lean) > 0.999,
+                "pixel ({x}, {y}) at {position}: normal {n}"
+            );
+        }
+    }
+    // The case matters: part of the quad sees its normal turned away from the eye.
+    assert!(
+        geometry > 500 && turned_away > 100,
+        "{geometry} {turned_away}"
+    );
+    let s = Surface {
+        position: Vec3::new(-1.5, 0.0, 0.0),
+        geometric: Vec3::NEG_Z, // either winding
+        shading: lean,
+        albedo: Vec3::ONE,
+        triangle: 0,
+    };
+    assert!(s.facing(Vec3::new(0.0, 0.0, 4.0)).dot(lean) > 0.999);
+    assert!(s.facing(Vec3::new(0.0, 0.0, -4.0)).dot(lean) < -0.999);
+    drop(r);
+    common::assert_clean(&ctx);
+}

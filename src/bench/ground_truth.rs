@@ -159,6 +159,25 @@ pub fn errors(
     Ok(out)
 }
 
+/// The buffers `last` and `converged` both have, as compared: (buffer, channels, values of
+/// `last`, values of `converged`, pixels both cover).
+fn against_converged<'a>(
+    last: &'a LastFrame,
+    converged: &'a LastFrame,
+) -> impl Iterator<Item = (Buffer, usize, Vec<f32>, Vec<f32>, Vec<bool>)> + 'a {
+    let m: Vec<bool> = last
+        .geometry
+        .iter()
+        .zip(&converged.geometry)
+        .map(|(a, b)| *a && *b)
+        .collect();
+    last.buffers.iter().filter_map(move |(b, image)| {
+        let c = converged.buffer(*b)?;
+        let ch = channels(*b);
+        Some((*b, ch, values(image, ch), values(c, ch), m.clone()))
+    })
+}
+
 /// Every buffer of `last` against the same buffers of `converged` (the estimator with many
 /// samples), over the pixels both cover.
 pub fn errors_against(
@@ -166,23 +185,36 @@ pub fn errors_against(
     converged: &LastFrame,
 ) -> Result<BTreeMap<Buffer, BufferError>> {
     let mut out = BTreeMap::new();
-    for (b, image) in &last.buffers {
-        let Some(c) = converged.buffer(*b) else {
-            continue;
-        };
-        let ch = channels(*b);
-        let m: Vec<bool> = last
-            .geometry
-            .iter()
-            .zip(&converged.geometry)
-            .map(|(a, b)| *a && *b)
-            .collect();
-        out.insert(
-            *b,
-            buffer_error(&values(image, ch), &values(c, ch), ch, &m)?,
-        );
+    for (b, ch, got, conv, m) in against_converged(last, converged) {
+        out.insert(b, buffer_error(&got, &conv, ch, &m)?);
     }
     Ok(out)
+}
+
+/// Error maps of `last` against the converged estimator: `<stem>-<buffer>-vs-converged.png`,
+/// on the same scale as the maps against the ground truth (radiance scaled by the converged
+/// buffer's RMS). They separate what the technique's sampling and reuse add (lag, blur,
+/// noise) from its bias.
+pub fn write_converged_maps(
+    last: &LastFrame,
+    converged: &LastFrame,
+    dir: &std::path::Path,
+    stem: &str,
+) -> Result<Vec<std::path::PathBuf>> {
+    use super::error_metrics::{abs_error_per_pixel, write_error_map};
+    let (w, h) = last
+        .buffers
+        .first()
+        .map(|(_, i)| (i.width, i.height))
+        .unwrap_or((0, 0));
+    let mut written = Vec::new();
+    for (b, ch, got, conv, m) in against_converged(last, converged) {
+        let per_pixel = abs_error_per_pixel(&got, &conv, ch, &m)?;
+        let path = dir.join(format!("{stem}-{}-vs-converged.png", b.name()));
+        write_error_map(&path, &per_pixel, w, h, map_scale(b, &conv, &m))?;
+        written.push(path);
+    }
+    Ok(written)
 }
 
 /// Scale of the error maps: visibilities and the final image are in 0..1 (a difference of

@@ -18,6 +18,7 @@ use crate::vk::Context;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use serde::Serialize;
 use std::collections::BTreeMap;
+use std::rc::Rc;
 use std::sync::Arc;
 
 /// One combination's result.
@@ -40,6 +41,9 @@ pub struct SweepRow {
     pub warmup_settled: bool,
     #[serde(skip)]
     pub last: Option<LastFrame>,
+    /// The converged estimator's frame this row was compared with (shared between rows).
+    #[serde(skip)]
+    pub converged_last: Option<Rc<LastFrame>>,
 }
 
 pub struct SweepSpec<'a> {
@@ -96,7 +100,7 @@ pub fn run(
     let total = spec.combinations.len() as u64;
     let bar = progress_bar(total, spec.progress);
     let mut rows = Vec::new();
-    let mut converged: Vec<(RenderConfig, LastFrame)> = Vec::new();
+    let mut converged: Vec<(RenderConfig, Rc<LastFrame>)> = Vec::new();
     for (label, config) in &spec.combinations {
         let text = describe(label);
         bar.set_message(if text.is_empty() {
@@ -144,7 +148,7 @@ pub fn run(
                 .after_warmup
                 .take()
                 .ok_or_else(|| Error::Config("the converged run kept no frame".into()))?;
-            converged.push((cc, first));
+            converged.push((cc, Rc::new(first)));
         }
         let ms = GROUPS
             .iter()
@@ -156,11 +160,12 @@ pub fn run(
             .iter()
             .map(|p| (p.name.clone(), p.median_ms))
             .collect();
-        let conv = &converged
+        let conv = converged
             .iter()
             .find(|(c, _)| *c == cc)
             .expect("inserted above")
-            .1;
+            .1
+            .clone();
         rows.push(SweepRow {
             label: label
                 .iter()
@@ -170,13 +175,14 @@ pub fn run(
             ms,
             passes,
             truth: BTreeMap::new(),
-            converged: ground_truth::errors_against(&measured.last, conv)?
+            converged: ground_truth::errors_against(&measured.last, &conv)?
                 .into_iter()
                 .map(|(b, e)| (b.name().to_string(), e))
                 .collect(),
             pareto: BTreeMap::new(),
             warmup_settled: measured.warmup_settled,
             last: Some(measured.last),
+            converged_last: Some(conv),
         });
         bar.inc(1);
     }

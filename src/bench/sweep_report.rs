@@ -272,7 +272,8 @@ fn readme_text(h: &SweepHeader) -> String {
          `sweep.csv` / `sweep.json`: the same data (JSON with per-pass medians and the ground \
          truth's standard errors); `sweep_<buffer>.png`: time against ground-truth error with \
          the Pareto front; `maps/NN-<buffer>.png`: absolute error of combination NN's last \
-         frame against the ground truth (FLIP for `NN-final-flip.png`).\n",
+         frame against the ground truth (FLIP for `NN-final-flip.png`), \
+         `maps/NN-<buffer>-vs-converged.png` against the converged estimator.\n",
         h.scene, h.path, h.size[0], h.size[1], h.device, h.driver, h.command
     )
 }
@@ -291,7 +292,9 @@ pub fn maps_readme_text(h: &SweepHeader, rows: &[SweepRow]) -> String {
     let mut s = format!(
         "# Error maps of the sweep of {} along `{}`\n\nPer combination and buffer, the \
          absolute error of the last frame against the ground truth (`NN-<buffer>.png`, magma) \
-         and FLIP of the final image (`NN-final-flip.png`); made by\n\n```sh\n{}\n```\n\n",
+         and FLIP of the final image (`NN-final-flip.png`), and against the converged \
+         estimator of the same technique (`NN-<buffer>-vs-converged.png`, the same scale: what \
+         sampling and reuse add, without the technique's bias); made by\n\n```sh\n{}\n```\n\n",
         h.scene, h.path, h.command
     );
     for (i, row) in rows.iter().enumerate() {

@@ -10,8 +10,9 @@ use crate::files::write_atomic;
 use crate::scene::{Camera, Scene};
 use std::path::{Path, PathBuf};
 
-/// Bump when the estimators or the file layout change: old entries then miss.
-const FORMAT: &[u8] = b"ssgi-reference-v1";
+/// Bump when the estimators or the file layout change: old entries then miss. v2: the
+/// shading normal's side is decided per triangle (`Surface::facing`).
+const FORMAT: &[u8] = b"ssgi-reference-v2";
 
 /// FNV-1a, 64 bit: stable across Rust releases and platforms (std's hasher is not), and
 /// collisions are irrelevant at the scale of a cache directory.

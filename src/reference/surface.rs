@@ -52,10 +52,18 @@ impl Surface {
         }
     }
 
-    /// The shading normal flipped to the side of `towards` (the G-buffer's normal faces the
-    /// eye, the RSM's faces the light).
+    /// The shading normal on the side of the triangle seen from `towards` (the eye for the
+    /// G-buffer, the light for the RSM): flipped when it points to the other side of the
+    /// geometric normal turned to `towards`, as gbuffer.frag and rsm.frag decide per triangle.
+    /// Near a silhouette a smooth normal may face away from `towards` and is kept.
     pub fn facing(&self, towards: Vec3) -> Vec3 {
-        if self.shading.dot(towards - self.position) < 0.0 {
+        let to = towards - self.position;
+        let seen = if self.geometric.dot(to) < 0.0 {
+            -self.geometric
+        } else {
+            self.geometric
+        };
+        if self.shading.dot(seen) < 0.0 {
             -self.shading
         } else {
             self.shading

@@ -100,6 +100,14 @@ pub fn sweep(cli: &Cli, args: &SweepArgs) -> Result<()> {
                 &args.out.join("maps"),
                 &format!("{i:02}"),
             )?);
+            if let Some(conv) = &row.converged_last {
+                files.extend(crate::bench::ground_truth::write_converged_maps(
+                    last,
+                    conv,
+                    &args.out.join("maps"),
+                    &format!("{i:02}"),
+                )?);
+            }
         }
     }
     if rows.iter().any(|r| r.last.is_some()) {
