@@ -4,6 +4,7 @@
 // @permutation textured: TEXTURED
 #extension GL_GOOGLE_include_directive : require
 #include "frame.glsl"
+#include "two_sided.glsl"
 
 layout(push_constant) uniform Material {
     vec4 albedo;
@@ -25,17 +26,9 @@ layout(location = 2) out vec4 out_albedo;
 void main() {
     vec3 to_eye = frame.camera_pos - v_position;
     vec3 n = safe_normalize(v_normal, safe_normalize(to_eye, vec3(0.0, 1.0, 0.0)));
-    // Two-sided surfaces: OBJ winding is unreliable, so the side seen is decided per triangle:
-    // the geometric normal (from the position's screen derivatives, constant over the
-    // triangle) turned to the eye. The vertex normals are flipped when they point to the
-    // triangle's other side. Testing the interpolated normal against the eye instead flipped
-    // it wherever a smooth normal turns away near a silhouette, so one surface point's normal
-    // (and everything computed from it: AO, indirect light) changed with the view, and a
-    // history computed there stayed wrong after the view moved on. A degenerate triangle
-    // (zero derivatives) falls back to the eye test.
-    vec3 ng = cross(dFdx(v_position), dFdy(v_position));
-    float side = dot(ng, ng) > 0.0 ? dot(n, ng) * sign(dot(ng, to_eye)) : dot(n, to_eye);
-    if (side < 0.0) n = -n;
+    // The side the eye sees, per triangle: a view-dependent normal would leave AO and indirect
+    // histories computed near a silhouette wrong after the view moves on.
+    n = visible_side(n, v_position, frame.camera_pos);
     vec3 albedo = material.albedo.rgb;
 #ifdef TEXTURED
     albedo *= texture(sampler2D(diffuse_texture, diffuse_sampler), v_uv).rgb;

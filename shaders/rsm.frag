@@ -6,6 +6,7 @@
 // @permutation textured: TEXTURED
 #extension GL_GOOGLE_include_directive : require
 #include "frame.glsl"
+#include "two_sided.glsl"
 
 layout(push_constant) uniform Material {
     vec4 albedo;
@@ -27,10 +28,7 @@ layout(location = 2) out vec4 out_flux;
 void main() {
     vec3 to_light = frame.light_pos - v_position;
     vec3 n = safe_normalize(v_normal, safe_normalize(to_light, vec3(0.0, 1.0, 0.0)));
-    // The lit side is the triangle's side facing the light (per triangle, as gbuffer.frag).
-    vec3 ng = cross(dFdx(v_position), dFdy(v_position));
-    float side = dot(ng, ng) > 0.0 ? dot(n, ng) * sign(dot(ng, to_light)) : dot(n, to_light);
-    if (side < 0.0) n = -n;
+    n = visible_side(n, v_position, frame.light_pos); // the lit side, per triangle
     vec3 albedo = material.albedo.rgb;
 #ifdef TEXTURED
     albedo *= texture(sampler2D(diffuse_texture, diffuse_sampler), v_uv).rgb;

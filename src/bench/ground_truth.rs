@@ -159,23 +159,29 @@ pub fn errors(
     Ok(out)
 }
 
-/// The buffers `last` and `converged` both have, as compared: (buffer, channels, values of
-/// `last`, values of `converged`, pixels both cover).
-fn against_converged<'a>(
-    last: &'a LastFrame,
-    converged: &'a LastFrame,
-) -> impl Iterator<Item = (Buffer, usize, Vec<f32>, Vec<f32>, Vec<bool>)> + 'a {
-    let m: Vec<bool> = last
+/// The pixels `last` and `converged` both cover, and the buffers both have, as compared:
+/// (buffer, channels, values of `last`, values of `converged`).
+#[allow(clippy::type_complexity)]
+fn against_converged(
+    last: &LastFrame,
+    converged: &LastFrame,
+) -> (Vec<bool>, Vec<(Buffer, usize, Vec<f32>, Vec<f32>)>) {
+    let mask = last
         .geometry
         .iter()
         .zip(&converged.geometry)
         .map(|(a, b)| *a && *b)
         .collect();
-    last.buffers.iter().filter_map(move |(b, image)| {
-        let c = converged.buffer(*b)?;
-        let ch = channels(*b);
-        Some((*b, ch, values(image, ch), values(c, ch), m.clone()))
-    })
+    let buffers = last
+        .buffers
+        .iter()
+        .filter_map(|(b, image)| {
+            let c = converged.buffer(*b)?;
+            let ch = channels(*b);
+            Some((*b, ch, values(image, ch), values(c, ch)))
+        })
+        .collect();
+    (mask, buffers)
 }
 
 /// Every buffer of `last` against the same buffers of `converged` (the estimator with many
@@ -185,7 +191,8 @@ pub fn errors_against(
     converged: &LastFrame,
 ) -> Result<BTreeMap<Buffer, BufferError>> {
     let mut out = BTreeMap::new();
-    for (b, ch, got, conv, m) in against_converged(last, converged) {
+    let (m, buffers) = against_converged(last, converged);
+    for (b, ch, got, conv) in buffers {
         out.insert(b, buffer_error(&got, &conv, ch, &m)?);
     }
     Ok(out)
@@ -208,7 +215,8 @@ pub fn write_converged_maps(
         .map(|(_, i)| (i.width, i.height))
         .unwrap_or((0, 0));
     let mut written = Vec::new();
-    for (b, ch, got, conv, m) in against_converged(last, converged) {
+    let (m, buffers) = against_converged(last, converged);
+    for (b, ch, got, conv) in buffers {
         let per_pixel = abs_error_per_pixel(&got, &conv, ch, &m)?;
         let path = dir.join(format!("{stem}-{}-vs-converged.png", b.name()));
         write_error_map(&path, &per_pixel, w, h, map_scale(b, &conv, &m))?;
