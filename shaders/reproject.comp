@@ -26,7 +26,8 @@ layout(set = 1, binding = 2) uniform texture2D prev_position; // last frame's G-
 layout(set = 1, binding = 3) uniform texture2D prev_normal;   // last frame's G-buffer normal
 
 // Lane k's resources at bindings 8 + 8k ...: last frame's history (rgb value, a = estimates),
-// this frame's, the state, the counters, last frame's moments and this frame's.
+// this frame's, the state, the counters, last frame's moments and this frame's, last frame's
+// magnification and this frame's (lane_state).
 #define LANE_RESOURCES(k)                                                                      \
     layout(set = 1, binding = 8 * k + 8) uniform texture2D history_prev_##k;                   \
     layout(set = 1, binding = 8 * k + 9, rgba32f) uniform writeonly image2D history_cur_##k;   \
@@ -35,7 +36,9 @@ layout(set = 1, binding = 3) uniform texture2D prev_normal;   // last frame's G-
         COUNTERS_MEMBERS                                                                       \
     } counters_##k;                                                                            \
     layout(set = 1, binding = 8 * k + 12) uniform texture2D moments_prev_##k;                  \
-    layout(set = 1, binding = 8 * k + 13, rgba32f) uniform writeonly image2D moments_cur_##k;
+    layout(set = 1, binding = 8 * k + 13, rgba32f) uniform writeonly image2D moments_cur_##k;  \
+    layout(set = 1, binding = 8 * k + 14) uniform texture2D magnification_prev_##k;            \
+    layout(set = 1, binding = 8 * k + 15, r32f) uniform writeonly image2D magnification_cur_##k;
 
 LANE_RESOURCES(0)
 #if LANES > 1
@@ -70,8 +73,31 @@ struct Reprojected {
     ivec2 nearest;
     ivec2 base;    // lower-left of the four
     vec2 w;        // bilinear weights
+    float stretch; // area of the surface under last frame's pixel over this frame's (> 1: magnified)
 };
 
+// Pixel footprint on the surface at p (normal n) seen from `eye`, up to the lens factor (the
+// same each frame): distance over |cos| of the view angle, the cosine floored at 0.1 as in eq
+// 3's threshold.
+float surface_footprint(vec3 p, vec3 n, vec3 eye) {
+    vec3 to_eye = eye - p;
+    float dist = length(to_eye);
+    return dist / max(abs(dot(n, to_eye)) / max(dist, 1e-30), 0.1);
+}
+
+// Magnified histories lose estimates. When the eye turns a surface towards itself or comes
+// closer, last frame's pixels each covered more of it than this frame's do: a converged value
+// is then the mean of fewer patterns per pixel of surface, interpolated between texels that
+// lie further apart on it. Without this, a surface first seen edge-on (eq 3's threshold grows
+// as 1 / cos, so its few grazing pixels pass the test) kept their values, stretched over the
+// many pixels it covers later, as converged: most of the cached orbit's error on box:bunny
+// (docs/results/lavapipe-orbit-lag-2026-12-02). Each lane carries the area magnification of
+// its history since its counts were last scaled (the magnification image, >= 1; minification
+// pays it back); past MAGNIFICATION_LIMIT the counts are divided by it and it restarts at 1, so
+// the region accumulates fresh patterns again. Carried rather than applied every frame:
+// counts are whole numbers (they index patterns), and a camera step of a fraction of a pixel
+// must not cost an estimate anywhere.
+const float MAGNIFICATION_LIMIT = 1.1;
 // Work blocks (quadrants of the 16x16 group) that hold pixels needing work, and the pixels
 // with no history, per lane.
 shared uint quadrant_mask[LANES];
@@ -97,6 +123,7 @@ Reprojected reproject(ivec2 pixel) {
     r.nearest = pixel;
     r.base = pixel;
     r.w = vec2(0.0);
+    r.stretch = 1.0;
     vec4 position = texelFetch(g_position, pixel, 0);
     if (position.w == 0.0) return r;
     r.geometry = true;
@@ -110,6 +137,10 @@ Reprojected reproject(ivec2 pixel) {
     vec3 n = texelFetch(g_normal, pixel, 0).xyz;
     float eps = disocclusion_epsilon(p, n);
     r.found = tap_valid(r.nearest, p, n, eps); // eqs 2-3 on the nearest texel
+    float now = surface_footprint(p, n, frame.camera_pos);
+    float before = surface_footprint(p, n, frame.prev_camera_pos);
+    // Footprints are positive (distance > 0 past eq 1's w > 0 test); the ratio is finite.
+    r.stretch = now > 0.0 ? (before / now) * (before / now) : 1.0;
     if (!r.found || frame.camera_static != 0u) return r;
     vec2 g = f - 0.5;
     r.base = ivec2(floor(g)); // f is clamped to [-1, size + 1]: defined conversion
@@ -158,13 +189,18 @@ bool in_rect(ivec2 pixel, uvec4 rect) {
     return all(greaterThanEqual(uvec2(pixel), rect.xy)) && all(lessThan(uvec2(pixel), rect.zw));
 }
 
-// One lane's history, moments and state before the refresh tile; `lane` is (active,
-// history_valid, block shift, 0). The history's pattern count (a) and the moments' count of
-// estimates in the gated mean (z) are the blend's (blend_count).
-uint lane_state(Reprojected r, uvec4 lane, texture2D history_prev,
-                texture2D moments_prev, out vec4 history, out vec4 moments) {
+// One lane's history, moments, magnification and state; `lane` is (active, history_valid,
+// block shift, 0). The history's pattern count (a) and the moments' count of estimates in the
+// gated mean (z) are the blend's (blend_count), divided by the magnification once it passes
+// MAGNIFICATION_LIMIT (at least one estimate stays: the value is not thrown away). A pixel in
+// the refresh tile (`refreshed`) is recomputed at its footprint this frame: its magnification
+// restarts.
+uint lane_state(Reprojected r, uvec4 lane, bool refreshed, texture2D history_prev,
+                texture2D moments_prev, texture2D magnification_prev, out vec4 history,
+                out vec4 moments, out float magnification) {
     history = vec4(0.0);
     moments = vec4(0.0);
+    magnification = 1.0;
     if (!r.geometry) return STATE_BACKGROUND;
     uint state = STATE_NEW;
     if (lane.y != 0u && r.found) {
@@ -173,8 +209,15 @@ uint lane_state(Reprojected r, uvec4 lane, texture2D history_prev,
         history.a = counted;
         moments = resample(r, moments_prev, 2, counted);
         moments.z = counted;
+        magnification = max(resample(r, magnification_prev, 0, counted).r * r.stretch, 1.0);
+        if (magnification > MAGNIFICATION_LIMIT) {
+            history.a = max(floor(history.a / magnification), min(history.a, 1.0));
+            moments.z = max(floor(moments.z / magnification), min(moments.z, 1.0));
+            magnification = 1.0;
+        }
         state = history.a >= float(frame.rotation_limit) ? STATE_CONVERGED : STATE_ACCUMULATING;
     }
+    if (refreshed) magnification = 1.0;
     return state;
 }
 
@@ -186,12 +229,15 @@ bool needs_work(uint state) {
 #define LANE_PIXEL(k)                                                                          \
     if (lanes.lane_##k.x != 0u) {                                                              \
         vec4 history, moments;                                                                 \
-        uint state = lane_state(r, lanes.lane_##k, history_prev_##k, moments_prev_##k,         \
-                                history, moments);                                             \
+        float magnification;                                                                   \
+        uint state = lane_state(r, lanes.lane_##k, in_rect(pixel, lanes.refresh_rect_##k),     \
+                                history_prev_##k, moments_prev_##k, magnification_prev_##k,    \
+                                history, moments, magnification);                              \
         if (state == STATE_NEW) atomicAdd(group_disoccluded[k], 1u);                           \
         if (r.geometry && in_rect(pixel, lanes.refresh_rect_##k)) state = STATE_REFRESH;       \
         imageStore(history_cur_##k, pixel, history);                                           \
         imageStore(moments_cur_##k, pixel, moments);                                           \
+        imageStore(magnification_cur_##k, pixel, vec4(magnification));                        \
         imageStore(state_out_##k, pixel, uvec4(state));                                        \
         if (needs_work(state)) atomicOr(quadrant_mask[k], quadrant_bit);                       \
     }

@@ -931,3 +931,86 @@ fn young_counts_do_not_spread_along_the_flow() {
     );
     common::assert_clean(&ctx);
 }
+
+/// A history seen from further away or at a grazing angle holds fewer patterns per pixel of
+/// the surface than the same surface seen closer or head-on. The reprojection carries each
+/// history's area magnification (reproject.comp) and, past MAGNIFICATION_LIMIT, divides its
+/// counts by it, so magnified pixels accumulate again instead of keeping values stretched
+/// from a few pixels; small steps only add to the carried magnification and cost nothing.
+/// The eye swings from 70 degrees off a wall's normal towards it in three steps; after each
+/// frame every pixel's count is checked against the rule simulated on the CPU at its surface
+/// point.
+#[test]
+fn magnified_histories_lose_estimates() {
+    const MAGNIFICATION_LIMIT: f32 = 1.1; // reproject.comp
+    let ctx = common::context();
+    let size = 64u32;
+    let limit = TemporalConfig::default().rotation_limit as f32;
+    // The wall (z = 0, facing +z) from 4 m, `polar` degrees off its normal.
+    let eye = |polar: f32| {
+        let p = polar.to_radians();
+        Vec3::new(p.sin(), 0.0, p.cos()) * 4.0
+    };
+    let mut r = renderer(
+        &ctx,
+        frontal_wall(4.0, 30.0, None),
+        config(size, no_refresh(), AoConfig::default()),
+    );
+    let mut camera = r.scene.camera;
+    camera.position = eye(70.0);
+    for _ in 0..40 {
+        r.render_frame(&camera).unwrap();
+    }
+    // reproject.comp's footprint: distance over |cos| of the view angle, floored at 0.1.
+    let footprint = |p: Vec3, e: Vec3| {
+        let d = (e - p).length();
+        d / ((e - p).z.abs() / d).max(0.1)
+    };
+    let steps = [69.6, 69.2, 67.0];
+    let mut seen = Vec::new(); // every eye so far, for the simulation
+    seen.push(eye(70.0));
+    for (i, polar) in steps.into_iter().enumerate() {
+        camera.position = eye(polar);
+        seen.push(camera.position);
+        r.render_frame(&camera).unwrap();
+        let ao = r.read(Target::Ao).unwrap();
+        let pos = r.read(Target::GPosition).unwrap();
+        let (mut compared, mut agree, mut shrunk) = (0u32, 0u32, 0u32);
+        for y in 0..size {
+            for x in 0..size {
+                let g = pos.texel(x, y);
+                let n = ao.texel(x, y)[3];
+                if g[3] == 0.0 || n <= 1.0 {
+                    continue; // background, or not seen before the steps
+                }
+                // The rule along the eyes seen, at this surface point.
+                let p = Vec3::new(g[0], g[1], g[2]);
+                let (mut count, mut m) = (limit, 1.0f32);
+                for e in seen.windows(2) {
+                    m = (m * (footprint(p, e[0]) / footprint(p, e[1])).powi(2)).max(1.0);
+                    if m > MAGNIFICATION_LIMIT {
+                        count = (count / m).floor().max(1.0);
+                        m = 1.0;
+                    }
+                    if count < limit {
+                        count += 1.0; // accumulating: the frame's estimate
+                    }
+                }
+                compared += 1;
+                shrunk += (count < limit) as u32;
+                agree += (n == count) as u32;
+            }
+        }
+        eprintln!("step {i}: {compared} compared, {agree} agree, {shrunk} with fewer counts");
+        assert!(compared > 1000, "{compared}");
+        assert!(agree * 100 >= compared * 97, "step {i}: {agree} of {compared} agree");
+        if i == 0 {
+            assert!(shrunk * 100 < compared, "a small step cost {shrunk} pixels estimates");
+        }
+        if i == steps.len() - 1 {
+            assert!(shrunk * 2 > compared, "only {shrunk} of {compared} magnified");
+        }
+    }
+    drop(r);
+    common::assert_clean(&ctx);
+}

@@ -45,6 +45,8 @@ impl Resolve for EffectResources<'_> {
             Slot::HistoryPrev => self.temporal.map(|e| e.history.previous(parity)),
             Slot::Moments => self.temporal.map(|e| e.moments.current(parity)),
             Slot::MomentsPrev => self.temporal.map(|e| e.moments.previous(parity)),
+            Slot::Magnification => self.temporal.map(|e| e.magnification.current(parity)),
+            Slot::MagnificationPrev => self.temporal.map(|e| e.magnification.previous(parity)),
             Slot::State => self.temporal.map(|e| &e.state),
             Slot::Own(i) => self.own.get(i as usize).map(|pair| pair[parity]),
             _ => shared(self.targets, slot, parity),

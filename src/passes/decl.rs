@@ -40,6 +40,11 @@ pub enum Slot {
     Moments,
     /// Last frame's second-moment history.
     MomentsPrev,
+    /// The area magnification of the effect's history since its counts were last scaled
+    /// (written by the reprojection, which alone reads it; shaders/reproject.comp).
+    Magnification,
+    /// Last frame's magnification.
+    MagnificationPrev,
     /// The effect's per-pixel reprojection state.
     State,
     /// The effect's counters and work lists (indirect dispatch arguments first).

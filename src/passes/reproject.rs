@@ -27,7 +27,7 @@ const SHARED: &[Bind] = &[
 ];
 
 /// Lane `k`'s resources, at bindings 8 + 8k onwards (shaders/reproject.comp's LANE_RESOURCES).
-const fn lane_binds(k: u32) -> [Bind; 6] {
+const fn lane_binds(k: u32) -> [Bind; 8] {
     let b = 8 + 8 * k;
     [
         Bind::new(b, Slot::HistoryPrev, Use::Sampled),
@@ -37,10 +37,12 @@ const fn lane_binds(k: u32) -> [Bind; 6] {
         Bind::new(b + 3, Slot::Counters, Use::BufferReadWrite),
         Bind::new(b + 4, Slot::MomentsPrev, Use::Sampled),
         Bind::new(b + 5, Slot::Moments, Use::StorageWrite),
+        Bind::new(b + 6, Slot::MagnificationPrev, Use::Sampled),
+        Bind::new(b + 7, Slot::Magnification, Use::StorageWrite),
     ]
 }
 
-const LANE_BINDS: [[Bind; 6]; MAX_LANES] = [lane_binds(0), lane_binds(1), lane_binds(2)];
+const LANE_BINDS: [[Bind; 8]; MAX_LANES] = [lane_binds(0), lane_binds(1), lane_binds(2)];
 
 fn module(lanes: usize) -> &'static ShaderModuleInfo {
     match lanes {

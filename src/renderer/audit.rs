@@ -30,6 +30,8 @@ pub enum AuditKind {
     History,
     /// A temporal effect's moments (mean squared luminance, gate flag, estimates in the mean).
     Moments,
+    /// A temporal effect's history magnification (r, >= 1).
+    Magnification,
 }
 
 /// One image's audit.
@@ -134,6 +136,13 @@ impl Renderer {
                 image: t.moments.current(parity),
                 channels: 4,
                 signed_mask: MOMENTS_SIGNED,
+            });
+            list.push(AuditRequest {
+                name: format!("{name}.magnification"),
+                kind: AuditKind::Magnification,
+                image: t.magnification.current(parity),
+                channels: 1,
+                signed_mask: 0,
             });
         }
         for target in Target::ALL {

@@ -4,7 +4,9 @@
 
 use super::config::{Refresh, RenderConfig, FRAMES_IN_FLIGHT};
 use super::counters::{self, Counter, CounterReadback};
-use super::targets::{PingPong, HISTORY_FORMAT, MOMENTS_FORMAT, STATE_FORMAT};
+use super::targets::{
+    PingPong, HISTORY_FORMAT, MAGNIFICATION_FORMAT, MOMENTS_FORMAT, STATE_FORMAT,
+};
 use super::temporal::{budget_tile, RefreshSchedule, Sampling};
 use crate::error::Result;
 use crate::shaders::EffectPush;
@@ -90,6 +92,9 @@ pub struct TemporalEffect {
     /// r = mean squared luminance of the estimates, g = pending gate crossing, b = estimates in
     /// the gated mean since its last restart.
     pub moments: PingPong,
+    /// r = area magnification of the history since its counts were last scaled (>= 1; the
+    /// reprojection's alone, shaders/reproject.comp).
+    pub magnification: PingPong,
     pub state: Image,
     pub counters: Buffer,
     pub max_blocks: u32,
@@ -142,6 +147,10 @@ impl TemporalEffect {
             moments: PingPong::new([
                 image("moments.0", MOMENTS_FORMAT)?,
                 image("moments.1", MOMENTS_FORMAT)?,
+            ]),
+            magnification: PingPong::new([
+                image("magnification.0", MAGNIFICATION_FORMAT)?,
+                image("magnification.1", MAGNIFICATION_FORMAT)?,
             ]),
             state: image("state", STATE_FORMAT)?,
             counters: counters::create_gpu_buffer(

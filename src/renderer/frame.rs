@@ -22,6 +22,8 @@ pub struct FrameInputs<'a> {
     pub camera: &'a Camera,
     /// Last frame's camera view-projection (eq 1); equal to this frame's on the first frame.
     pub prev_view_proj: Mat4,
+    /// Last frame's eye; this frame's on the first frame.
+    pub prev_camera_pos: Vec3,
     pub light: &'a SpotLight,
     pub ambient: Vec3,
     pub frame: u64,
@@ -49,6 +51,7 @@ pub fn frame_block(config: &RenderConfig, f: &FrameInputs<'_>) -> FrameBlock {
         prev_view_proj: f.prev_view_proj.to_cols_array(),
         light_view_proj: light.view_proj().to_cols_array(),
         camera_pos: f.camera.position.to_array(),
+        prev_camera_pos: f.prev_camera_pos.to_array(),
         tan_half_fov: (0.5 * f.camera.vfov_deg).to_radians().tan(),
         light_pos: light.position.to_array(),
         light_cos_outer: light.outer_deg.to_radians().cos(),
@@ -131,6 +134,7 @@ mod tests {
                 &FrameInputs {
                     camera: &scene.camera,
                     prev_view_proj,
+                    prev_camera_pos: scene.camera.position,
                     light: &scene.light,
                     ambient: scene.ambient,
                     frame: 1,

@@ -75,6 +75,8 @@ pub struct Renderer {
     rsm_light: Option<SpotLight>,
     /// Last frame's camera view-projection, when the histories hold last frame's data.
     history: Option<Mat4>,
+    /// Last frame's eye (with `history`): the history's pixel footprints on each surface.
+    history_eye: glam::Vec3,
     /// The last frame read last frame's G-buffer (its history was valid): until then the
     /// G-buffer's other half holds nothing of this size and view (`audit` leaves it out).
     last_frame_reused: bool,
@@ -147,6 +149,7 @@ impl Renderer {
             frame_index: 0,
             rsm_light: None,
             history: None,
+            history_eye: glam::Vec3::ZERO,
             last_frame_reused: false,
             audit: None,
             last_pass: [None; FRAMES_IN_FLIGHT],
@@ -304,6 +307,7 @@ impl Renderer {
         }
         self.last_frame_reused = self.history.is_some();
         self.history = Some(view_proj);
+        self.history_eye = camera.position;
         self.frame_index += 1;
         Ok(previous)
     }
@@ -341,6 +345,11 @@ impl Renderer {
             &FrameInputs {
                 camera,
                 prev_view_proj: self.history.unwrap_or(view_proj),
+                prev_camera_pos: if self.history.is_some() {
+                    self.history_eye
+                } else {
+                    camera.position
+                },
                 light: &self.scene.light,
                 ambient: self.scene.ambient,
                 frame: self.frame_index,
