@@ -27,7 +27,7 @@ layout(set = 1, binding = 3) uniform texture2D prev_normal;   // last frame's G-
 
 // Lane k's resources at bindings 8 + 8k ...: last frame's history (rgb value, a = estimates),
 // this frame's, the state, the counters, last frame's moments and this frame's, last frame's
-// magnification and this frame's (lane_state).
+// registration and this frame's (lane_state).
 #define LANE_RESOURCES(k)                                                                      \
     layout(set = 1, binding = 8 * k + 8) uniform texture2D history_prev_##k;                   \
     layout(set = 1, binding = 8 * k + 9, rgba32f) uniform writeonly image2D history_cur_##k;   \
@@ -37,8 +37,8 @@ layout(set = 1, binding = 3) uniform texture2D prev_normal;   // last frame's G-
     } counters_##k;                                                                            \
     layout(set = 1, binding = 8 * k + 12) uniform texture2D moments_prev_##k;                  \
     layout(set = 1, binding = 8 * k + 13, rgba32f) uniform writeonly image2D moments_cur_##k;  \
-    layout(set = 1, binding = 8 * k + 14) uniform texture2D magnification_prev_##k;            \
-    layout(set = 1, binding = 8 * k + 15, r32f) uniform writeonly image2D magnification_cur_##k;
+    layout(set = 1, binding = 8 * k + 14) uniform texture2D registration_prev_##k;             \
+    layout(set = 1, binding = 8 * k + 15, rgba32f) uniform writeonly image2D registration_cur_##k;
 
 LANE_RESOURCES(0)
 #if LANES > 1
@@ -74,6 +74,7 @@ struct Reprojected {
     ivec2 base;    // lower-left of the four
     vec2 w;        // bilinear weights
     float stretch; // area of the surface under last frame's pixel over this frame's (> 1: magnified)
+    vec3 p;        // the pixel's surface point
 };
 
 // Pixel footprint on the surface at p (normal n) seen from `eye`, up to the lens factor (the
@@ -85,19 +86,40 @@ float surface_footprint(vec3 p, vec3 n, vec3 eye) {
     return dist / max(abs(dot(n, to_eye)) / max(dist, 1e-30), 0.1);
 }
 
-// Magnified histories lose estimates. When the eye turns a surface towards itself or comes
-// closer, last frame's pixels each covered more of it than this frame's do: a converged value
-// is then the mean of fewer patterns per pixel of surface, interpolated between texels that
-// lie further apart on it. Without this, a surface first seen edge-on (eq 3's threshold grows
-// as 1 / cos, so its few grazing pixels pass the test) kept their values, stretched over the
-// many pixels it covers later, as converged: most of the cached orbit's error on box:bunny
-// (docs/results/lavapipe-orbit-lag-2026-12-02). Each lane carries the area magnification of
-// its history since its counts were last scaled (the magnification image, >= 1; minification
-// pays it back); past MAGNIFICATION_LIMIT the counts are divided by it and it restarts at 1, so
-// the region accumulates fresh patterns again. Carried rather than applied every frame:
-// counts are whole numbers (they index patterns), and a camera step of a fraction of a pixel
-// must not cost an estimate anywhere.
+// A history's value is trusted only where it still belongs: each lane carries, per pixel, its
+// registration (xyz: the surface point the value was estimated for, resampled with the value;
+// w: the history's area magnification since its counts were last scaled), and loses
+// estimates where either has drifted:
+// - Magnification. When the eye turns a surface towards itself or comes closer, last frame's
+//   pixels each covered more of it than this frame's do: a converged value is then the mean
+//   of fewer patterns per pixel of surface, interpolated between texels that lie further apart
+//   on it. Without this, a surface first seen edge-on (eq 3's threshold grows as 1 / cos, so
+//   its few grazing pixels pass the test) kept their values, stretched over the many pixels it
+//   covers later, as converged (docs/results/lavapipe-orbit-lag-2026-12-02). The per-frame
+//   area ratios multiply (minification pays back, down to 1); past MAGNIFICATION_LIMIT the
+//   counts are divided by the product and it restarts at 1. Carried rather than applied each
+//   frame: counts are whole numbers (they index patterns), and a camera step of a fraction of
+//   a pixel must not cost an estimate anywhere.
+// - Displacement. Resampling in screen space is exact for a plane but not for a curved
+//   surface, least of all near a silhouette, where the surface point varies fastest across
+//   the screen: frame after frame the value drifts from the point it belongs to (on the
+//   box:bunny orbit by one to several pixels over most of the model, and the indirect light's
+//   gradients turned into an embossed error). The carried point, projected with this frame's
+//   camera, lands `e` pixels from the pixel's centre; past DISPLACEMENT_LIMIT the counts are
+//   divided by 2e, so that the fresh estimates that make the count whole again leave at most
+//   half a pixel of it, and the point restarts at the pixel's.
+// An accumulating pixel merges one fresh estimate at its own point this frame: its carried
+// point moves there by the running mean's weight.
 const float MAGNIFICATION_LIMIT = 1.1;
+const float DISPLACEMENT_LIMIT = 1.0; // pixels
+
+// Where world point q lies on this frame's screen, in pixels (far off screen for a point
+// behind the eye).
+vec2 screen_of(vec3 q) {
+    vec4 c = frame.view_proj * vec4(q, 1.0);
+    if (!(c.w > 0.0)) return vec2(-1.0e9);
+    return (c.xy / c.w * 0.5 + 0.5) * vec2(frame.size);
+}
 // Work blocks (quadrants of the 16x16 group) that hold pixels needing work, and the pixels
 // with no history, per lane.
 shared uint quadrant_mask[LANES];
@@ -124,10 +146,12 @@ Reprojected reproject(ivec2 pixel) {
     r.base = pixel;
     r.w = vec2(0.0);
     r.stretch = 1.0;
+    r.p = vec3(0.0);
     vec4 position = texelFetch(g_position, pixel, 0);
     if (position.w == 0.0) return r;
     r.geometry = true;
     vec3 p = position.xyz;
+    r.p = p;
     vec4 clip = frame.prev_view_proj * vec4(p, 1.0); // eq 1
     if (!(clip.w > 0.0)) return r;
     vec2 f = (clip.xy / clip.w * 0.5 + 0.5) * vec2(frame.size);
@@ -189,18 +213,18 @@ bool in_rect(ivec2 pixel, uvec4 rect) {
     return all(greaterThanEqual(uvec2(pixel), rect.xy)) && all(lessThan(uvec2(pixel), rect.zw));
 }
 
-// One lane's history, moments, magnification and state; `lane` is (active, history_valid,
+// One lane's history, moments, registration and state; `lane` is (active, history_valid,
 // block shift, 0). The history's pattern count (a) and the moments' count of estimates in the
-// gated mean (z) are the blend's (blend_count), divided by the magnification once it passes
-// MAGNIFICATION_LIMIT (at least one estimate stays: the value is not thrown away). A pixel in
-// the refresh tile (`refreshed`) is recomputed at its footprint this frame: its magnification
-// restarts.
+// gated mean (z) are the blend's (blend_count), divided where the registration says the value
+// has been magnified or displaced (at least one estimate stays: the value is not thrown
+// away). A pixel in the refresh tile (`refreshed`) is recomputed at its own point this frame,
+// as is a new one: their registration restarts.
 uint lane_state(Reprojected r, uvec4 lane, bool refreshed, texture2D history_prev,
-                texture2D moments_prev, texture2D magnification_prev, out vec4 history,
-                out vec4 moments, out float magnification) {
+                texture2D moments_prev, texture2D registration_prev, out vec4 history,
+                out vec4 moments, out vec4 registration) {
     history = vec4(0.0);
     moments = vec4(0.0);
-    magnification = 1.0;
+    registration = vec4(r.p, 1.0);
     if (!r.geometry) return STATE_BACKGROUND;
     uint state = STATE_NEW;
     if (lane.y != 0u && r.found) {
@@ -209,15 +233,28 @@ uint lane_state(Reprojected r, uvec4 lane, bool refreshed, texture2D history_pre
         history.a = counted;
         moments = resample(r, moments_prev, 2, counted);
         moments.z = counted;
-        magnification = max(resample(r, magnification_prev, 0, counted).r * r.stretch, 1.0);
+        registration = resample(r, registration_prev, 3, counted);
+        float magnification = max(registration.w * r.stretch, 1.0);
+        float loss = 1.0;
         if (magnification > MAGNIFICATION_LIMIT) {
-            history.a = max(floor(history.a / magnification), min(history.a, 1.0));
-            moments.z = max(floor(moments.z / magnification), min(moments.z, 1.0));
+            loss = magnification;
             magnification = 1.0;
         }
+        float e = distance(screen_of(registration.xyz), vec2(gl_GlobalInvocationID.xy) + 0.5);
+        if (e > DISPLACEMENT_LIMIT) {
+            loss *= 2.0 * e;
+            registration.xyz = r.p;
+        }
+        if (loss > 1.0) {
+            history.a = max(floor(history.a / loss), min(history.a, 1.0));
+            moments.z = max(floor(moments.z / loss), min(moments.z, 1.0));
+        }
+        registration.w = magnification;
         state = history.a >= float(frame.rotation_limit) ? STATE_CONVERGED : STATE_ACCUMULATING;
+        if (state == STATE_ACCUMULATING)
+            registration.xyz = mix(registration.xyz, r.p, 1.0 / (history.a + 1.0));
     }
-    if (refreshed) magnification = 1.0;
+    if (refreshed) registration = vec4(r.p, 1.0);
     return state;
 }
 
@@ -229,15 +266,15 @@ bool needs_work(uint state) {
 #define LANE_PIXEL(k)                                                                          \
     if (lanes.lane_##k.x != 0u) {                                                              \
         vec4 history, moments;                                                                 \
-        float magnification;                                                                   \
+        vec4 registration;                                                                     \
         uint state = lane_state(r, lanes.lane_##k, in_rect(pixel, lanes.refresh_rect_##k),     \
-                                history_prev_##k, moments_prev_##k, magnification_prev_##k,    \
-                                history, moments, magnification);                              \
+                                history_prev_##k, moments_prev_##k, registration_prev_##k,     \
+                                history, moments, registration);                               \
         if (state == STATE_NEW) atomicAdd(group_disoccluded[k], 1u);                           \
         if (r.geometry && in_rect(pixel, lanes.refresh_rect_##k)) state = STATE_REFRESH;       \
         imageStore(history_cur_##k, pixel, history);                                           \
         imageStore(moments_cur_##k, pixel, moments);                                           \
-        imageStore(magnification_cur_##k, pixel, vec4(magnification));                        \
+        imageStore(registration_cur_##k, pixel, registration);                                 \
         imageStore(state_out_##k, pixel, uvec4(state));                                        \
         if (needs_work(state)) atomicOr(quadrant_mask[k], quadrant_bit);                       \
     }

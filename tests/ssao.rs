@@ -1003,12 +1003,21 @@ fn magnified_histories_lose_estimates() {
         }
         eprintln!("step {i}: {compared} compared, {agree} agree, {shrunk} with fewer counts");
         assert!(compared > 1000, "{compared}");
-        assert!(agree * 100 >= compared * 97, "step {i}: {agree} of {compared} agree");
+        assert!(
+            agree * 100 >= compared * 97,
+            "step {i}: {agree} of {compared} agree"
+        );
         if i == 0 {
-            assert!(shrunk * 100 < compared, "a small step cost {shrunk} pixels estimates");
+            assert!(
+                shrunk * 100 < compared,
+                "a small step cost {shrunk} pixels estimates"
+            );
         }
         if i == steps.len() - 1 {
-            assert!(shrunk * 2 > compared, "only {shrunk} of {compared} magnified");
+            assert!(
+                shrunk * 2 > compared,
+                "only {shrunk} of {compared} magnified"
+            );
         }
     }
     drop(r);

@@ -106,7 +106,7 @@ fn audit_of_a_frame_matches_the_read_back_targets() {
     for (name, kind) in [
         ("ao.history", AuditKind::History),
         ("ao.moments", AuditKind::Moments),
-        ("ao.magnification", AuditKind::Magnification),
+        ("ao.registration", AuditKind::Registration),
         ("gbuffer_position", AuditKind::Target),
         ("gbuffer_normal", AuditKind::Target),
         ("rsm_flux", AuditKind::Target),

@@ -40,11 +40,12 @@ pub enum Slot {
     Moments,
     /// Last frame's second-moment history.
     MomentsPrev,
-    /// The area magnification of the effect's history since its counts were last scaled
-    /// (written by the reprojection, which alone reads it; shaders/reproject.comp).
-    Magnification,
-    /// Last frame's magnification.
-    MagnificationPrev,
+    /// The registration of the effect's history (the surface point each value belongs to, and
+    /// its magnification since the counts were last scaled), written and read by the
+    /// reprojection alone (shaders/reproject.comp).
+    Registration,
+    /// Last frame's registration.
+    RegistrationPrev,
     /// The effect's per-pixel reprojection state.
     State,
     /// The effect's counters and work lists (indirect dispatch arguments first).

@@ -37,8 +37,8 @@ const fn lane_binds(k: u32) -> [Bind; 8] {
         Bind::new(b + 3, Slot::Counters, Use::BufferReadWrite),
         Bind::new(b + 4, Slot::MomentsPrev, Use::Sampled),
         Bind::new(b + 5, Slot::Moments, Use::StorageWrite),
-        Bind::new(b + 6, Slot::MagnificationPrev, Use::Sampled),
-        Bind::new(b + 7, Slot::Magnification, Use::StorageWrite),
+        Bind::new(b + 6, Slot::RegistrationPrev, Use::Sampled),
+        Bind::new(b + 7, Slot::Registration, Use::StorageWrite),
     ]
 }
 

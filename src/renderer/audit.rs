@@ -30,8 +30,8 @@ pub enum AuditKind {
     History,
     /// A temporal effect's moments (mean squared luminance, gate flag, estimates in the mean).
     Moments,
-    /// A temporal effect's history magnification (r, >= 1).
-    Magnification,
+    /// A temporal effect's history registration (surface point, magnification >= 1).
+    Registration,
 }
 
 /// One image's audit.
@@ -96,6 +96,8 @@ fn signed_channels(target: Target) -> u32 {
 
 /// The moments' g is the side of a pending gate crossing, -1, 0 or +1.
 const MOMENTS_SIGNED: u32 = 0b0010;
+/// A registration's point is a world position (any sign); its magnification is not.
+const POSITION_SIGNED: u32 = 0b0111;
 
 impl Renderer {
     /// Audit every float target and every history and moments image of the last rendered
@@ -138,11 +140,11 @@ impl Renderer {
                 signed_mask: MOMENTS_SIGNED,
             });
             list.push(AuditRequest {
-                name: format!("{name}.magnification"),
-                kind: AuditKind::Magnification,
-                image: t.magnification.current(parity),
-                channels: 1,
-                signed_mask: 0,
+                name: format!("{name}.registration"),
+                kind: AuditKind::Registration,
+                image: t.registration.current(parity),
+                channels: 4,
+                signed_mask: POSITION_SIGNED,
             });
         }
         for target in Target::ALL {

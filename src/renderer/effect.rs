@@ -4,9 +4,7 @@
 
 use super::config::{Refresh, RenderConfig, FRAMES_IN_FLIGHT};
 use super::counters::{self, Counter, CounterReadback};
-use super::targets::{
-    PingPong, HISTORY_FORMAT, MAGNIFICATION_FORMAT, MOMENTS_FORMAT, STATE_FORMAT,
-};
+use super::targets::{PingPong, HISTORY_FORMAT, MOMENTS_FORMAT, REGISTRATION_FORMAT, STATE_FORMAT};
 use super::temporal::{budget_tile, RefreshSchedule, Sampling};
 use crate::error::Result;
 use crate::shaders::EffectPush;
@@ -92,9 +90,10 @@ pub struct TemporalEffect {
     /// r = mean squared luminance of the estimates, g = pending gate crossing, b = estimates in
     /// the gated mean since its last restart.
     pub moments: PingPong,
-    /// r = area magnification of the history since its counts were last scaled (>= 1; the
-    /// reprojection's alone, shaders/reproject.comp).
-    pub magnification: PingPong,
+    /// rgb = the surface point each history value belongs to, a = the history's area
+    /// magnification since its counts were last scaled (>= 1); the reprojection's alone
+    /// (shaders/reproject.comp).
+    pub registration: PingPong,
     pub state: Image,
     pub counters: Buffer,
     pub max_blocks: u32,
@@ -148,9 +147,9 @@ impl TemporalEffect {
                 image("moments.0", MOMENTS_FORMAT)?,
                 image("moments.1", MOMENTS_FORMAT)?,
             ]),
-            magnification: PingPong::new([
-                image("magnification.0", MAGNIFICATION_FORMAT)?,
-                image("magnification.1", MAGNIFICATION_FORMAT)?,
+            registration: PingPong::new([
+                image("registration.0", REGISTRATION_FORMAT)?,
+                image("registration.1", REGISTRATION_FORMAT)?,
             ]),
             state: image("state", STATE_FORMAT)?,
             counters: counters::create_gpu_buffer(

@@ -31,8 +31,9 @@ pub const HISTORY_FORMAT: vk::Format = vk::Format::R32G32B32A32_SFLOAT;
 /// rgba32f rather than rg32f: a storage format every Vulkan device supports without
 /// shaderStorageImageExtendedFormats.
 pub const MOMENTS_FORMAT: vk::Format = vk::Format::R32G32B32A32_SFLOAT;
-/// A history's area magnification since its counts were last scaled (r).
-pub const MAGNIFICATION_FORMAT: vk::Format = vk::Format::R32_SFLOAT;
+/// A history's registration: rgb = the surface point each value belongs to (world units, fp32
+/// like the G-buffer position), a = area magnification since the counts were last scaled.
+pub const REGISTRATION_FORMAT: vk::Format = vk::Format::R32G32B32A32_SFLOAT;
 pub const STATE_FORMAT: vk::Format = vk::Format::R32_UINT;
 pub const OUTPUT_FORMAT: vk::Format = vk::Format::R8G8B8A8_UNORM;
 
