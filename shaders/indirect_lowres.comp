@@ -27,6 +27,25 @@ layout(set = 1, binding = 7, r32ui) uniform readonly uimage2D state_in;
 
 shared uint group_computed;
 
+// A low-resolution sample is read only by the full-resolution pixels within one pixel of its
+// texel (indirect_upsample.comp's bilinear taps), so it is gathered only where one of those is
+// new or accumulating: a listed block whose pixels needing work are few (a magnified or
+// displaced region, a disocclusion's edge) does not pay for its whole 9x9 slot. With
+// interleaving every sample of the tile takes part in its neighbours' reconstruction: all
+// are gathered.
+bool sample_needed(ivec2 full) {
+    if (frame.vpl_interleave > 1u) return true;
+    for (int dy = -1; dy <= 1; ++dy) {
+        for (int dx = -1; dx <= 1; ++dx) {
+            ivec2 q = full + ivec2(dx, dy);
+            if (outside_frame(q)) continue;
+            uint state = imageLoad(state_in, q).r;
+            if (state == STATE_NEW || state == STATE_ACCUMULATING) return true;
+        }
+    }
+    return false;
+}
+
 void main() {
     if (gl_LocalInvocationIndex == 0u) group_computed = 0u;
     barrier();
@@ -42,7 +61,7 @@ void main() {
     if (all(greaterThanEqual(low, ivec2(0))) && all(lessThan(low, low_size))) {
         ivec2 full = low * 2;
         vec4 position = texelFetch(g_position, full, 0);
-        if (position.w != 0.0) {
+        if (position.w != 0.0 && sample_needed(full)) {
             computed = true;
             p = position.xyz;
             n = texelFetch(g_normal, full, 0).xyz;

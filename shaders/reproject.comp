@@ -240,7 +240,11 @@ uint lane_state(Reprojected r, uvec4 lane, bool refreshed, texture2D history_pre
             loss = magnification;
             magnification = 1.0;
         }
-        float e = distance(screen_of(registration.xyz), vec2(gl_GlobalInvocationID.xy) + 0.5);
+        // A static camera reuses each texel as is (no drift), and its eq 1 is not evaluated:
+        // far from the origin the projection's rounding alone can move a point a pixel.
+        float e = frame.camera_static != 0u
+                      ? 0.0
+                      : distance(screen_of(registration.xyz), vec2(gl_GlobalInvocationID.xy) + 0.5);
         if (e > DISPLACEMENT_LIMIT) {
             loss *= 2.0 * e;
             registration.xyz = r.p;
