@@ -113,12 +113,12 @@ float surface_footprint(vec3 p, vec3 n, vec3 eye) {
 const float MAGNIFICATION_LIMIT = 1.1;
 const float DISPLACEMENT_LIMIT = 1.0; // pixels
 
-// Where world point q lies on this frame's screen, in pixels (far off screen for a point
-// behind the eye).
-vec2 screen_of(vec3 q) {
-    vec4 c = frame.view_proj * vec4(q, 1.0);
-    if (!(c.w > 0.0)) return vec2(-1.0e9);
-    return (c.xy / c.w * 0.5 + 0.5) * vec2(frame.size);
+// Where world point q lies on the screen of the camera `view_proj`, in pixels (eq 1 with last
+// frame's camera); false for a point behind the eye.
+bool to_screen(mat4 view_proj, vec3 q, out vec2 f) {
+    vec4 c = view_proj * vec4(q, 1.0);
+    f = c.w > 0.0 ? (c.xy / c.w * 0.5 + 0.5) * vec2(frame.size) : vec2(0.0);
+    return c.w > 0.0; // false for NaN too
 }
 // Work blocks (quadrants of the 16x16 group) that hold pixels needing work, and the pixels
 // with no history, per lane.
@@ -152,20 +152,19 @@ Reprojected reproject(ivec2 pixel) {
     r.geometry = true;
     vec3 p = position.xyz;
     r.p = p;
-    vec4 clip = frame.prev_view_proj * vec4(p, 1.0); // eq 1
-    if (!(clip.w > 0.0)) return r;
-    vec2 f = (clip.xy / clip.w * 0.5 + 0.5) * vec2(frame.size);
+    vec2 f;
+    if (!to_screen(frame.prev_view_proj, p, f)) return r; // eq 1
     if (frame.camera_static != 0u) f = vec2(pixel) + 0.5;
     r.nearest = texel_of(f, vec2(frame.size));
     f = clamp(f, vec2(-1.0), vec2(frame.size) + 1.0);
     vec3 n = texelFetch(g_normal, pixel, 0).xyz;
     float eps = disocclusion_epsilon(p, n);
     r.found = tap_valid(r.nearest, p, n, eps); // eqs 2-3 on the nearest texel
+    if (!r.found || frame.camera_static != 0u) return r; // an unmoved eye: stretch 1
     float now = surface_footprint(p, n, frame.camera_pos);
     float before = surface_footprint(p, n, frame.prev_camera_pos);
     // Footprints are positive (distance > 0 past eq 1's w > 0 test); the ratio is finite.
     r.stretch = now > 0.0 ? (before / now) * (before / now) : 1.0;
-    if (!r.found || frame.camera_static != 0u) return r;
     vec2 g = f - 0.5;
     r.base = ivec2(floor(g)); // f is clamped to [-1, size + 1]: defined conversion
     r.w = g - vec2(r.base);
@@ -241,10 +240,14 @@ uint lane_state(Reprojected r, uvec4 lane, bool refreshed, texture2D history_pre
             magnification = 1.0;
         }
         // A static camera reuses each texel as is (no drift), and its eq 1 is not evaluated:
-        // far from the origin the projection's rounding alone can move a point a pixel.
-        float e = frame.camera_static != 0u
-                      ? 0.0
-                      : distance(screen_of(registration.xyz), vec2(gl_GlobalInvocationID.xy) + 0.5);
+        // far from the origin the projection's rounding alone can move a point a pixel. A
+        // carried point behind the eye counts as displaced beyond any limit.
+        vec2 s;
+        float e = 0.0;
+        if (frame.camera_static == 0u)
+            e = to_screen(frame.view_proj, registration.xyz, s)
+                    ? distance(s, vec2(gl_GlobalInvocationID.xy) + 0.5)
+                    : 1.0e9;
         if (e > DISPLACEMENT_LIMIT) {
             loss *= 2.0 * e;
             registration.xyz = r.p;
@@ -271,11 +274,12 @@ bool needs_work(uint state) {
     if (lanes.lane_##k.x != 0u) {                                                              \
         vec4 history, moments;                                                                 \
         vec4 registration;                                                                     \
-        uint state = lane_state(r, lanes.lane_##k, in_rect(pixel, lanes.refresh_rect_##k),     \
-                                history_prev_##k, moments_prev_##k, registration_prev_##k,     \
-                                history, moments, registration);                               \
+        bool refreshed = r.geometry && in_rect(pixel, lanes.refresh_rect_##k);                 \
+        uint state = lane_state(r, lanes.lane_##k, refreshed, history_prev_##k,                \
+                                moments_prev_##k, registration_prev_##k, history, moments,     \
+                                registration);                                                 \
         if (state == STATE_NEW) atomicAdd(group_disoccluded[k], 1u);                           \
-        if (r.geometry && in_rect(pixel, lanes.refresh_rect_##k)) state = STATE_REFRESH;       \
+        if (refreshed) state = STATE_REFRESH;                                                  \
         imageStore(history_cur_##k, pixel, history);                                           \
         imageStore(moments_cur_##k, pixel, moments);                                           \
         imageStore(registration_cur_##k, pixel, registration);                                 \

@@ -100,8 +100,8 @@ const MOMENTS_SIGNED: u32 = 0b0010;
 const POSITION_SIGNED: u32 = 0b0111;
 
 impl Renderer {
-    /// Audit every float target and every history and moments image of the last rendered
-    /// frame (waits for the GPU). Images no frame has written yet are left out.
+    /// Audit every float target and every history, moments and registration image of the last
+    /// rendered frame (waits for the GPU). Images no frame has written yet are left out.
     pub fn audit(&mut self) -> Result<Vec<ImageAudit>> {
         self.ctx.wait_idle()?;
         let parity = self.last_parity();

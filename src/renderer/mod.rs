@@ -73,10 +73,9 @@ pub struct Renderer {
     frame_index: u64,
     /// The light the RSM currently holds; `None` forces a re-render.
     rsm_light: Option<SpotLight>,
-    /// Last frame's camera view-projection, when the histories hold last frame's data.
-    history: Option<Mat4>,
-    /// Last frame's eye (with `history`): the history's pixel footprints on each surface.
-    history_eye: glam::Vec3,
+    /// Last frame's camera view-projection (eq 1) and eye (the history's pixel footprints on
+    /// each surface), when the histories hold last frame's data.
+    history: Option<(Mat4, glam::Vec3)>,
     /// The last frame read last frame's G-buffer (its history was valid): until then the
     /// G-buffer's other half holds nothing of this size and view (`audit` leaves it out).
     last_frame_reused: bool,
@@ -149,7 +148,6 @@ impl Renderer {
             frame_index: 0,
             rsm_light: None,
             history: None,
-            history_eye: glam::Vec3::ZERO,
             last_frame_reused: false,
             audit: None,
             last_pass: [None; FRAMES_IN_FLIGHT],
@@ -254,7 +252,7 @@ impl Renderer {
             },
             frame_index: self.frame_index,
             history_valid: self.history.is_some(),
-            camera_moved: self.history != Some(view_proj),
+            camera_moved: self.history.map(|(m, _)| m) != Some(view_proj),
             light_changed,
         };
         for e in &mut self.effects {
@@ -306,8 +304,7 @@ impl Renderer {
             self.rsm_light = Some(self.scene.light);
         }
         self.last_frame_reused = self.history.is_some();
-        self.history = Some(view_proj);
-        self.history_eye = camera.position;
+        self.history = Some((view_proj, camera.position));
         self.frame_index += 1;
         Ok(previous)
     }
@@ -344,12 +341,8 @@ impl Renderer {
             &self.config,
             &FrameInputs {
                 camera,
-                prev_view_proj: self.history.unwrap_or(view_proj),
-                prev_camera_pos: if self.history.is_some() {
-                    self.history_eye
-                } else {
-                    camera.position
-                },
+                prev_view_proj: self.history.map_or(view_proj, |(m, _)| m),
+                prev_camera_pos: self.history.map_or(camera.position, |(_, eye)| eye),
                 light: &self.scene.light,
                 ambient: self.scene.ambient,
                 frame: self.frame_index,
