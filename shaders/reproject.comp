@@ -114,7 +114,8 @@ const float MAGNIFICATION_LIMIT = 1.1;
 const float DISPLACEMENT_LIMIT = 1.0; // pixels
 
 // Where world point q lies on the screen of the camera `view_proj`, in pixels (eq 1 with last
-// frame's camera); false for a point behind the eye.
+// frame's camera; with this frame's, where a carried registration point lands now); false for
+// a point behind the eye.
 bool to_screen(mat4 view_proj, vec3 q, out vec2 f) {
     vec4 c = view_proj * vec4(q, 1.0);
     f = c.w > 0.0 ? (c.xy / c.w * 0.5 + 0.5) * vec2(frame.size) : vec2(0.0);
@@ -132,8 +133,8 @@ bool tap_valid(ivec2 t, vec3 p, vec3 n, float eps) {
            dot(texelFetch(prev_normal, t, 0).xyz, n) >= FACING_ACCEPT;
 }
 
-// Eqs 1-3 for `pixel`. The history is read bilinearly over the four taps around the previous
-// position when all hold this surface, else at the nearest texel. A static camera (decided on
+// Eqs 1-3 for `pixel`. Where all four taps around the previous position hold this surface,
+// each lane reads one of them (pick_registered) or their bilinear blend, else the nearest texel. A static camera (decided on
 // the CPU) reuses the texel itself: eq 1's rounding noise would otherwise blend neighbours
 // into a converged value every frame, and that noise grows with the coordinates' distance from
 // the origin.
@@ -189,6 +190,35 @@ float blend_count(vec4 n, vec4 w) {
     return spread > 0.0 ? min(floor(1.0 / spread), strongest) : strongest;
 }
 
+// Point resampling (--history-resample point; frame.history_resample 0): where all four taps
+// hold the surface, the history is read from the one whose carried registration point,
+// projected with this frame's camera, lands nearest the pixel's centre (value, counts and point
+// together). The bilinear blend (the default) mixes neighbouring values again every frame,
+// invisibly to the displacement rule (the blended point stays on the surface), and the mix
+// grows with the history's age: on the box:bunny orbit the cached indirect light ends 0.102
+// (RMSE) from the estimator's own converged value with the blend, 0.036 with this choice, the
+// no-reuse level. But the blend's smoothing brings it nearer the ground truth (0.128 against
+// 0.147), and since counts no longer borrow from neighbours here, more pixels accumulate and
+// the frame costs twice as much (docs/results/lavapipe-orbit-resample-2026-12-03).
+Reprojected pick_registered(Reprojected r, texture2D registration_prev) {
+    if (!r.bilinear || frame.history_resample != 0u) return r;
+    vec2 centre = vec2(gl_GlobalInvocationID.xy) + 0.5;
+    float best = 1.0e30;
+    for (int k = 0; k < 4; ++k) {
+        ivec2 t = r.base + ivec2(k & 1, k >> 1);
+        vec2 s;
+        if (!to_screen(frame.view_proj, texelFetch(registration_prev, t, 0).xyz, s)) continue;
+        vec2 d = s - centre;
+        float d2 = dot(d, d);
+        if (d2 < best) { // false for NaN: such a tap is never picked
+            best = d2;
+            r.nearest = t;
+        }
+    }
+    r.bilinear = false; // no tap projects: the nearest texel, which the displacement rule judges
+    return r;
+}
+
 // A lane's texture at the previous position: the bilinear blend, or the nearest texel;
 // `counted` holds, in the channel `channel`, the estimates the blend holds (blend_count of the
 // taps' values in that channel).
@@ -227,6 +257,7 @@ uint lane_state(Reprojected r, uvec4 lane, bool refreshed, texture2D history_pre
     if (!r.geometry) return STATE_BACKGROUND;
     uint state = STATE_NEW;
     if (lane.y != 0u && r.found) {
+        r = pick_registered(r, registration_prev);
         float counted;
         history = resample(r, history_prev, 3, counted);
         history.a = counted;

@@ -7,7 +7,9 @@ use crate::cli::args::{
     parse_on_off, parse_pattern_count, parse_ssdo_scale, parse_vpls, AccumulateMode,
 };
 use crate::error::{Error, Result};
-use crate::renderer::config::{Accumulate, AoConfig, AoEstimator, Refresh, SsdoConfig, SsdoForm};
+use crate::renderer::config::{
+    Accumulate, AoConfig, AoEstimator, HistoryResample, Refresh, SsdoConfig, SsdoForm,
+};
 use crate::renderer::frame::Pcf;
 use crate::renderer::RenderConfig;
 use clap::ValueEnum;
@@ -31,6 +33,7 @@ pub enum Key {
     RefreshBudget,
     RotationLimit,
     Epsilon,
+    Resample,
     Vpls,
     Interleave,
     Visibility,
@@ -46,7 +49,7 @@ pub enum Key {
 
 impl Key {
     /// Every key, in the order `help_table` lists them.
-    pub const ALL: [Key; 22] = [
+    pub const ALL: [Key; 23] = [
         Key::AoSamples,
         Key::AoEstimator,
         Key::AoRadius,
@@ -58,6 +61,7 @@ impl Key {
         Key::RefreshBudget,
         Key::RotationLimit,
         Key::Epsilon,
+        Key::Resample,
         Key::Vpls,
         Key::Interleave,
         Key::Visibility,
@@ -85,6 +89,7 @@ impl Key {
             Key::RefreshBudget => "temporal.refresh_budget",
             Key::RotationLimit => "temporal.rotation_limit",
             Key::Epsilon => "temporal.epsilon",
+            Key::Resample => "temporal.resample",
             Key::Vpls => "indirect.vpls",
             Key::Interleave => "indirect.interleave",
             Key::Visibility => "indirect.visibility",
@@ -120,6 +125,7 @@ impl Key {
             }
             Key::RotationLimit => "patterns per pixel before it counts as converged",
             Key::Epsilon => "disocclusion threshold: pixel footprints, or abs: world units",
+            Key::Resample => "history read between texels under motion (--history-resample)",
             Key::Vpls => "VPLs gathered per pixel and frame; all = every RSM texel (--vpls)",
             Key::Interleave => "interleaved gather: NxN blocks share the VPLs (--interleave)",
             Key::Visibility => "screen-space visibility test per VPL (--vpl-visibility)",
@@ -148,6 +154,7 @@ impl Key {
             Key::Accumulate => "gated[:SIGMAS]|confidence[:BIAS]|ema[:ALPHA]|mean[:CAP]",
             Key::RotationLimit => "integer 1..=2048",
             Key::Epsilon => "NUMBER|abs:NUMBER",
+            Key::Resample => "point|bilinear",
             Key::Vpls => "integer 1..=16384|all",
             Key::Interleave => "integer 1..=8",
             Key::Pcf => "hard|9|SQUARE (25, 49, ...)|disc:N",
@@ -249,6 +256,7 @@ pub fn apply(config: &mut RenderConfig, key: Key, value: &str) -> Result<()> {
         Setting::Divisor(d) => config.ssdo.scale = d,
         Setting::Estimator(e) => config.ao.estimator = e,
         Setting::Refresh(r) => config.temporal.refresh = r,
+        Setting::Resample(r) => config.temporal.resample = r,
         Setting::Budget(b) => config.temporal.refresh_budget = b,
         Setting::Accumulate(a) => config.temporal.accumulate = a,
         Setting::MeanOfLimit => {
@@ -367,6 +375,7 @@ enum Setting {
     Radius(f32),
     Estimator(AoEstimator),
     Refresh(Refresh),
+    Resample(HistoryResample),
     Budget(f32),
     Accumulate(Accumulate),
     MeanOfLimit,
@@ -408,6 +417,7 @@ impl Setting {
             Key::Vpls => parse_vpls(v).map(Setting::Count),
             Key::Interleave => count(crate::renderer::config::IndirectConfig::MAX_INTERLEAVE),
             Key::Refresh => Refresh::from_str(v, false).map(Setting::Refresh),
+            Key::Resample => HistoryResample::from_str(v, false).map(Setting::Resample),
             Key::RefreshBudget => parse_fraction(v).map(Setting::Budget),
             Key::Reuse | Key::Visibility | Key::HalfRes => parse_on_off(v).map(Setting::Flag),
             Key::SsdoSamples => count(SsdoConfig::MAX_SAMPLES),
@@ -489,6 +499,9 @@ mod tests {
                 c.temporal.accumulate = Accumulate::Ema { alpha: 0.25 }
             }),
             (Key::Refresh, "hard", |c| c.temporal.refresh = Refresh::Hard),
+            (Key::Resample, "point", |c| {
+                c.temporal.resample = HistoryResample::Point
+            }),
             (Key::RefreshBudget, "225%", |c| {
                 c.temporal.refresh_budget = 2.25
             }),

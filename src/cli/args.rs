@@ -3,8 +3,8 @@
 
 use crate::bench::warmup::Warmup;
 use crate::renderer::config::{
-    Accumulate, AdaptiveSamples, AoConfig, AoEstimator, Effects, Epsilon, IndirectConfig, Refresh,
-    SsdoConfig, SsdoForm, TemporalConfig,
+    Accumulate, AdaptiveSamples, AoConfig, AoEstimator, Effects, Epsilon, HistoryResample,
+    IndirectConfig, Refresh, SsdoConfig, SsdoForm, TemporalConfig,
 };
 use crate::renderer::frame::Pcf;
 use crate::renderer::{RenderConfig, MAX_SIZE};
@@ -156,6 +156,11 @@ pub struct SceneArgs {
     /// tiles at 256x256).
     #[arg(long, default_value = "5%", value_parser = parse_fraction)]
     pub refresh_budget: f32,
+    /// How a moving camera reads a history between texels: `bilinear` blends the four around
+    /// the previous position, `point` takes the one whose carried surface point lands nearest
+    /// the pixel (the estimator's own value, no smear, more pixels accumulating).
+    #[arg(long, value_enum, default_value_t = HistoryResample::Bilinear)]
+    pub history_resample: HistoryResample,
     /// SSDO's form (with `--effects ...,ssdo`): one-step (modulation factor and bounce in one
     /// pass, Szentandrasi section 4.1), two-step (directional occlusion, then the bounce), or
     /// ssao (section 3.1's SSAO on SSDO's samples, filter and resolution; ambient only).
@@ -344,6 +349,7 @@ impl SceneArgs {
                 epsilon: self.epsilon,
                 refresh: self.refresh,
                 refresh_budget: self.refresh_budget,
+                resample: self.history_resample,
             },
         }
     }

@@ -333,6 +333,30 @@ impl Epsilon {
     pub const DEFAULT: Epsilon = Epsilon::Relative { scale: 2.0 };
 }
 
+/// How a moving camera reads a history between texels (reproject.comp).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, clap::ValueEnum)]
+#[serde(rename_all = "lowercase")]
+pub enum HistoryResample {
+    /// The default: the bilinear blend of the four texels around the previous position. Each
+    /// frame mixes neighbouring values again, so an ageing history drifts from the estimator's
+    /// own converged value towards a smoother one, which on the box:bunny orbit is nearer the
+    /// ground truth (docs/results/lavapipe-orbit-resample-2026-12-03).
+    Bilinear,
+    /// Of the four texels, the one whose carried surface point lands nearest the pixel, as it
+    /// is (value, counts and point): no smear along the flow, the estimator's own value, but
+    /// counts no longer borrow from neighbours, so more pixels accumulate (slower).
+    Point,
+}
+
+impl HistoryResample {
+    pub fn code(self) -> u32 {
+        match self {
+            HistoryResample::Point => 0,
+            HistoryResample::Bilinear => 1,
+        }
+    }
+}
+
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
 pub struct TemporalConfig {
     /// Reverse-reprojection reuse; off = recompute every frame with a fixed pattern and blur.
@@ -346,6 +370,7 @@ pub struct TemporalConfig {
     /// frame's (every pixel, one pattern): the refresh tile's side follows from it
     /// (`temporal::budget_tile`).
     pub refresh_budget: f32,
+    pub resample: HistoryResample,
 }
 
 /// Threads sharing out one refresh-tile pixel's patterns (`REFRESH_THREADS` of
@@ -367,6 +392,7 @@ impl Default for TemporalConfig {
             epsilon: Epsilon::DEFAULT,
             refresh: Refresh::Feathered,
             refresh_budget: REFRESH_BUDGET,
+            resample: HistoryResample::Bilinear,
         }
     }
 }

@@ -52,6 +52,7 @@ pub fn frame_block(config: &RenderConfig, f: &FrameInputs<'_>) -> FrameBlock {
         light_view_proj: light.view_proj().to_cols_array(),
         camera_pos: f.camera.position.to_array(),
         prev_camera_pos: f.prev_camera_pos.to_array(),
+        history_resample: t.resample.code(),
         tan_half_fov: (0.5 * f.camera.vfov_deg).to_radians().tan(),
         light_pos: light.position.to_array(),
         light_cos_outer: light.outer_deg.to_radians().cos(),
