@@ -134,10 +134,10 @@ bool tap_valid(ivec2 t, vec3 p, vec3 n, float eps) {
 }
 
 // Eqs 1-3 for `pixel`. Where all four taps around the previous position hold this surface,
-// each lane reads one of them (pick_registered) or their bilinear blend, else the nearest texel. A static camera (decided on
-// the CPU) reuses the texel itself: eq 1's rounding noise would otherwise blend neighbours
-// into a converged value every frame, and that noise grows with the coordinates' distance from
-// the origin.
+// each lane reads their bilinear blend or one of them (pick_registered), else the nearest
+// texel. A static camera (decided on the CPU) reuses the texel itself: eq 1's rounding noise
+// would otherwise blend neighbours into a converged value every frame, and that noise grows
+// with the coordinates' distance from the origin.
 Reprojected reproject(ivec2 pixel) {
     Reprojected r;
     r.geometry = false;
@@ -215,7 +215,9 @@ Reprojected pick_registered(Reprojected r, texture2D registration_prev) {
             r.nearest = t;
         }
     }
-    r.bilinear = false; // no tap projects: the nearest texel, which the displacement rule judges
+    // Where no tap's point projects (all behind the eye), r.nearest stays the texel nearest
+    // the previous position, and the displacement rule takes its estimates away.
+    r.bilinear = false;
     return r;
 }
 

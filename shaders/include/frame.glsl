@@ -67,7 +67,7 @@ layout(set = 0, binding = 0, std430) readonly buffer Frame {
     uint camera_static;        // 1 when prev_view_proj equals view_proj exactly (CPU test)
     uint indirect_ramp;        // test input: indirect passes output world position (0/1)
     vec3 prev_camera_pos;      // last frame's eye: the history's footprint on each surface
-    uint history_resample;     // moving camera: 0 the best-registered tap, 1 bilinear (reproject.comp)
+    uint history_resample;     // moving camera: 0 best-registered tap, 1 bilinear blend
 } frame;
 
 // Smooth spot cone: 1 inside the inner angle, 0 outside the outer, Hermite in between. As on

@@ -154,7 +154,7 @@ impl Key {
             Key::Accumulate => "gated[:SIGMAS]|confidence[:BIAS]|ema[:ALPHA]|mean[:CAP]",
             Key::RotationLimit => "integer 1..=2048",
             Key::Epsilon => "NUMBER|abs:NUMBER",
-            Key::Resample => "point|bilinear",
+            Key::Resample => "bilinear|point",
             Key::Vpls => "integer 1..=16384|all",
             Key::Interleave => "integer 1..=8",
             Key::Pcf => "hard|9|SQUARE (25, 49, ...)|disc:N",
