@@ -768,7 +768,6 @@ fn interleaved_gather_converges_to_the_full_gather() {
 fn carried_values_stay_on_their_surface_points() {
     let ctx = common::context();
     let (compared, beyond, mean) = orbit_displacement(&ctx, HistoryResample::Bilinear);
-    assert!(compared > 4000, "only {compared} pixels with a history");
     // Without the rule: 0.89 px, 9.6% beyond 2 px; with it 0.38 px and 1.7%.
     assert!(mean < 0.6, "mean displacement {mean} px");
     assert!(beyond * 25 < compared, "{beyond} of {compared} beyond 2 px");
@@ -784,7 +783,6 @@ fn carried_values_stay_on_their_surface_points() {
 fn point_resampled_values_stay_on_their_surface_points() {
     let ctx = common::context();
     let (compared, beyond, mean) = orbit_displacement(&ctx, HistoryResample::Point);
-    assert!(compared > 4000, "only {compared} pixels with a history");
     assert!(mean < 0.7, "mean displacement {mean} px");
     assert!(
         beyond * 100 < compared,
@@ -793,7 +791,8 @@ fn point_resampled_values_stay_on_their_surface_points() {
     common::assert_clean(&ctx);
 }
 
-/// The bunny's orbit with the ramp input; (pixels compared, beyond 2 px, mean px).
+/// The bunny's orbit with the ramp input; (pixels compared, beyond 2 px, mean px), with at
+/// least 4000 pixels holding a history.
 fn orbit_displacement(ctx: &Arc<Context>, resample: HistoryResample) -> (u32, u32, f64) {
     let size = 128u32;
     let dir = ssgi::scene::asset_dir_from_env()
@@ -864,5 +863,6 @@ fn orbit_displacement(ctx: &Arc<Context>, resample: HistoryResample) -> (u32, u3
     eprintln!(
         "{resample:?}: {compared} pixels: mean displacement {mean:.3} px, {beyond} beyond 2 px"
     );
+    assert!(compared > 4000, "only {compared} pixels with a history");
     (compared, beyond, mean)
 }
