@@ -4,17 +4,19 @@
 use super::common::{check_frames, context_options, finish, load};
 use crate::bench::compare::Comparison;
 use crate::bench::measure::{report_config, RunLength};
-use crate::bench::warmup::{self, Warmup};
+use crate::bench::warmup::{self, Outcome, Warmup};
 use crate::bench::Report;
 use crate::cli::args::{BenchArgs, Cli};
 use crate::error::{Error, Result};
 use crate::frontend::headless;
 use crate::frontend::presenter::open_sink;
+use crate::frontend::progress::Progress;
 use crate::frontend::sink::FrameSink;
 use crate::passes::PassId;
 use crate::renderer::Renderer;
+use crate::scene::path::frame_time;
 use crate::scene::{CameraPath, Scene};
-use crate::vk::Context;
+use crate::vk::{Context, FrameTiming};
 use std::sync::Arc;
 
 fn write_json(path: &std::path::Path, value: &impl serde::Serialize) -> Result<()> {
@@ -46,8 +48,21 @@ fn measure(
         true,
     )?);
     eprintln!("{}", outcome.describe());
+    Ok(report(args, ctx, renderer, sink, path, &timings, outcome))
+}
+
+/// The report of a run whose first `warmup.frames` frames were warmup.
+fn report(
+    args: &BenchArgs,
+    ctx: &Context,
+    renderer: &Renderer,
+    sink: &dyn FrameSink,
+    path: &CameraPath,
+    timings: &[FrameTiming],
+    warmup: Outcome,
+) -> Report {
     let names: Vec<&str> = PassId::ALL.iter().map(|p| p.name()).collect();
-    Ok(Report::new(
+    Report::new(
         &ctx.info,
         args.scene.size.0,
         args.scene.size.1,
@@ -56,19 +71,30 @@ fn measure(
             renderer,
             path,
             RunLength {
-                fps,
+                fps: args.scene.fps,
                 frames: args.frames,
-                warmup: outcome,
+                warmup,
             },
             sink.present_mode(),
         ),
         &names,
-        &timings,
-        outcome.frames as u64,
-    ))
+        timings,
+        warmup.frames as u64,
+    )
 }
 
-/// `bench --compare-reuse`: both configurations on one context, one after the other.
+/// One configuration of a comparison: its renderer, its timings so far and its warmup.
+struct Run {
+    reuse: bool,
+    renderer: Renderer,
+    timings: Vec<FrameTiming>,
+    warmup: Outcome,
+}
+
+/// `bench --compare-reuse`: both configurations on one context. Each warms up on its own;
+/// the shorter warmup then continues along the path to the longer one's end, so both measure
+/// the same path frames; the measured frames alternate between the two renderers, so a change
+/// of the machine's speed during the run (lavapipe shares its cores) falls on both alike.
 fn bench_compare_reuse(
     args: &BenchArgs,
     ctx: &Arc<Context>,
@@ -76,16 +102,70 @@ fn bench_compare_reuse(
     scene: Scene,
     path: CameraPath,
 ) -> Result<()> {
-    let mut reports = Vec::new();
+    let fps = args.scene.fps;
+    let mut runs = Vec::new();
     for reuse in [true, false] {
         let mut config = args.scene.render_config();
         config.temporal.reuse = reuse;
         let mut renderer = Renderer::new(ctx, scene.clone(), config)?;
-        let report = measure(args, ctx, &mut renderer, sink, &path)?;
-        println!("reuse {}:", if reuse { "on" } else { "off" });
+        sink.begin(&scene.name);
+        let (timings, warmup) = warmup::run(&mut renderer, sink, &path, fps, args.warmup, true)?;
+        eprintln!("reuse {}: {}", on_off(reuse), warmup.describe());
+        runs.push(Run {
+            reuse,
+            renderer,
+            timings,
+            warmup,
+        });
+    }
+    let first = runs.iter().map(|r| r.warmup.frames).max().unwrap_or(0);
+    for run in &mut runs {
+        let behind = first - run.warmup.frames;
+        if behind > 0 {
+            eprintln!(
+                "reuse {}: {behind} more warmup frames to reach frame {first}",
+                on_off(run.reuse)
+            );
+            let more = headless::run_from(
+                &mut run.renderer,
+                sink,
+                &path,
+                run.warmup.frames,
+                behind,
+                fps,
+                false,
+            )?;
+            run.timings.extend(more);
+            run.warmup.frames = first;
+        }
+    }
+    let base = scene.camera;
+    let orbit = scene.orbit();
+    let mut bar = Progress::new(2 * args.frames as u64, "rendering, interleaved", true);
+    for i in first..first.saturating_add(args.frames) {
+        let camera = path.camera_at(&base, &orbit, frame_time(i, fps));
+        for run in &mut runs {
+            run.timings.extend(sink.frame(&mut run.renderer, &camera)?);
+            bar.inc();
+        }
+    }
+    bar.finish();
+    let mut reports = Vec::new();
+    for run in &mut runs {
+        run.timings.extend(run.renderer.finish()?);
+        let report = report(
+            args,
+            ctx,
+            &run.renderer,
+            sink,
+            &path,
+            &run.timings,
+            run.warmup,
+        );
+        println!("reuse {}:", on_off(run.reuse));
         print!("{}", report.table());
-        if let (Some(out), true) = (&args.out, reuse) {
-            headless::write_output(&mut renderer, out)?;
+        if let (Some(out), true) = (&args.out, run.reuse) {
+            headless::write_output(&mut run.renderer, out)?;
             eprintln!("wrote {}", out.display());
         }
         reports.push(report);
@@ -99,6 +179,14 @@ fn bench_compare_reuse(
         write_json(json, &comparison)?;
     }
     Ok(())
+}
+
+fn on_off(reuse: bool) -> &'static str {
+    if reuse {
+        "on"
+    } else {
+        "off"
+    }
 }
 
 pub fn bench(cli: &Cli, args: &BenchArgs) -> Result<()> {
