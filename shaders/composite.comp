@@ -3,9 +3,14 @@
 // radiance terms, Reinhard tonemap, sRGB encode. An SSDO term's modulation factor (a) darkens
 // the ambient light and the direct radiance; its bounce (rgb) adds as irradiance. The effects' images arrive as numbered terms
 // with a kind each (src/effects/effect.rs `TermKind`), so no effect combination needs a variant.
+// With antialiasing (the `linear` permutation) the tonemapped colour is written display-linear
+// to an fp32 image, which the antialiasing pass filters and encodes.
+// @permutation srgb:
+// @permutation linear: LINEAR_OUT
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_samplerless_texture_functions : require
 #include "frame.glsl"
+#include "srgb.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
 
@@ -24,7 +29,11 @@ const uint TERM_SSDO = 3u;
 
 layout(set = 1, binding = 0) uniform texture2D g_position;
 layout(set = 1, binding = 1) uniform texture2D g_albedo;
+#ifdef LINEAR_OUT
+layout(set = 1, binding = 2, rgba32f) uniform writeonly image2D out_color;
+#else
 layout(set = 1, binding = 2, rgba8) uniform writeonly image2D out_color;
+#endif
 layout(set = 1, binding = 3) uniform texture2D term0;
 layout(set = 1, binding = 4) uniform texture2D term1;
 layout(set = 1, binding = 5) uniform texture2D term2;
@@ -48,12 +57,6 @@ vec3 radiance_of(uint kind, vec4 t, vec3 albedo, float modulation) {
     // Phi cos / pi, hence the 1/pi, and the receiver reflects albedo / pi of it.
     if (kind == TERM_VPL_IRRADIANCE) return albedo / PI * t.rgb / PI;
     return vec3(0.0);
-}
-
-vec3 srgb_encode(vec3 linear) {
-    vec3 lo = linear * 12.92;
-    vec3 hi = 1.055 * pow(linear, vec3(1.0 / 2.4)) - 0.055;
-    return mix(hi, lo, lessThanEqual(linear, vec3(0.0031308)));
 }
 
 void main() {
@@ -86,5 +89,9 @@ void main() {
     // Non-finite input must not reach the image as garbage: show it as black.
     if (any(isnan(color)) || any(isinf(color))) color = vec3(0.0);
     color = color / (1.0 + color);
+#ifdef LINEAR_OUT
+    imageStore(out_color, pixel, vec4(clamp(color, 0.0, 1.0), 1.0));
+#else
     imageStore(out_color, pixel, vec4(srgb_encode(clamp(color, 0.0, 1.0)), 1.0));
+#endif
 }

@@ -1,9 +1,12 @@
 #version 460
-// Shared vertex stage of the two raster passes: G-buffer (camera) and light view (RSM).
+// Shared vertex stage of the raster passes: G-buffer (camera), light view (RSM), and SRAA's
+// subpixel geometry (the camera shifted by a subpixel offset, chosen by the draw's instance).
 // @permutation camera: VIEW_CAMERA
 // @permutation light: VIEW_LIGHT
+// @permutation subpixel: VIEW_CAMERA SUBPIXEL
 #extension GL_GOOGLE_include_directive : require
 #include "frame.glsl"
+#include "subpixel.glsl"
 
 layout(location = 0) in vec3 in_position;
 layout(location = 1) in vec3 in_normal;
@@ -21,5 +24,12 @@ void main() {
     gl_Position = frame.light_view_proj * vec4(in_position, 1.0);
 #else
     gl_Position = frame.view_proj * vec4(in_position, 1.0);
+#endif
+#ifdef SUBPIXEL
+    // The pixel centre samples what lies `offset` away from it once the image moves by
+    // -offset: 2 / size per pixel in NDC, times w before the divide. gl_InstanceIndex is the
+    // draw's firstInstance: the subpixel's index.
+    vec2 offset = SUBPIXEL_OFFSETS[gl_InstanceIndex & 3];
+    gl_Position.xy -= offset * 2.0 / vec2(frame.size) * gl_Position.w;
 #endif
 }

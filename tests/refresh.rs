@@ -24,6 +24,7 @@ fn config(size: u32) -> RenderConfig {
         indirect: Default::default(),
         ssdo: Default::default(),
         temporal: TemporalConfig::default(),
+        aa: Default::default(),
     }
 }
 

@@ -32,6 +32,7 @@ fn config(size: u32, temporal: TemporalConfig, ao: AoConfig) -> RenderConfig {
         indirect: Default::default(),
         ssdo: Default::default(),
         temporal,
+        aa: Default::default(),
     }
 }
 

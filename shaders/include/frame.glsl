@@ -68,6 +68,9 @@ layout(set = 0, binding = 0, std430) readonly buffer Frame {
     uint indirect_ramp;        // test input: indirect passes output world position (0/1)
     vec3 prev_camera_pos;      // last frame's eye: the history's footprint on each surface
     uint history_resample;     // moving camera: 0 best-registered tap, 1 bilinear blend
+    float aa_sigma_z;          // SRAA eq 1: scale on the relative eye-distance difference
+    float aa_sigma_n;          // SRAA eq 1: scale on 1 - sat(n_j . n_i)
+    float aa_sigma_shadow;     // SRAA: scale on the shadow tests' difference (0 = no term)
 } frame;
 
 // Smooth spot cone: 1 inside the inner angle, 0 outside the outer, Hermite in between. As on

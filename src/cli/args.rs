@@ -3,8 +3,8 @@
 
 use crate::bench::warmup::Warmup;
 use crate::renderer::config::{
-    Accumulate, AdaptiveSamples, AoConfig, AoEstimator, Effects, Epsilon, HistoryResample,
-    IndirectConfig, Refresh, SsdoConfig, SsdoForm, TemporalConfig,
+    AaConfig, AaMode, Accumulate, AdaptiveSamples, AoConfig, AoEstimator, Effects, Epsilon,
+    HistoryResample, IndirectConfig, Refresh, SsdoConfig, SsdoForm, TemporalConfig,
 };
 use crate::renderer::frame::Pcf;
 use crate::renderer::{RenderConfig, MAX_SIZE};
@@ -161,6 +161,21 @@ pub struct SceneArgs {
     /// the pixel (the estimator's own value, no smear, more pixels accumulating).
     #[arg(long, value_enum, default_value_t = HistoryResample::Bilinear)]
     pub history_resample: HistoryResample,
+    /// Antialiasing: `none`; `sraa` (shade once per pixel, geometry at 4 subpixels, each
+    /// subpixel's shading rebuilt from the pixels around it with depth and normal weights);
+    /// `sraa-shadow` (SRAA with a shadow test per subpixel in the weights); `ssaa16` (render
+    /// at 4x width and height, box-filter 4x4: the reference).
+    #[arg(long, value_enum, default_value_t = AaMode::None)]
+    pub aa: AaMode,
+    /// SRAA's depth scale (eq 1's sigma_z) on the relative difference of eye distances.
+    #[arg(long, default_value_t = 10.0)]
+    pub sraa_sigma_z: f32,
+    /// SRAA's normal scale (eq 1's sigma_n) on 1 - sat(n_j . n_i).
+    #[arg(long, default_value_t = 0.25)]
+    pub sraa_sigma_n: f32,
+    /// `sraa-shadow`'s scale on the difference of two samples' shadow tests (0 or 1).
+    #[arg(long, default_value_t = 4.0)]
+    pub sraa_sigma_shadow: f32,
     /// SSDO's form (with `--effects ...,ssdo`): one-step (modulation factor and bounce in one
     /// pass, Szentandrasi section 4.1), two-step (directional occlusion, then the bounce), or
     /// ssao (section 3.1's SSAO on SSDO's samples, filter and resolution; ambient only).
@@ -350,6 +365,12 @@ impl SceneArgs {
                 refresh: self.refresh,
                 refresh_budget: self.refresh_budget,
                 resample: self.history_resample,
+            },
+            aa: AaConfig {
+                mode: self.aa,
+                sigma_z: self.sraa_sigma_z,
+                sigma_n: self.sraa_sigma_n,
+                sigma_shadow: self.sraa_sigma_shadow,
             },
         }
     }

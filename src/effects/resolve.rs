@@ -33,9 +33,17 @@ pub fn shared(t: &Targets, slot: Slot, parity: usize) -> Option<&Image> {
         Slot::RsmDepth => Target::RsmDepth,
         Slot::Output => Target::Output,
         Slot::DirectLight => Target::Direct,
+        Slot::Shaded => Target::Shaded,
+        Slot::SubPosition(i) => return subpixels(t)?.position.get(i as usize),
+        Slot::SubNormal(i) => return subpixels(t)?.normal.get(i as usize),
+        Slot::SubDepth => return subpixels(t).map(|s| &s.depth),
         _ => return None,
     };
     t.get(target, parity)
+}
+
+fn subpixels(t: &Targets) -> Option<&crate::renderer::targets::Subpixels> {
+    t.antialias.as_ref()?.subpixels.as_ref()
 }
 
 impl Resolve for EffectResources<'_> {

@@ -16,6 +16,7 @@ use std::sync::Arc;
 /// Terms the shader has bindings for.
 pub const MAX_TERMS: usize = 4;
 
+/// Into the final RGBA8 image, sRGB-encoded.
 const BINDS: &[Bind] = &[
     Bind::new(0, Slot::GPosition, Use::Sampled),
     Bind::new(1, Slot::GAlbedo, Use::Sampled),
@@ -26,8 +27,33 @@ const BINDS: &[Bind] = &[
     Bind::new(6, Slot::Term(3), Use::Sampled),
 ];
 
-pub fn layout() -> PassLayout {
-    ComputePass::layout(PassId::Composite, &shaders::COMPOSITE_COMP, BINDS)
+/// With antialiasing: into the display-linear image the antialiasing pass filters.
+const BINDS_LINEAR: &[Bind] = &[
+    Bind::new(0, Slot::GPosition, Use::Sampled),
+    Bind::new(1, Slot::GAlbedo, Use::Sampled),
+    Bind::new(2, Slot::Shaded, Use::StorageWrite),
+    Bind::new(3, Slot::Term(0), Use::Sampled),
+    Bind::new(4, Slot::Term(1), Use::Sampled),
+    Bind::new(5, Slot::Term(2), Use::Sampled),
+    Bind::new(6, Slot::Term(3), Use::Sampled),
+];
+
+fn module(linear: bool) -> (&'static crate::shaders::ShaderModuleInfo, &'static [Bind]) {
+    if linear {
+        (&shaders::COMPOSITE_COMP_LINEAR, BINDS_LINEAR)
+    } else {
+        (&shaders::COMPOSITE_COMP_SRGB, BINDS)
+    }
+}
+
+pub fn layouts() -> Vec<PassLayout> {
+    [false, true]
+        .into_iter()
+        .map(|linear| {
+            let (module, binds) = module(linear);
+            ComputePass::layout(PassId::Composite, module, binds)
+        })
+        .collect()
 }
 
 /// The composite's inputs: the shared targets, and each term's image per parity (in the order
@@ -70,8 +96,14 @@ pub struct CompositePass {
 }
 
 impl CompositePass {
-    /// For terms of the kinds `kinds` (the shader's codes), in order.
-    pub fn new(ctx: &Arc<Context>, pool: &DescriptorPool, kinds: &[u32]) -> Result<Self> {
+    /// For terms of the kinds `kinds` (the shader's codes), in order; `linear` writes the
+    /// display-linear image an antialiasing pass filters instead of the output.
+    pub fn new(
+        ctx: &Arc<Context>,
+        pool: &DescriptorPool,
+        kinds: &[u32],
+        linear: bool,
+    ) -> Result<Self> {
         if kinds.is_empty() || kinds.len() > MAX_TERMS {
             return Err(Error::Config(format!(
                 "the composite takes 1 to {MAX_TERMS} effect terms, not {}",
@@ -81,9 +113,14 @@ impl CompositePass {
         let mut constants = vec![kinds.len() as u32];
         constants.extend(kinds);
         constants.resize(1 + MAX_TERMS, 0);
-        let module = (&shaders::COMPOSITE_COMP, BINDS);
         Ok(Self {
-            pass: ComputePass::specialized(ctx, pool, PassId::Composite, module, &constants)?,
+            pass: ComputePass::specialized(
+                ctx,
+                pool,
+                PassId::Composite,
+                module(linear),
+                &constants,
+            )?,
             terms: kinds.len(),
         })
     }

@@ -27,8 +27,16 @@ pub enum Slot {
     /// The light view's depth: the shadow map.
     RsmDepth,
     GDepth,
-    /// The composite's RGBA8 output.
+    /// The final RGBA8 image: the composite's, or the antialiasing pass's.
     Output,
+    /// With antialiasing: the composite's display-linear colour (fp16), before filtering.
+    Shaded,
+    /// SRAA: world position (w = 1 on geometry) at subpixel `n` of the rotated grid.
+    SubPosition(u8),
+    /// SRAA: normal at subpixel `n`.
+    SubNormal(u8),
+    /// SRAA: the depth buffer the four subpixel renders share.
+    SubDepth,
     /// The direct effect's outgoing radiance (written by it, read by SSDO's bounce).
     DirectLight,
     /// The temporal effect's history written this frame (rgb value, a = estimates).

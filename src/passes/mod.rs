@@ -1,6 +1,6 @@
 //! Passes: the declaration every pass is made from (`decl`), the shared compute and raster
 //! helpers, and the passes every frame runs whatever the effects (light view, G-buffer,
-//! reprojection, composite). The effects' own passes live in `src/effects/`. `PassId` names
+//! reprojection, composite, antialiasing). The effects' own passes live in `src/effects/`. `PassId` names
 //! are the rows of the timing report.
 
 pub mod composite;
@@ -12,6 +12,8 @@ pub mod light_view;
 pub mod pass_id;
 pub mod raster;
 pub mod reproject;
+pub mod sraa;
+pub mod ssaa;
 
 pub use layout::{PassLayout, FRAME_BINDING};
 pub use pass_id::PassId;
@@ -23,6 +25,8 @@ pub fn frame_layouts() -> Vec<PassLayout> {
     v.extend(light_view::layouts());
     v.extend(gbuffer::layouts());
     v.extend(reproject::layouts());
-    v.push(composite::layout());
+    v.extend(composite::layouts());
+    v.extend(sraa::layouts());
+    v.push(ssaa::layout());
     v
 }

@@ -47,12 +47,18 @@ pub enum PassId {
     SsdoBilateral,
     /// Joint bilateral upsampling of half-resolution SSDO (--ssdo-scale 0.5).
     SsdoUpsample,
-    /// Composite + tonemap into the output image.
+    /// Composite + tonemap into the output image (display-linear for antialiasing).
     Composite,
+    /// SRAA: position and normal at the 4 subpixels (4 renders with shifted projections).
+    SraaGeometry,
+    /// SRAA: each subpixel's shading from the shaded pixels around it, box-filtered.
+    Sraa,
+    /// 16x supersampling: the 4x4 box filter into the output.
+    SsaaDownsample,
 }
 
 impl PassId {
-    pub const ALL: [PassId; 22] = [
+    pub const ALL: [PassId; 25] = [
         PassId::LightView,
         PassId::GBuffer,
         PassId::Reproject,
@@ -75,6 +81,9 @@ impl PassId {
         PassId::SsdoBilateral,
         PassId::SsdoUpsample,
         PassId::Composite,
+        PassId::SraaGeometry,
+        PassId::Sraa,
+        PassId::SsaaDownsample,
     ];
 
     pub fn name(self) -> &'static str {
@@ -101,6 +110,9 @@ impl PassId {
             PassId::SsdoBilateral => "ssdo_bilateral",
             PassId::SsdoUpsample => "ssdo_upsample",
             PassId::Composite => "composite",
+            PassId::SraaGeometry => "sraa_geometry",
+            PassId::Sraa => "sraa",
+            PassId::SsaaDownsample => "ssaa_downsample",
         }
     }
 }

@@ -1,6 +1,7 @@
 //! What a run renders: size, effects and their parameters. Parsed from the command line,
 //! validated here (absurd values get a clear error, never a silent clamp).
 
+pub use super::antialias::{AaConfig, AaMode};
 use super::pcf::Pcf;
 use crate::error::{Error, Result};
 use serde::Serialize;
@@ -452,6 +453,7 @@ pub struct RenderConfig {
     pub indirect: IndirectConfig,
     pub ssdo: SsdoConfig,
     pub temporal: TemporalConfig,
+    pub aa: AaConfig,
 }
 
 impl Default for RenderConfig {
@@ -466,11 +468,24 @@ impl Default for RenderConfig {
             indirect: IndirectConfig::default(),
             ssdo: SsdoConfig::default(),
             temporal: TemporalConfig::default(),
+            aa: AaConfig::default(),
         }
     }
 }
 
 impl RenderConfig {
+    /// The configuration the frame renders at: `width` x `height` are the output's, times
+    /// the supersampling factor of `--aa ssaa16` (every target, effect and constant uses it;
+    /// only the final image has the output size).
+    pub fn rendered(&self) -> RenderConfig {
+        let scale = self.aa.mode.supersampling();
+        RenderConfig {
+            width: self.width * scale,
+            height: self.height * scale,
+            ..*self
+        }
+    }
+
     pub fn validate(&self) -> Result<()> {
         let bad = |m: String| Err(Error::Config(m));
         for (what, v) in [
@@ -481,6 +496,15 @@ impl RenderConfig {
             if v == 0 || v > MAX_SIZE {
                 return bad(format!("{what} {v} is outside 1..={MAX_SIZE}"));
             }
+        }
+        self.aa.validate()?;
+        let scale = self.aa.mode.supersampling();
+        if scale > 1 && self.width.max(self.height) * scale > MAX_SIZE {
+            return bad(format!(
+                "--aa ssaa16 renders {}x{}, past the largest size {MAX_SIZE}",
+                self.width * scale,
+                self.height * scale
+            ));
         }
         let ao = &self.ao;
         if !(1..=4096).contains(&ao.samples) {

@@ -4,6 +4,7 @@
 //! light view (only when the light changed) → G-buffer → reprojection of every temporal effect
 //! → each effect's passes (shadow + direct, SSAO [+ blur], indirect light) → composite.
 
+pub mod antialias;
 pub mod audit;
 pub mod config;
 pub mod counters;
@@ -23,6 +24,8 @@ use crate::passes::compute::FrameSet;
 use crate::passes::decl::{Resolve, Slot};
 use crate::passes::gbuffer::GBufferPass;
 use crate::passes::light_view::LightViewPass;
+use crate::passes::sraa::SraaPass;
+use crate::passes::ssaa::SsaaPass;
 use crate::passes::PassId;
 use crate::scene::{Camera, Scene, SpotLight};
 use crate::vk::cmd::Recorder;
@@ -63,6 +66,10 @@ pub struct Renderer {
     light_view: LightViewPass,
     gbuffer: GBufferPass,
     composite: CompositePass,
+    /// `--aa sraa|sraa-shadow`: subpixel geometry and reconstruction.
+    sraa: Option<SraaPass>,
+    /// `--aa ssaa16`: the 4x4 box filter into the output.
+    ssaa: Option<SsaaPass>,
     effects: Vec<Box<dyn Effect>>,
     scene_gpu: SceneGpu,
     targets: Targets,
@@ -90,8 +97,9 @@ pub struct Renderer {
 impl Renderer {
     pub fn new(ctx: &Arc<Context>, scene: Scene, config: RenderConfig) -> Result<Self> {
         config.validate()?;
+        let rendered = config.rendered();
         let textured = scene.mesh.has_textures();
-        let pool = DescriptorPool::new(ctx, 48 + scene.mesh.materials.len() as u32)?;
+        let pool = DescriptorPool::new(ctx, 52 + scene.mesh.materials.len() as u32)?;
         let light_view = LightViewPass::new(ctx, textured)?;
         let mut tracker = Tracker::new();
         let scene_gpu = SceneGpu::new(
@@ -104,16 +112,24 @@ impl Renderer {
         let effects = effects::create(&mut Setup {
             ctx,
             pool: &pool,
-            config: &config,
+            config: &rendered,
             tracker: &mut tracker,
         })?;
         let reprojection = Reprojection::new(ctx, &pool, &effects)?;
-        let targets = Targets::new(ctx, config.width, config.height, config.rsm_size)?;
+        let aa = config.aa.mode;
+        let targets = Targets::new(ctx, rendered.width, rendered.height, config.rsm_size, aa)?;
         let kinds: Vec<u32> = effects
             .iter()
             .map(|e| e.term(&targets, 0).0 as u32)
             .collect();
-        let composite = CompositePass::new(ctx, &pool, &kinds)?;
+        let composite = CompositePass::new(ctx, &pool, &kinds, aa.resolves())?;
+        let sraa = aa
+            .subpixel()
+            .then(|| SraaPass::new(ctx, &pool))
+            .transpose()?;
+        let ssaa = (aa.supersampling() > 1)
+            .then(|| SsaaPass::new(ctx, &pool))
+            .transpose()?;
         // Set 0 layout: every pipeline declares the same frame binding, so any of them works.
         let frame_layout = composite.frame_layout();
         let mut frames = Vec::new();
@@ -139,6 +155,8 @@ impl Renderer {
             light_view,
             gbuffer: GBufferPass::new(ctx, textured)?,
             composite,
+            sraa,
+            ssaa,
             effects,
             scene_gpu,
             frames,
@@ -166,6 +184,12 @@ impl Renderer {
         self.reprojection
             .bind(&self.ctx, &self.targets, &self.effects)?;
         let shared = SharedTargets(&self.targets);
+        if let Some(sraa) = &self.sraa {
+            sraa.bind(&self.ctx, &shared)?;
+        }
+        if let Some(ssaa) = &self.ssaa {
+            ssaa.bind(&self.ctx, &shared)?;
+        }
         self.composite
             .bind(&self.ctx, &terms(&shared, &self.effects))
     }
@@ -243,8 +267,9 @@ impl Renderer {
         // 1. Scene update: constants, change flags, each effect's refresh tile and pattern.
         let view_proj = self.write_uniforms(slot, camera)?;
         let light_changed = self.rsm_light != Some(self.scene.light);
+        let rendered = self.config.rendered();
         let info = FrameInfo {
-            config: &self.config,
+            config: &rendered,
             targets: &self.targets,
             frame: FrameSet {
                 set: self.frames[slot].set,
@@ -291,6 +316,21 @@ impl Renderer {
             self.composite
                 .record(rec, tr, frame, &terms, t.width, t.height)
         });
+        // 6b. Antialiasing of the composite's display-linear image into the output.
+        if let Some(sraa) = &self.sraa {
+            r.timed(PassId::SraaGeometry, |rec, tr| {
+                sraa.record_geometry(rec, tr, frame, scene, &shared)
+            });
+            r.timed(PassId::Sraa, |rec, tr| {
+                sraa.record_reconstruct(rec, tr, frame, &shared, (t.width, t.height))
+            });
+        }
+        if let Some(ssaa) = &self.ssaa {
+            let out = (t.output.desc.width, t.output.desc.height);
+            r.timed(PassId::SsaaDownsample, |rec, tr| {
+                ssaa.record(rec, tr, frame, &shared, out)
+            });
+        }
         let config = &self.config;
         let source = |target| resolve_target(t, &self.effects, config, target, frame.parity);
         let hook_sync = record_hook(&mut r, &mut hook, source, &t.output);
@@ -338,7 +378,7 @@ impl Renderer {
         let aspect = self.config.width as f32 / self.config.height as f32;
         let view_proj = camera.view_proj(aspect);
         let block = frame_block(
-            &self.config,
+            &self.config.rendered(),
             &FrameInputs {
                 camera,
                 prev_view_proj: self.history.map_or(view_proj, |(m, _)| m),
@@ -391,9 +431,16 @@ impl Renderer {
         config.validate()?;
         let pending = self.finish()?;
         self.ctx.wait_idle()?;
-        self.targets = Targets::new(&self.ctx, width, height, config.rsm_size)?;
+        let rendered = config.rendered();
+        self.targets = Targets::new(
+            &self.ctx,
+            rendered.width,
+            rendered.height,
+            config.rsm_size,
+            config.aa.mode,
+        )?;
         for e in &mut self.effects {
-            e.resize(&self.ctx, &config)?;
+            e.resize(&self.ctx, &rendered)?;
         }
         self.config = config;
         self.bind()?;

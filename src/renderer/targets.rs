@@ -1,6 +1,7 @@
 //! Render targets every effect shares (G-buffer, reflective shadow map, output) and the
 //! ping-pong pair that holds a frame's image and the previous one.
 
+use super::antialias::AaMode;
 use crate::error::Result;
 use crate::vk::{Context, Image, ImageDesc};
 use ash::vk;
@@ -112,7 +113,27 @@ pub struct Rsm {
     pub size: u32,
 }
 
+/// SRAA's subpixel geometry: position and normal at each subpixel of the rotated grid, one
+/// render each, sharing a depth buffer.
+pub struct Subpixels {
+    pub position: [Image; 4],
+    pub normal: [Image; 4],
+    pub depth: Image,
+}
+
+/// What antialiasing adds: the composite's display-linear image it filters (at the render
+/// size) and, for SRAA, the subpixel geometry.
+pub struct Antialias {
+    pub shaded: Image,
+    pub subpixels: Option<Subpixels>,
+}
+
+/// The composite's display-linear colour when an antialiasing pass follows it. fp32, so a
+/// pixel the pass keeps as it is encodes to the same RGBA8 value as without antialiasing.
+pub const SHADED_FORMAT: vk::Format = vk::Format::R32G32B32A32_SFLOAT;
+
 pub struct Targets {
+    /// The render size (the output's times the supersampling factor).
     pub width: u32,
     pub height: u32,
     pub gbuffer: GBuffer,
@@ -120,13 +141,17 @@ pub struct Targets {
     /// The direct effect's outgoing radiance (rgb) and shadow visibility (a): shared, because
     /// SSDO's bounce reads it at its senders.
     pub direct: Image,
+    /// The final image, at the output size.
     pub output: Image,
+    pub antialias: Option<Antialias>,
 }
 
 /// Which target to read back or dump.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Target {
     Output,
+    /// The composite's display-linear image before antialiasing (with `--aa` only).
+    Shaded,
     Direct,
     GPosition,
     /// Last frame's G-buffer position: the world-position history of eq 2.
@@ -162,8 +187,9 @@ pub enum Target {
 }
 
 impl Target {
-    pub const ALL: [Target; 23] = [
+    pub const ALL: [Target; 24] = [
         Target::Output,
+        Target::Shaded,
         Target::Direct,
         Target::GPosition,
         Target::GPositionHistory,
@@ -191,6 +217,7 @@ impl Target {
     pub fn name(self) -> &'static str {
         match self {
             Target::Output => "output",
+            Target::Shaded => "shaded",
             Target::Direct => "direct",
             Target::GPosition => "gbuffer_position",
             Target::GPositionHistory => "gbuffer_position_history",
@@ -217,9 +244,40 @@ impl Target {
     }
 }
 
+fn subpixels(ctx: &Arc<Context>, s: (u32, u32)) -> Result<Subpixels> {
+    let [gp, gn, _] = GBUFFER_COLOR_FORMATS;
+    let four = |what: &str, format| -> Result<[Image; 4]> {
+        let layer = |i: usize| image(ctx, &format!("sraa.{what}.{i}"), s, format, ATTACHMENT_READ);
+        Ok([layer(0)?, layer(1)?, layer(2)?, layer(3)?])
+    };
+    Ok(Subpixels {
+        position: four("position", gp)?,
+        normal: four("normal", gn)?,
+        depth: image(ctx, "sraa.depth", s, DEPTH_FORMAT, DEPTH_READ)?,
+    })
+}
+
 impl Targets {
-    pub fn new(ctx: &Arc<Context>, width: u32, height: u32, rsm_size: u32) -> Result<Self> {
+    /// Targets rendered at `width` x `height`; `aa` adds its images, and with supersampling
+    /// the output is that size divided by the factor.
+    pub fn new(
+        ctx: &Arc<Context>,
+        width: u32,
+        height: u32,
+        rsm_size: u32,
+        aa: AaMode,
+    ) -> Result<Self> {
         let s = (width, height);
+        let scale = aa.supersampling();
+        let out = (width / scale, height / scale);
+        let antialias = if aa.resolves() {
+            Some(Antialias {
+                shaded: image(ctx, "shaded", s, SHADED_FORMAT, STORAGE_READ)?,
+                subpixels: aa.subpixel().then(|| subpixels(ctx, s)).transpose()?,
+            })
+        } else {
+            None
+        };
         let r = (rsm_size, rsm_size);
         let [gp, gn, ga] = GBUFFER_COLOR_FORMATS;
         let [rp, rn, rf] = RSM_COLOR_FORMATS;
@@ -246,7 +304,8 @@ impl Targets {
                 size: rsm_size,
             },
             direct: image(ctx, "direct", s, DIRECT_FORMAT, STORAGE_READ)?,
-            output: image(ctx, "output", s, OUTPUT_FORMAT, STORAGE_READ)?,
+            output: image(ctx, "output", out, OUTPUT_FORMAT, STORAGE_READ)?,
+            antialias,
         })
     }
 
@@ -255,6 +314,7 @@ impl Targets {
     pub fn get(&self, target: Target, parity: usize) -> Option<&Image> {
         Some(match target {
             Target::Output => &self.output,
+            Target::Shaded => &self.antialias.as_ref()?.shaded,
             Target::GPosition => self.gbuffer.position.current(parity),
             Target::GPositionHistory => self.gbuffer.position.previous(parity),
             Target::GNormal => self.gbuffer.normal.current(parity),

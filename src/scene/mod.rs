@@ -36,8 +36,8 @@ pub use normals::area_weighted_normals;
 pub use obj::{degeneracy, load_obj, Degeneracy, SLIVER_RELATIVE_HEIGHT};
 pub use path::{CameraPath, Keyframe, Orbit};
 pub use procedural::{
-    box_room, cornell_box, cornell_camera, cornell_light, pyramids, CORNELL_GREEN, CORNELL_RED,
-    CORNELL_WHITE,
+    box_room, cornell_box, cornell_camera, cornell_light, pyramids, tilted_quad, CORNELL_GREEN,
+    CORNELL_RED, CORNELL_WHITE,
 };
 pub use raycast::{occlusion_span, Hit, OCCLUSION_RELATIVE_OFFSET, OCCLUSION_ULPS};
 pub use spec::{

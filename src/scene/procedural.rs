@@ -222,6 +222,50 @@ pub fn pyramids() -> Scene {
     }
 }
 
+/// Antialiasing's test scene: a grey wall 6 x 6 m, and 1.2 m in front of it a red 1.4 x 1.0 m
+/// quad turned 35 degrees about the vertical and tilted 20 degrees back, seen from 5 m with a
+/// 40 degree lens (the wall fills the view, the quad's four edges cross it at slants), lit by
+/// a spot from the upper left so the quad throws a shadow with slanted edges onto the wall.
+pub fn tilted_quad() -> Scene {
+    let mut b = MeshBuilder::new();
+    let wall = b.add_material(Material::colour("wall", [0.6, 0.6, 0.6]));
+    let quad = b.add_material(Material::colour("quad", [0.8, 0.25, 0.1]));
+    let h = 3.0;
+    b.add_flat_polygon(
+        wall,
+        &[
+            Vec3::new(-h, -h, 0.0),
+            Vec3::new(h, -h, 0.0),
+            Vec3::new(h, h, 0.0),
+            Vec3::new(-h, h, 0.0),
+        ],
+        Vec3::Z,
+    );
+    let turn = glam::Quat::from_rotation_y(35f32.to_radians())
+        * glam::Quat::from_rotation_x(-20f32.to_radians());
+    let centre = Vec3::new(0.0, 0.0, 1.2);
+    let corners = [(-0.7, -0.5), (0.7, -0.5), (0.7, 0.5), (-0.7, 0.5)]
+        .map(|(x, y)| centre + turn * Vec3::new(x, y, 0.0));
+    b.add_flat_polygon(quad, &corners, turn * Vec3::Z);
+    let light = SpotLight::aimed(
+        Vec3::new(-2.5, 2.5, 4.0),
+        Vec3::ZERO,
+        Vec3::new(30.0, 30.0, 30.0),
+        40.0,
+        45.0,
+        0.1,
+        20.0,
+    );
+    Scene {
+        name: "tilted-quad".into(),
+        mesh: b.build(),
+        camera: Camera::new(Vec3::new(0.0, 0.0, 5.0), Vec3::ZERO, 40.0, 0.1, 20.0),
+        light,
+        ambient: DEFAULT_AMBIENT,
+        orbit: None,
+    }
+}
+
 /// Target size of a model placed in the box room: this tall, and at most this wide/deep so
 /// it stays clear of the 2 m walls.
 pub const BOX_MODEL_HEIGHT: f32 = 0.9;

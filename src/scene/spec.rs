@@ -9,7 +9,7 @@ use super::light::SpotLight;
 use super::mesh::{Material, Mesh};
 use super::obj::load_obj;
 use super::path::Orbit;
-use super::procedural::{box_room, cornell_box, pyramids, DEFAULT_AMBIENT};
+use super::procedural::{box_room, cornell_box, pyramids, tilted_quad, DEFAULT_AMBIENT};
 use super::world::Scene;
 use glam::Vec3;
 use std::path::{Path, PathBuf};
@@ -18,7 +18,7 @@ use std::path::{Path, PathBuf};
 pub const ASSETS_ENV: &str = "SSGI_ASSETS";
 
 /// Scenes built in code; the first is the default.
-pub const BUILTIN_SCENES: [&str; 2] = ["cornell-box", "pyramids"];
+pub const BUILTIN_SCENES: [&str; 3] = ["cornell-box", "pyramids", "tilted-quad"];
 
 /// Field of view of the automatic camera for a loaded model.
 const AUTO_FOV_DEG: f32 = 40.0;
@@ -31,7 +31,7 @@ pub fn asset_dir_from_env() -> Option<PathBuf> {
 }
 
 /// Loads a scene from a spec:
-/// - `cornell-box` (default) or `pyramids`: built in, no files;
+/// - `cornell-box` (default), `pyramids` or `tilted-quad`: built in, no files;
 /// - a path to an `.obj` file (also tried relative to the asset directory);
 /// - an asset name: a sub-folder of the asset directory holding exactly one `.obj`;
 /// - `box:<path or asset>`: that model inside a Cornell-style box room.
@@ -43,6 +43,7 @@ pub fn load_scene(spec: &str, assets: Option<&Path>) -> Result<Scene, SceneError
     match spec {
         "cornell-box" => Ok(cornell_box()),
         "pyramids" => Ok(pyramids()),
+        "tilted-quad" => Ok(tilted_quad()),
         _ => {
             if let Some(inner) = spec.strip_prefix("box:") {
                 let (name, mesh) = load_model(inner, assets)?;

@@ -216,6 +216,15 @@ impl<'a> Recorder<'a> {
         }
     }
 
+    /// As `draw_indexed`, one instance numbered `instance` (the shader's gl_InstanceIndex).
+    pub fn draw_indexed_instance(&self, first_index: u32, index_count: u32, instance: u32) {
+        // SAFETY: as draw_indexed; a direct draw may start at any instance.
+        unsafe {
+            self.device
+                .cmd_draw_indexed(self.cmd, index_count, 1, first_index, 0, instance)
+        };
+    }
+
     pub fn draw_indexed(&self, first_index: u32, index_count: u32) {
         // SAFETY: recording inside rendering with a graphics pipeline and mesh bound; the
         // range lies inside the index buffer (validated when the mesh was built).

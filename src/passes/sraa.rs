@@ -1,0 +1,150 @@
+//! Subpixel reconstruction antialiasing (`--aa sraa|sraa-shadow`): the subpixel geometry (four
+//! renders of position and normal, the projection shifted to each subpixel of the rotated
+//! grid, as Chiu et al. render theirs) and the reconstruction (shaders/sraa.comp: eq 1's
+//! weights over the shaded pixels around each subpixel, then the box filter into the output).
+//!
+//! Four renders rather than one 4x multisampled G-buffer: the subpixels land exactly where
+//! shaders/include/subpixel.glsl says on every device (no dependence on standard sample
+//! locations or sample-rate shading), and the reconstruction reads plain images. The cost is
+//! four vertex passes; `sraa_geometry` times all four.
+
+use super::compute::{ComputePass, Dispatch, FrameSet};
+use super::decl::{self, Bind, Resolve, Slot, Use};
+use super::layout::PassLayout;
+use super::pass_id::PassId;
+use super::raster::{FLAT_BINDINGS, VERTEX_ATTRIBUTES, VERTEX_BINDINGS};
+use crate::error::Result;
+use crate::renderer::scene_gpu::SceneGpu;
+use crate::renderer::targets::{DEPTH_FORMAT, GBUFFER_COLOR_FORMATS};
+use crate::shaders;
+use crate::vk::cmd::Recorder;
+use crate::vk::{Context, DescriptorPool, GraphicsDesc, Pipeline, Tracker};
+use std::sync::Arc;
+
+/// Attachments of subpixel `n`'s render: position, normal (the G-buffer's formats), depth.
+const fn subpixel_targets(n: u8) -> [Bind; 3] {
+    [
+        Bind::new(0, Slot::SubPosition(n), Use::ColorAttachment),
+        Bind::new(1, Slot::SubNormal(n), Use::ColorAttachment),
+        Bind::new(0, Slot::SubDepth, Use::DepthAttachment),
+    ]
+}
+
+const SUBPIXEL_TARGETS: [[Bind; 3]; 4] = [
+    subpixel_targets(0),
+    subpixel_targets(1),
+    subpixel_targets(2),
+    subpixel_targets(3),
+];
+
+const COLOR_FORMATS: [ash::vk::Format; 2] = [GBUFFER_COLOR_FORMATS[0], GBUFFER_COLOR_FORMATS[1]];
+
+const RECONSTRUCT: &[Bind] = &[
+    Bind::new(0, Slot::GPosition, Use::Sampled),
+    Bind::new(1, Slot::GNormal, Use::Sampled),
+    Bind::new(2, Slot::Shaded, Use::Sampled),
+    Bind::new(3, Slot::RsmDepth, Use::Sampled),
+    Bind::new(4, Slot::SubPosition(0), Use::Sampled),
+    Bind::new(5, Slot::SubPosition(1), Use::Sampled),
+    Bind::new(6, Slot::SubPosition(2), Use::Sampled),
+    Bind::new(7, Slot::SubPosition(3), Use::Sampled),
+    Bind::new(8, Slot::SubNormal(0), Use::Sampled),
+    Bind::new(9, Slot::SubNormal(1), Use::Sampled),
+    Bind::new(10, Slot::SubNormal(2), Use::Sampled),
+    Bind::new(11, Slot::SubNormal(3), Use::Sampled),
+    Bind::new(12, Slot::Output, Use::StorageWrite),
+];
+
+pub fn layouts() -> Vec<PassLayout> {
+    vec![
+        PassLayout {
+            pass: PassId::SraaGeometry,
+            modules: vec![&shaders::MESH_VERT_SUBPIXEL, &shaders::SUBPIXEL_FRAG],
+            declared: FLAT_BINDINGS.to_vec(),
+        },
+        ComputePass::layout(PassId::Sraa, &shaders::SRAA_COMP, RECONSTRUCT),
+    ]
+}
+
+pub struct SraaPass {
+    geometry: Pipeline,
+    reconstruct: ComputePass,
+}
+
+impl SraaPass {
+    pub fn new(ctx: &Arc<Context>, pool: &DescriptorPool) -> Result<Self> {
+        let desc = GraphicsDesc {
+            vertex: &shaders::MESH_VERT_SUBPIXEL,
+            fragment: &shaders::SUBPIXEL_FRAG,
+            vertex_bindings: &VERTEX_BINDINGS,
+            vertex_attributes: &VERTEX_ATTRIBUTES,
+            color_formats: &COLOR_FORMATS,
+            depth_format: DEPTH_FORMAT,
+        };
+        let name = PassId::SraaGeometry.name();
+        Ok(Self {
+            geometry: Pipeline::graphics(ctx, name, &desc, FLAT_BINDINGS)?,
+            reconstruct: ComputePass::new(
+                ctx,
+                pool,
+                PassId::Sraa,
+                &shaders::SRAA_COMP,
+                RECONSTRUCT,
+            )?,
+        })
+    }
+
+    pub fn bind(&self, ctx: &Context, res: &dyn Resolve) -> Result<()> {
+        self.reconstruct.bind(ctx, res)
+    }
+
+    /// The four subpixel renders; the draw's first instance tells mesh.vert which subpixel.
+    pub fn record_geometry(
+        &self,
+        rec: &Recorder<'_>,
+        tracker: &mut Tracker,
+        frame: FrameSet,
+        scene: &SceneGpu,
+        res: &dyn Resolve,
+    ) {
+        let name = self.geometry.name;
+        for (n, binds) in SUBPIXEL_TARGETS.iter().enumerate() {
+            // The slots exist whenever this pass does (the renderer builds both from `--aa`):
+            // a miss is a broken invariant.
+            let (colors, depth) = match decl::attachments(name, binds, res, frame.parity) {
+                Ok((colors, Some(depth))) => (colors, depth),
+                Ok((_, None)) => panic!("{name}: a raster pass needs a depth attachment"),
+                Err(e) => panic!("{e}"),
+            };
+            decl::access(name, binds, res, frame.parity, tracker);
+            tracker.flush(rec.device, rec.cmd);
+            let clear: Vec<_> = colors.iter().map(|c| (*c, [0.0; 4])).collect();
+            rec.begin_rendering(&clear, depth);
+            rec.bind(&self.geometry, &[frame.set]);
+            rec.bind_mesh(&scene.vertices, &scene.indices);
+            for range in &scene.ranges {
+                rec.draw_indexed_instance(range.first_index, range.index_count, n as u32);
+            }
+            rec.end_rendering();
+        }
+    }
+
+    /// The reconstruction over the render size.
+    pub fn record_reconstruct(
+        &self,
+        rec: &Recorder<'_>,
+        tracker: &mut Tracker,
+        frame: FrameSet,
+        res: &dyn Resolve,
+        (width, height): (u32, u32),
+    ) {
+        self.reconstruct.record(
+            rec,
+            tracker,
+            frame,
+            res,
+            &[],
+            Dispatch::Pixels { width, height },
+        );
+    }
+}
