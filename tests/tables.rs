@@ -480,3 +480,67 @@ fn szentandrasi_1_end_to_end() {
     assert!(md.contains("SSDO with preprocessing") && md.contains("Paper fps"));
     std::fs::remove_dir_all(&out).ok();
 }
+
+/// `ssgi table sraa` at 48x48 (one size): the four rows in order, supersampling first and
+/// against itself exact, every time finite, the geometry pass only in the SRAA rows, the
+/// report's numbers absent at a size it did not measure, SRAA closer to the reference than no
+/// antialiasing over the edge pixels, one PNG of the output size per row.
+#[test]
+fn sraa_end_to_end() {
+    let assets = assets();
+    let out = out_dir("sraa");
+    let output = Command::new(env!("CARGO_BIN_EXE_ssgi"))
+        .arg("--validation")
+        .arg("--assets")
+        .arg(&assets)
+        .args(["table", "sraa", "--size", "48x48", "--frames", "1", "--out"])
+        .arg(&out)
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert!(output.status.success(), "ssgi table failed:\n{stderr}");
+    assert!(
+        !stderr.contains("vulkan: ["),
+        "validation messages:\n{stderr}"
+    );
+    let text = std::fs::read_to_string(out.join("report.json")).unwrap();
+    let report: Value = serde_json::from_str(&text).unwrap();
+    schema::assert_follows("sraa-table", &report);
+    assert_eq!(report["effects"], "direct");
+    let sizes = report["sizes"].as_array().unwrap();
+    assert_eq!(sizes.len(), 1);
+    let s = &sizes[0];
+    assert_eq!((num(&s["width"]), num(&s["height"])), (48.0, 48.0));
+    assert!(num(&s["edge_pixels"]) > 0.0, "{s}");
+    let rows = s["rows"].as_array().unwrap();
+    let modes: Vec<&str> = rows.iter().map(|r| r["mode"].as_str().unwrap()).collect();
+    assert_eq!(modes, ["ssaa16", "none", "sraa", "sraa-shadow"]);
+    for r in rows {
+        let mode = r["mode"].as_str().unwrap();
+        assert!(num(&r["total_ms"]) > 0.0, "{mode}: {r}");
+        assert_eq!(
+            r["geometry_ms"].is_number(),
+            mode.starts_with("sraa"),
+            "{mode}"
+        );
+        assert_eq!(r["aa_ms"].is_number(), mode != "none", "{mode}");
+        assert!(
+            r["paper_total_ms"].is_null(),
+            "48x48 is not the report's size"
+        );
+        let image = out.join(r["image"].as_str().unwrap());
+        assert_eq!(png_size(&image), (48, 48), "{mode}");
+    }
+    assert_eq!(num(&rows[0]["rmse_all"]), 0.0);
+    assert_eq!(num(&rows[0]["speedup_over_ssaa"]), 1.0);
+    let edges = |i: usize| num(&rows[i]["rmse_edges"]);
+    assert!(
+        edges(1) > 0.0 && edges(2) < edges(1),
+        "{} {}",
+        edges(2),
+        edges(1)
+    );
+    let csv = std::fs::read_to_string(out.join("sraa.csv")).unwrap();
+    assert_eq!(csv.lines().count(), 1 + 4);
+    std::fs::remove_dir_all(&out).ok();
+}

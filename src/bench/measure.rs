@@ -106,8 +106,12 @@ pub struct RunSpec<'a> {
 pub struct LastFrame {
     pub camera: Camera,
     pub buffers: Vec<(Buffer, ImageData)>,
-    /// Geometry pixels (G-buffer position alpha != 0), row order.
+    /// Geometry pixels of the output (G-buffer position alpha != 0; supersampled: any of
+    /// the pixel's samples), row order.
     pub geometry: Vec<bool>,
+    /// The G-buffer position and normal at the render size when it exceeds the output's
+    /// (`--aa ssaa16`): antialiasing's edge pixels come from them.
+    pub supersampled: Option<(ImageData, ImageData)>,
 }
 
 impl LastFrame {
@@ -281,10 +285,27 @@ fn read_frame(renderer: &mut Renderer, camera: Camera) -> Result<LastFrame> {
             buffers.push((b, renderer.read(b.target())?));
         }
     }
-    let geometry = super::metrics::geometry_mask(&renderer.read(Target::GPosition)?);
+    let position = renderer.read(Target::GPosition)?;
+    let scale = renderer.config.aa.mode.supersampling();
+    let geometry = super::metrics::geometry_mask(&position);
+    let (geometry, supersampled) = if scale > 1 {
+        let normal = renderer.read(Target::GNormal)?;
+        let w = position.width as usize;
+        let out_w = w / scale as usize;
+        let any = |i: usize| {
+            let (x, y) = (i % out_w * scale as usize, i / out_w * scale as usize);
+            (0..scale as usize * scale as usize)
+                .any(|k| geometry[(y + k / scale as usize) * w + x + k % scale as usize])
+        };
+        let out_len = geometry.len() / (scale * scale) as usize;
+        ((0..out_len).map(any).collect(), Some((position, normal)))
+    } else {
+        (geometry, None)
+    };
     Ok(LastFrame {
         camera,
         buffers,
         geometry,
+        supersampled,
     })
 }

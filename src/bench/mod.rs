@@ -1,6 +1,7 @@
 //! Benchmark runs: timing aggregation and reports, and the papers' tables (`ssgi table`):
 //! measured rows, error against converged references, Markdown/JSON/CSV reports, PNG plots.
 
+pub mod aa_edges;
 pub mod compare;
 pub mod csv;
 pub mod decimate;
@@ -25,6 +26,7 @@ pub mod sweep_report;
 pub mod szentandrasi;
 pub mod table41;
 pub mod table_report;
+pub mod table_sraa;
 pub mod table_szentandrasi;
 pub mod thesis;
 pub mod walkthrough;

@@ -556,6 +556,10 @@ pub enum TableName {
     /// Szentandrasi et al. Table 1: SSAO and SSDO rows on Pyramids, Cornell box, Dragon.
     #[value(name = "szentandrasi-1")]
     Szentandrasi1,
+    /// Chiu et al.'s SRAA Table 1 / Figure 3: no AA, SRAA, shadow-aware SRAA, SSAA 16x on
+    /// Sponza at 256-1024 (or --size): pass times and error against SSAA 16x.
+    #[value(name = "sraa")]
+    Sraa,
 }
 
 impl TableName {
@@ -570,6 +574,7 @@ impl TableName {
                 20,
                 Warmup::Frames(2),
             ),
+            TableName::Sraa => ((512, 512), 3, Warmup::Frames(1)),
         }
     }
 
@@ -578,6 +583,7 @@ impl TableName {
             TableName::Thesis41 => "thesis-4.1",
             TableName::ThesisWalkthroughs => "thesis-walkthroughs",
             TableName::Szentandrasi1 => "szentandrasi-1",
+            TableName::Sraa => "sraa",
         }
     }
 
@@ -591,6 +597,7 @@ impl TableName {
                 "Thesis Tables 4.2-4.4 and Figure 4.10: Sponza, Sibenik and Conference walkthroughs"
             }
             TableName::Szentandrasi1 => crate::bench::table_szentandrasi::TITLE,
+            TableName::Sraa => crate::bench::table_sraa::TITLE,
         }
     }
 }

@@ -76,6 +76,44 @@ impl Effects {
     }
 }
 
+#[cfg(test)]
+mod effects_tests {
+    use super::Effects;
+
+    #[test]
+    fn the_list_parses_back() {
+        for s in [
+            "direct",
+            "direct,ao",
+            "ao,indirect",
+            "direct,ao,indirect",
+            "direct,ssdo",
+        ] {
+            let e = Effects::parse(s).unwrap();
+            assert_eq!(e.to_string(), s);
+            assert_eq!(Effects::parse(&e.to_string()).unwrap(), e);
+        }
+    }
+}
+
+/// The `--effects` list that selects exactly these: `direct,ao`.
+impl std::fmt::Display for Effects {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let names = [
+            ("direct", self.direct),
+            ("ao", self.ao),
+            ("indirect", self.indirect),
+            ("ssdo", self.ssdo),
+        ];
+        let on: Vec<&str> = names
+            .iter()
+            .filter(|(_, on)| *on)
+            .map(|(n, _)| *n)
+            .collect();
+        f.write_str(&on.join(","))
+    }
+}
+
 /// Which of SSDO's forms runs (Szentandrasi sections 3.2 and 4.1).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, clap::ValueEnum)]
 #[serde(rename_all = "kebab-case")]

@@ -1,10 +1,10 @@
-//! `ssgi table <thesis-4.1|thesis-walkthroughs|szentandrasi-1>`: measure a paper table's rows,
+//! `ssgi table <thesis-4.1|thesis-walkthroughs|szentandrasi-1|sraa>`: measure a paper table's rows,
 //! offscreen or presented, and write its report, CSV and plots.
 
 use super::common::{context_options, finish};
 use crate::bench::markdown::WALKTHROUGH_LEGEND;
 use crate::bench::warmup::Warmup;
-use crate::bench::{output, table41, table_szentandrasi, walkthrough, TableOptions};
+use crate::bench::{output, table41, table_sraa, table_szentandrasi, walkthrough, TableOptions};
 use crate::cli::args::{Cli, TableArgs, TableName};
 use crate::error::{Error, Result};
 use crate::frontend::presenter::open_sink;
@@ -60,7 +60,13 @@ pub fn table(cli: &Cli, args: &TableArgs) -> Result<()> {
         warmup,
         fps: args.fps,
         path: args.path.clone(),
-        effects: args.effects.unwrap_or(Effects::ALL),
+        effects: args.effects.unwrap_or(match args.table {
+            TableName::Sraa => Effects {
+                direct: true,
+                ..Effects::NONE
+            },
+            _ => Effects::ALL,
+        }),
         assets: cli.assets.clone().or_else(asset_dir_from_env),
         progress: true,
         command: command_line(),
@@ -81,6 +87,18 @@ pub fn table(cli: &Cli, args: &TableArgs) -> Result<()> {
             if sink.present_mode().is_some() {
                 eprintln!("presented {} frames to the window", sink.frames_presented());
             }
+            drop(sink);
+            for path in written {
+                eprintln!("wrote {}", path.display());
+            }
+            return finish(&ctx);
+        }
+        TableName::Sraa => {
+            let sizes: Vec<(u32, u32)> = match args.size {
+                Some(size) => vec![size],
+                None => table_sraa::SIZES.iter().map(|&s| (s, s)).collect(),
+            };
+            let written = table_sraa::run(&ctx, sink.as_mut(), &opts, &sizes, &out)?;
             drop(sink);
             for path in written {
                 eprintln!("wrote {}", path.display());

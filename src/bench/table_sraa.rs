@@ -1,0 +1,391 @@
+//! `ssgi table sraa`: Chiu et al.'s Table 1 and Figure 3 (the SRAA report in
+//! `../shared/papers/chang-ccipca-filtering-and-sraa.txt`): on Sponza, at each size, no
+//! antialiasing, `sraa`, `sraa-shadow` and 16x supersampling, timed per pass (the geometry
+//! pass and the antialiasing pass as their own columns), with the report's milliseconds beside
+//! ours, the speed-up over supersampling, and the error against it over all pixels and over
+//! edge pixels. Writes report.json, report.md, sraa.csv and every row's last frame as PNG.
+//!
+//! JSON, version 1 (later versions only add fields): see README, "SRAA table".
+
+use super::aa_edges::{edge_mask, rmse};
+use super::measure::{held_at, measure, Buffer, Measured, RunSpec};
+use super::output::write_text;
+use super::walkthrough::WALKTHROUGHS;
+use super::{Report, TableOptions};
+use crate::error::{Error, Result};
+use crate::frontend::sink::FrameSink;
+use crate::passes::PassId;
+use crate::renderer::antialias::{AaConfig, AaMode};
+use crate::renderer::config::RenderConfig;
+use crate::renderer::pcf::Pcf;
+use crate::vk::{Context, ImageData};
+use serde::Serialize;
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+
+pub const TABLE: &str = "sraa";
+pub const TITLE: &str =
+    "Chiu et al. Table 1 and Figure 3: subpixel reconstruction antialiasing against 16x supersampling (Sponza)";
+
+/// The report's output sizes (square).
+pub const SIZES: [u32; 4] = [256, 512, 768, 1024];
+
+/// The report's Table 1, ms on its machine: first pass (subpixel geometry; its number is the
+/// ray tracer's), second pass (antialiasing), total.
+const PAPER_MS: [(u32, f64, f64, f64); 4] = [
+    (256, 18.0, 5.0, 23.0),
+    (512, 35.0, 14.0, 49.0),
+    (768, 69.0, 28.0, 97.0),
+    (1024, 116.0, 49.0, 165.0),
+];
+
+/// Figure 3: "about 6x speedup in average compared to the 16x supersampling approach".
+pub const PAPER_SPEEDUP: f64 = 6.0;
+
+/// Row order: the reference first (every other row's error is against it).
+const MODES: [AaMode; 4] = [
+    AaMode::Ssaa16,
+    AaMode::None,
+    AaMode::Sraa,
+    AaMode::SraaShadow,
+];
+
+#[derive(Clone, Debug, Serialize)]
+pub struct RowResult {
+    pub mode: AaMode,
+    /// Median ms of the subpixel geometry pass (SRAA rows).
+    pub geometry_ms: Option<f64>,
+    /// Median ms of the antialiasing pass: the reconstruction, or supersampling's downsample.
+    pub aa_ms: Option<f64>,
+    /// Median ms of the frame (every pass).
+    pub total_ms: Option<f64>,
+    /// The report's first pass, second pass and total at this size (SRAA rows).
+    pub paper_geometry_ms: Option<f64>,
+    pub paper_aa_ms: Option<f64>,
+    pub paper_total_ms: Option<f64>,
+    /// Supersampling's frame time over this row's.
+    pub speedup_over_ssaa: Option<f64>,
+    /// RMSE of the output (RGB, 0..1 as encoded) against supersampling's, all pixels.
+    pub rmse_all: Option<f64>,
+    /// The same over the edge pixels.
+    pub rmse_edges: Option<f64>,
+    /// The last frame, relative to the output directory.
+    pub image: String,
+    pub report: Report,
+}
+
+#[derive(Clone, Debug, Serialize)]
+pub struct SizeResult {
+    pub width: u32,
+    pub height: u32,
+    /// Output pixels whose 16 reference samples are not all on one surface
+    /// (`aa_edges::edge_mask`).
+    pub edge_pixels: usize,
+    pub rows: Vec<RowResult>,
+}
+
+#[derive(Clone, Debug, Serialize)]
+pub struct TableReport {
+    pub version: u32,
+    pub table: &'static str,
+    pub command: String,
+    pub ssgi_version: &'static str,
+    pub device: String,
+    pub driver: String,
+    pub device_type: String,
+    pub window: bool,
+    pub present_mode: Option<&'static str>,
+    pub scene: String,
+    pub triangles: usize,
+    /// The `--effects` list every row renders.
+    pub effects: String,
+    pub frames: u32,
+    pub warmup: u32,
+    pub paper_speedup: f64,
+    pub notes: Vec<String>,
+    pub sizes: Vec<SizeResult>,
+}
+
+fn pass_ms(report: &Report, pass: PassId) -> Option<f64> {
+    report
+        .passes
+        .iter()
+        .find(|p| p.name == pass.name())
+        .and_then(|p| p.median_ms)
+}
+
+fn final_image(m: &Measured) -> Result<&ImageData> {
+    m.last
+        .buffer(Buffer::Final)
+        .ok_or_else(|| Error::Config("the run read back no output image".into()))
+}
+
+fn config(opts: &TableOptions, size: (u32, u32), mode: AaMode) -> RenderConfig {
+    RenderConfig {
+        width: size.0,
+        height: size.1,
+        effects: opts.effects,
+        // The report's shadows are ray traced: hard.
+        pcf: Pcf::HARD,
+        aa: AaConfig {
+            mode,
+            ..AaConfig::default()
+        },
+        ..RenderConfig::default()
+    }
+}
+
+fn mode_name(mode: AaMode) -> &'static str {
+    match mode {
+        AaMode::None => "none",
+        AaMode::Sraa => "sraa",
+        AaMode::SraaShadow => "sraa-shadow",
+        AaMode::Ssaa16 => "ssaa16",
+    }
+}
+
+/// Every row at one size, the reference first.
+fn run_size(
+    ctx: &Arc<Context>,
+    sink: &mut dyn FrameSink,
+    opts: &TableOptions,
+    scene: &crate::scene::Scene,
+    size: (u32, u32),
+    out: &Path,
+) -> Result<SizeResult> {
+    let held = held_at(&scene.camera);
+    let paper = PAPER_MS.iter().find(|p| p.0 == size.0 && size.0 == size.1);
+    let warmup = match opts.warmup {
+        super::warmup::Warmup::Frames(n) => n,
+        super::warmup::Warmup::Converged => 0,
+    };
+    let mut rows: Vec<RowResult> = Vec::new();
+    let mut reference: Option<(ImageData, Vec<bool>)> = None;
+    for mode in MODES {
+        let label = format!("{}x{} {}", size.0, size.1, mode_name(mode));
+        let m = measure(
+            ctx,
+            sink,
+            scene,
+            &RunSpec {
+                label: &label,
+                config: config(opts, size, mode),
+                path: &held,
+                frames: opts.frames,
+                warmup,
+                warmup_along_path: false,
+                fps: opts.fps,
+                snapshot_after_warmup: false,
+                progress: opts.progress,
+            },
+        )?;
+        let image = final_image(&m)?;
+        if reference.is_none() {
+            let (position, normal) = m.last.supersampled.as_ref().ok_or_else(|| {
+                Error::Config("the supersampled run read back no 4x G-buffer".into())
+            })?;
+            let edges = edge_mask(position, normal, m.last.camera.position)?;
+            reference = Some((image.clone(), edges));
+        }
+        let (ref_image, edges) = reference.as_ref().expect("the reference row runs first");
+        let name = format!("sponza-{}x{}-{}.png", size.0, size.1, mode_name(mode));
+        if let Some(rgba) = image.rgba8() {
+            crate::frontend::png::write_rgba8(&out.join(&name), image.width, image.height, &rgba)?;
+        }
+        let subpixel = mode.subpixel();
+        let aa_pass = if mode == AaMode::Ssaa16 {
+            PassId::SsaaDownsample
+        } else {
+            PassId::Sraa
+        };
+        let total_ms = m.report.total.median_ms;
+        let ssaa_ms = rows.first().and_then(|r| r.total_ms).or(total_ms);
+        rows.push(RowResult {
+            mode,
+            geometry_ms: pass_ms(&m.report, PassId::SraaGeometry),
+            aa_ms: pass_ms(&m.report, aa_pass),
+            total_ms,
+            paper_geometry_ms: paper.filter(|_| subpixel).map(|p| p.1),
+            paper_aa_ms: paper.filter(|_| subpixel).map(|p| p.2),
+            paper_total_ms: paper.filter(|_| subpixel).map(|p| p.3),
+            speedup_over_ssaa: match (ssaa_ms, total_ms) {
+                (Some(s), Some(t)) if t > 0.0 => Some(s / t),
+                _ => None,
+            },
+            rmse_all: rmse(image, ref_image, None)?,
+            rmse_edges: rmse(image, ref_image, Some(edges))?,
+            image: name,
+            report: m.report,
+        });
+    }
+    let edge_pixels = reference.map_or(0, |(_, e)| e.iter().filter(|b| **b).count());
+    Ok(SizeResult {
+        width: size.0,
+        height: size.1,
+        edge_pixels,
+        rows,
+    })
+}
+
+/// Run the table at `sizes` (the report's four unless `--size` names one).
+pub fn run(
+    ctx: &Arc<Context>,
+    sink: &mut dyn FrameSink,
+    opts: &TableOptions,
+    sizes: &[(u32, u32)],
+    out: &Path,
+) -> Result<Vec<PathBuf>> {
+    let sponza = &WALKTHROUGHS[0];
+    let (path, _) = sponza.camera_path(None)?;
+    let scene = sponza.load(opts.assets.as_deref(), &path)?;
+    std::fs::create_dir_all(out)
+        .map_err(|e| Error::Config(format!("cannot create {}: {e}", out.display())))?;
+    let mut results = Vec::new();
+    for &size in sizes {
+        let r = run_size(ctx, sink, opts, &scene, size, out)?;
+        eprintln!("{}", summary_line(&r));
+        results.push(r);
+    }
+    let notes = vec![
+        "Sponza from the walkthrough's first camera, lit by its spot under the roof, hard \
+         shadows (the report ray traces them); effects as --effects says (default: direct \
+         light). Each row is one process-wide run of --frames frames after --warmup frames; \
+         times are medians of per-pass GPU time."
+            .into(),
+        "The report's first pass is its ray tracer's (primary rays and the subpixel buffers on \
+         a CPU+GPU hybrid); ours rasterizes the four subpixel renders. Compare ratios (speed-up \
+         over 16x supersampling; the report: about 6x), not milliseconds."
+            .into(),
+        format!(
+            "Error: RMSE of the encoded RGB output against the 16x supersampled output, over \
+             all pixels and over edge pixels: those whose 16 supersampled samples do not all \
+             lie on one surface (eye distances within {:.0}%, normals within 25 degrees).",
+            100.0 * super::aa_edges::SAME_SURFACE_DISTANCE
+        ),
+    ];
+    let report = TableReport {
+        version: 1,
+        table: TABLE,
+        command: opts.command.clone(),
+        ssgi_version: env!("CARGO_PKG_VERSION"),
+        device: ctx.info.name.clone(),
+        driver: ctx.info.driver.clone(),
+        device_type: ctx.info.device_type.clone(),
+        window: sink.present_mode().is_some(),
+        present_mode: sink.present_mode(),
+        scene: scene.name.clone(),
+        triangles: scene.mesh.triangle_count(),
+        effects: opts.effects.to_string(),
+        frames: opts.frames,
+        warmup: match opts.warmup {
+            super::warmup::Warmup::Frames(n) => n,
+            super::warmup::Warmup::Converged => 0,
+        },
+        paper_speedup: PAPER_SPEEDUP,
+        notes,
+        sizes: results,
+    };
+    let json = serde_json::to_string_pretty(&report)
+        .map_err(|e| Error::Config(format!("JSON encoding failed: {e}")))?;
+    let files = [
+        (out.join("report.json"), json),
+        (out.join("report.md"), markdown(&report)),
+        (out.join(format!("{TABLE}.csv")), csv(&report)),
+    ];
+    let mut written = Vec::new();
+    for (path, text) in files {
+        write_text(&path, &text)?;
+        written.push(path);
+    }
+    Ok(written)
+}
+
+fn summary_line(s: &SizeResult) -> String {
+    let parts: Vec<String> = s
+        .rows
+        .iter()
+        .map(|r| {
+            format!(
+                "{} {} ms (edges {})",
+                mode_name(r.mode),
+                opt(r.total_ms, 1),
+                opt(r.rmse_edges, 4)
+            )
+        })
+        .collect();
+    format!("{}x{}: {}", s.width, s.height, parts.join(", "))
+}
+
+fn opt(v: Option<f64>, digits: usize) -> String {
+    v.map_or("-".into(), |v| format!("{v:.digits$}"))
+}
+
+fn markdown(r: &TableReport) -> String {
+    let mut md = format!("# {TITLE}\n\nCommand: `{}`\n\n", r.command);
+    md += &format!(
+        "Device: {} ({}), scene {} ({} triangles), effects {}, {} frames measured per row \
+         after {} warmup frames, ssgi {}.\n\n",
+        r.device, r.driver, r.scene, r.triangles, r.effects, r.frames, r.warmup, r.ssgi_version
+    );
+    md += "| Size | Method | Geometry pass ms | AA pass ms | Frame ms | Report: 1st / 2nd / total ms \
+           | Speed-up over SSAA 16x | RMSE, all pixels | RMSE, edge pixels |\n";
+    md += "|---|---|---|---|---|---|---|---|---|\n";
+    for s in &r.sizes {
+        for row in &s.rows {
+            let paper = match (row.paper_geometry_ms, row.paper_aa_ms, row.paper_total_ms) {
+                (Some(a), Some(b), Some(c)) => format!("{a} / {b} / {c}"),
+                _ => "-".into(),
+            };
+            md += &format!(
+                "| {}x{} ({} edge px) | {} | {} | {} | {} | {} | {} | {} | {} |\n",
+                s.width,
+                s.height,
+                s.edge_pixels,
+                mode_name(row.mode),
+                opt(row.geometry_ms, 2),
+                opt(row.aa_ms, 2),
+                opt(row.total_ms, 2),
+                paper,
+                opt(row.speedup_over_ssaa, 2),
+                opt(row.rmse_all, 4),
+                opt(row.rmse_edges, 4),
+            );
+        }
+    }
+    md += &format!(
+        "\nThe report's speed-up of its method over 16x supersampling: about {}x.\n\n## Notes\n\n",
+        r.paper_speedup
+    );
+    for n in &r.notes {
+        md += &format!("- {n}\n");
+    }
+    md
+}
+
+fn csv(r: &TableReport) -> String {
+    let mut out = String::from(
+        "width,height,edge_pixels,method,geometry_ms,aa_ms,total_ms,paper_geometry_ms,\
+         paper_aa_ms,paper_total_ms,speedup_over_ssaa,rmse_all,rmse_edges\n",
+    );
+    for s in &r.sizes {
+        for row in &s.rows {
+            out += &format!(
+                "{},{},{},{},{},{},{},{},{},{},{},{},{}\n",
+                s.width,
+                s.height,
+                s.edge_pixels,
+                mode_name(row.mode),
+                opt(row.geometry_ms, 4),
+                opt(row.aa_ms, 4),
+                opt(row.total_ms, 4),
+                opt(row.paper_geometry_ms, 0),
+                opt(row.paper_aa_ms, 0),
+                opt(row.paper_total_ms, 0),
+                opt(row.speedup_over_ssaa, 4),
+                opt(row.rmse_all, 5),
+                opt(row.rmse_edges, 5),
+            );
+        }
+    }
+    out
+}
