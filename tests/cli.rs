@@ -46,12 +46,21 @@ fn converged_warmup_measures_the_steady_state() {
         let index = f["index"].as_u64().unwrap();
         assert_eq!(f["warmup"], index < n, "frame {index}");
         if index >= n {
+            // Converged and unchanged: skipped entirely (`--skip-unchanged`, on by default),
+            // with every pass listed as skipped; a frame that ran computed nothing.
+            let passes = f["passes"].as_object().unwrap();
+            if passes.is_empty() {
+                assert_eq!(f["skip_reasons"]["ssao"], "converged", "frame {index}");
+                assert_eq!(f["skip_reasons"]["gbuffer"], "unchanged", "frame {index}");
+                continue;
+            }
             for effect in ["ssao", "shadow", "indirect"] {
                 let key = format!("{effect}_computed_pixels");
                 assert_eq!(f["counters"][&key], 0, "frame {index}: {key}");
             }
         }
     }
+    assert_eq!(report["skipped_frames"], 4, "a converged static view skips");
 }
 
 #[test]

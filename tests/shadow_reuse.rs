@@ -34,6 +34,9 @@ fn config(pcf: Pcf, reuse: bool) -> RenderConfig {
             reuse,
             ..Default::default()
         },
+        // Every frame reads the cache's counters: a converged frame must run, not be skipped
+        // (tests/skip.rs covers skipping).
+        skip_unchanged: false,
         ..Default::default()
     }
 }

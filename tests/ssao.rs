@@ -33,6 +33,9 @@ fn config(size: u32, temporal: TemporalConfig, ao: AoConfig) -> RenderConfig {
         ssdo: Default::default(),
         temporal,
         aa: Default::default(),
+        // Every frame reads the cache's counters: a converged frame must run, not be skipped
+        // (tests/skip.rs covers skipping).
+        skip_unchanged: false,
     }
 }
 

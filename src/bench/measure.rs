@@ -157,7 +157,13 @@ pub fn measure(
     spec: &RunSpec<'_>,
 ) -> Result<Measured> {
     let frames = spec.frames.max(1);
-    let mut renderer = Renderer::new(ctx, scene.clone(), spec.config)?;
+    // Tables and sweeps time what a technique costs per frame: a frame skipped because
+    // nothing changed would say nothing about it (`bench` leaves the choice to the user).
+    let config = RenderConfig {
+        skip_unchanged: false,
+        ..spec.config
+    };
+    let mut renderer = Renderer::new(ctx, scene.clone(), config)?;
     let base = renderer.scene.camera;
     let orbit = renderer.scene.orbit();
     let mut bar = Progress::new((spec.warmup + frames) as u64, spec.label, spec.progress);

@@ -7,10 +7,13 @@
 //!   "passes": [ { "name", "median_ms", "mean_ms", "p95_ms", "fps_equivalent",
 //!                 "recorded", "skipped" } ],          // over measured frames (after warmup);
 //!                                                     // times are null if never recorded
-//!   "total":  { "median_ms", "mean_ms", "p95_ms", "fps_equivalent" },  // sum of passes per frame
+//!   "total":  { "median_ms", "mean_ms", "p95_ms", "fps_equivalent" },  // sum of passes per frame,
+//!                                                     // over the measured frames that did work
+//!   "skipped_frames": n,  // measured frames that recorded no pass (`--skip-unchanged`)
 //!   "counter_means": { name: mean },  // each counter's mean over measured frames, and
 //!                                     // ssdo_samples_per_pixel = ssdo_samples / ssdo_computed_pixels
 //!   "frames": [ { "index", "warmup", "passes": { name: ms }, "skipped": [name],
+//!                 "skip_reasons": { name: "unchanged" | "converged" },
 //!                 "counters": { name: n } } ] }     // every frame, warmup ones marked
 //! ```
 
@@ -47,6 +50,8 @@ pub struct FrameRow {
     pub warmup: bool,
     pub passes: BTreeMap<String, f64>,
     pub skipped: Vec<String>,
+    /// Why each skipped pass was skipped.
+    pub skip_reasons: BTreeMap<String, &'static str>,
     pub counters: BTreeMap<String, u64>,
 }
 
@@ -60,6 +65,8 @@ pub struct Report {
     pub config: serde_json::Value,
     /// Frames after warmup, over which `passes` and `total` are computed.
     pub measured_frames: usize,
+    /// Measured frames that recorded no pass at all: left out of `total`.
+    pub skipped_frames: usize,
     pub passes: Vec<PassRow>,
     pub total: TotalRow,
     pub counter_means: BTreeMap<String, f64>,
@@ -112,7 +119,7 @@ impl Report {
         let present = |name: &&&str| {
             timings
                 .iter()
-                .any(|t| t.passes.iter().any(|(n, _)| n == *name) || t.skipped.contains(*name))
+                .any(|t| t.passes.iter().any(|(n, _)| n == *name) || t.skipped(name))
         };
         let passes = pass_order
             .iter()
@@ -128,10 +135,7 @@ impl Report {
                     .iter()
                     .filter(|t| t.passes.iter().any(|(n, _)| n == name))
                     .count();
-                let skipped = measured
-                    .iter()
-                    .filter(|t| t.skipped.iter().any(|n| n == name))
-                    .count();
+                let skipped = measured.iter().filter(|t| t.skipped(name)).count();
                 let s = summarize(&times);
                 PassRow {
                     name: name.to_string(),
@@ -144,7 +148,10 @@ impl Report {
                 }
             })
             .collect();
-        let totals: Vec<f64> = measured
+        // A frame that recorded nothing (every pass unchanged or converged) is counted apart,
+        // so it does not pull the frame-time statistics towards zero.
+        let worked: Vec<&&FrameTiming> = measured.iter().filter(|t| !t.passes.is_empty()).collect();
+        let totals: Vec<f64> = worked
             .iter()
             .map(|t| t.passes.iter().filter_map(|(_, ms)| *ms).sum())
             .collect();
@@ -159,7 +166,12 @@ impl Report {
                     .iter()
                     .filter_map(|(n, ms)| ms.map(|ms| (n.to_string(), ms)))
                     .collect(),
-                skipped: t.skipped.iter().map(|s| s.to_string()).collect(),
+                skipped: t.skipped.iter().map(|s| s.pass.to_string()).collect(),
+                skip_reasons: t
+                    .skipped
+                    .iter()
+                    .map(|s| (s.pass.to_string(), s.reason.name()))
+                    .collect(),
                 counters: t
                     .counters
                     .iter()
@@ -175,6 +187,7 @@ impl Report {
             height,
             config,
             measured_frames: measured.len(),
+            skipped_frames: measured.len() - worked.len(),
             passes,
             total: TotalRow {
                 median_ms: s.map(|s| s.median),
@@ -193,6 +206,13 @@ impl Report {
             "{} ({}) {}x{}, {} frames measured\n",
             self.device, self.driver, self.width, self.height, self.measured_frames
         );
+        if self.skipped_frames > 0 {
+            out += &format!(
+                "{} of them skipped entirely (nothing changed; `total` is over the other {})\n",
+                self.skipped_frames,
+                self.measured_frames - self.skipped_frames
+            );
+        }
         let f = |v: Option<f64>| v.map_or("-".to_string(), |v| format!("{v:.3}"));
         let f1 = |v: Option<f64>| v.map_or("-".to_string(), |v| format!("{v:.1}"));
         out += &format!(

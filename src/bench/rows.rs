@@ -488,6 +488,7 @@ mod tests {
                 .map(|(n, ms)| (n.to_string(), ms))
                 .collect(),
             skipped: Vec::new(),
+            skip_reasons: BTreeMap::new(),
             counters: BTreeMap::new(),
         };
         assert_eq!(group_ms(&frame, &[PassId::Ssao, PassId::Blur]), Some(2.5));

@@ -167,6 +167,10 @@ pub struct SceneArgs {
     /// at 4x width and height, box-filter 4x4: the reference).
     #[arg(long, value_enum, default_value_t = AaMode::None)]
     pub aa: AaMode,
+    /// Record nothing for a frame whose camera, light and configuration are those of the last
+    /// two frames once every temporal effect has converged (its output is the last one).
+    #[arg(long, default_value = "on", value_parser = parse_on_off, action = clap::ArgAction::Set)]
+    pub skip_unchanged: bool,
     /// SRAA's depth scale (eq 1's sigma_z) on the relative difference of eye distances.
     #[arg(long, default_value_t = 10.0)]
     pub sraa_sigma_z: f32,
@@ -372,6 +376,7 @@ impl SceneArgs {
                 sigma_n: self.sraa_sigma_n,
                 sigma_shadow: self.sraa_sigma_shadow,
             },
+            skip_unchanged: self.skip_unchanged,
         }
     }
 }

@@ -272,6 +272,10 @@ impl AoEffect {
 }
 
 impl Effect for AoEffect {
+    fn accumulating(&self) -> &'static [PassId] {
+        &[PassId::Ssao, PassId::SsaoRefresh]
+    }
+
     fn id(&self) -> EffectId {
         EffectId::Ao
     }

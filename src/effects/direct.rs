@@ -216,6 +216,10 @@ impl DirectEffect {
 }
 
 impl Effect for DirectEffect {
+    fn accumulating(&self) -> &'static [PassId] {
+        &[PassId::Shadow, PassId::ShadowRefresh]
+    }
+
     fn id(&self) -> EffectId {
         EffectId::Direct
     }

@@ -111,6 +111,13 @@ pub trait Effect {
         self.temporal().is_some()
     }
 
+    /// The passes that accumulate into the effect's history (a frame skipped because
+    /// nothing changed reports them `converged` while the effect counts, the others
+    /// `unchanged`).
+    fn accumulating(&self) -> &'static [PassId] {
+        &[]
+    }
+
     /// Copy this frame's counters for reading when `slot` comes round again (by default the
     /// temporal machinery's, on frames that use it).
     fn copy_counters(

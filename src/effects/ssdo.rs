@@ -431,6 +431,16 @@ impl SsdoEffect {
 }
 
 impl Effect for SsdoEffect {
+    fn accumulating(&self) -> &'static [PassId] {
+        &[
+            PassId::SsdoSamples,
+            PassId::Ssdo,
+            PassId::SsdoBounce,
+            PassId::SsdoRefresh,
+            PassId::SsdoResolve,
+        ]
+    }
+
     fn id(&self) -> EffectId {
         EffectId::Ssdo
     }

@@ -76,26 +76,6 @@ impl Effects {
     }
 }
 
-#[cfg(test)]
-mod effects_tests {
-    use super::Effects;
-
-    #[test]
-    fn the_list_parses_back() {
-        for s in [
-            "direct",
-            "direct,ao",
-            "ao,indirect",
-            "direct,ao,indirect",
-            "direct,ssdo",
-        ] {
-            let e = Effects::parse(s).unwrap();
-            assert_eq!(e.to_string(), s);
-            assert_eq!(Effects::parse(&e.to_string()).unwrap(), e);
-        }
-    }
-}
-
 /// The `--effects` list that selects exactly these: `direct,ao`.
 impl std::fmt::Display for Effects {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
@@ -492,6 +472,9 @@ pub struct RenderConfig {
     pub ssdo: SsdoConfig,
     pub temporal: TemporalConfig,
     pub aa: AaConfig,
+    /// Record nothing for a frame whose inputs (camera, light, configuration) are those of
+    /// the last two and whose temporal effects have converged: its output is the last one.
+    pub skip_unchanged: bool,
 }
 
 impl Default for RenderConfig {
@@ -507,6 +490,7 @@ impl Default for RenderConfig {
             ssdo: SsdoConfig::default(),
             temporal: TemporalConfig::default(),
             aa: AaConfig::default(),
+            skip_unchanged: true,
         }
     }
 }
@@ -820,5 +804,20 @@ mod tests {
         c.indirect.vpls = 0; // every RSM texel (with a small enough map)
         c.rsm_size = 64;
         assert!(c.validate().is_ok());
+    }
+
+    #[test]
+    fn the_list_parses_back() {
+        for s in [
+            "direct",
+            "direct,ao",
+            "ao,indirect",
+            "direct,ao,indirect",
+            "direct,ssdo",
+        ] {
+            let e = Effects::parse(s).unwrap();
+            assert_eq!(e.to_string(), s);
+            assert_eq!(Effects::parse(&e.to_string()).unwrap(), e);
+        }
     }
 }

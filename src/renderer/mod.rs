@@ -31,7 +31,7 @@ use crate::scene::{Camera, Scene, SpotLight};
 use crate::vk::cmd::Recorder;
 use crate::vk::{
     read_image, Buffer, Context, DescriptorPool, FrameSlots, FrameTiming, GpuTimer, Image,
-    ImageData, SetWriter, SubmitSync, Tracker,
+    ImageData, SetWriter, SkipReason, SubmitSync, Tracker,
 };
 use ash::vk;
 pub use config::{RenderConfig, FRAMES_IN_FLIGHT, MAX_SIZE};
@@ -52,6 +52,18 @@ pub struct FrameHook<'a> {
     /// Which target `record` receives: `Target::Output` (the final RGBA8 image), or another
     /// one for the viewer's buffer display.
     pub source: Target,
+}
+
+/// Everything a frame's passes read besides each other's outputs and the histories: when it
+/// stays the same and every temporal effect has converged, the frame records nothing
+/// (`RenderConfig::skip_unchanged`).
+#[derive(Clone, Copy, PartialEq)]
+struct FrameKey {
+    view_proj: Mat4,
+    eye: glam::Vec3,
+    light: SpotLight,
+    ambient: glam::Vec3,
+    config: RenderConfig,
 }
 
 struct FrameResources {
@@ -91,6 +103,16 @@ pub struct Renderer {
     /// The last pass recorded into each slot's command buffer (device-loss reports).
     last_pass: [Option<PassId>; FRAMES_IN_FLIGHT],
     reprojection: Reprojection,
+    /// This frame's inputs as of the last frame, and the first frame rendered with them.
+    key: Option<(FrameKey, u64)>,
+    /// The newest frame read back whose temporal effects computed nothing (no pixel, no
+    /// refresh), with the inputs it was rendered with.
+    idle: Option<u64>,
+    /// The passes the last recorded frame ran, and whether each belongs to a temporal effect
+    /// (a skipped frame reports them as skipped: `converged` or `unchanged`).
+    last_recorded: Vec<(PassId, bool)>,
+    /// Slots whose frame was skipped: they copied no counters.
+    slot_skipped: [bool; FRAMES_IN_FLIGHT],
     _pool: DescriptorPool,
 }
 
@@ -170,6 +192,10 @@ impl Renderer {
             audit: None,
             last_pass: [None; FRAMES_IN_FLIGHT],
             reprojection,
+            key: None,
+            idle: None,
+            last_recorded: Vec::new(),
+            slot_skipped: [false; FRAMES_IN_FLIGHT],
             _pool: pool,
         };
         renderer.bind()?;
@@ -243,6 +269,90 @@ impl Renderer {
     /// Forget every history (camera cut): the next frame recomputes all pixels.
     pub fn reset_history(&mut self) {
         self.history = None;
+        self.key = None;
+    }
+
+    /// Whether the next frame, with inputs `key`, can be skipped: skipping is on, the inputs
+    /// are those of the last two frames at least (so both halves of every ping-ponged target
+    /// hold them), and every temporal effect has converged: a frame read back since the inputs
+    /// last changed, two or more frames ago, computed nothing and no refresh is pending. With
+    /// unchanged inputs such a frame's successors compute nothing either (the work lists
+    /// follow from the inputs and the histories alone), so both history halves agree too.
+    fn can_skip(&self, key: &FrameKey) -> bool {
+        let Some((last, since)) = self.key else {
+            return false;
+        };
+        let n = self.frame_index;
+        let steady =
+            self.config.skip_unchanged && self.history.is_some() && last == *key && n >= since + 2;
+        let counting = self.effects.iter().filter(|e| self.accumulates(e.as_ref()));
+        let mut counting = counting.peekable();
+        let converged = counting.peek().is_none()
+            || (self.idle.is_some_and(|f| f >= since && n >= f + 2)
+                && counting.all(|e| e.temporal().is_some_and(|t| t.refresh_left == 0)));
+        steady && converged
+    }
+
+    /// Whether `e` accumulates into a reused history this frame (its output then depends on
+    /// its history, not only on the frame's inputs; without reuse every effect recomputes the
+    /// same fixed-pattern estimate from the same inputs).
+    fn accumulates(&self, e: &dyn Effect) -> bool {
+        accumulates(&self.config, e)
+    }
+
+    fn frame_key(&self, camera: &Camera) -> FrameKey {
+        let aspect = self.config.width as f32 / self.config.height as f32;
+        FrameKey {
+            view_proj: camera.view_proj(aspect),
+            eye: camera.position,
+            light: self.scene.light,
+            ambient: self.scene.ambient,
+            config: self.config,
+        }
+    }
+
+    /// A frame with nothing to record: every pass is reported skipped (as the last recorded
+    /// frame ran them), the frontend's hook still runs (a window presents the unchanged
+    /// output), and the submission keeps the slot's fence in step.
+    fn skip_frame(&mut self, mut hook: Option<FrameHook<'_>>) -> Result<Option<FrameTiming>> {
+        let slot = self.next_slot();
+        let cmd = self.begin_slot(slot)?;
+        let previous = self.collect(slot);
+        // The light view is skipped whenever the light did not move, so the last recorded
+        // frame rarely ran it: list it too.
+        if !self
+            .last_recorded
+            .iter()
+            .any(|(p, _)| *p == PassId::LightView)
+        {
+            self.timer
+                .skip(slot, PassId::LightView.name(), SkipReason::Unchanged);
+        }
+        for &(pass, temporal) in &self.last_recorded {
+            let reason = if temporal {
+                SkipReason::Converged
+            } else {
+                SkipReason::Unchanged
+            };
+            self.timer.skip(slot, pass.name(), reason);
+        }
+        let mut r = Recording {
+            rec: Recorder::new(&self.ctx, cmd),
+            tracker: &mut self.tracker,
+            timer: &mut self.timer,
+            slot,
+            last_pass: None,
+        };
+        let parity = (self.frame_index % 2) as usize;
+        let (t, effects, config) = (&self.targets, &self.effects, &self.config);
+        let source = |target| resolve_target(t, effects, config, target, parity);
+        let hook_sync = record_hook(&mut r, &mut hook, source, &t.output);
+        self.slot_skipped[slot] = true;
+        self.slots
+            .submit_with(slot, &hook_sync)
+            .map_err(|e| e.lost_after(None))?;
+        self.frame_index += 1;
+        Ok(previous)
     }
 
     /// Record and submit one frame seen from `camera`. Returns the GPU timing of the frame that
@@ -261,6 +371,13 @@ impl Renderer {
     ) -> Result<Option<FrameTiming>> {
         // Ctrl-C: stop between frames, never inside a recording.
         crate::interrupt::check()?;
+        let key = self.frame_key(camera);
+        if self.can_skip(&key) {
+            return self.skip_frame(hook);
+        }
+        if self.key.map(|(k, _)| k) != Some(key) {
+            self.key = Some((key, self.frame_index));
+        }
         let slot = self.next_slot();
         let cmd = self.begin_slot(slot)?;
         let previous = self.collect(slot);
@@ -298,7 +415,8 @@ impl Renderer {
                 self.light_view.record(rec, tr, frame, scene, &shared)
             });
         } else {
-            r.timer.skip(slot, PassId::LightView.name());
+            r.timer
+                .skip(slot, PassId::LightView.name(), SkipReason::Unchanged);
         }
         // 3. G-buffer.
         r.timed(PassId::GBuffer, |rec, tr| {
@@ -335,6 +453,19 @@ impl Renderer {
         let source = |target| resolve_target(t, &self.effects, config, target, frame.parity);
         let hook_sync = record_hook(&mut r, &mut hook, source, &t.output);
         let last_pass = r.last_pass;
+        self.last_recorded = r
+            .timer
+            .recorded(slot)
+            .iter()
+            .filter_map(|name| PassId::ALL.into_iter().find(|p| p.name() == *name))
+            .map(|p| {
+                let accumulated = self.effects.iter().any(|e| {
+                    accumulates(&self.config, e.as_ref()) && e.accumulating().contains(&p)
+                });
+                (p, p == PassId::Reproject || accumulated)
+            })
+            .collect();
+        self.slot_skipped[slot] = false;
         self.copy_counters(cmd, slot);
         self.last_pass[slot] = last_pass;
         self.slots
@@ -364,10 +495,31 @@ impl Renderer {
         Some(previous)
     }
 
+    /// The counters `slot`'s last frame copied (none if it was skipped); notes whether its
+    /// temporal effects computed anything (`idle`).
     fn collect_counters(&mut self, slot: usize) -> Vec<(&'static str, u64)> {
         let mut counters = Vec::new();
+        if std::mem::take(&mut self.slot_skipped[slot]) {
+            return counters;
+        }
+        let frame = self.timer.frame_of(slot);
+        let config = self.config;
+        let mut work = 0;
+        let mut counted = false;
         for e in &mut self.effects {
-            counters.extend(e.collect_counters(slot));
+            let c = e.collect_counters(slot);
+            if accumulates(&config, e.as_ref()) {
+                counted |= !c.is_empty();
+                work += temporal_work(&c);
+            }
+            counters.extend(c);
+        }
+        if let (Some(frame), true) = (frame, counted) {
+            if work == 0 {
+                self.idle = self.idle.max(Some(frame));
+            } else {
+                self.idle = None;
+            }
         }
         counters
     }
@@ -447,6 +599,7 @@ impl Renderer {
         // The RSM targets were recreated with the rest: render the light view again.
         self.rsm_light = None;
         self.history = None;
+        self.key = None;
         Ok(pending)
     }
 
@@ -502,6 +655,25 @@ fn resolve_target<'a>(
                 .find_map(|e| e.target(target, parity, config))
         }),
     }
+}
+
+/// See `Renderer::accumulates`.
+fn accumulates(config: &RenderConfig, e: &dyn Effect) -> bool {
+    config.temporal.reuse && e.counts(config) && e.temporal().is_some()
+}
+
+/// Pixels and pattern evaluations a frame's temporal effects spent (their `*_computed_pixels`,
+/// `*_fixup_pixels` and `*_refresh_evaluations` counters): 0 once everything converged.
+fn temporal_work(counters: &[(&'static str, u64)]) -> u64 {
+    counters
+        .iter()
+        .filter(|(name, _)| {
+            name.ends_with("_computed_pixels")
+                || name.ends_with("_fixup_pixels")
+                || name.ends_with("_refresh_evaluations")
+        })
+        .map(|(_, n)| n)
+        .sum()
 }
 
 /// The composite's inputs: every effect's contribution, in registry order.

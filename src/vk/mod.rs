@@ -26,5 +26,5 @@ pub use sampler::Sampler;
 pub use surface::Surface;
 pub use swapchain::{AcquiredImage, PresentPolicy, Swapchain, SwapchainOptions};
 pub use sync::{Access, Tracked, TrackedImage, Tracker};
-pub use timing::{FrameTiming, GpuTimer};
+pub use timing::{FrameTiming, GpuTimer, SkipReason, Skipped};
 pub use upload::{upload_buffer, upload_image};

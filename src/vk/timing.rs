@@ -6,13 +6,38 @@ use crate::error::{Result, VkContext};
 use ash::vk;
 use std::sync::Arc;
 
+/// Why a pass was not recorded in a frame.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum SkipReason {
+    /// None of its inputs changed since it last ran: its output is still valid.
+    Unchanged,
+    /// A temporal effect's pass whose pixels have all converged and whose inputs are unchanged.
+    Converged,
+}
+
+impl SkipReason {
+    pub fn name(self) -> &'static str {
+        match self {
+            SkipReason::Unchanged => "unchanged",
+            SkipReason::Converged => "converged",
+        }
+    }
+}
+
+/// A pass a frame did not record, and why.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Skipped {
+    pub pass: &'static str,
+    pub reason: SkipReason,
+}
+
 /// What one frame measured: every pass in recording order, with its GPU time in milliseconds
 /// (`None` only if the driver had not written the query), and the passes it skipped.
 #[derive(Clone, Debug, Default)]
 pub struct FrameTiming {
     pub frame: u64,
     pub passes: Vec<(&'static str, Option<f64>)>,
-    pub skipped: Vec<&'static str>,
+    pub skipped: Vec<Skipped>,
     /// GPU counters of the frame (filled by the renderer, not the timer).
     pub counters: Vec<(&'static str, u64)>,
 }
@@ -21,7 +46,7 @@ pub struct FrameTiming {
 struct SlotState {
     frame: Option<u64>,
     passes: Vec<&'static str>,
-    skipped: Vec<&'static str>,
+    skipped: Vec<Skipped>,
 }
 
 pub struct GpuTimer {
@@ -153,9 +178,19 @@ impl GpuTimer {
         };
     }
 
-    /// Note that `pass` was not recorded this frame (its inputs did not change).
-    pub fn skip(&mut self, slot: usize, pass: &'static str) {
-        self.slots[slot].skipped.push(pass);
+    /// The passes recorded into `slot`'s frame so far, in order.
+    pub fn recorded(&self, slot: usize) -> &[&'static str] {
+        &self.slots[slot].passes
+    }
+
+    /// The frame `slot` holds (recorded and not yet collected).
+    pub fn frame_of(&self, slot: usize) -> Option<u64> {
+        self.slots[slot].frame
+    }
+
+    /// Note that `pass` was not recorded this frame, and why.
+    pub fn skip(&mut self, slot: usize, pass: &'static str, reason: SkipReason) {
+        self.slots[slot].skipped.push(Skipped { pass, reason });
     }
 }
 
@@ -164,5 +199,12 @@ impl Drop for GpuTimer {
         for pool in self.pools.drain(..) {
             self.ctx.defer(Garbage::QueryPool(pool));
         }
+    }
+}
+
+impl FrameTiming {
+    /// Whether the frame skipped `pass`.
+    pub fn skipped(&self, pass: &str) -> bool {
+        self.skipped.iter().any(|s| s.pass == pass)
     }
 }

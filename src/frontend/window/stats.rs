@@ -11,6 +11,10 @@ pub(super) struct Stats {
     wall_ms: f64,
     gpu: BTreeMap<&'static str, (f64, u32)>,
     order: Vec<&'static str>,
+    /// GPU timings received, and how many of them were frames skipped entirely (nothing
+    /// changed: `--skip-unchanged`).
+    timed: u32,
+    skipped: u32,
 }
 
 impl Stats {
@@ -21,6 +25,8 @@ impl Stats {
             wall_ms: 0.0,
             gpu: BTreeMap::new(),
             order: Vec::new(),
+            timed: 0,
+            skipped: 0,
         }
     }
 
@@ -30,6 +36,10 @@ impl Stats {
     }
 
     pub(super) fn add_gpu(&mut self, t: &FrameTiming) {
+        self.timed += 1;
+        if t.passes.is_empty() && !t.skipped.is_empty() {
+            self.skipped += 1;
+        }
         for (name, ms) in &t.passes {
             if let Some(ms) = ms {
                 if !self.order.contains(name) {
@@ -57,11 +67,17 @@ impl Stats {
                 passes.push(format!("{name} {ms:.2}"));
             }
         }
-        let title = format!(
+        let mut title = format!(
             "{prefix} | {frame_ms:.1} ms ({:.0} fps) | GPU {total:.2} ms: {}",
             1000.0 / frame_ms.max(1e-3),
             passes.join(", ")
         );
+        if self.skipped > 0 {
+            title += &format!(
+                " | {} of {} frames skipped (nothing changed)",
+                self.skipped, self.timed
+            );
+        }
         *self = Stats {
             order: std::mem::take(&mut self.order),
             ..Stats::new()
@@ -90,5 +106,30 @@ mod tests {
         let title = stats.title("ssgi").unwrap();
         assert_eq!(title, "ssgi | 20.0 ms (50 fps) | GPU 2.00 ms: gbuffer 2.00");
         assert_eq!(stats.frames, 0, "averages start over");
+    }
+
+    #[test]
+    fn title_counts_skipped_frames() {
+        let mut stats = Stats::new();
+        stats.add_wall(10.0);
+        stats.add_gpu(&FrameTiming {
+            frame: 0,
+            passes: vec![("gbuffer", Some(1.0))],
+            ..Default::default()
+        });
+        stats.add_gpu(&FrameTiming {
+            frame: 1,
+            skipped: vec![crate::vk::Skipped {
+                pass: "gbuffer",
+                reason: crate::vk::SkipReason::Unchanged,
+            }],
+            ..Default::default()
+        });
+        stats.since -= Duration::from_secs(1);
+        let title = stats.title("ssgi").unwrap();
+        assert!(
+            title.ends_with("| 1 of 2 frames skipped (nothing changed)"),
+            "{title}"
+        );
     }
 }

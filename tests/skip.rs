@@ -1,0 +1,207 @@
+//! Nothing changed, nothing recorded (`RenderConfig::skip_unchanged`): once camera, light and
+//! configuration stay put and every temporal effect has converged (its counters read back
+//! zero work), a frame records no pass; its output is the previous frame's, bit for bit; a
+//! change renders again.
+
+mod common;
+
+use glam::Vec3;
+use ssgi::renderer::config::{Effects, TemporalConfig};
+use ssgi::renderer::pcf::Pcf;
+use ssgi::renderer::targets::Target;
+use ssgi::renderer::{RenderConfig, Renderer};
+use ssgi::scene::Camera;
+use ssgi::vk::{Context, FrameTiming};
+use std::sync::Arc;
+
+const SIZE: u32 = 32;
+/// Enough for the 36-pattern rotation limit, the refresh after the first frame and the
+/// counters' two-frame lag.
+const MAX_FRAMES: u32 = 240;
+
+fn config(reuse: bool, skip: bool) -> RenderConfig {
+    RenderConfig {
+        width: SIZE,
+        height: SIZE,
+        rsm_size: 128,
+        effects: Effects::ALL,
+        // The thesis's pairing: the accumulated 9-sample disc with reuse, the grid without.
+        pcf: if reuse { Pcf::NINE } else { Pcf::DEFAULT },
+        // Ten frames' evaluations per frame for the refresh after a change (16x16 tiles, a few
+        // frames to cover the image): at the 5% default a 32x32 frame refreshes one pixel per
+        // frame and takes about 1000 frames to cover.
+        temporal: TemporalConfig {
+            reuse,
+            refresh_budget: 10.0,
+            ..Default::default()
+        },
+        skip_unchanged: skip,
+        ..Default::default()
+    }
+}
+
+/// Render `frames` frames at `camera`, returning every timing (the GPU idle at the end).
+fn run(r: &mut Renderer, camera: &Camera, frames: u32) -> Vec<FrameTiming> {
+    let mut t = Vec::new();
+    for _ in 0..frames {
+        t.extend(r.render_frame(camera).expect("frame"));
+    }
+    t.extend(r.finish().expect("finish"));
+    t
+}
+
+fn skipped(t: &FrameTiming) -> bool {
+    t.passes.is_empty()
+}
+
+fn total(t: &FrameTiming) -> f64 {
+    t.passes.iter().filter_map(|(_, ms)| *ms).sum()
+}
+
+/// Render until `n` frames in a row were skipped (at most `MAX_FRAMES`); returns the timings.
+fn until_skipping(r: &mut Renderer, camera: &Camera, n: usize) -> Vec<FrameTiming> {
+    let mut timings: Vec<FrameTiming> = Vec::new();
+    while timings.len() < MAX_FRAMES as usize {
+        timings.extend(run(r, camera, 8));
+        let tail = timings.iter().rev().take_while(|t| skipped(t)).count();
+        if tail >= n {
+            return timings;
+        }
+    }
+    let work: Vec<String> = timings
+        .iter()
+        .map(|t| {
+            let c: Vec<String> = t
+                .counters
+                .iter()
+                .filter(|(_, v)| *v > 0)
+                .map(|(n, v)| format!("{n}={v}"))
+                .collect();
+            let p: Vec<&str> = t.passes.iter().map(|(n, _)| *n).collect();
+            format!("{} passes {}", p.join(","), c.join(" "))
+        })
+        .collect();
+    panic!("no {n} skipped frames in a row within {MAX_FRAMES} frames: {work:?}");
+}
+
+fn renderer(ctx: &Arc<Context>, config: RenderConfig) -> Renderer {
+    Renderer::new(ctx, ssgi::scene::cornell_box(), config).expect("renderer")
+}
+
+#[test]
+fn a_converged_static_view_records_nothing_and_keeps_its_image() {
+    let ctx = common::context();
+    let mut r = renderer(&ctx, config(true, true));
+    let camera = r.scene.camera;
+    let timings = until_skipping(&mut r, &camera, 16);
+    let first = total(&timings[0]);
+    let last16 = &timings[timings.len() - 16..];
+    assert!(last16.iter().all(skipped));
+    // Every pass of a skipped frame is reported, with its reason.
+    let reasons: Vec<(&str, &str)> = last16[0]
+        .skipped
+        .iter()
+        .map(|s| (s.pass, s.reason.name()))
+        .collect();
+    for (pass, reason) in [
+        ("gbuffer", "unchanged"),
+        ("light_view", "unchanged"),
+        ("reproject", "converged"),
+        ("ssao", "converged"),
+        ("composite", "unchanged"),
+    ] {
+        assert!(reasons.contains(&(pass, reason)), "{pass}: {reasons:?}");
+    }
+    let gpu: f64 = last16.iter().map(total).sum();
+    assert!(
+        gpu <= 0.02 * first,
+        "{gpu} ms against the first frame's {first} ms"
+    );
+    // The frame before the first skipped one did work and computed nothing: it converged.
+    let start = timings.iter().position(skipped).unwrap();
+    assert!(
+        start > 36,
+        "skipped from frame {start}, before the rotation limit"
+    );
+    let before = &timings[start - 1];
+    let work: u64 = before
+        .counters
+        .iter()
+        .filter(|(n, _)| n.ends_with("_computed_pixels"))
+        .map(|(_, v)| v)
+        .sum();
+    assert_eq!(work, 0, "{:?}", before.counters);
+    // A skipped frame shows the previous frame's output, bit for bit.
+    let a = common::read(&mut r, Target::Output);
+    run(&mut r, &camera, 1);
+    let b = common::read(&mut r, Target::Output);
+    assert_eq!(a.bytes, b.bytes);
+    common::assert_clean(&ctx);
+}
+
+#[test]
+fn with_skipping_off_every_frame_records_its_passes() {
+    let ctx = common::context();
+    let mut r = renderer(&ctx, config(true, false));
+    let camera = r.scene.camera;
+    let timings = run(&mut r, &camera, 120);
+    assert!(timings.iter().all(|t| !skipped(t)));
+    common::assert_clean(&ctx);
+}
+
+/// After skipping: moving the camera, then the light, renders again (the G-buffer after the
+/// camera move, the light view after the light's), until the effects converge once more.
+#[test]
+fn a_change_renders_again() {
+    let ctx = common::context();
+    let mut r = renderer(&ctx, config(true, true));
+    let camera = r.scene.camera;
+    until_skipping(&mut r, &camera, 4);
+    let moved = Camera {
+        position: camera.position + Vec3::new(0.002, 0.0, 0.0),
+        target: camera.target + Vec3::new(0.002, 0.0, 0.0),
+        ..camera
+    };
+    let after_move = run(&mut r, &moved, 1);
+    let frame = after_move.last().unwrap();
+    let recorded: Vec<&str> = frame.passes.iter().map(|(n, _)| *n).collect();
+    for pass in ["gbuffer", "reproject", "composite"] {
+        assert!(recorded.contains(&pass), "{pass}: {recorded:?}");
+    }
+    assert!(frame.skipped("light_view"));
+    until_skipping(&mut r, &moved, 4);
+    let mut light = r.scene.light;
+    light.position += Vec3::new(0.05, 0.0, 0.0);
+    r.set_light(light);
+    let after_light = run(&mut r, &moved, 1);
+    let recorded: Vec<&str> = after_light
+        .last()
+        .unwrap()
+        .passes
+        .iter()
+        .map(|(n, _)| *n)
+        .collect();
+    for pass in ["light_view", "shadow", "direct", "composite"] {
+        assert!(recorded.contains(&pass), "{pass}: {recorded:?}");
+    }
+    until_skipping(&mut r, &moved, 4);
+    common::assert_clean(&ctx);
+}
+
+/// Without reuse every frame is the same fixed-pattern estimate: frames skip from the third,
+/// and the image is the one a renderer that never skips draws.
+#[test]
+fn without_reuse_skipped_frames_match_a_renderer_that_never_skips() {
+    let ctx = common::context();
+    let mut skipping = renderer(&ctx, config(false, true));
+    let mut always = renderer(&ctx, config(false, false));
+    let camera = skipping.scene.camera;
+    let timings = run(&mut skipping, &camera, 6);
+    let pattern: Vec<bool> = timings.iter().map(skipped).collect();
+    assert_eq!(pattern, [false, false, true, true, true, true]);
+    run(&mut always, &camera, 6);
+    let a = common::read(&mut skipping, Target::Output);
+    let b = common::read(&mut always, Target::Output);
+    assert_eq!(a.bytes, b.bytes);
+    common::assert_clean(&ctx);
+}
