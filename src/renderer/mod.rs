@@ -106,7 +106,7 @@ pub struct Renderer {
     /// This frame's inputs as of the last frame, and the first frame rendered with them.
     key: Option<(FrameKey, u64)>,
     /// The newest frame read back whose temporal effects computed nothing (no pixel, no
-    /// refresh), with the inputs it was rendered with.
+    /// fix-up, no refresh); any frame read back with work clears it.
     idle: Option<u64>,
     /// The passes the last recorded frame ran, and whether each belongs to a temporal effect
     /// (a skipped frame reports them as skipped: `converged` or `unchanged`).
@@ -348,6 +348,7 @@ impl Renderer {
         let source = |target| resolve_target(t, effects, config, target, parity);
         let hook_sync = record_hook(&mut r, &mut hook, source, &t.output);
         self.slot_skipped[slot] = true;
+        self.last_pass[slot] = None;
         self.slots
             .submit_with(slot, &hook_sync)
             .map_err(|e| e.lost_after(None))?;
