@@ -149,41 +149,84 @@ fn with_skipping_off_every_frame_records_its_passes() {
     common::assert_clean(&ctx);
 }
 
-/// After skipping: moving the camera, then the light, renders again (the G-buffer after the
-/// camera move, the light view after the light's), until the effects converge once more.
+/// After skipping: moving the camera renders the G-buffer and every effect again, but not the
+/// light view; moving the light then renders the light view and what the light reaches, but
+/// not the G-buffer (the camera stood still) or AO (converged, independent of the light);
+/// each time until everything converges once more.
 #[test]
 fn a_change_renders_again() {
     let ctx = common::context();
     let mut r = renderer(&ctx, config(true, true));
+    // The same frames without skipping: every image must match it bit for bit.
+    let mut always = renderer(&ctx, config(true, false));
     let camera = r.scene.camera;
-    until_skipping(&mut r, &camera, 4);
+    let n = until_skipping(&mut r, &camera, 4).len() as u32;
+    run(&mut always, &camera, n);
     let moved = Camera {
         position: camera.position + Vec3::new(0.002, 0.0, 0.0),
         target: camera.target + Vec3::new(0.002, 0.0, 0.0),
         ..camera
     };
     let after_move = run(&mut r, &moved, 1);
+    run(&mut always, &moved, 1);
     let frame = after_move.last().unwrap();
     let recorded: Vec<&str> = frame.passes.iter().map(|(n, _)| *n).collect();
-    for pass in ["gbuffer", "reproject", "composite"] {
+    for pass in [
+        "gbuffer",
+        "reproject",
+        "ssao",
+        "shadow",
+        "indirect_gather",
+        "composite",
+    ] {
         assert!(recorded.contains(&pass), "{pass}: {recorded:?}");
     }
     assert!(frame.skipped("light_view"));
-    until_skipping(&mut r, &moved, 4);
+    let same = |a: &mut Renderer, b: &mut Renderer, what: &str| {
+        let (x, y) = (
+            common::read(a, Target::Output),
+            common::read(b, Target::Output),
+        );
+        assert!(
+            x.bytes == y.bytes,
+            "{what}: the image differs from the unskipped one"
+        );
+    };
+    same(&mut r, &mut always, "after the camera move");
+    let n = until_skipping(&mut r, &moved, 4).len() as u32;
+    run(&mut always, &moved, n);
     let mut light = r.scene.light;
     light.position += Vec3::new(0.05, 0.0, 0.0);
     r.set_light(light);
+    always.set_light(light);
     let after_light = run(&mut r, &moved, 1);
-    let recorded: Vec<&str> = after_light
-        .last()
-        .unwrap()
-        .passes
-        .iter()
-        .map(|(n, _)| *n)
-        .collect();
-    for pass in ["light_view", "shadow", "direct", "composite"] {
+    run(&mut always, &moved, 1);
+    let frame = after_light.last().unwrap();
+    let recorded: Vec<&str> = frame.passes.iter().map(|(n, _)| *n).collect();
+    for pass in [
+        "light_view",
+        "reproject",
+        "shadow",
+        "direct",
+        "indirect_gather",
+        "composite",
+    ] {
         assert!(recorded.contains(&pass), "{pass}: {recorded:?}");
     }
+    // What the light does not reach stays: the G-buffer (the camera stood still) and the
+    // converged AO.
+    let reasons: Vec<(&str, &str)> = frame
+        .skipped
+        .iter()
+        .map(|s| (s.pass, s.reason.name()))
+        .collect();
+    for (pass, reason) in [("gbuffer", "unchanged"), ("ssao", "converged")] {
+        assert!(
+            reasons.contains(&(pass, reason)),
+            "{pass}: {reasons:?} ran {recorded:?}"
+        );
+    }
+    same(&mut r, &mut always, "after the light move");
     until_skipping(&mut r, &moved, 4);
     common::assert_clean(&ctx);
 }

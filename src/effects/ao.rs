@@ -272,6 +272,19 @@ impl AoEffect {
 }
 
 impl Effect for AoEffect {
+    fn passes(&self) -> &'static [PassId] {
+        &[
+            PassId::AoPositionChain,
+            PassId::Ssao,
+            PassId::SsaoRefresh,
+            PassId::Blur,
+        ]
+    }
+
+    fn reads_light(&self) -> bool {
+        false
+    }
+
     fn accumulating(&self) -> &'static [PassId] {
         &[PassId::Ssao, PassId::SsaoRefresh]
     }

@@ -216,6 +216,10 @@ impl DirectEffect {
 }
 
 impl Effect for DirectEffect {
+    fn passes(&self) -> &'static [PassId] {
+        &[PassId::Shadow, PassId::ShadowRefresh, PassId::Direct]
+    }
+
     fn accumulating(&self) -> &'static [PassId] {
         &[PassId::Shadow, PassId::ShadowRefresh]
     }

@@ -111,6 +111,15 @@ pub trait Effect {
         self.temporal().is_some()
     }
 
+    /// Whether the effect's output depends on the light (a light that moved makes it run
+    /// again; AO does not).
+    fn reads_light(&self) -> bool {
+        true
+    }
+
+    /// Every pass the effect may record (the skip report names those of a skipped effect).
+    fn passes(&self) -> &'static [PassId];
+
     /// The passes that accumulate into the effect's history (a frame skipped because
     /// nothing changed reports them `converged` while the effect counts, the others
     /// `unchanged`).

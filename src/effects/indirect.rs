@@ -227,6 +227,15 @@ impl IndirectEffect {
 }
 
 impl Effect for IndirectEffect {
+    fn passes(&self) -> &'static [PassId] {
+        &[
+            PassId::IndirectGather,
+            PassId::IndirectUpsample,
+            PassId::IndirectFixup,
+            PassId::IndirectRefresh,
+        ]
+    }
+
     fn accumulating(&self) -> &'static [PassId] {
         &[
             PassId::IndirectGather,

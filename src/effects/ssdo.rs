@@ -431,6 +431,18 @@ impl SsdoEffect {
 }
 
 impl Effect for SsdoEffect {
+    fn passes(&self) -> &'static [PassId] {
+        &[
+            PassId::SsdoSamples,
+            PassId::Ssdo,
+            PassId::SsdoBounce,
+            PassId::SsdoRefresh,
+            PassId::SsdoResolve,
+            PassId::SsdoBilateral,
+            PassId::SsdoUpsample,
+        ]
+    }
+
     fn accumulating(&self) -> &'static [PassId] {
         &[
             PassId::SsdoSamples,

@@ -13,6 +13,7 @@ pub mod frame;
 pub mod pcf;
 pub mod reprojection;
 pub mod scene_gpu;
+pub mod skip;
 pub mod targets;
 pub mod temporal;
 
@@ -40,6 +41,7 @@ use glam::Mat4;
 use gpu_allocator::MemoryLocation;
 use reprojection::Reprojection;
 use scene_gpu::SceneGpu;
+use skip::{Inputs, Plan, SkipTracker};
 use std::sync::Arc;
 use targets::{Target, Targets};
 
@@ -52,18 +54,6 @@ pub struct FrameHook<'a> {
     /// Which target `record` receives: `Target::Output` (the final RGBA8 image), or another
     /// one for the viewer's buffer display.
     pub source: Target,
-}
-
-/// Everything a frame's passes read besides each other's outputs and the histories: when it
-/// stays the same and every temporal effect has converged, the frame records nothing
-/// (`RenderConfig::skip_unchanged`).
-#[derive(Clone, Copy, PartialEq)]
-struct FrameKey {
-    view_proj: Mat4,
-    eye: glam::Vec3,
-    light: SpotLight,
-    ambient: glam::Vec3,
-    config: RenderConfig,
 }
 
 struct FrameResources {
@@ -103,16 +93,8 @@ pub struct Renderer {
     /// The last pass recorded into each slot's command buffer (device-loss reports).
     last_pass: [Option<PassId>; FRAMES_IN_FLIGHT],
     reprojection: Reprojection,
-    /// This frame's inputs as of the last frame, and the first frame rendered with them.
-    key: Option<(FrameKey, u64)>,
-    /// The newest frame read back whose temporal effects computed nothing (no pixel, no
-    /// fix-up, no refresh); any frame read back with work clears it.
-    idle: Option<u64>,
-    /// The passes the last recorded frame ran, and whether each belongs to a temporal effect
-    /// (a skipped frame reports them as skipped: `converged` or `unchanged`).
-    last_recorded: Vec<(PassId, bool)>,
-    /// Slots whose frame was skipped: they copied no counters.
-    slot_skipped: [bool; FRAMES_IN_FLIGHT],
+    /// What frames leave out when nothing they read changed (`skip.rs`).
+    skips: SkipTracker,
     _pool: DescriptorPool,
 }
 
@@ -138,6 +120,7 @@ impl Renderer {
             tracker: &mut tracker,
         })?;
         let reprojection = Reprojection::new(ctx, &pool, &effects)?;
+        let effects_len = effects.len();
         let aa = config.aa.mode;
         let targets = Targets::new(ctx, rendered.width, rendered.height, config.rsm_size, aa)?;
         let kinds: Vec<u32> = effects
@@ -192,10 +175,7 @@ impl Renderer {
             audit: None,
             last_pass: [None; FRAMES_IN_FLIGHT],
             reprojection,
-            key: None,
-            idle: None,
-            last_recorded: Vec::new(),
-            slot_skipped: [false; FRAMES_IN_FLIGHT],
+            skips: SkipTracker::new(effects_len),
             _pool: pool,
         };
         renderer.bind()?;
@@ -269,40 +249,12 @@ impl Renderer {
     /// Forget every history (camera cut): the next frame recomputes all pixels.
     pub fn reset_history(&mut self) {
         self.history = None;
-        self.key = None;
+        self.skips.forget();
     }
 
-    /// Whether the next frame, with inputs `key`, can be skipped: skipping is on, the inputs
-    /// are those of the last two frames at least (so both halves of every ping-ponged target
-    /// hold them), and every temporal effect has converged: a frame read back since the inputs
-    /// last changed, two or more frames ago, computed nothing and no refresh is pending. With
-    /// unchanged inputs such a frame's successors compute nothing either (the work lists
-    /// follow from the inputs and the histories alone), so both history halves agree too.
-    fn can_skip(&self, key: &FrameKey) -> bool {
-        let Some((last, since)) = self.key else {
-            return false;
-        };
-        let n = self.frame_index;
-        let steady =
-            self.config.skip_unchanged && self.history.is_some() && last == *key && n >= since + 2;
-        let counting = self.effects.iter().filter(|e| self.accumulates(e.as_ref()));
-        let mut counting = counting.peekable();
-        let converged = counting.peek().is_none()
-            || (self.idle.is_some_and(|f| f >= since && n >= f + 2)
-                && counting.all(|e| e.temporal().is_some_and(|t| t.refresh_left == 0)));
-        steady && converged
-    }
-
-    /// Whether `e` accumulates into a reused history this frame (its output then depends on
-    /// its history, not only on the frame's inputs; without reuse every effect recomputes the
-    /// same fixed-pattern estimate from the same inputs).
-    fn accumulates(&self, e: &dyn Effect) -> bool {
-        accumulates(&self.config, e)
-    }
-
-    fn frame_key(&self, camera: &Camera) -> FrameKey {
+    fn frame_inputs(&self, camera: &Camera) -> Inputs {
         let aspect = self.config.width as f32 / self.config.height as f32;
-        FrameKey {
+        Inputs {
             view_proj: camera.view_proj(aspect),
             eye: camera.position,
             light: self.scene.light,
@@ -311,31 +263,22 @@ impl Renderer {
         }
     }
 
-    /// A frame with nothing to record: every pass is reported skipped (as the last recorded
-    /// frame ran them), the frontend's hook still runs (a window presents the unchanged
-    /// output), and the submission keeps the slot's fence in step.
-    fn skip_frame(&mut self, mut hook: Option<FrameHook<'_>>) -> Result<Option<FrameTiming>> {
+    /// A frame with nothing to record (`skip.rs`): every pass is reported skipped with its
+    /// reason, the frontend's hook still runs (a window presents the unchanged output), and
+    /// the submission keeps the slot's fence in step.
+    fn skip_frame(
+        &mut self,
+        plan: Plan,
+        mut hook: Option<FrameHook<'_>>,
+    ) -> Result<Option<FrameTiming>> {
         let slot = self.next_slot();
         let cmd = self.begin_slot(slot)?;
         let previous = self.collect(slot);
-        // The light view is skipped whenever the light did not move, so the last recorded
-        // frame rarely ran it: list it too.
-        if !self
-            .last_recorded
-            .iter()
-            .any(|(p, _)| *p == PassId::LightView)
-        {
-            self.timer
-                .skip(slot, PassId::LightView.name(), SkipReason::Unchanged);
-        }
-        for &(pass, temporal) in &self.last_recorded {
-            let reason = if temporal {
-                SkipReason::Converged
-            } else {
-                SkipReason::Unchanged
-            };
-            self.timer.skip(slot, pass.name(), reason);
-        }
+        self.timer
+            .skip(slot, PassId::LightView.name(), SkipReason::Unchanged);
+        self.skips
+            .report(&mut self.timer, slot, plan, &self.config, &self.effects);
+        self.skips.recorded(slot, plan);
         let mut r = Recording {
             rec: Recorder::new(&self.ctx, cmd),
             tracker: &mut self.tracker,
@@ -347,7 +290,6 @@ impl Renderer {
         let (t, effects, config) = (&self.targets, &self.effects, &self.config);
         let source = |target| resolve_target(t, effects, config, target, parity);
         let hook_sync = record_hook(&mut r, &mut hook, source, &t.output);
-        self.slot_skipped[slot] = true;
         self.last_pass[slot] = None;
         self.slots
             .submit_with(slot, &hook_sync)
@@ -372,12 +314,15 @@ impl Renderer {
     ) -> Result<Option<FrameTiming>> {
         // Ctrl-C: stop between frames, never inside a recording.
         crate::interrupt::check()?;
-        let key = self.frame_key(camera);
-        if self.can_skip(&key) {
-            return self.skip_frame(hook);
-        }
-        if self.key.map(|(k, _)| k) != Some(key) {
-            self.key = Some((key, self.frame_index));
+        let inputs = self.frame_inputs(camera);
+        let plan = self.skips.plan(
+            self.frame_index,
+            inputs,
+            self.history.is_some(),
+            &self.effects,
+        );
+        if plan.frame {
+            return self.skip_frame(plan, hook);
         }
         let slot = self.next_slot();
         let cmd = self.begin_slot(slot)?;
@@ -398,8 +343,10 @@ impl Renderer {
             camera_moved: self.history.map(|(m, _)| m) != Some(view_proj),
             light_changed,
         };
-        for e in &mut self.effects {
-            e.prepare(&info);
+        for (i, e) in self.effects.iter_mut().enumerate() {
+            if !plan.effect(i) {
+                e.prepare(&info);
+            }
         }
         let mut r = Recording {
             rec: Recorder::new(&self.ctx, cmd),
@@ -419,15 +366,21 @@ impl Renderer {
             r.timer
                 .skip(slot, PassId::LightView.name(), SkipReason::Unchanged);
         }
-        // 3. G-buffer.
-        r.timed(PassId::GBuffer, |rec, tr| {
-            self.gbuffer.record(rec, tr, frame, scene, &shared)
-        });
+        // 3. G-buffer, unless the camera stood still for two frames (both halves hold it).
+        if !plan.gbuffer {
+            r.timed(PassId::GBuffer, |rec, tr| {
+                self.gbuffer.record(rec, tr, frame, scene, &shared)
+            });
+        }
         // 4. One reprojection, a lane per temporal effect that reuses its history this frame.
-        self.reprojection.record(&self.effects, &info, &mut r);
-        // 5. Effects, in registry order.
-        for e in &self.effects {
-            e.record(&info, &mut r);
+        self.reprojection
+            .record(&self.effects, &info, &mut r, plan.effects);
+        // 5. Effects, in registry order, but those whose inputs did not change and which have
+        // converged.
+        for (i, e) in self.effects.iter().enumerate() {
+            if !plan.effect(i) {
+                e.record(&info, &mut r);
+            }
         }
         // 6-7. Composite + tonemap.
         let terms = terms(&shared, &self.effects);
@@ -454,20 +407,10 @@ impl Renderer {
         let source = |target| resolve_target(t, &self.effects, config, target, frame.parity);
         let hook_sync = record_hook(&mut r, &mut hook, source, &t.output);
         let last_pass = r.last_pass;
-        self.last_recorded = r
-            .timer
-            .recorded(slot)
-            .iter()
-            .filter_map(|name| PassId::ALL.into_iter().find(|p| p.name() == *name))
-            .map(|p| {
-                let accumulated = self.effects.iter().any(|e| {
-                    accumulates(&self.config, e.as_ref()) && e.accumulating().contains(&p)
-                });
-                (p, p == PassId::Reproject || accumulated)
-            })
-            .collect();
-        self.slot_skipped[slot] = false;
-        self.copy_counters(cmd, slot);
+        self.skips
+            .report(r.timer, slot, plan, &self.config, &self.effects);
+        self.skips.recorded(slot, plan);
+        self.copy_counters(cmd, slot, plan);
         self.last_pass[slot] = last_pass;
         self.slots
             .submit_with(slot, &hook_sync)
@@ -496,31 +439,21 @@ impl Renderer {
         Some(previous)
     }
 
-    /// The counters `slot`'s last frame copied (none if it was skipped); notes whether its
-    /// temporal effects computed anything (`idle`).
+    /// The counters `slot`'s last frame copied (those of the effects it ran); an effect that
+    /// accumulates reports its work to the skip tracker.
     fn collect_counters(&mut self, slot: usize) -> Vec<(&'static str, u64)> {
         let mut counters = Vec::new();
-        if std::mem::take(&mut self.slot_skipped[slot]) {
-            return counters;
-        }
         let frame = self.timer.frame_of(slot);
         let config = self.config;
-        let mut work = 0;
-        let mut counted = false;
-        for e in &mut self.effects {
+        for (i, e) in self.effects.iter_mut().enumerate() {
+            if !self.skips.counted(slot, i) {
+                continue;
+            }
             let c = e.collect_counters(slot);
-            if accumulates(&config, e.as_ref()) {
-                counted |= !c.is_empty();
-                work += temporal_work(&c);
+            if let (Some(frame), true) = (frame, skip::accumulates(&config, e.as_ref())) {
+                self.skips.read_back(i, frame, &c);
             }
             counters.extend(c);
-        }
-        if let (Some(frame), true) = (frame, counted) {
-            if work == 0 {
-                self.idle = self.idle.max(Some(frame));
-            } else {
-                self.idle = None;
-            }
         }
         counters
     }
@@ -546,12 +479,15 @@ impl Renderer {
         Ok(view_proj)
     }
 
-    /// Copy this frame's counters for reading when `slot` comes round again.
-    fn copy_counters(&mut self, cmd: vk::CommandBuffer, slot: usize) {
+    /// Copy this frame's counters (of the effects it ran) for reading when `slot` comes round
+    /// again.
+    fn copy_counters(&mut self, cmd: vk::CommandBuffer, slot: usize, plan: Plan) {
         let rec = Recorder::new(&self.ctx, cmd);
         let config = self.config;
-        for e in &mut self.effects {
-            e.copy_counters(&rec, &mut self.tracker, slot, &config);
+        for (i, e) in self.effects.iter_mut().enumerate() {
+            if !plan.effect(i) {
+                e.copy_counters(&rec, &mut self.tracker, slot, &config);
+            }
         }
     }
 
@@ -600,7 +536,7 @@ impl Renderer {
         // The RSM targets were recreated with the rest: render the light view again.
         self.rsm_light = None;
         self.history = None;
-        self.key = None;
+        self.skips.forget();
         Ok(pending)
     }
 
@@ -656,25 +592,6 @@ fn resolve_target<'a>(
                 .find_map(|e| e.target(target, parity, config))
         }),
     }
-}
-
-/// See `Renderer::accumulates`.
-fn accumulates(config: &RenderConfig, e: &dyn Effect) -> bool {
-    config.temporal.reuse && e.counts(config) && e.temporal().is_some()
-}
-
-/// Pixels and pattern evaluations a frame's temporal effects spent (their `*_computed_pixels`,
-/// `*_fixup_pixels` and `*_refresh_evaluations` counters): 0 once everything converged.
-fn temporal_work(counters: &[(&'static str, u64)]) -> u64 {
-    counters
-        .iter()
-        .filter(|(name, _)| {
-            name.ends_with("_computed_pixels")
-                || name.ends_with("_fixup_pixels")
-                || name.ends_with("_refresh_evaluations")
-        })
-        .map(|(_, n)| n)
-        .sum()
 }
 
 /// The composite's inputs: every effect's contribution, in registry order.

@@ -38,10 +38,14 @@ fn shared(targets: &Targets) -> EffectResources<'_> {
     }
 }
 
-fn temporals(effects: &[Box<dyn Effect>]) -> impl Iterator<Item = (&dyn Effect, &TemporalEffect)> {
+/// The effects with a history, with their index among all effects.
+fn temporals(
+    effects: &[Box<dyn Effect>],
+) -> impl Iterator<Item = (usize, &dyn Effect, &TemporalEffect)> {
     effects
         .iter()
-        .filter_map(|e| e.temporal().map(|t| (e.as_ref(), t)))
+        .enumerate()
+        .filter_map(|(i, e)| e.temporal().map(|t| (i, e.as_ref(), t)))
 }
 
 impl Reprojection {
@@ -68,16 +72,29 @@ impl Reprojection {
         let Some(pass) = &self.pass else {
             return Ok(());
         };
-        let lanes: Vec<EffectResources> =
-            temporals(effects).map(|(_, t)| lane(targets, t)).collect();
+        let lanes: Vec<EffectResources> = temporals(effects)
+            .map(|(_, _, t)| lane(targets, t))
+            .collect();
         let lanes: Vec<&dyn Resolve> = lanes.iter().map(|l| l as &dyn Resolve).collect();
         pass.bind(ctx, &shared(targets), &lanes)
     }
 
     /// Reset the counters of every effect that counts this frame, then one `reproject` region
-    /// with one dispatch for every lane whose effect reuses its history this frame.
-    pub fn record(&self, effects: &[Box<dyn Effect>], info: &FrameInfo<'_>, r: &mut Recording<'_>) {
-        for e in effects.iter().filter(|e| e.counts(info.config)) {
+    /// with one dispatch for every lane whose effect reuses its history this frame. Effects
+    /// whose bit is set in `skipped` do not run this frame: their lanes and counters stay.
+    pub fn record(
+        &self,
+        effects: &[Box<dyn Effect>],
+        info: &FrameInfo<'_>,
+        r: &mut Recording<'_>,
+        skipped: u64,
+    ) {
+        let runs = |i: usize| skipped >> i & 1 == 0;
+        for (_, e) in effects
+            .iter()
+            .enumerate()
+            .filter(|(i, e)| runs(*i) && e.counts(info.config))
+        {
             if let Some(temporal) = e.temporal() {
                 temporal.reset_counters(&r.rec, r.tracker);
             }
@@ -92,12 +109,13 @@ impl Reprojection {
         let mut resources: [Option<EffectResources>; MAX_LANES] = std::array::from_fn(|_| None);
         let mut frames = [LaneFrame::default(); MAX_LANES];
         let mut count = 0;
-        for ((e, t), (res, frame)) in temporals(effects).zip(resources.iter_mut().zip(&mut frames))
+        for ((i, e, t), (res, frame)) in
+            temporals(effects).zip(resources.iter_mut().zip(&mut frames))
         {
             let push = e.push();
             *res = Some(lane(targets, t));
             *frame = LaneFrame {
-                active: e.reprojects(info),
+                active: runs(i) && e.reprojects(info),
                 history_valid: push.history_valid != 0,
                 block_shift: t.kind.block_shift,
                 refresh_rect: push.refresh_rect,

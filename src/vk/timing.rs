@@ -188,6 +188,11 @@ impl GpuTimer {
         self.slots[slot].frame
     }
 
+    /// Whether `pass` is already noted as skipped in `slot`'s frame.
+    pub fn is_skipped(&self, slot: usize, pass: &str) -> bool {
+        self.slots[slot].skipped.iter().any(|s| s.pass == pass)
+    }
+
     /// Note that `pass` was not recorded this frame, and why.
     pub fn skip(&mut self, slot: usize, pass: &'static str, reason: SkipReason) {
         self.slots[slot].skipped.push(Skipped { pass, reason });
