@@ -532,6 +532,10 @@ pub struct BenchArgs {
     /// speed-up ratios (overrides --reuse).
     #[arg(long)]
     pub compare_reuse: bool,
+    /// Print which change makes each pass run again (the dependency table `--skip-unchanged`
+    /// follows) before running.
+    #[arg(long)]
+    pub explain_skips: bool,
 }
 
 #[derive(Args, Debug)]

@@ -252,6 +252,11 @@ impl Renderer {
         self.skips.forget();
     }
 
+    /// What makes each pass run again (`skip::explain`).
+    pub fn explain_skips(&self) -> String {
+        skip::explain(&self.config, &self.effects)
+    }
+
     fn frame_inputs(&self, camera: &Camera) -> Inputs {
         let aspect = self.config.width as f32 / self.config.height as f32;
         Inputs {

@@ -241,6 +241,68 @@ impl SkipTracker {
     }
 }
 
+/// The dependency table of `effects` under `config`: for each pass, what makes it run again
+/// (`ssgi bench --explain-skips`, docs/ARCHITECTURE.md).
+pub fn explain(config: &RenderConfig, effects: &[Box<dyn Effect>]) -> String {
+    let mut rows: Vec<(PassId, String)> = vec![
+        (
+            PassId::LightView,
+            "the light (geometry is static)".to_string(),
+        ),
+        (
+            PassId::GBuffer,
+            "the camera (view-projection or eye)".to_string(),
+        ),
+    ];
+    for e in effects {
+        let light = if e.reads_light() { ", light" } else { "" };
+        let converge = if accumulates(config, e.as_ref()) {
+            "; every frame until its history converges"
+        } else {
+            ""
+        };
+        for &pass in e.passes() {
+            rows.push((
+                pass,
+                format!(
+                    "{:?} effect: camera, configuration{light}{converge}",
+                    e.id()
+                ),
+            ));
+        }
+    }
+    rows.push((
+        PassId::Reproject,
+        "any effect with a reused history running (one lane each)".to_string(),
+    ));
+    let mut last = vec![PassId::Composite];
+    if config.aa.mode.subpixel() {
+        last.extend([PassId::SraaGeometry, PassId::Sraa]);
+    }
+    if config.aa.mode.supersampling() > 1 {
+        last.push(PassId::SsaaDownsample);
+    }
+    for pass in last {
+        rows.push((
+            pass,
+            "anything (only a frame that changes nothing leaves it out)".to_string(),
+        ));
+    }
+    rows.sort_by_key(|(p, _)| PassId::ALL.iter().position(|q| *q == *p));
+    rows.dedup_by_key(|(p, _)| *p);
+    let mut out = String::from(
+        "pass (those an effect may record)  runs again when this changed in the last two \
+         frames\n",
+    );
+    for (pass, why) in rows {
+        out += &format!("{:<18} {why}\n", pass.name());
+    }
+    if !config.skip_unchanged {
+        out += "(--skip-unchanged off: every pass runs every frame)\n";
+    }
+    out
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -206,6 +206,9 @@ pub fn bench(cli: &Cli, args: &BenchArgs) -> Result<()> {
         return finish(&ctx);
     }
     let mut renderer = Renderer::new(&ctx, scene, args.scene.render_config())?;
+    if args.explain_skips {
+        print!("{}", renderer.explain_skips());
+    }
     let report = measure(args, &ctx, &mut renderer, sink.as_mut(), &path)?;
     print!("{}", report.table());
     if let Some(json) = &args.json {
