@@ -231,6 +231,39 @@ fn a_change_renders_again() {
     common::assert_clean(&ctx);
 }
 
+/// A configuration change through the viewer (its soft-shadow switch changes the PCF kernel
+/// in place): every effect runs again (its inputs include the configuration), the G-buffer
+/// does not (the camera stood still), and the image equals that of a renderer that never
+/// skips, bit for bit.
+#[test]
+fn a_configuration_change_reruns_the_effects_but_not_the_gbuffer() {
+    let ctx = common::context();
+    let mut r = renderer(&ctx, config(true, true));
+    let mut always = renderer(&ctx, config(true, false));
+    let camera = r.scene.camera;
+    let n = until_skipping(&mut r, &camera, 4).len() as u32;
+    run(&mut always, &camera, n);
+    r.config.pcf = Pcf::HARD;
+    always.config.pcf = Pcf::HARD;
+    let frame = run(&mut r, &camera, 1).pop().unwrap();
+    run(&mut always, &camera, 1);
+    let recorded: Vec<&str> = frame.passes.iter().map(|(n, _)| *n).collect();
+    for pass in ["shadow", "direct", "ssao", "indirect_gather", "composite"] {
+        assert!(recorded.contains(&pass), "{pass}: {recorded:?}");
+    }
+    assert!(!recorded.contains(&"gbuffer"), "{recorded:?}");
+    let (a, b) = (
+        common::read(&mut r, Target::Output),
+        common::read(&mut always, Target::Output),
+    );
+    assert!(
+        a.bytes == b.bytes,
+        "the image differs from the unskipped one"
+    );
+    until_skipping(&mut r, &camera, 4);
+    common::assert_clean(&ctx);
+}
+
 /// Without reuse every frame is the same fixed-pattern estimate: frames skip from the third,
 /// and the image is the one a renderer that never skips draws.
 #[test]
