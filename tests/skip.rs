@@ -149,6 +149,52 @@ fn with_skipping_off_every_frame_records_its_passes() {
     common::assert_clean(&ctx);
 }
 
+/// A renderer that skips and one that never does, fed the same frames: every image of the
+/// first must equal the second's, bit for bit.
+struct Pair {
+    skipping: Renderer,
+    always: Renderer,
+}
+
+impl Pair {
+    fn new(ctx: &Arc<Context>) -> Self {
+        Self {
+            skipping: renderer(ctx, config(true, true)),
+            always: renderer(ctx, config(true, false)),
+        }
+    }
+
+    /// Render until the skipping one skips 4 frames in a row; the other as many frames.
+    fn converge(&mut self, camera: &Camera) {
+        let n = until_skipping(&mut self.skipping, camera, 4).len() as u32;
+        run(&mut self.always, camera, n);
+    }
+
+    /// One frame of both; the skipping one's timing.
+    fn frame(&mut self, camera: &Camera) -> FrameTiming {
+        run(&mut self.always, camera, 1);
+        run(&mut self.skipping, camera, 1).pop().unwrap()
+    }
+
+    fn assert_same(&mut self, what: &str) {
+        let x = common::read(&mut self.skipping, Target::Output);
+        let y = common::read(&mut self.always, Target::Output);
+        assert!(
+            x.bytes == y.bytes,
+            "{what}: the image differs from the unskipped one"
+        );
+    }
+}
+
+/// The passes `t` recorded; panics naming any of `passes` it did not.
+fn assert_ran<'a>(t: &'a FrameTiming, passes: &[&str]) -> Vec<&'a str> {
+    let recorded: Vec<&str> = t.passes.iter().map(|(n, _)| *n).collect();
+    for pass in passes {
+        assert!(recorded.contains(pass), "{pass}: {recorded:?}");
+    }
+    recorded
+}
+
 /// After skipping: moving the camera renders the G-buffer and every effect again, but not the
 /// light view; moving the light then renders the light view and what the light reaches, but
 /// not the G-buffer (the camera stood still) or AO (converged, independent of the light);
@@ -156,63 +202,45 @@ fn with_skipping_off_every_frame_records_its_passes() {
 #[test]
 fn a_change_renders_again() {
     let ctx = common::context();
-    let mut r = renderer(&ctx, config(true, true));
-    // The same frames without skipping: every image must match it bit for bit.
-    let mut always = renderer(&ctx, config(true, false));
-    let camera = r.scene.camera;
-    let n = until_skipping(&mut r, &camera, 4).len() as u32;
-    run(&mut always, &camera, n);
+    let mut p = Pair::new(&ctx);
+    let camera = p.skipping.scene.camera;
+    p.converge(&camera);
     let moved = Camera {
         position: camera.position + Vec3::new(0.002, 0.0, 0.0),
         target: camera.target + Vec3::new(0.002, 0.0, 0.0),
         ..camera
     };
-    let after_move = run(&mut r, &moved, 1);
-    run(&mut always, &moved, 1);
-    let frame = after_move.last().unwrap();
-    let recorded: Vec<&str> = frame.passes.iter().map(|(n, _)| *n).collect();
-    for pass in [
-        "gbuffer",
-        "reproject",
-        "ssao",
-        "shadow",
-        "indirect_gather",
-        "composite",
-    ] {
-        assert!(recorded.contains(&pass), "{pass}: {recorded:?}");
-    }
+    let frame = p.frame(&moved);
+    assert_ran(
+        &frame,
+        &[
+            "gbuffer",
+            "reproject",
+            "ssao",
+            "shadow",
+            "indirect_gather",
+            "composite",
+        ],
+    );
     assert!(frame.skipped("light_view"));
-    let same = |a: &mut Renderer, b: &mut Renderer, what: &str| {
-        let (x, y) = (
-            common::read(a, Target::Output),
-            common::read(b, Target::Output),
-        );
-        assert!(
-            x.bytes == y.bytes,
-            "{what}: the image differs from the unskipped one"
-        );
-    };
-    same(&mut r, &mut always, "after the camera move");
-    let n = until_skipping(&mut r, &moved, 4).len() as u32;
-    run(&mut always, &moved, n);
-    let mut light = r.scene.light;
+    p.assert_same("after the camera move");
+    p.converge(&moved);
+    let mut light = p.skipping.scene.light;
     light.position += Vec3::new(0.05, 0.0, 0.0);
-    r.set_light(light);
-    always.set_light(light);
-    let after_light = run(&mut r, &moved, 1);
-    run(&mut always, &moved, 1);
-    let frame = after_light.last().unwrap();
-    let recorded: Vec<&str> = frame.passes.iter().map(|(n, _)| *n).collect();
-    for pass in [
-        "light_view",
-        "reproject",
-        "shadow",
-        "direct",
-        "indirect_gather",
-        "composite",
-    ] {
-        assert!(recorded.contains(&pass), "{pass}: {recorded:?}");
-    }
+    p.skipping.set_light(light);
+    p.always.set_light(light);
+    let frame = p.frame(&moved);
+    let recorded = assert_ran(
+        &frame,
+        &[
+            "light_view",
+            "reproject",
+            "shadow",
+            "direct",
+            "indirect_gather",
+            "composite",
+        ],
+    );
     // What the light does not reach stays: the G-buffer (the camera stood still) and the
     // converged AO.
     let reasons: Vec<(&str, &str)> = frame
@@ -226,8 +254,8 @@ fn a_change_renders_again() {
             "{pass}: {reasons:?} ran {recorded:?}"
         );
     }
-    same(&mut r, &mut always, "after the light move");
-    until_skipping(&mut r, &moved, 4);
+    p.assert_same("after the light move");
+    until_skipping(&mut p.skipping, &moved, 4);
     common::assert_clean(&ctx);
 }
 
@@ -238,29 +266,19 @@ fn a_change_renders_again() {
 #[test]
 fn a_configuration_change_reruns_the_effects_but_not_the_gbuffer() {
     let ctx = common::context();
-    let mut r = renderer(&ctx, config(true, true));
-    let mut always = renderer(&ctx, config(true, false));
-    let camera = r.scene.camera;
-    let n = until_skipping(&mut r, &camera, 4).len() as u32;
-    run(&mut always, &camera, n);
-    r.config.pcf = Pcf::HARD;
-    always.config.pcf = Pcf::HARD;
-    let frame = run(&mut r, &camera, 1).pop().unwrap();
-    run(&mut always, &camera, 1);
-    let recorded: Vec<&str> = frame.passes.iter().map(|(n, _)| *n).collect();
-    for pass in ["shadow", "direct", "ssao", "indirect_gather", "composite"] {
-        assert!(recorded.contains(&pass), "{pass}: {recorded:?}");
-    }
+    let mut p = Pair::new(&ctx);
+    let camera = p.skipping.scene.camera;
+    p.converge(&camera);
+    p.skipping.config.pcf = Pcf::HARD;
+    p.always.config.pcf = Pcf::HARD;
+    let frame = p.frame(&camera);
+    let recorded = assert_ran(
+        &frame,
+        &["shadow", "direct", "ssao", "indirect_gather", "composite"],
+    );
     assert!(!recorded.contains(&"gbuffer"), "{recorded:?}");
-    let (a, b) = (
-        common::read(&mut r, Target::Output),
-        common::read(&mut always, Target::Output),
-    );
-    assert!(
-        a.bytes == b.bytes,
-        "the image differs from the unskipped one"
-    );
-    until_skipping(&mut r, &camera, 4);
+    p.assert_same("after the configuration change");
+    until_skipping(&mut p.skipping, &camera, 4);
     common::assert_clean(&ctx);
 }
 

@@ -377,21 +377,17 @@ fn missing_scene_files_name_the_file_and_the_fix() {
     std::fs::remove_dir_all(&empty).ok();
 }
 
-/// `ssgi table szentandrasi-1` at 64x48: the paper's three scenes and seven rows in order, its
-/// numbers beside ours, every time and error finite, the sample counters matching each row's
-/// setting (the adaptive row between 20 and 50), the passes each row needs (two steps: the
-/// bounce pass; subsampling: the upsampling), one PNG per row and one CSV line per row.
-#[test]
-fn szentandrasi_1_end_to_end() {
-    let assets = assets();
-    let out = out_dir("szentandrasi-1");
+/// `ssgi --validation table ARGS --out OUT` for a table with its own report format: it
+/// succeeds without validation messages and writes report.json in the README's `schema`.
+fn own_format_table(args: &[&str], out: &Path, schema: &str) -> Value {
     let output = Command::new(env!("CARGO_BIN_EXE_ssgi"))
         .arg("--validation")
         .arg("--assets")
-        .arg(&assets)
-        .args(["table", "szentandrasi-1", "--size", "64x48"])
-        .args(["--frames", "2", "--warmup", "1", "--out"])
-        .arg(&out)
+        .arg(assets())
+        .arg("table")
+        .args(args)
+        .arg("--out")
+        .arg(out)
         .output()
         .unwrap();
     let stderr = String::from_utf8_lossy(&output.stderr);
@@ -402,7 +398,30 @@ fn szentandrasi_1_end_to_end() {
     );
     let text = std::fs::read_to_string(out.join("report.json")).unwrap();
     let report: Value = serde_json::from_str(&text).unwrap();
-    schema::assert_follows("szentandrasi-table", &report);
+    schema::assert_follows(schema, &report);
+    report
+}
+
+/// `ssgi table szentandrasi-1` at 64x48: the paper's three scenes and seven rows in order, its
+/// numbers beside ours, every time and error finite, the sample counters matching each row's
+/// setting (the adaptive row between 20 and 50), the passes each row needs (two steps: the
+/// bounce pass; subsampling: the upsampling), one PNG per row and one CSV line per row.
+#[test]
+fn szentandrasi_1_end_to_end() {
+    let out = out_dir("szentandrasi-1");
+    let report = own_format_table(
+        &[
+            "szentandrasi-1",
+            "--size",
+            "64x48",
+            "--frames",
+            "2",
+            "--warmup",
+            "1",
+        ],
+        &out,
+        "szentandrasi-table",
+    );
     assert_eq!(report["version"], 1);
     assert_eq!(report["table"], "szentandrasi-1");
     assert_eq!(
@@ -487,25 +506,12 @@ fn szentandrasi_1_end_to_end() {
 /// antialiasing over the edge pixels, one PNG of the output size per row.
 #[test]
 fn sraa_end_to_end() {
-    let assets = assets();
     let out = out_dir("sraa");
-    let output = Command::new(env!("CARGO_BIN_EXE_ssgi"))
-        .arg("--validation")
-        .arg("--assets")
-        .arg(&assets)
-        .args(["table", "sraa", "--size", "48x48", "--frames", "1", "--out"])
-        .arg(&out)
-        .output()
-        .unwrap();
-    let stderr = String::from_utf8_lossy(&output.stderr);
-    assert!(output.status.success(), "ssgi table failed:\n{stderr}");
-    assert!(
-        !stderr.contains("vulkan: ["),
-        "validation messages:\n{stderr}"
+    let report = own_format_table(
+        &["sraa", "--size", "48x48", "--frames", "1"],
+        &out,
+        "sraa-table",
     );
-    let text = std::fs::read_to_string(out.join("report.json")).unwrap();
-    let report: Value = serde_json::from_str(&text).unwrap();
-    schema::assert_follows("sraa-table", &report);
     assert_eq!(report["effects"], "direct");
     let sizes = report["sizes"].as_array().unwrap();
     assert_eq!(sizes.len(), 1);

@@ -10,6 +10,7 @@
 use super::aa_edges::{edge_mask, rmse};
 use super::measure::{held_at, measure, Buffer, Measured, RunSpec};
 use super::output::write_text;
+use super::table_run::TableRun;
 use super::walkthrough::WALKTHROUGHS;
 use super::{Report, TableOptions};
 use crate::error::{Error, Result};
@@ -86,15 +87,8 @@ pub struct SizeResult {
 
 #[derive(Clone, Debug, Serialize)]
 pub struct TableReport {
-    pub version: u32,
-    pub table: &'static str,
-    pub command: String,
-    pub ssgi_version: &'static str,
-    pub device: String,
-    pub driver: String,
-    pub device_type: String,
-    pub window: bool,
-    pub present_mode: Option<&'static str>,
+    #[serde(flatten)]
+    pub run: TableRun,
     pub scene: String,
     pub triangles: usize,
     /// The `--effects` list every row renders.
@@ -135,6 +129,15 @@ fn config(opts: &TableOptions, size: (u32, u32), mode: AaMode) -> RenderConfig {
     }
 }
 
+/// Frames held at the camera before each row's measured ones (a static view has no moving
+/// steady state: `converged` warms up with none).
+fn warmup_frames(opts: &TableOptions) -> u32 {
+    match opts.warmup {
+        super::warmup::Warmup::Frames(n) => n,
+        super::warmup::Warmup::Converged => 0,
+    }
+}
+
 fn mode_name(mode: AaMode) -> &'static str {
     match mode {
         AaMode::None => "none",
@@ -155,10 +158,7 @@ fn run_size(
 ) -> Result<SizeResult> {
     let held = held_at(&scene.camera);
     let paper = PAPER_MS.iter().find(|p| p.0 == size.0 && size.0 == size.1);
-    let warmup = match opts.warmup {
-        super::warmup::Warmup::Frames(n) => n,
-        super::warmup::Warmup::Converged => 0,
-    };
+    let warmup = warmup_frames(opts);
     let mut rows: Vec<RowResult> = Vec::new();
     let mut reference: Option<(ImageData, Vec<bool>)> = None;
     for mode in MODES {
@@ -264,23 +264,12 @@ pub fn run(
         ),
     ];
     let report = TableReport {
-        version: 1,
-        table: TABLE,
-        command: opts.command.clone(),
-        ssgi_version: env!("CARGO_PKG_VERSION"),
-        device: ctx.info.name.clone(),
-        driver: ctx.info.driver.clone(),
-        device_type: ctx.info.device_type.clone(),
-        window: sink.present_mode().is_some(),
-        present_mode: sink.present_mode(),
+        run: TableRun::new(TABLE, opts.command.clone(), &ctx.info, sink.present_mode()),
         scene: scene.name.clone(),
         triangles: scene.mesh.triangle_count(),
         effects: opts.effects.to_string(),
         frames: opts.frames,
-        warmup: match opts.warmup {
-            super::warmup::Warmup::Frames(n) => n,
-            super::warmup::Warmup::Converged => 0,
-        },
+        warmup: warmup_frames(opts),
         paper_speedup: PAPER_SPEEDUP,
         notes,
         sizes: results,
@@ -321,11 +310,18 @@ fn opt(v: Option<f64>, digits: usize) -> String {
 }
 
 fn markdown(r: &TableReport) -> String {
-    let mut md = format!("# {TITLE}\n\nCommand: `{}`\n\n", r.command);
+    let mut md = format!("# {TITLE}\n\nCommand: `{}`\n\n", r.run.command);
     md += &format!(
         "Device: {} ({}), scene {} ({} triangles), effects {}, {} frames measured per row \
          after {} warmup frames, ssgi {}.\n\n",
-        r.device, r.driver, r.scene, r.triangles, r.effects, r.frames, r.warmup, r.ssgi_version
+        r.run.device,
+        r.run.driver,
+        r.scene,
+        r.triangles,
+        r.effects,
+        r.frames,
+        r.warmup,
+        r.run.ssgi_version
     );
     md += "| Size | Method | Geometry pass ms | AA pass ms | Frame ms | Report: 1st / 2nd / total ms \
            | Speed-up over SSAA 16x | RMSE, all pixels | RMSE, edge pixels |\n";

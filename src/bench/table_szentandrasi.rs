@@ -25,6 +25,7 @@ use super::output::{file_stem, write_text};
 use super::rows::group_ms;
 use super::stats::summarize;
 use super::szentandrasi::{PaperRow, PaperScene, RATIOS, REFERENCE_SAMPLES, ROWS, SCENES};
+use super::table_run::TableRun;
 use super::warmup::before_path;
 use super::{Report, TableOptions};
 use crate::error::{Error, Result};
@@ -90,15 +91,8 @@ pub struct SceneResult {
 
 #[derive(Clone, Debug, Serialize)]
 pub struct TableReport {
-    pub version: u32,
-    pub table: &'static str,
-    pub command: String,
-    pub ssgi_version: &'static str,
-    pub device: String,
-    pub driver: String,
-    pub device_type: String,
-    pub window: bool,
-    pub present_mode: Option<&'static str>,
+    #[serde(flatten)]
+    pub run: TableRun,
     pub width: u32,
     pub height: u32,
     pub frames: u32,
@@ -322,15 +316,7 @@ pub fn run(
     ];
     notes.extend(SCENES.iter().filter_map(|s| s.note).map(str::to_string));
     let report = TableReport {
-        version: 1,
-        table: TABLE,
-        command: opts.command.clone(),
-        ssgi_version: env!("CARGO_PKG_VERSION"),
-        device: ctx.info.name.clone(),
-        driver: ctx.info.driver.clone(),
-        device_type: ctx.info.device_type.clone(),
-        window: sink.present_mode().is_some(),
-        present_mode: sink.present_mode(),
+        run: TableRun::new(TABLE, opts.command.clone(), &ctx.info, sink.present_mode()),
         width: opts.size.0,
         height: opts.size.1,
         frames: opts.frames,
@@ -375,13 +361,21 @@ fn opt(v: Option<f64>, digits: usize) -> String {
 
 fn markdown(r: &TableReport) -> String {
     let mut md = format!("# {TITLE}\n\n");
-    md += &format!("Command: `{}`\n\n", r.command);
+    md += &format!("Command: `{}`\n\n", r.run.command);
     md += &format!(
         "Device: {} ({}), {}x{}, {} frames measured per row after {} warmup frames, camera path \
          `{}` at {} fps, ssgi {}.\n\n",
-        r.device, r.driver, r.width, r.height, r.frames, r.warmup, r.path, r.fps, r.ssgi_version
+        r.run.device,
+        r.run.driver,
+        r.width,
+        r.height,
+        r.frames,
+        r.warmup,
+        r.path,
+        r.fps,
+        r.run.ssgi_version
     );
-    md += &match r.present_mode {
+    md += &match r.run.present_mode {
         Some(mode) => format!("Frames shown: every frame presented to a window ({mode}).\n\n"),
         None => "Frames shown: none (offscreen).\n\n".to_string(),
     };

@@ -52,6 +52,27 @@ pub(super) const VERTEX_ATTRIBUTES: [vk::VertexInputAttributeDescription; 3] = [
     },
 ];
 
+/// Barriers for the attachments `targets` declares (colours cleared to 0, depth to 1), then
+/// begin rendering into them; the caller draws and ends rendering.
+pub fn begin_attachments(
+    rec: &Recorder<'_>,
+    tracker: &mut Tracker,
+    name: &str,
+    (binds, res): (&[Bind], &dyn Resolve),
+    parity: usize,
+) {
+    // The slots are targets that exist whenever the pass does: a miss is a broken invariant.
+    let (colors, depth) = match decl::attachments(name, binds, res, parity) {
+        Ok((colors, Some(depth))) => (colors, depth),
+        Ok((_, None)) => panic!("{name}: a raster pass needs a depth attachment"),
+        Err(e) => panic!("{e}"),
+    };
+    decl::access(name, binds, res, parity, tracker);
+    tracker.flush(rec.device, rec.cmd);
+    let clear: Vec<_> = colors.iter().map(|c| (*c, [0.0; 4])).collect();
+    rec.begin_rendering(&clear, depth);
+}
+
 /// A raster pass's pipelines: flat always, textured only when the scene has textures.
 pub struct MaterialPipelines {
     pub flat: Pipeline,
@@ -106,18 +127,7 @@ impl MaterialPipelines {
         scene: &SceneGpu,
         targets: (&[Bind], &dyn Resolve),
     ) {
-        let (binds, res) = targets;
-        let name = self.flat.name;
-        // The slots are the shared targets, which always exist: a miss is a broken invariant.
-        let (colors, depth) = match decl::attachments(name, binds, res, frame.parity) {
-            Ok((colors, Some(depth))) => (colors, depth),
-            Ok((_, None)) => panic!("{name}: a raster pass needs a depth attachment"),
-            Err(e) => panic!("{e}"),
-        };
-        decl::access(name, binds, res, frame.parity, tracker);
-        tracker.flush(rec.device, rec.cmd);
-        let clear: Vec<_> = colors.iter().map(|c| (*c, [0.0; 4])).collect();
-        rec.begin_rendering(&clear, depth);
+        begin_attachments(rec, tracker, self.flat.name, targets, frame.parity);
         self.draw(rec, frame.set, scene);
         rec.end_rendering();
     }

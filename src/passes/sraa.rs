@@ -9,10 +9,10 @@
 //! four vertex passes; `sraa_geometry` times all four.
 
 use super::compute::{ComputePass, Dispatch, FrameSet};
-use super::decl::{self, Bind, Resolve, Slot, Use};
+use super::decl::{Bind, Resolve, Slot, Use};
 use super::layout::PassLayout;
 use super::pass_id::PassId;
-use super::raster::{FLAT_BINDINGS, VERTEX_ATTRIBUTES, VERTEX_BINDINGS};
+use super::raster::{begin_attachments, FLAT_BINDINGS, VERTEX_ATTRIBUTES, VERTEX_BINDINGS};
 use crate::error::Result;
 use crate::renderer::scene_gpu::SceneGpu;
 use crate::renderer::targets::{DEPTH_FORMAT, GBUFFER_COLOR_FORMATS};
@@ -107,19 +107,9 @@ impl SraaPass {
         scene: &SceneGpu,
         res: &dyn Resolve,
     ) {
-        let name = self.geometry.name;
         for (n, binds) in SUBPIXEL_TARGETS.iter().enumerate() {
-            // The slots exist whenever this pass does (the renderer builds both from `--aa`):
-            // a miss is a broken invariant.
-            let (colors, depth) = match decl::attachments(name, binds, res, frame.parity) {
-                Ok((colors, Some(depth))) => (colors, depth),
-                Ok((_, None)) => panic!("{name}: a raster pass needs a depth attachment"),
-                Err(e) => panic!("{e}"),
-            };
-            decl::access(name, binds, res, frame.parity, tracker);
-            tracker.flush(rec.device, rec.cmd);
-            let clear: Vec<_> = colors.iter().map(|c| (*c, [0.0; 4])).collect();
-            rec.begin_rendering(&clear, depth);
+            let targets = (binds.as_slice(), res);
+            begin_attachments(rec, tracker, self.geometry.name, targets, frame.parity);
             rec.bind(&self.geometry, &[frame.set]);
             rec.bind_mesh(&scene.vertices, &scene.indices);
             for range in &scene.ranges {

@@ -333,7 +333,8 @@ impl Renderer {
         let cmd = self.begin_slot(slot)?;
         let previous = self.collect(slot);
         // 1. Scene update: constants, change flags, each effect's refresh tile and pattern.
-        let view_proj = self.write_uniforms(slot, camera)?;
+        let view_proj = inputs.view_proj;
+        self.write_uniforms(slot, camera, view_proj)?;
         let light_changed = self.rsm_light != Some(self.scene.light);
         let rendered = self.config.rendered();
         let info = FrameInfo {
@@ -464,10 +465,9 @@ impl Renderer {
     }
 
     /// The frame's constants into this slot's uniform buffer (host write before submission: the
-    /// submit makes it visible, no barrier needed). Returns the camera's view-projection.
-    fn write_uniforms(&mut self, slot: usize, camera: &Camera) -> Result<Mat4> {
-        let aspect = self.config.width as f32 / self.config.height as f32;
-        let view_proj = camera.view_proj(aspect);
+    /// submit makes it visible, no barrier needed). `view_proj` is the camera's, as the skip
+    /// plan computed it.
+    fn write_uniforms(&mut self, slot: usize, camera: &Camera, view_proj: Mat4) -> Result<()> {
         let block = frame_block(
             &self.config.rendered(),
             &FrameInputs {
@@ -481,7 +481,7 @@ impl Renderer {
             },
         );
         self.frames[slot].uniforms.write(&block.to_bytes())?;
-        Ok(view_proj)
+        Ok(())
     }
 
     /// Copy this frame's counters (of the effects it ran) for reading when `slot` comes round

@@ -200,9 +200,9 @@ impl SkipTracker {
         config: &RenderConfig,
         effects: &[Box<dyn Effect>],
     ) {
-        let recorded: Vec<&'static str> = timer.recorded(slot).to_vec();
         for &(pass, temporal) in &self.known {
-            if recorded.contains(&pass.name()) || timer.is_skipped(slot, pass.name()) {
+            let name = pass.name();
+            if timer.recorded(slot).contains(&name) || timer.is_skipped(slot, name) {
                 continue;
             }
             let left_out = plan.frame
@@ -221,9 +221,12 @@ impl SkipTracker {
             } else {
                 SkipReason::Unchanged
             };
-            timer.skip(slot, pass.name(), reason);
+            timer.skip(slot, name, reason);
         }
-        for name in recorded {
+        // New passes are rare (the first frames, a configuration change): nothing is
+        // allocated or sorted on the frames in between.
+        let mut added = false;
+        for &name in timer.recorded(slot) {
             let Some(pass) = PassId::ALL.into_iter().find(|p| p.name() == name) else {
                 continue;
             };
@@ -235,9 +238,12 @@ impl SkipTracker {
                 .any(|e| accumulates(config, e.as_ref()) && e.accumulating().contains(&pass));
             self.known
                 .push((pass, pass == PassId::Reproject || accumulated));
+            added = true;
         }
-        self.known
-            .sort_by_key(|(p, _)| PassId::ALL.iter().position(|q| q == p));
+        if added {
+            self.known
+                .sort_by_key(|(p, _)| PassId::ALL.iter().position(|q| q == p));
+        }
     }
 }
 
