@@ -10,6 +10,7 @@ use std::fmt::Write as _;
 /// The blocks generated into Rust: GLSL block name -> Rust struct name.
 pub const GENERATED: &[(&str, &str)] = &[
     ("Frame", "FrameBlock"),
+    ("Ccipca", "CcipcaPush"),
     ("Effect", "EffectPush"),
     ("Counters", "CountersHeader"),
     ("Material", "MaterialPush"),

@@ -64,8 +64,8 @@ fn compute_modules_have_workgroups_and_graphics_do_not() {
 mod block_layout;
 
 use ssgi::shaders::{
-    BlockMember, CountersHeader, EffectPush, FrameBlock, ImageStatsPush, MaterialPush, ProbePush,
-    ReprojectPush, PROBES,
+    BlockMember, CcipcaPush, CountersHeader, EffectPush, FrameBlock, ImageStatsPush, MaterialPush,
+    ProbePush, ReprojectPush, PROBES,
 };
 
 /// The generated struct of a GLSL block: its members and size.
@@ -73,6 +73,7 @@ fn generated(name: &str) -> (&'static [BlockMember], usize) {
     match name {
         "Frame" => (FrameBlock::MEMBERS, FrameBlock::SIZE),
         "Effect" => (EffectPush::MEMBERS, EffectPush::SIZE),
+        "Ccipca" => (CcipcaPush::MEMBERS, CcipcaPush::SIZE),
         "Counters" => (CountersHeader::MEMBERS, CountersHeader::SIZE),
         "Material" => (MaterialPush::MEMBERS, MaterialPush::SIZE),
         "Probe" => (ProbePush::MEMBERS, ProbePush::SIZE),

@@ -4,7 +4,7 @@
 use crate::bench::warmup::Warmup;
 use crate::renderer::config::{
     AaConfig, AaMode, Accumulate, AdaptiveSamples, AoConfig, AoEstimator, Effects, Epsilon,
-    HistoryResample, IndirectConfig, Refresh, SsdoConfig, SsdoForm, TemporalConfig,
+    HistoryResample, IndirectConfig, IndirectFilter, Refresh, SsdoConfig, SsdoForm, TemporalConfig,
 };
 use crate::renderer::frame::Pcf;
 use crate::renderer::{RenderConfig, MAX_SIZE};
@@ -142,6 +142,17 @@ pub struct SceneArgs {
     /// geometry-aware NxN filter combines them (1 = off, up to 8).
     #[arg(long, default_value_t = IndirectConfig::default().interleave, value_parser = clap::value_parser!(u32).range(1..=IndirectConfig::MAX_INTERLEAVE as i64))]
     pub interleave: u32,
+    /// How indirect light is smoothed over time: `accumulate` (the thesis's cache) or `ccipca`
+    /// (Chen et al. 2012: a new noisy gather of --vpls per pixel each frame, projected on
+    /// incrementally estimated principal components).
+    #[arg(long, value_enum, default_value_t = IndirectFilter::Accumulate)]
+    pub indirect_filter: IndirectFilter,
+    /// CCIPCA basis images (1..=8; Chen et al. use 3, 5 and 7).
+    #[arg(long, default_value_t = IndirectConfig::default().bases, value_parser = clap::value_parser!(u32).range(1..=IndirectConfig::MAX_BASES as i64))]
+    pub bases: u32,
+    /// CCIPCA memory: frames after which a pixel's update step stops shrinking (1..=1048576).
+    #[arg(long, default_value_t = IndirectConfig::default().max_age, value_parser = clap::value_parser!(u32).range(1..=1 << 20))]
+    pub ccipca_max_age: u32,
     /// Gather indirect light at half resolution with geometry-aware upsampling.
     #[arg(long, default_value = "on", value_parser = parse_on_off, action = clap::ArgAction::Set)]
     pub half_res: bool,
@@ -335,6 +346,9 @@ impl SceneArgs {
                 visibility: self.vpl_visibility,
                 half_res: self.half_res,
                 interleave: self.interleave,
+                filter: self.indirect_filter,
+                bases: self.bases,
+                max_age: self.ccipca_max_age,
                 ..IndirectConfig::default()
             },
             ssdo: SsdoConfig {

@@ -18,6 +18,7 @@ pub enum EffectId {
     Direct,
     Ao,
     Indirect,
+    Ccipca,
     Ssdo,
 }
 
@@ -115,6 +116,13 @@ pub trait Effect {
     /// again; AO does not).
     fn reads_light(&self) -> bool {
         true
+    }
+
+    /// Whether the effect's output still changes with unchanged inputs (an estimate that
+    /// takes a new sample every frame until its memory is full); the frame skipping waits for
+    /// it. Accumulating effects say so through their counters instead.
+    fn settling(&self, _config: &RenderConfig) -> bool {
+        false
     }
 
     /// Every pass the effect may record (the skip report names those of a skipped effect).

@@ -13,7 +13,7 @@ use crate::error::Result;
 use crate::passes::compute::{ComputePass, Dispatch};
 use crate::passes::decl::{Bind, Slot, Use};
 use crate::passes::{PassId, PassLayout};
-use crate::renderer::config::RenderConfig;
+use crate::renderer::config::{IndirectFilter, RenderConfig};
 use crate::renderer::counters::FIXUP_DISPATCH_OFFSET;
 use crate::renderer::effect::{self, TemporalEffect};
 use crate::renderer::targets::{Target, Targets, STATE_FORMAT};
@@ -67,7 +67,7 @@ const GATHER: &[Bind] = gather_inputs![
 
 pub const REGISTRATION: Registration = Registration {
     id: EffectId::Indirect,
-    enabled: |c| c.effects.indirect,
+    enabled: |c| c.effects.indirect && c.indirect.filter == IndirectFilter::Accumulate,
     create: |s| Ok(Box::new(IndirectEffect::new(s)?)),
     layouts,
 };

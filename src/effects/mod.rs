@@ -1,9 +1,10 @@
-//! Effects: direct light with PCF shadows, SSAO, one-bounce indirect light, SSDO. Each is one
-//! module that owns its passes, its size-dependent images, its temporal history and counters,
-//! its debug views and its contribution to the composite, and is registered in [`create`] with
-//! one line. The renderer only walks the list (see docs/ARCHITECTURE.md).
+//! Effects: direct light with PCF shadows, SSAO, one-bounce indirect light (accumulated, or
+//! filtered by CCIPCA), SSDO. Each is one module that owns its passes, its size-dependent
+//! images, its temporal history and counters, its debug views and its contribution to the
+//! composite, and is registered in [`create`] with one line. The renderer only walks the list (see docs/ARCHITECTURE.md).
 
 pub mod ao;
+pub mod ccipca;
 pub mod direct;
 pub mod effect;
 pub mod indirect;
@@ -24,6 +25,7 @@ pub const REGISTRY: &[Registration] = &[
     direct::REGISTRATION,
     ao::REGISTRATION,
     indirect::REGISTRATION,
+    ccipca::REGISTRATION,
     ssdo::REGISTRATION,
 ];
 

@@ -32,6 +32,12 @@ pub enum PassId {
     IndirectFixup,
     /// Indirect light's refresh tile at full resolution, every pattern, spread over threads.
     IndirectRefresh,
+    /// CCIPCA's input: a new noisy full-resolution gather each frame (--vpls per pixel).
+    IndirectNoisy,
+    /// CCIPCA: every basis updated from the noisy image, in turn (image-wide sums on the GPU).
+    CcipcaUpdate,
+    /// CCIPCA: the noisy image projected on the updated bases.
+    CcipcaReconstruct,
     /// SSDO's pre-pass: samples per block from the normal and depth changes.
     SsdoSamples,
     /// SSDO: modulation factor and bounce in one pass, or the two-step form's directional
@@ -58,7 +64,7 @@ pub enum PassId {
 }
 
 impl PassId {
-    pub const ALL: [PassId; 25] = [
+    pub const ALL: [PassId; 28] = [
         PassId::LightView,
         PassId::GBuffer,
         PassId::Reproject,
@@ -73,6 +79,9 @@ impl PassId {
         PassId::IndirectUpsample,
         PassId::IndirectFixup,
         PassId::IndirectRefresh,
+        PassId::IndirectNoisy,
+        PassId::CcipcaUpdate,
+        PassId::CcipcaReconstruct,
         PassId::SsdoSamples,
         PassId::Ssdo,
         PassId::SsdoBounce,
@@ -102,6 +111,9 @@ impl PassId {
             PassId::IndirectUpsample => "indirect_upsample",
             PassId::IndirectFixup => "indirect_fixup",
             PassId::IndirectRefresh => "indirect_refresh",
+            PassId::IndirectNoisy => "indirect_noisy",
+            PassId::CcipcaUpdate => "ccipca_update",
+            PassId::CcipcaReconstruct => "ccipca_reconstruct",
             PassId::SsdoSamples => "ssdo_samples",
             PassId::Ssdo => "ssdo",
             PassId::SsdoBounce => "ssdo_bounce",

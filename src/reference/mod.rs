@@ -3,6 +3,7 @@
 //! world-space AO, direct light with exact visibility, one diffuse bounce with full
 //! visibility, and the composited final image.
 
+pub mod ccipca;
 pub mod compose;
 pub mod estimate;
 pub mod estimators;

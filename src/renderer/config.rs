@@ -212,10 +212,30 @@ pub struct IndirectConfig {
     /// disjoint subsets of the VPLs (vpls / N^2 each) and a geometry-aware N x N filter puts
     /// them back together. 1 = every pixel gathers every VPL.
     pub interleave: u32,
+    /// What becomes of the noisy per-frame gather: the thesis's accumulation, or CCIPCA.
+    pub filter: IndirectFilter,
+    /// CCIPCA: basis images (Chen et al.'s Table 1: 3, 5, 7).
+    pub bases: u32,
+    /// CCIPCA: samples after which a pixel's step stops shrinking (see
+    /// src/reference/ccipca.rs): the filter's memory, in frames.
+    pub max_age: u32,
     /// What the passes compute per pixel: the gather, or a test ramp. Not on the command line
     /// and not in reports.
     #[serde(skip)]
     pub input: IndirectInput,
+}
+
+/// How indirect light is made smooth over time.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, clap::ValueEnum)]
+#[serde(rename_all = "lowercase")]
+pub enum IndirectFilter {
+    /// The thesis: reverse-reprojected accumulation (eqs 4-5) with half resolution,
+    /// refresh and the rest of the cache.
+    #[default]
+    Accumulate,
+    /// Chen, Lei & Chang 2012: a new noisy gather every frame (--vpls per pixel) projected on
+    /// incrementally estimated principal components (CCIPCA).
+    Ccipca,
 }
 
 /// The value the indirect passes compute for a pixel before upsampling and accumulation.
@@ -235,6 +255,9 @@ impl IndirectConfig {
     /// low-resolution tile of a block.
     pub const MAX_INTERLEAVE: u32 = 8;
 
+    /// Most CCIPCA bases (the shaders' partial sums are sized for them).
+    pub const MAX_BASES: u32 = 8;
+
     /// Nearest step of each VPL's screen-space visibility march [px]: eq 8's log spacing
     /// starting one and a half pixels out, like SSAO's default, so the march leaves the
     /// receiver's own pixel before testing depth.
@@ -248,6 +271,9 @@ impl Default for IndirectConfig {
             visibility: false,
             half_res: true,
             interleave: 1,
+            filter: IndirectFilter::Accumulate,
+            bases: 3,
+            max_age: 256,
             input: IndirectInput::Gather,
         }
     }
@@ -674,6 +700,19 @@ impl RenderConfig {
                 il * il
             ));
         }
+        if !(1..=IndirectConfig::MAX_BASES).contains(&self.indirect.bases) {
+            return bad(format!(
+                "{} CCIPCA bases outside 1..={}",
+                self.indirect.bases,
+                IndirectConfig::MAX_BASES
+            ));
+        }
+        if !(1..=1 << 20).contains(&self.indirect.max_age) {
+            return bad(format!(
+                "CCIPCA memory {} frames outside 1..=1048576",
+                self.indirect.max_age
+            ));
+        }
         if self.indirect.vpls == 0 && self.rsm_size > 128 {
             return bad(format!(
                 "--vpls all gathers every RSM texel: use --rsm-size 128 or less (got {})",
@@ -681,6 +720,7 @@ impl RenderConfig {
             ));
         }
         if self.effects.indirect
+            && self.indirect.filter == IndirectFilter::Accumulate
             && self.temporal.reuse
             && self.temporal.refresh != Refresh::Off
             && self.indirect.vpls as u64

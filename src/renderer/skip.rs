@@ -155,9 +155,10 @@ impl SkipTracker {
                 config: inputs.config,
             };
             let (unchanged, since) = steady(&mut track.inputs, key, n);
-            let converged = !accumulates(config, e.as_ref())
-                || (track.idle.is_some_and(|f| f >= since && n >= f + 2)
-                    && e.temporal().is_some_and(|t| t.refresh_left == 0));
+            let converged = !e.settling(config)
+                && (!accumulates(config, e.as_ref())
+                    || (track.idle.is_some_and(|f| f >= since && n >= f + 2)
+                        && e.temporal().is_some_and(|t| t.refresh_left == 0)));
             if on && unchanged && converged {
                 plan.effects |= 1 << i;
             }

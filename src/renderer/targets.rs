@@ -171,6 +171,8 @@ pub enum Target {
     Shadow,
     /// Indirect light (eq 9's I_p, rgb; a = estimates accumulated).
     Indirect,
+    /// CCIPCA's input: this frame's noisy gather (--indirect-filter ccipca).
+    IndirectNoisy,
     /// Pixels the half-resolution upsampling discarded this frame (Figure 4.1).
     DiscardMask,
     /// Reprojection state per pixel (Figure 4.10's recompute mask).
@@ -187,7 +189,7 @@ pub enum Target {
 }
 
 impl Target {
-    pub const ALL: [Target; 24] = [
+    pub const ALL: [Target; 25] = [
         Target::Output,
         Target::Shaded,
         Target::Direct,
@@ -204,6 +206,7 @@ impl Target {
         Target::Ao,
         Target::Shadow,
         Target::Indirect,
+        Target::IndirectNoisy,
         Target::DiscardMask,
         Target::State,
         Target::AoPositionLevel1,
@@ -232,6 +235,7 @@ impl Target {
             Target::Ao => "ao",
             Target::Shadow => "shadow",
             Target::Indirect => "indirect",
+            Target::IndirectNoisy => "indirect_noisy",
             Target::DiscardMask => "discard_mask",
             Target::State => "recompute_mask",
             Target::AoPositionLevel1 => "ao_position_level1",
@@ -329,6 +333,7 @@ impl Targets {
             Target::Ao
             | Target::Shadow
             | Target::Indirect
+            | Target::IndirectNoisy
             | Target::DiscardMask
             | Target::State
             | Target::AoPositionLevel1
