@@ -13,14 +13,14 @@ layout(local_size_x = 16, local_size_y = 16) in;
 void main() {
     ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
     bool inside = !outside_frame(pixel);
-    vec4 s0 = vec4(0.0), s1 = vec4(0.0);
+    vec4 s[SUM_VEC4S] = vec4[](vec4(0.0), vec4(0.0), vec4(0.0), vec4(0.0));
     if (inside) {
         uint i = ccipca.basis;
         uint p = pixel_index(pixel);
-        vec4 t0 = totals[2u * i], t1 = totals[2u * i + 1u];
+        vec4 t0 = totals[SUM_VEC4S * i], t1 = totals[SUM_VEC4S * i + 1u];
         vec4 r = residual[p];
         vec3 u = r.rgb;
-        float a = ccipca_step(r.a);
+        float a = ccipca_step(r.a, i);
         uint b = basis_index(i, p);
         vec3 v = bases[b].rgb;
         // |v|^2 = 0: a basis not yet started takes the residual (Weng's case i = n).
@@ -36,9 +36,9 @@ void main() {
         // u . v' / |v'|^2; a basis that is still zero takes nothing out.
         float coeff = vv_new > 0.0 ? uv_new / vv_new : 0.0;
         u -= coeff * v;
-        bases[b] = vec4(v, 0.0);
+        bases[b] = vec4(v, i == 0u ? r.a : 0.0);
         residual[p] = vec4(u, r.a);
-        if (i + 1u < ccipca.bases) pixel_sums(u, bases[basis_index(i + 1u, p)].rgb, a, s0, s1);
+        if (i + 1u < ccipca.bases) pixel_sums(u, bases[basis_index(i + 1u, p)].rgb, ccipca_step(r.a, i + 1u), s);
     }
-    if (ccipca.basis + 1u < ccipca.bases) store_partials(s0, s1);
+    if (ccipca.basis + 1u < ccipca.bases) store_partials(s);
 }

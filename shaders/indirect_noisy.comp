@@ -2,7 +2,8 @@
 // CCIPCA's input (Chen et al. 2012 feed it a 3-ray path tracer): eq 9 from --vpls VPLs per
 // pixel drawn afresh every frame (the R2 points turned by a per-pixel, per-frame random angle),
 // no accumulation. Writes the noisy image, starts each pixel's residual u_1 = x, counts its
-// sample (or restarts it, zeroing the bases), and stores the group's sums for basis 0.
+// sample (or restarts it, zeroing the bases; a pixel the warp found no history for has
+// count 0 and bases 0 already), and stores the group's sums for basis 0.
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_samplerless_texture_functions : require
 #include "frame.glsl"
@@ -34,7 +35,7 @@ float pixel_frame_noise(ivec2 pixel, uint frame_index) {
 void main() {
     ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
     bool inside = !outside_frame(pixel);
-    vec4 s0 = vec4(0.0), s1 = vec4(0.0);
+    vec4 s[SUM_VEC4S] = vec4[](vec4(0.0), vec4(0.0), vec4(0.0), vec4(0.0));
     if (inside) {
         vec3 x = vec3(0.0);
         vec4 g = texelFetch(g_position, pixel, 0);
@@ -45,12 +46,14 @@ void main() {
         }
         imageStore(noisy, pixel, vec4(x, 1.0));
         uint p = pixel_index(pixel);
-        float age = ccipca.restart != 0u ? 1.0 : min(residual[p].a + 1.0, float(ccipca.max_age));
-        residual[p] = vec4(x, age);
         if (ccipca.restart != 0u) {
-            for (uint i = 0u; i < ccipca.bases; ++i) bases[basis_index(i, p)] = vec4(0.0);
+            for (uint i = 1u; i < ccipca.bases; ++i) bases[basis_index(i, p)] = vec4(0.0);
         }
-        pixel_sums(x, bases[basis_index(0u, p)].rgb, ccipca_step(age), s0, s1);
+        vec4 v0 = ccipca.restart != 0u ? vec4(0.0) : bases[p];
+        float age = min(v0.a + 1.0, float(ccipca.max_age));
+        bases[p] = vec4(v0.rgb, age);
+        residual[p] = vec4(x, age);
+        pixel_sums(x, v0.rgb, ccipca_step(age, 0u), s);
     }
-    store_partials(s0, s1);
+    store_partials(s);
 }

@@ -3,8 +3,9 @@
 
 use crate::bench::warmup::Warmup;
 use crate::renderer::config::{
-    AaConfig, AaMode, Accumulate, AdaptiveSamples, AoConfig, AoEstimator, Effects, Epsilon,
-    HistoryResample, IndirectConfig, IndirectFilter, Refresh, SsdoConfig, SsdoForm, TemporalConfig,
+    AaConfig, AaMode, Accumulate, AdaptiveSamples, AoConfig, AoEstimator, CcipcaWeighting, Effects,
+    Epsilon, HistoryResample, IndirectConfig, IndirectFilter, Refresh, SsdoConfig, SsdoForm,
+    TemporalConfig,
 };
 use crate::renderer::frame::Pcf;
 use crate::renderer::{RenderConfig, MAX_SIZE};
@@ -150,6 +151,11 @@ pub struct SceneArgs {
     /// CCIPCA basis images (1..=8; Chen et al. use 3, 5 and 7).
     #[arg(long, default_value_t = IndirectConfig::default().bases, value_parser = clap::value_parser!(u32).range(1..=IndirectConfig::MAX_BASES as i64))]
     pub bases: u32,
+    /// CCIPCA step per pixel: `first-basis` from the pixel's own sample count in the first
+    /// basis and from the frames since the restart in the others, `per-pixel` from the pixel's
+    /// own in every basis (Chen et al.), `uniform` from the frames since the restart.
+    #[arg(long, value_enum, default_value_t = CcipcaWeighting::FirstBasis)]
+    pub ccipca_weighting: CcipcaWeighting,
     /// CCIPCA memory: frames after which a pixel's update step stops shrinking (1..=1048576).
     #[arg(long, default_value_t = IndirectConfig::default().max_age, value_parser = clap::value_parser!(u32).range(1..=1 << 20))]
     pub ccipca_max_age: u32,
@@ -348,6 +354,7 @@ impl SceneArgs {
                 interleave: self.interleave,
                 filter: self.indirect_filter,
                 bases: self.bases,
+                weighting: self.ccipca_weighting,
                 max_age: self.ccipca_max_age,
                 ..IndirectConfig::default()
             },

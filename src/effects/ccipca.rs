@@ -1,12 +1,9 @@
 //! Indirect light filtered by CCIPCA (Chen, Lei & Chang 2012, `--indirect-filter ccipca`): a
 //! new noisy RSM gather of `--vpls` VPLs per pixel every frame, the k bases updated from it
 //! one after another (each update's image-wide sums reduced on the GPU, so no frame waits for
-//! the CPU), and the noisy image projected on them. The equations and the CPU model the
-//! passes are checked against are in src/reference/ccipca.rs.
-//!
-//! The bases live in screen space: a camera that moves restarts them (every pixel a new
-//! dimension, the first frame's basis the frame itself) until the bases are warped along the
-//! reprojection (Chen et al. section 3.4).
+//! the CPU), and the noisy image projected on them. When the camera moves, the bases are first
+//! warped along the reprojection and orthogonalized (section 3.4). The equations and the CPU
+//! model the passes are checked against are in src/reference/ccipca.rs.
 
 use super::effect::{
     every_pixel, Effect, EffectId, FrameInfo, Recording, Registration, Setup, TermKind,
@@ -17,11 +14,13 @@ use crate::passes::compute::{ComputePass, Dispatch};
 use crate::passes::decl::{Bind, Slot, Use};
 use crate::passes::{PassId, PassLayout};
 use crate::reference::ccipca::AMNESIC;
-use crate::renderer::config::{IndirectConfig, IndirectFilter, RenderConfig};
+use crate::renderer::config::{
+    CcipcaStages, CcipcaWeighting, IndirectConfig, IndirectFilter, RenderConfig,
+};
 use crate::renderer::effect::TemporalEffect;
 use crate::renderer::targets::{Target, Targets};
-use crate::shaders::{self, CcipcaPush, EffectPush};
-use crate::vk::{Buffer, Context, Image, ImageDesc};
+use crate::shaders::{self, CcipcaPush, EffectPush, ShaderModuleInfo};
+use crate::vk::{Buffer, Context, DescriptorPool, Image, ImageDesc};
 use ash::vk;
 use gpu_allocator::MemoryLocation;
 use std::sync::Arc;
@@ -30,17 +29,37 @@ use std::sync::Arc;
 const NOISY: Slot = Slot::Own(0);
 /// The projection on the bases: the indirect light the composite adds.
 const FILTERED: Slot = Slot::Own(1);
-/// k basis images, vec4 per pixel, basis-major.
+/// k basis images, vec4 per pixel, basis-major (basis 0's a: the pixel's sample count).
 const BASES: Slot = Slot::OwnBuffer(0);
 /// Per pixel: the residual (rgb) and the samples seen (a).
 const RESIDUAL: Slot = Slot::OwnBuffer(1);
-/// Two vec4 of partial sums per 16x16 group.
+/// `SUM_VEC4S` vec4 of partial sums per 16x16 group.
 const PARTIALS: Slot = Slot::OwnBuffer(2);
-/// Two vec4 of image-wide sums per basis.
+/// `SUM_VEC4S` vec4 of image-wide sums per basis.
 const TOTALS: Slot = Slot::OwnBuffer(3);
+/// The other bases buffer: last frame's, which the warp reads.
+const BASES_PREV: Slot = Slot::OwnBuffer(4);
 
 /// Pixels per side of the groups whose partial sums are stored.
 const GROUP_SIDE: u32 = 16;
+/// vec4 of sums per group and per basis (shaders/include/ccipca.glsl's SUM_VEC4S).
+const SUM_VEC4S: u64 = 4;
+
+const REPROJECT: &[Bind] = &[
+    Bind::new(0, Slot::GPosition, Use::Sampled),
+    Bind::new(1, Slot::GNormal, Use::Sampled),
+    Bind::new(2, Slot::GPositionPrev, Use::Sampled),
+    Bind::new(3, Slot::GNormalPrev, Use::Sampled),
+    Bind::new(6, BASES, Use::BufferReadWrite),
+    Bind::new(8, PARTIALS, Use::BufferWrite),
+    Bind::new(11, BASES_PREV, Use::BufferRead),
+];
+
+const ORTHOGONALIZE: &[Bind] = &[
+    Bind::new(6, BASES, Use::BufferReadWrite),
+    Bind::new(8, PARTIALS, Use::BufferWrite),
+    Bind::new(9, TOTALS, Use::BufferRead),
+];
 
 const NOISY_GATHER: &[Bind] = &[
     Bind::new(0, Slot::GPosition, Use::Sampled),
@@ -72,6 +91,32 @@ const RECONSTRUCT: &[Bind] = &[
     Bind::new(10, FILTERED, Use::StorageWrite),
 ];
 
+/// Every pass: its timing row, module and declaration.
+const PASSES: [(PassId, &ShaderModuleInfo, &[Bind]); 6] = [
+    (
+        PassId::CcipcaReproject,
+        &shaders::CCIPCA_REPROJECT_COMP,
+        REPROJECT,
+    ),
+    (
+        PassId::CcipcaReproject,
+        &shaders::CCIPCA_ORTHOGONALIZE_COMP,
+        ORTHOGONALIZE,
+    ),
+    (
+        PassId::IndirectNoisy,
+        &shaders::INDIRECT_NOISY_COMP,
+        NOISY_GATHER,
+    ),
+    (PassId::CcipcaUpdate, &shaders::CCIPCA_SUMS_COMP, SUMS),
+    (PassId::CcipcaUpdate, &shaders::CCIPCA_UPDATE_COMP, UPDATE),
+    (
+        PassId::CcipcaReconstruct,
+        &shaders::CCIPCA_RECONSTRUCT_COMP,
+        RECONSTRUCT,
+    ),
+];
+
 pub const REGISTRATION: Registration = Registration {
     id: EffectId::Ccipca,
     enabled: |c| c.effects.indirect && c.indirect.filter == IndirectFilter::Ccipca,
@@ -80,26 +125,66 @@ pub const REGISTRATION: Registration = Registration {
 };
 
 fn layouts() -> Vec<PassLayout> {
-    vec![
-        ComputePass::layout(
-            PassId::IndirectNoisy,
-            &shaders::INDIRECT_NOISY_COMP,
-            NOISY_GATHER,
-        ),
-        ComputePass::layout(PassId::CcipcaUpdate, &shaders::CCIPCA_SUMS_COMP, SUMS),
-        ComputePass::layout(PassId::CcipcaUpdate, &shaders::CCIPCA_UPDATE_COMP, UPDATE),
-        ComputePass::layout(
-            PassId::CcipcaReconstruct,
-            &shaders::CCIPCA_RECONSTRUCT_COMP,
-            RECONSTRUCT,
-        ),
-    ]
+    PASSES
+        .iter()
+        .map(|&(id, module, binds)| ComputePass::layout(id, module, binds))
+        .collect()
+}
+
+/// The passes in `PASSES` order, bound to one of the two bases buffers as the current one.
+struct Passes {
+    reproject: ComputePass,
+    orthogonalize: ComputePass,
+    noisy: ComputePass,
+    sums: ComputePass,
+    update: ComputePass,
+    reconstruct: ComputePass,
+}
+
+impl Passes {
+    fn new(ctx: &Arc<Context>, pool: &DescriptorPool) -> Result<Self> {
+        let [reproject, orthogonalize, noisy, sums, update, reconstruct] =
+            PASSES.map(|(id, module, binds)| ComputePass::new(ctx, pool, id, module, binds));
+        Ok(Self {
+            reproject: reproject?,
+            orthogonalize: orthogonalize?,
+            noisy: noisy?,
+            sums: sums?,
+            update: update?,
+            reconstruct: reconstruct?,
+        })
+    }
+
+    /// The same pipelines with their own descriptor sets.
+    fn instance(&self, pool: &DescriptorPool) -> Result<Self> {
+        let i = |p: &ComputePass| p.instance(pool, &format!("{} (other bases)", p.id.name()));
+        Ok(Self {
+            reproject: i(&self.reproject)?,
+            orthogonalize: i(&self.orthogonalize)?,
+            noisy: i(&self.noisy)?,
+            sums: i(&self.sums)?,
+            update: i(&self.update)?,
+            reconstruct: i(&self.reconstruct)?,
+        })
+    }
+
+    fn all(&self) -> [&ComputePass; 6] {
+        [
+            &self.reproject,
+            &self.orthogonalize,
+            &self.noisy,
+            &self.sums,
+            &self.update,
+            &self.reconstruct,
+        ]
+    }
 }
 
 struct Sized {
     noisy: Image,
     filtered: Image,
-    bases: Buffer,
+    /// Two, so that the warp reads last frame's while it writes this frame's.
+    bases: [Buffer; 2],
     residual: Buffer,
     partials: Buffer,
     totals: Buffer,
@@ -107,11 +192,13 @@ struct Sized {
 }
 
 pub struct CcipcaEffect {
-    noisy: ComputePass,
-    sums: ComputePass,
-    update: ComputePass,
-    reconstruct: ComputePass,
+    /// `passes[i]` works on `bases[i]` (and warps from the other).
+    passes: [Passes; 2],
     sized: Sized,
+    /// Which bases buffer holds the latest bases: flips on every frame that warps.
+    current: usize,
+    /// The camera moved since last frame: this frame warps.
+    warp: bool,
     push: CcipcaPush,
     /// Frames since the bases last restarted, up to the memory (`max_age`).
     age: u32,
@@ -122,21 +209,13 @@ pub struct CcipcaEffect {
 
 impl CcipcaEffect {
     pub fn new(s: &mut Setup<'_>) -> Result<Self> {
-        let pass = |id, module, binds| ComputePass::new(s.ctx, s.pool, id, module, binds);
+        let first = Passes::new(s.ctx, s.pool)?;
+        let second = first.instance(s.pool)?;
         Ok(Self {
-            noisy: pass(
-                PassId::IndirectNoisy,
-                &shaders::INDIRECT_NOISY_COMP,
-                NOISY_GATHER,
-            )?,
-            sums: pass(PassId::CcipcaUpdate, &shaders::CCIPCA_SUMS_COMP, SUMS)?,
-            update: pass(PassId::CcipcaUpdate, &shaders::CCIPCA_UPDATE_COMP, UPDATE)?,
-            reconstruct: pass(
-                PassId::CcipcaReconstruct,
-                &shaders::CCIPCA_RECONSTRUCT_COMP,
-                RECONSTRUCT,
-            )?,
+            passes: [first, second],
             sized: Self::create_sized(s.ctx, s.config)?,
+            current: 0,
+            warp: false,
             push: CcipcaPush::default(),
             age: 0,
             no_effect_push: EffectPush::default(),
@@ -163,20 +242,27 @@ impl CcipcaEffect {
                 ctx,
                 name,
                 bytes,
-                vk::BufferUsageFlags::STORAGE_BUFFER,
+                vk::BufferUsageFlags::STORAGE_BUFFER | vk::BufferUsageFlags::TRANSFER_SRC,
                 MemoryLocation::GpuOnly,
             )
         };
         let pixels = c.width as u64 * c.height as u64;
         let groups = c.width.div_ceil(GROUP_SIDE) * c.height.div_ceil(GROUP_SIDE);
         let vec4 = 16;
+        let bases = c.indirect.bases as u64 * pixels * vec4;
         Ok(Sized {
             noisy: image("ccipca.noisy")?,
             filtered: image("ccipca.filtered")?,
-            bases: buffer("ccipca.bases", c.indirect.bases as u64 * pixels * vec4)?,
+            bases: [
+                buffer("ccipca.bases 0", bases)?,
+                buffer("ccipca.bases 1", bases)?,
+            ],
             residual: buffer("ccipca.residual", pixels * vec4)?,
-            partials: buffer("ccipca.partials", groups as u64 * 2 * vec4)?,
-            totals: buffer("ccipca.totals", IndirectConfig::MAX_BASES as u64 * 2 * vec4)?,
+            partials: buffer("ccipca.partials", groups as u64 * SUM_VEC4S * vec4)?,
+            totals: buffer(
+                "ccipca.totals",
+                IndirectConfig::MAX_BASES as u64 * SUM_VEC4S * vec4,
+            )?,
             groups,
         })
     }
@@ -186,13 +272,16 @@ impl CcipcaEffect {
         [[&s.noisy, &s.noisy], [&s.filtered, &s.filtered]]
     }
 
-    fn buffers(&self) -> [&Buffer; 4] {
+    /// The buffers with `bases[current]` as this frame's.
+    fn buffers(&self, current: usize) -> [&Buffer; 5] {
         let s = &self.sized;
-        [&s.bases, &s.residual, &s.partials, &s.totals]
-    }
-
-    fn passes(&self) -> [&ComputePass; 4] {
-        [&self.noisy, &self.sums, &self.update, &self.reconstruct]
+        [
+            &s.bases[current],
+            &s.residual,
+            &s.partials,
+            &s.totals,
+            &s.bases[1 - current],
+        ]
     }
 }
 
@@ -203,6 +292,7 @@ impl Effect for CcipcaEffect {
 
     fn passes(&self) -> &'static [PassId] {
         &[
+            PassId::CcipcaReproject,
             PassId::IndirectNoisy,
             PassId::CcipcaUpdate,
             PassId::CcipcaReconstruct,
@@ -211,20 +301,23 @@ impl Effect for CcipcaEffect {
 
     fn resize(&mut self, ctx: &Arc<Context>, config: &RenderConfig) -> Result<()> {
         self.sized = Self::create_sized(ctx, config)?;
-        self.age = 0;
+        (self.age, self.current) = (0, 0);
         Ok(())
     }
 
     fn bind(&self, ctx: &Context, targets: &Targets) -> Result<()> {
-        let (own, buffers) = (self.own(), self.buffers());
-        let res = EffectResources {
-            targets,
-            temporal: None,
-            own: &own,
-            own_buffers: &buffers,
-        };
-        for p in self.passes() {
-            p.bind(ctx, &res)?;
+        let own = self.own();
+        for (current, passes) in self.passes.iter().enumerate() {
+            let buffers = self.buffers(current);
+            let res = EffectResources {
+                targets,
+                temporal: None,
+                own: &own,
+                own_buffers: &buffers,
+            };
+            for p in passes.all() {
+                p.bind(ctx, &res)?;
+            }
         }
         Ok(())
     }
@@ -244,19 +337,30 @@ impl Effect for CcipcaEffect {
     }
 
     fn prepare(&mut self, info: &FrameInfo<'_>) {
-        let restart = !info.reusing() || info.camera_moved;
+        let c = &info.config.indirect;
+        let restart = !info.reusing();
+        self.warp = !restart && info.camera_moved;
+        if self.warp {
+            self.current = 1 - self.current;
+        }
         self.age = if restart {
             1
         } else {
-            (self.age + 1).min(info.config.indirect.max_age)
+            (self.age + 1).min(c.max_age)
         };
         self.push = CcipcaPush {
             basis: 0,
-            bases: info.config.indirect.bases,
+            bases: c.bases,
             groups: self.sized.groups,
-            max_age: info.config.indirect.max_age,
+            max_age: c.max_age,
             restart: restart as u32,
             amnesic: AMNESIC as f32,
+            frames: self.age,
+            per_pixel_bases: match c.weighting {
+                CcipcaWeighting::PerPixel => c.bases,
+                CcipcaWeighting::FirstBasis => 1,
+                CcipcaWeighting::Uniform => 0,
+            },
         };
     }
 
@@ -269,32 +373,60 @@ impl Effect for CcipcaEffect {
     }
 
     fn record(&self, info: &FrameInfo<'_>, r: &mut Recording<'_>) {
-        let (own, buffers) = (self.own(), self.buffers());
+        let (own, buffers) = (self.own(), self.buffers(self.current));
         let res = EffectResources {
             targets: info.targets,
             temporal: None,
             own: &own,
             own_buffers: &buffers,
         };
+        let passes = &self.passes[self.current];
         let pixels = every_pixel(info);
         let push = |basis| CcipcaPush { basis, ..self.push }.to_bytes();
+        if self.warp {
+            r.timed(PassId::CcipcaReproject, |rec, tr| {
+                passes
+                    .reproject
+                    .record(rec, tr, info.frame, &res, &push(0), pixels);
+                for basis in 1..self.push.bases {
+                    let bytes = push(basis);
+                    passes
+                        .sums
+                        .record(rec, tr, info.frame, &res, &bytes, Dispatch::Groups(1));
+                    passes
+                        .orthogonalize
+                        .record(rec, tr, info.frame, &res, &bytes, pixels);
+                }
+            });
+        }
+        if info.config.indirect.ccipca_stages == CcipcaStages::WarpOnly {
+            return;
+        }
         r.timed(PassId::IndirectNoisy, |rec, tr| {
-            self.noisy
+            passes
+                .noisy
                 .record(rec, tr, info.frame, &res, &push(0), pixels)
         });
         r.timed(PassId::CcipcaUpdate, |rec, tr| {
             for basis in 0..self.push.bases {
                 let bytes = push(basis);
-                self.sums
+                passes
+                    .sums
                     .record(rec, tr, info.frame, &res, &bytes, Dispatch::Groups(1));
-                self.update
+                passes
+                    .update
                     .record(rec, tr, info.frame, &res, &bytes, pixels);
             }
         });
         r.timed(PassId::CcipcaReconstruct, |rec, tr| {
-            self.reconstruct
+            passes
+                .reconstruct
                 .record(rec, tr, info.frame, &res, &push(0), pixels)
         });
+    }
+
+    fn buffer(&self, name: &str) -> Option<&Buffer> {
+        (name == "bases").then(|| &self.sized.bases[self.current])
     }
 
     fn term<'a>(&'a self, _targets: &'a Targets, _parity: usize) -> (TermKind, &'a Image) {

@@ -9,7 +9,7 @@ use crate::renderer::effect::TemporalEffect;
 use crate::renderer::targets::{Target, Targets};
 use crate::shaders::EffectPush;
 use crate::vk::cmd::Recorder;
-use crate::vk::{Context, DescriptorPool, GpuTimer, Image, Tracker};
+use crate::vk::{Buffer, Context, DescriptorPool, GpuTimer, Image, Tracker};
 use std::sync::Arc;
 
 /// Which effect (typed, for lookups that must not depend on strings).
@@ -174,6 +174,11 @@ pub trait Effect {
 
     /// The image the composite adds for frame parity `parity`, and how.
     fn term<'a>(&'a self, targets: &'a Targets, parity: usize) -> (TermKind, &'a Image);
+
+    /// A buffer the effect exposes for readback by name (tests and debugging).
+    fn buffer(&self, _name: &str) -> Option<&Buffer> {
+        None
+    }
 
     /// The image behind a debug/readback target this effect owns, for frame parity `parity`
     /// under `config` (the configuration the frame was rendered with).

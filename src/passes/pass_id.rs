@@ -34,6 +34,8 @@ pub enum PassId {
     IndirectRefresh,
     /// CCIPCA's input: a new noisy full-resolution gather each frame (--vpls per pixel).
     IndirectNoisy,
+    /// CCIPCA: the bases warped along the reprojection and orthogonalized (a moving camera).
+    CcipcaReproject,
     /// CCIPCA: every basis updated from the noisy image, in turn (image-wide sums on the GPU).
     CcipcaUpdate,
     /// CCIPCA: the noisy image projected on the updated bases.
@@ -64,7 +66,7 @@ pub enum PassId {
 }
 
 impl PassId {
-    pub const ALL: [PassId; 28] = [
+    pub const ALL: [PassId; 29] = [
         PassId::LightView,
         PassId::GBuffer,
         PassId::Reproject,
@@ -80,6 +82,7 @@ impl PassId {
         PassId::IndirectFixup,
         PassId::IndirectRefresh,
         PassId::IndirectNoisy,
+        PassId::CcipcaReproject,
         PassId::CcipcaUpdate,
         PassId::CcipcaReconstruct,
         PassId::SsdoSamples,
@@ -112,6 +115,7 @@ impl PassId {
             PassId::IndirectFixup => "indirect_fixup",
             PassId::IndirectRefresh => "indirect_refresh",
             PassId::IndirectNoisy => "indirect_noisy",
+            PassId::CcipcaReproject => "ccipca_reproject",
             PassId::CcipcaUpdate => "ccipca_update",
             PassId::CcipcaReconstruct => "ccipca_reconstruct",
             PassId::SsdoSamples => "ssdo_samples",

@@ -216,9 +216,16 @@ pub struct IndirectConfig {
     pub filter: IndirectFilter,
     /// CCIPCA: basis images (Chen et al.'s Table 1: 3, 5, 7).
     pub bases: u32,
+    /// CCIPCA: whose sample count sets each pixel's step (Chen et al.'s per-pixel weighting,
+    /// on the first basis or on all, or uniform).
+    pub weighting: CcipcaWeighting,
     /// CCIPCA: samples after which a pixel's step stops shrinking (see
     /// src/reference/ccipca.rs): the filter's memory, in frames.
     pub max_age: u32,
+    /// How far a CCIPCA frame goes: everything, or (tests) only the warp and
+    /// orthogonalization. Not on the command line and not in reports.
+    #[serde(skip)]
+    pub ccipca_stages: CcipcaStages,
     /// What the passes compute per pixel: the gather, or a test ramp. Not on the command line
     /// and not in reports.
     #[serde(skip)]
@@ -236,6 +243,30 @@ pub enum IndirectFilter {
     /// Chen, Lei & Chang 2012: a new noisy gather every frame (--vpls per pixel) projected on
     /// incrementally estimated principal components (CCIPCA).
     Ccipca,
+}
+
+/// Whose sample count sets a CCIPCA update's step at a pixel.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, clap::ValueEnum)]
+#[serde(rename_all = "kebab-case")]
+pub enum CcipcaWeighting {
+    /// The pixel's own for the first basis, the frames since the restart for the others: a
+    /// pixel new to the view takes large steps where the image itself is learned, while the
+    /// bases of its variations keep their pace (tests/ccipca.rs measures the three).
+    #[default]
+    FirstBasis,
+    /// The pixel's own for every basis (Chen et al. section 3.4.2).
+    PerPixel,
+    /// The frames since the bases restarted, the same for every pixel (plain CCIPCA).
+    Uniform,
+}
+
+/// The CCIPCA passes a frame records.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum CcipcaStages {
+    #[default]
+    All,
+    /// Only the warp and the orthogonalization: the bases as the updates would find them.
+    WarpOnly,
 }
 
 /// The value the indirect passes compute for a pixel before upsampling and accumulation.
@@ -273,7 +304,9 @@ impl Default for IndirectConfig {
             interleave: 1,
             filter: IndirectFilter::Accumulate,
             bases: 3,
+            weighting: CcipcaWeighting::FirstBasis,
             max_age: 256,
+            ccipca_stages: CcipcaStages::All,
             input: IndirectInput::Gather,
         }
     }

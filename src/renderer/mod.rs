@@ -31,8 +31,8 @@ use crate::passes::PassId;
 use crate::scene::{Camera, Scene, SpotLight};
 use crate::vk::cmd::Recorder;
 use crate::vk::{
-    read_image, Buffer, Context, DescriptorPool, FrameSlots, FrameTiming, GpuTimer, Image,
-    ImageData, SetWriter, SkipReason, SubmitSync, Tracker,
+    read_buffer, read_image, Buffer, Context, DescriptorPool, FrameSlots, FrameTiming, GpuTimer,
+    Image, ImageData, SetWriter, SkipReason, SubmitSync, Tracker,
 };
 use ash::vk;
 pub use config::{RenderConfig, FRAMES_IN_FLIGHT, MAX_SIZE};
@@ -556,6 +556,16 @@ impl Renderer {
             ))
         })?;
         read_image(&self.ctx, &mut self.tracker, state)
+    }
+
+    /// Copy buffer `name` of effect `id` (see [`Effect::buffer`]) after the last rendered
+    /// frame to the host (waits for the GPU).
+    pub fn read_buffer(&mut self, id: EffectId, name: &str) -> Result<Vec<u8>> {
+        let effect = self.effects.iter().find(|e| e.id() == id);
+        let buffer = effect
+            .and_then(|e| e.buffer(name))
+            .ok_or_else(|| Error::Config(format!("{id:?} has no buffer {name:?} in this run")))?;
+        read_buffer(&self.ctx, &mut self.tracker, buffer)
     }
 
     /// Copy a target of the last rendered frame to the host (waits for the GPU).

@@ -21,7 +21,7 @@ pub use context::{Context, ContextOptions, DeviceInfo, SubmitSync};
 pub use descriptors::{DescriptorPool, SetWriter};
 pub use memory::{Buffer, Image, ImageDesc};
 pub use pipeline::{GraphicsDesc, Pipeline};
-pub use readback::{read_image, ImageData};
+pub use readback::{read_buffer, read_image, ImageData};
 pub use sampler::Sampler;
 pub use surface::Surface;
 pub use swapchain::{AcquiredImage, PresentPolicy, Swapchain, SwapchainOptions};

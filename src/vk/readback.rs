@@ -139,6 +139,32 @@ pub fn read_image(ctx: &Arc<Context>, tracker: &mut Tracker, image: &Image) -> R
     })
 }
 
+/// Copy the whole of `buffer` (created with `TRANSFER_SRC`) to the host; as [`read_image`],
+/// the tracker keeps its state known.
+pub fn read_buffer(ctx: &Arc<Context>, tracker: &mut Tracker, buffer: &Buffer) -> Result<Vec<u8>> {
+    let staging = Buffer::new(
+        ctx,
+        "readback",
+        buffer.size,
+        vk::BufferUsageFlags::TRANSFER_DST,
+        MemoryLocation::GpuToCpu,
+    )?;
+    one_shot(ctx, |cmd| {
+        tracker.buffer(buffer, Access::TransferSrc);
+        tracker.buffer(&staging, Access::TransferDst);
+        tracker.flush(&ctx.device, cmd);
+        Recorder::new(ctx, cmd).copy_buffer(buffer, &staging, buffer.size);
+        tracker.buffer(&staging, Access::HostRead);
+        tracker.flush(&ctx.device, cmd);
+        Ok(())
+    })?;
+    Ok(staging
+        .mapped()
+        .ok_or_else(|| Error::Config("readback buffer is not host-visible".into()))?
+        [..buffer.size as usize]
+        .to_vec())
+}
+
 #[cfg(test)]
 mod tests {
     use super::f16_to_f32;

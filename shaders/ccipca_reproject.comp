@@ -1,0 +1,56 @@
+#version 460
+// CCIPCA's warp (Chen et al. section 3.4): every basis and each pixel's sample count follow the
+// pixel's surface from last frame's screen to this one's (eq 1, the nearest texel; kept where
+// it holds the same surface by eq 3's test and faces the same way). A pixel new to the view
+// is a new dimension: zero in every basis, no samples, so per-pixel weighting lets it take
+// full steps. Stores the sums that orthogonalize basis 1.
+#extension GL_GOOGLE_include_directive : require
+#extension GL_EXT_samplerless_texture_functions : require
+#include "frame.glsl"
+#include "temporal.glsl"
+#define CCIPCA_BASES
+#define CCIPCA_BASES_PREV
+#define CCIPCA_PARTIALS
+#include "ccipca.glsl"
+
+layout(local_size_x = 16, local_size_y = 16) in;
+
+layout(set = 1, binding = 0) uniform texture2D g_position;
+layout(set = 1, binding = 1) uniform texture2D g_normal;
+layout(set = 1, binding = 2) uniform texture2D prev_position;
+layout(set = 1, binding = 3) uniform texture2D prev_normal;
+
+// As the reprojection's facing test (shaders/reproject.comp): within 60 degrees.
+const float FACING_ACCEPT = 0.5;
+
+// Last frame's texel holding this pixel's surface, or (-1, -1).
+ivec2 previous_texel(ivec2 pixel) {
+    vec4 g = texelFetch(g_position, pixel, 0);
+    if (g.w == 0.0) return ivec2(-1);
+    vec4 c = frame.prev_view_proj * vec4(g.xyz, 1.0);
+    if (!(c.w > 0.0)) return ivec2(-1);
+    vec2 f = (c.xy / c.w * 0.5 + 0.5) * vec2(frame.size);
+    if (!(all(greaterThanEqual(f, vec2(0.0))) && all(lessThan(f, vec2(frame.size))))) return ivec2(-1);
+    ivec2 t = ivec2(f);
+    vec4 h = texelFetch(prev_position, t, 0);
+    vec3 n = texelFetch(g_normal, pixel, 0).xyz;
+    bool same = h.w != 0.0 && distance(h.xyz, g.xyz) <= disocclusion_epsilon(g.xyz, n) &&
+                dot(texelFetch(prev_normal, t, 0).xyz, n) >= FACING_ACCEPT;
+    return same ? t : ivec2(-1);
+}
+
+void main() {
+    ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
+    vec4 s[SUM_VEC4S] = vec4[](vec4(0.0), vec4(0.0), vec4(0.0), vec4(0.0));
+    if (!outside_frame(pixel)) {
+        uint p = pixel_index(pixel);
+        ivec2 t = previous_texel(pixel);
+        bool kept = t.x >= 0;
+        uint q = kept ? pixel_index(t) : 0u;
+        for (uint i = 0u; i < ccipca.bases; ++i) {
+            bases[basis_index(i, p)] = kept ? bases_prev[basis_index(i, q)] : vec4(0.0);
+        }
+        if (ccipca.bases > 1u) ortho_sums(1u, p, s);
+    }
+    if (ccipca.bases > 1u) store_partials(s);
+}
