@@ -3,7 +3,8 @@
 // pixel's surface from last frame's screen to this one's (eq 1, the nearest texel; kept where
 // it holds the same surface by eq 3's test and faces the same way). A pixel new to the view
 // is a new dimension: zero in every basis, no samples, so per-pixel weighting lets it take
-// full steps. Stores the sums that orthogonalize basis 1.
+// full steps. Stores the group's part of the warped bases' Gram matrix, which the
+// orthogonalization works from.
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_samplerless_texture_functions : require
 #include "frame.glsl"
@@ -41,16 +42,22 @@ ivec2 previous_texel(ivec2 pixel) {
 
 void main() {
     ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
-    vec4 s[SUM_VEC4S] = vec4[](vec4(0.0), vec4(0.0), vec4(0.0), vec4(0.0));
+    float gram[4u * SUM_VEC4S];
+    for (uint m = 0u; m < 4u * SUM_VEC4S; ++m) gram[m] = 0.0;
     if (!outside_frame(pixel)) {
         uint p = pixel_index(pixel);
         ivec2 t = previous_texel(pixel);
         bool kept = t.x >= 0;
         uint q = kept ? pixel_index(t) : 0u;
-        for (uint i = 0u; i < ccipca.bases; ++i) {
-            bases[basis_index(i, p)] = kept ? bases_prev[basis_index(i, q)] : vec4(0.0);
+        vec3 v[MAX_BASES];
+        for (uint j = 0u; j < BASES; ++j) {
+            vec4 b = kept ? bases_prev[basis_index(j, q)] : vec4(0.0);
+            bases[basis_index(j, p)] = b;
+            v[j] = b.rgb;
+            for (uint i = 0u; i <= j; ++i) gram[gram_index(i, j)] = dot(v[i], v[j]);
         }
-        if (ccipca.bases > 1u) ortho_sums(1u, p, s);
     }
-    if (ccipca.bases > 1u) store_partials(s);
+    vec4 s[SUM_VEC4S];
+    for (uint m = 0u; m < SUM_VEC4S; ++m) s[m] = vec4(gram[4u * m], gram[4u * m + 1u], gram[4u * m + 2u], gram[4u * m + 3u]);
+    store_partials(s, gram_vec4s(BASES));
 }

@@ -13,7 +13,7 @@ layout(local_size_x = 16, local_size_y = 16) in;
 void main() {
     ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
     bool inside = !outside_frame(pixel);
-    vec4 s[SUM_VEC4S] = vec4[](vec4(0.0), vec4(0.0), vec4(0.0), vec4(0.0));
+    vec4 s[SUM_VEC4S] = NO_SUMS;
     if (inside) {
         uint i = ccipca.basis;
         uint p = pixel_index(pixel);
@@ -38,7 +38,7 @@ void main() {
         u -= coeff * v;
         bases[b] = vec4(v, i == 0u ? r.a : 0.0);
         residual[p] = vec4(u, r.a);
-        if (i + 1u < ccipca.bases) pixel_sums(u, bases[basis_index(i + 1u, p)].rgb, ccipca_step(r.a, i + 1u), s);
+        if (i + 1u < BASES) pixel_sums(u, bases[basis_index(i + 1u, p)].rgb, ccipca_step(r.a, i + 1u), s);
     }
-    if (ccipca.basis + 1u < ccipca.bases) store_partials(s);
+    if (ccipca.basis + 1u < BASES) store_partials(s, UPDATE_SUM_VEC4S);
 }

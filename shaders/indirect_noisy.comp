@@ -35,7 +35,7 @@ float pixel_frame_noise(ivec2 pixel, uint frame_index) {
 void main() {
     ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
     bool inside = !outside_frame(pixel);
-    vec4 s[SUM_VEC4S] = vec4[](vec4(0.0), vec4(0.0), vec4(0.0), vec4(0.0));
+    vec4 s[SUM_VEC4S] = NO_SUMS;
     if (inside) {
         vec3 x = vec3(0.0);
         vec4 g = texelFetch(g_position, pixel, 0);
@@ -47,7 +47,7 @@ void main() {
         imageStore(noisy, pixel, vec4(x, 1.0));
         uint p = pixel_index(pixel);
         if (ccipca.restart != 0u) {
-            for (uint i = 1u; i < ccipca.bases; ++i) bases[basis_index(i, p)] = vec4(0.0);
+            for (uint i = 1u; i < BASES; ++i) bases[basis_index(i, p)] = vec4(0.0);
         }
         vec4 v0 = ccipca.restart != 0u ? vec4(0.0) : bases[p];
         float age = min(v0.a + 1.0, float(ccipca.max_age));
@@ -55,5 +55,5 @@ void main() {
         residual[p] = vec4(x, age);
         pixel_sums(x, v0.rgb, ccipca_step(age, 0u), s);
     }
-    store_partials(s);
+    store_partials(s, UPDATE_SUM_VEC4S);
 }

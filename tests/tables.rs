@@ -504,6 +504,34 @@ fn szentandrasi_1_end_to_end() {
 /// against itself exact, every time finite, the geometry pass only in the SRAA rows, the
 /// report's numbers absent at a size it did not measure, SRAA closer to the reference than no
 /// antialiasing over the edge pixels, one PNG of the output size per row.
+/// `ssgi table chang-1` at 48x48 under validation: three rows (3, 5, 7 bases), every CCIPCA
+/// pass timed (the orbit warps every frame), no article numbers at a size it has no row for.
+#[test]
+fn chang_1_end_to_end() {
+    let out = out_dir("chang-1");
+    let report = own_format_table(
+        &[
+            "chang-1", "--size", "48x48", "--frames", "2", "--warmup", "1",
+        ],
+        &out,
+        "chang-1-table",
+    );
+    assert_eq!(report["effects"], "indirect");
+    assert_eq!(num(&report["vpls"]), 3.0);
+    let rows = report["rows"].as_array().unwrap();
+    let bases: Vec<f64> = rows.iter().map(|r| num(&r["bases"])).collect();
+    assert_eq!(bases, [3.0, 5.0, 7.0]);
+    for r in rows {
+        for key in ["reproject_ms", "ipca_ms", "reconstruct_ms", "input_ms"] {
+            assert!(num(&r[key]) > 0.0, "{key}: {r}");
+        }
+        let sum = num(&r["reproject_ms"]) + num(&r["ipca_ms"]) + num(&r["reconstruct_ms"]);
+        assert!((num(&r["total_ms"]) - sum).abs() < 1e-9);
+        assert!(r["paper"].is_null());
+    }
+    assert!(out.join("chang-1.csv").is_file());
+}
+
 #[test]
 fn sraa_end_to_end() {
     let out = out_dir("sraa");

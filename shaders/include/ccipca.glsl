@@ -9,15 +9,19 @@
 
 #include "frame.glsl"
 
+// k, fixed when the pipelines are made: the loops over bases unroll and the per-pixel arrays
+// stay in registers.
+layout(constant_id = 0) const uint BASES = 3u;
+
 layout(push_constant) uniform Ccipca {
     uint basis;     // the basis this dispatch works on (sums: the basis whose sums are finished)
-    uint bases;     // k
     uint groups;    // 16x16 groups covering the image (partial sums per basis)
     uint max_age;   // a pixel's sample count stops at this
     uint restart;   // 1: every pixel starts over (bases zero, no samples)
     float amnesic;  // Weng's l: a pixel's step is (1 + l) / (n + l)
     uint frames;    // frames since the bases restarted (capped at max_age): n of uniform weighting
     uint per_pixel_bases; // the first this many bases step by the pixel's own count (per-pixel weighting)
+    uint sum_vec4s; // vec4 of sums this dispatch stores or adds up (at most SUM_VEC4S)
 } ccipca;
 
 // Each shader defines the buffers it uses before including this (glslang keeps unused ones,
@@ -43,10 +47,14 @@ layout(set = 1, binding = 11, std430) readonly buffer BasesPrev { vec4 bases_pre
 #endif
 
 const uint GROUP_THREADS = 256u;
-// Sums stored per group and per basis: eight for an update (pixel_sums), up to 14 for the
-// orthogonalization of basis j (its dot products with the j before it and their squared
-// lengths).
-const uint SUM_VEC4S = 4u;
+// IndirectConfig::MAX_BASES.
+const uint MAX_BASES = 8u;
+// Room for sums per group and per basis: eight for an update (pixel_sums, 2 vec4), or the
+// Gram matrix of the warped bases (k (k + 1) / 2 <= 36 dot products, 9 vec4).
+const uint SUM_VEC4S = 9u;
+// Where in `totals` the sums pass's `gram` permutation leaves the orthogonalization's
+// transform (MAX_BASES x MAX_BASES floats, row j: v'_j's weights on the warped v_m).
+const uint TRANSFORM_OFFSET = SUM_VEC4S;
 
 uint pixel_index(ivec2 p) {
     return uint(p.y) * frame.size.x + uint(p.x);
@@ -67,56 +75,54 @@ float ccipca_step(float n, uint i) {
 // (w = 1 - a). With s = (u.v) / |v| the new basis is v' = w v + a s u per pixel, so u.v' and
 // |v'|^2 follow from these without a second pass over the image:
 //   (u.v, |v|^2, w u.v, a |u|^2) and (w^2 |v|^2, w a u.v, a^2 |u|^2, |u|^2).
-void pixel_sums(vec3 u, vec3 v, float a, out vec4 s[4]) {
+const uint UPDATE_SUM_VEC4S = 2u;
+void pixel_sums(vec3 u, vec3 v, float a, inout vec4 s[SUM_VEC4S]) {
     float uv = dot(u, v), vv = dot(v, v), uu = dot(u, u), w = 1.0 - a;
     s[0] = vec4(uv, vv, w * uv, a * uu);
     s[1] = vec4(w * w * vv, w * a * uv, a * a * uu, uu);
-    s[2] = vec4(0.0);
-    s[3] = vec4(0.0);
 }
 
-shared vec4 group_sums[SUM_VEC4S][GROUP_THREADS];
+// A zeroed set of sums.
+#define NO_SUMS vec4[SUM_VEC4S](vec4(0.0), vec4(0.0), vec4(0.0), vec4(0.0), vec4(0.0), vec4(0.0), vec4(0.0), vec4(0.0), vec4(0.0))
 
-// Tree sum of the group's pixel sums; the first invocation gets the total. Every invocation
-// of the group must call it (it has barriers).
-void group_sum(inout vec4 s[SUM_VEC4S]) {
+shared vec4 group_sums[GROUP_THREADS];
+
+// Tree sum over the group of each of the first `count` vec4, one after another (so that the
+// shared memory stays at 4 KB); the first invocation gets the totals. Every invocation of the
+// group must call it (it has barriers).
+void group_sum(inout vec4 s[SUM_VEC4S], uint count) {
     uint t = gl_LocalInvocationIndex;
-    for (uint m = 0u; m < SUM_VEC4S; ++m) group_sums[m][t] = s[m];
-    barrier();
-    for (uint stride = GROUP_THREADS / 2u; stride > 0u; stride >>= 1u) {
-        if (t < stride) {
-            for (uint m = 0u; m < SUM_VEC4S; ++m) group_sums[m][t] += group_sums[m][t + stride];
+    for (uint m = 0u; m < count; ++m) {
+        group_sums[t] = s[m];
+        barrier();
+        for (uint stride = GROUP_THREADS / 2u; stride > 0u; stride >>= 1u) {
+            if (t < stride) group_sums[t] += group_sums[t + stride];
+            barrier();
         }
+        s[m] = group_sums[0];
         barrier();
     }
-    for (uint m = 0u; m < SUM_VEC4S; ++m) s[m] = group_sums[m][0];
 }
 
 #ifdef CCIPCA_PARTIALS
-// Write this group's partial sums for the next sums dispatch to finish.
-void store_partials(vec4 s[SUM_VEC4S]) {
-    group_sum(s);
+// Write this group's partial sums (the first `count` vec4) for the next sums dispatch.
+void store_partials(vec4 s[SUM_VEC4S], uint count) {
+    group_sum(s, count);
     if (gl_LocalInvocationIndex == 0u) {
         uint g = gl_WorkGroupID.y * gl_NumWorkGroups.x + gl_WorkGroupID.x;
-        for (uint m = 0u; m < SUM_VEC4S; ++m) partials[SUM_VEC4S * g + m] = s[m];
+        for (uint m = 0u; m < count; ++m) partials[SUM_VEC4S * g + m] = s[m];
     }
 }
 #endif
 
-#ifdef CCIPCA_BASES
-// Orthogonalization sums for basis j at pixel p (j >= 1): v_j . v_i for i < j in floats
-// 0..6, |v_i|^2 in floats 7..13.
-void ortho_sums(uint j, uint p, out vec4 s[SUM_VEC4S]) {
-    float f[16];
-    for (uint m = 0u; m < 16u; ++m) f[m] = 0.0;
-    vec3 vj = bases[basis_index(j, p)].rgb;
-    for (uint i = 0u; i < j; ++i) {
-        vec3 vi = bases[basis_index(i, p)].rgb;
-        f[i] = dot(vj, vi);
-        f[7u + i] = dot(vi, vi);
-    }
-    for (uint m = 0u; m < SUM_VEC4S; ++m) s[m] = vec4(f[4u * m], f[4u * m + 1u], f[4u * m + 2u], f[4u * m + 3u]);
+// Index of v_i . v_j (i <= j) in the packed upper triangle of the Gram matrix.
+uint gram_index(uint i, uint j) {
+    return j * (j + 1u) / 2u + i;
 }
-#endif
+
+// vec4 holding the Gram matrix of `k` bases.
+uint gram_vec4s(uint k) {
+    return (k * (k + 1u) / 2u + 3u) / 4u;
+}
 
 #endif // CCIPCA_GLSL

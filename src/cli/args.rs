@@ -590,6 +590,10 @@ pub enum TableName {
     /// Sponza at 256-1024 (or --size): pass times and error against SSAA 16x.
     #[value(name = "sraa")]
     Sraa,
+    /// Chen et al.'s CCIPCA Table 1: reprojection, update and reconstruction ms at five sizes
+    /// (or --size) with 3, 5 and 7 bases, the Cornell box orbiting.
+    #[value(name = "chang-1")]
+    Chang1,
 }
 
 impl TableName {
@@ -605,6 +609,7 @@ impl TableName {
                 Warmup::Frames(2),
             ),
             TableName::Sraa => ((512, 512), 3, Warmup::Frames(1)),
+            TableName::Chang1 => ((512, 512), 8, Warmup::Frames(4)),
         }
     }
 
@@ -614,6 +619,7 @@ impl TableName {
             TableName::ThesisWalkthroughs => "thesis-walkthroughs",
             TableName::Szentandrasi1 => "szentandrasi-1",
             TableName::Sraa => "sraa",
+            TableName::Chang1 => "chang-1",
         }
     }
 
@@ -628,6 +634,7 @@ impl TableName {
             }
             TableName::Szentandrasi1 => crate::bench::table_szentandrasi::TITLE,
             TableName::Sraa => crate::bench::table_sraa::TITLE,
+            TableName::Chang1 => crate::bench::table_chang::TITLE,
         }
     }
 }

@@ -42,8 +42,15 @@ const BASES_PREV: Slot = Slot::OwnBuffer(4);
 
 /// Pixels per side of the groups whose partial sums are stored.
 const GROUP_SIDE: u32 = 16;
-/// vec4 of sums per group and per basis (shaders/include/ccipca.glsl's SUM_VEC4S).
-const SUM_VEC4S: u64 = 4;
+/// Room for vec4 of sums per group and per basis (shaders/include/ccipca.glsl's SUM_VEC4S).
+const SUM_VEC4S: u64 = 9;
+/// vec4 of sums of one basis update (UPDATE_SUM_VEC4S).
+const UPDATE_SUM_VEC4S: u32 = 2;
+
+/// vec4 holding the packed Gram matrix of `k` bases (gram_vec4s).
+fn gram_vec4s(k: u32) -> u32 {
+    (k * (k + 1) / 2).div_ceil(4)
+}
 
 const REPROJECT: &[Bind] = &[
     Bind::new(0, Slot::GPosition, Use::Sampled),
@@ -57,7 +64,6 @@ const REPROJECT: &[Bind] = &[
 
 const ORTHOGONALIZE: &[Bind] = &[
     Bind::new(6, BASES, Use::BufferReadWrite),
-    Bind::new(8, PARTIALS, Use::BufferWrite),
     Bind::new(9, TOTALS, Use::BufferRead),
 ];
 
@@ -91,12 +97,17 @@ const RECONSTRUCT: &[Bind] = &[
     Bind::new(10, FILTERED, Use::StorageWrite),
 ];
 
-/// Every pass: its timing row, module and declaration.
-const PASSES: [(PassId, &ShaderModuleInfo, &[Bind]); 6] = [
+/// Every pass: its timing row, module and declaration. Each is specialized for k bases.
+const PASSES: [(PassId, &ShaderModuleInfo, &[Bind]); 7] = [
     (
         PassId::CcipcaReproject,
         &shaders::CCIPCA_REPROJECT_COMP,
         REPROJECT,
+    ),
+    (
+        PassId::CcipcaReproject,
+        &shaders::CCIPCA_SUMS_COMP_GRAM,
+        SUMS,
     ),
     (
         PassId::CcipcaReproject,
@@ -134,6 +145,8 @@ fn layouts() -> Vec<PassLayout> {
 /// The passes in `PASSES` order, bound to one of the two bases buffers as the current one.
 struct Passes {
     reproject: ComputePass,
+    /// The Gram matrix's sums and the orthogonalization's transform.
+    gram: ComputePass,
     orthogonalize: ComputePass,
     noisy: ComputePass,
     sums: ComputePass,
@@ -142,11 +155,14 @@ struct Passes {
 }
 
 impl Passes {
-    fn new(ctx: &Arc<Context>, pool: &DescriptorPool) -> Result<Self> {
-        let [reproject, orthogonalize, noisy, sums, update, reconstruct] =
-            PASSES.map(|(id, module, binds)| ComputePass::new(ctx, pool, id, module, binds));
+    fn new(ctx: &Arc<Context>, pool: &DescriptorPool, bases: u32) -> Result<Self> {
+        let [reproject, gram, orthogonalize, noisy, sums, update, reconstruct] =
+            PASSES.map(|(id, module, binds)| {
+                ComputePass::specialized(ctx, pool, id, (module, binds), &[bases])
+            });
         Ok(Self {
             reproject: reproject?,
+            gram: gram?,
             orthogonalize: orthogonalize?,
             noisy: noisy?,
             sums: sums?,
@@ -160,6 +176,7 @@ impl Passes {
         let i = |p: &ComputePass| p.instance(pool, &format!("{} (other bases)", p.id.name()));
         Ok(Self {
             reproject: i(&self.reproject)?,
+            gram: i(&self.gram)?,
             orthogonalize: i(&self.orthogonalize)?,
             noisy: i(&self.noisy)?,
             sums: i(&self.sums)?,
@@ -168,9 +185,10 @@ impl Passes {
         })
     }
 
-    fn all(&self) -> [&ComputePass; 6] {
+    fn all(&self) -> [&ComputePass; 7] {
         [
             &self.reproject,
+            &self.gram,
             &self.orthogonalize,
             &self.noisy,
             &self.sums,
@@ -209,7 +227,7 @@ pub struct CcipcaEffect {
 
 impl CcipcaEffect {
     pub fn new(s: &mut Setup<'_>) -> Result<Self> {
-        let first = Passes::new(s.ctx, s.pool)?;
+        let first = Passes::new(s.ctx, s.pool, s.config.indirect.bases)?;
         let second = first.instance(s.pool)?;
         Ok(Self {
             passes: [first, second],
@@ -350,7 +368,6 @@ impl Effect for CcipcaEffect {
         };
         self.push = CcipcaPush {
             basis: 0,
-            bases: c.bases,
             groups: self.sized.groups,
             max_age: c.max_age,
             restart: restart as u32,
@@ -361,6 +378,7 @@ impl Effect for CcipcaEffect {
                 CcipcaWeighting::FirstBasis => 1,
                 CcipcaWeighting::Uniform => 0,
             },
+            sum_vec4s: UPDATE_SUM_VEC4S,
         };
     }
 
@@ -382,21 +400,28 @@ impl Effect for CcipcaEffect {
         };
         let passes = &self.passes[self.current];
         let pixels = every_pixel(info);
-        let push = |basis| CcipcaPush { basis, ..self.push }.to_bytes();
+        let sums = |basis, sum_vec4s| {
+            CcipcaPush {
+                basis,
+                sum_vec4s,
+                ..self.push
+            }
+            .to_bytes()
+        };
+        let push = |basis| sums(basis, UPDATE_SUM_VEC4S);
         if self.warp {
+            // Warp (storing the Gram matrix's partial sums), add them up, orthogonalize.
+            let gram = sums(0, gram_vec4s(info.config.indirect.bases));
             r.timed(PassId::CcipcaReproject, |rec, tr| {
                 passes
                     .reproject
-                    .record(rec, tr, info.frame, &res, &push(0), pixels);
-                for basis in 1..self.push.bases {
-                    let bytes = push(basis);
-                    passes
-                        .sums
-                        .record(rec, tr, info.frame, &res, &bytes, Dispatch::Groups(1));
-                    passes
-                        .orthogonalize
-                        .record(rec, tr, info.frame, &res, &bytes, pixels);
-                }
+                    .record(rec, tr, info.frame, &res, &gram, pixels);
+                passes
+                    .gram
+                    .record(rec, tr, info.frame, &res, &gram, Dispatch::Groups(1));
+                passes
+                    .orthogonalize
+                    .record(rec, tr, info.frame, &res, &gram, pixels);
             });
         }
         if info.config.indirect.ccipca_stages == CcipcaStages::WarpOnly {
@@ -408,7 +433,7 @@ impl Effect for CcipcaEffect {
                 .record(rec, tr, info.frame, &res, &push(0), pixels)
         });
         r.timed(PassId::CcipcaUpdate, |rec, tr| {
-            for basis in 0..self.push.bases {
+            for basis in 0..info.config.indirect.bases {
                 let bytes = push(basis);
                 passes
                     .sums

@@ -1,10 +1,12 @@
-//! `ssgi table <thesis-4.1|thesis-walkthroughs|szentandrasi-1|sraa>`: measure a paper table's rows,
+//! `ssgi table <thesis-4.1|thesis-walkthroughs|szentandrasi-1|sraa|chang-1>`: measure a paper table's rows,
 //! offscreen or presented, and write its report, CSV and plots.
 
 use super::common::{context_options, finish};
 use crate::bench::markdown::WALKTHROUGH_LEGEND;
 use crate::bench::warmup::Warmup;
-use crate::bench::{output, table41, table_sraa, table_szentandrasi, walkthrough, TableOptions};
+use crate::bench::{
+    output, table41, table_chang, table_sraa, table_szentandrasi, walkthrough, TableOptions,
+};
 use crate::cli::args::{Cli, TableArgs, TableName};
 use crate::error::{Error, Result};
 use crate::frontend::presenter::open_sink;
@@ -65,6 +67,10 @@ pub fn table(cli: &Cli, args: &TableArgs) -> Result<()> {
                 direct: true,
                 ..Effects::NONE
             },
+            TableName::Chang1 => Effects {
+                indirect: true,
+                ..Effects::NONE
+            },
             _ => Effects::ALL,
         }),
         assets: cli.assets.clone().or_else(asset_dir_from_env),
@@ -99,6 +105,18 @@ pub fn table(cli: &Cli, args: &TableArgs) -> Result<()> {
                 None => table_sraa::SIZES.iter().map(|&s| (s, s)).collect(),
             };
             let written = table_sraa::run(&ctx, sink.as_mut(), &opts, &sizes, &out)?;
+            drop(sink);
+            for path in written {
+                eprintln!("wrote {}", path.display());
+            }
+            return finish(&ctx);
+        }
+        TableName::Chang1 => {
+            let sizes = match args.size {
+                Some(size) => vec![size],
+                None => table_chang::SIZES.to_vec(),
+            };
+            let written = table_chang::run(&ctx, sink.as_mut(), &opts, &sizes, &out)?;
             drop(sink);
             for path in written {
                 eprintln!("wrote {}", path.display());
