@@ -504,6 +504,55 @@ fn szentandrasi_1_end_to_end() {
 /// against itself exact, every time finite, the geometry pass only in the SRAA rows, the
 /// report's numbers absent at a size it did not measure, SRAA closer to the reference than no
 /// antialiasing over the edge pixels, one PNG of the output size per row.
+/// `ssgi table chang-flicker` at 32x32 under validation: every filter at every VPL count,
+/// still and moving, with per-frame flicker measures and errors; more VPLs give the joint
+/// bilateral filter less flicker.
+#[test]
+fn chang_flicker_end_to_end() {
+    let out = out_dir("chang-flicker");
+    let report = own_format_table(
+        &[
+            "chang-flicker",
+            "--size",
+            "32x32",
+            "--frames",
+            "3",
+            "--warmup",
+            "2",
+        ],
+        &out,
+        "chang-flicker-table",
+    );
+    let rows = report["rows"].as_array().unwrap();
+    assert_eq!(rows.len(), 2 * 4 * 5);
+    for r in rows {
+        assert_eq!(
+            r["flicker"]["final_msd"].as_array().unwrap().len(),
+            2,
+            "{r}"
+        );
+        assert_eq!(
+            r["flicker"]["indirect_msd"].as_array().unwrap().len(),
+            2,
+            "{r}"
+        );
+        assert!(num(&r["final_msd"]) > 0.0, "{r}");
+        assert!(num(&r["indirect_relative_rmse"]).is_finite(), "{r}");
+        assert_eq!(
+            r["below_threshold"].as_bool().unwrap(),
+            num(&r["final_msd"]) < 2.5e-5
+        );
+    }
+    let jbf = |vpls: f64| {
+        rows.iter()
+            .find(|r| r["motion"] == "static" && r["filter"] == "jbf11" && num(&r["vpls"]) == vpls)
+            .map(|r| num(&r["indirect_msd"]))
+            .unwrap()
+    };
+    assert!(jbf(64.0) < jbf(1.0), "{} {}", jbf(64.0), jbf(1.0));
+    assert!(out.join("chang-flicker.csv").is_file());
+}
+
 /// `ssgi table chang-1` at 48x48 under validation: three rows (3, 5, 7 bases), every CCIPCA
 /// pass timed (the orbit warps every frame), no article numbers at a size it has no row for.
 #[test]

@@ -99,6 +99,9 @@ pub struct RunSpec<'a> {
     /// Also read the buffers after the warmup frames (the reference row compares its last
     /// frame with them).
     pub snapshot_after_warmup: bool,
+    /// Read the output (and indirect light) back after every measured frame and record the
+    /// flicker measure (waits for each frame: for error and flicker runs, not timing).
+    pub flicker: bool,
     pub progress: bool,
 }
 
@@ -131,6 +134,31 @@ pub struct Measured {
     /// Whether the effects' work counters had settled by the end of the warmup
     /// (`warmup::settled` over its last two rotation limits of frames).
     pub warmup_settled: bool,
+    /// With `RunSpec::flicker`: the measured frames' consecutive differences.
+    pub flicker: Option<Flicker>,
+}
+
+/// Chen et al.'s flicker measure: the mean squared difference between consecutive frames,
+/// per pair of consecutive measured frames.
+#[derive(Clone, Debug, Default, Serialize)]
+pub struct Flicker {
+    /// Of the output image (RGB as encoded, 0..1: the measure's "barely notable" threshold
+    /// 2.5e-5 is on this scale).
+    pub final_msd: Vec<f64>,
+    /// Of the indirect light (linear RGB irradiance), when it is rendered.
+    pub indirect_msd: Vec<f64>,
+}
+
+impl Flicker {
+    pub fn mean(v: &[f64]) -> Option<f64> {
+        (!v.is_empty()).then(|| v.iter().sum::<f64>() / v.len() as f64)
+    }
+}
+
+/// Mean squared difference of two images of one size over every pixel's RGB.
+pub fn msd(a: &ImageData, b: &ImageData) -> Result<f64> {
+    let e = super::metrics::image_error(a, b, Channels::Rgb, None)?;
+    Ok(e.rmse.map_or(0.0, |r| r * r))
 }
 
 /// The camera of the last frame of a `frames`-frame run along `path` at `fps`.
@@ -187,9 +215,26 @@ pub fn measure(
         None
     };
     let mut camera = first;
+    let mut flicker = spec.flicker.then(Flicker::default);
+    let mut previous: Option<(ImageData, Option<ImageData>)> = None;
     for i in 0..frames {
         camera = spec.path.camera_at(&base, &orbit, frame_time(i, spec.fps));
         timings.extend(sink.frame(&mut renderer, &camera)?);
+        if let Some(f) = &mut flicker {
+            let output = renderer.read(Target::Output)?;
+            let indirect = if renderer.config.effects.indirect {
+                Some(renderer.read(Target::Indirect)?)
+            } else {
+                None
+            };
+            if let Some((o, ind)) = &previous {
+                f.final_msd.push(msd(&output, o)?);
+                if let (Some(a), Some(b)) = (&indirect, ind) {
+                    f.indirect_msd.push(msd(a, b)?);
+                }
+            }
+            previous = Some((output, indirect));
+        }
         bar.inc();
     }
     timings.extend(renderer.finish()?);
@@ -242,6 +287,7 @@ pub fn measure(
         last,
         after_warmup,
         warmup_settled,
+        flicker,
     })
 }
 

@@ -243,6 +243,7 @@ pub fn measure_rows(
             warmup_along_path: false,
             fps: run.fps,
             snapshot_after_warmup: true,
+            flicker: false,
             progress: run.progress,
         },
     )?;
@@ -266,6 +267,7 @@ pub fn measure_rows(
                 warmup_along_path: run.warmup_along_path,
                 fps: run.fps,
                 snapshot_after_warmup: false,
+                flicker: false,
                 progress: run.progress,
             },
         )?;

@@ -121,6 +121,7 @@ pub fn run(
                 warmup_along_path: spec.warmup_along_path,
                 fps: spec.fps,
                 snapshot_after_warmup: false,
+                flicker: false,
                 progress: false,
             },
         )?;
@@ -141,6 +142,7 @@ pub fn run(
                     warmup_along_path: false,
                     fps: spec.fps,
                     snapshot_after_warmup: true,
+                    flicker: false,
                     progress: false,
                 },
             )?;

@@ -196,6 +196,7 @@ pub fn run(
                     warmup_along_path: true,
                     fps: opts.fps,
                     snapshot_after_warmup: false,
+                    flicker: false,
                     progress: opts.progress,
                 },
             )?;

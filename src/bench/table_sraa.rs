@@ -176,6 +176,7 @@ fn run_size(
                 warmup_along_path: false,
                 fps: opts.fps,
                 snapshot_after_warmup: false,
+                flicker: false,
                 progress: opts.progress,
             },
         )?;

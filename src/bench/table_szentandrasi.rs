@@ -173,6 +173,7 @@ fn run_scene(
                 warmup_along_path: false,
                 fps: c.opts.fps,
                 snapshot_after_warmup: false,
+                flicker: false,
                 progress: c.opts.progress,
             },
         )?;
@@ -195,6 +196,7 @@ fn run_scene(
                 warmup_along_path: c.warmup_along_path,
                 fps: c.opts.fps,
                 snapshot_after_warmup: false,
+                flicker: false,
                 progress: c.opts.progress,
             },
         )?;

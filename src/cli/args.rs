@@ -151,10 +151,10 @@ pub struct SceneArgs {
     /// CCIPCA basis images (1..=8; Chen et al. use 3, 5 and 7).
     #[arg(long, default_value_t = IndirectConfig::default().bases, value_parser = clap::value_parser!(u32).range(1..=IndirectConfig::MAX_BASES as i64))]
     pub bases: u32,
-    /// CCIPCA step per pixel: `first-basis` from the pixel's own sample count in the first
-    /// basis and from the frames since the restart in the others, `per-pixel` from the pixel's
-    /// own in every basis (Chen et al.), `uniform` from the frames since the restart.
-    #[arg(long, value_enum, default_value_t = CcipcaWeighting::FirstBasis)]
+    /// CCIPCA step per pixel: `per-pixel` from the pixel's own sample count in every basis
+    /// (Chen et al.), `first-basis` from it in the first basis and from the frames since the
+    /// restart in the others, `uniform` from the frames since the restart.
+    #[arg(long, value_enum, default_value_t = CcipcaWeighting::PerPixel)]
     pub ccipca_weighting: CcipcaWeighting,
     /// CCIPCA memory: frames after which a pixel's update step stops shrinking (1..=1048576).
     #[arg(long, default_value_t = IndirectConfig::default().max_age, value_parser = clap::value_parser!(u32).range(1..=1 << 20))]
@@ -594,6 +594,10 @@ pub enum TableName {
     /// (or --size) with 3, 5 and 7 bases, the Cornell box orbiting.
     #[value(name = "chang-1")]
     Chang1,
+    /// Chen et al.'s flicker comparison: CCIPCA, 11x11 and 17x17 joint bilateral filters and
+    /// accumulation from 1-64 VPLs per pixel, static and moving: flicker and error.
+    #[value(name = "chang-flicker")]
+    ChangFlicker,
 }
 
 impl TableName {
@@ -610,6 +614,7 @@ impl TableName {
             ),
             TableName::Sraa => ((512, 512), 3, Warmup::Frames(1)),
             TableName::Chang1 => ((512, 512), 8, Warmup::Frames(4)),
+            TableName::ChangFlicker => ((128, 128), 16, Warmup::Frames(64)),
         }
     }
 
@@ -620,6 +625,7 @@ impl TableName {
             TableName::Szentandrasi1 => "szentandrasi-1",
             TableName::Sraa => "sraa",
             TableName::Chang1 => "chang-1",
+            TableName::ChangFlicker => "chang-flicker",
         }
     }
 
@@ -635,6 +641,7 @@ impl TableName {
             TableName::Szentandrasi1 => crate::bench::table_szentandrasi::TITLE,
             TableName::Sraa => crate::bench::table_sraa::TITLE,
             TableName::Chang1 => crate::bench::table_chang::TITLE,
+            TableName::ChangFlicker => crate::bench::table_chang_flicker::TITLE,
         }
     }
 }

@@ -116,7 +116,7 @@ const PASSES: [(PassId, &ShaderModuleInfo, &[Bind]); 7] = [
     ),
     (
         PassId::IndirectNoisy,
-        &shaders::INDIRECT_NOISY_COMP,
+        &shaders::INDIRECT_NOISY_COMP_CCIPCA,
         NOISY_GATHER,
     ),
     (PassId::CcipcaUpdate, &shaders::CCIPCA_SUMS_COMP, SUMS),

@@ -19,6 +19,7 @@ pub enum EffectId {
     Ao,
     Indirect,
     Ccipca,
+    IndirectJbf,
     Ssdo,
 }
 

@@ -1,5 +1,5 @@
 //! Effects: direct light with PCF shadows, SSAO, one-bounce indirect light (accumulated, or
-//! filtered by CCIPCA), SSDO. Each is one module that owns its passes, its size-dependent
+//! filtered by CCIPCA or a joint bilateral filter), SSDO. Each is one module that owns its passes, its size-dependent
 //! images, its temporal history and counters, its debug views and its contribution to the
 //! composite, and is registered in [`create`] with one line. The renderer only walks the list (see docs/ARCHITECTURE.md).
 
@@ -8,6 +8,7 @@ pub mod ccipca;
 pub mod direct;
 pub mod effect;
 pub mod indirect;
+pub mod jbf;
 pub mod resolve;
 pub mod ssdo;
 
@@ -26,6 +27,7 @@ pub const REGISTRY: &[Registration] = &[
     ao::REGISTRATION,
     indirect::REGISTRATION,
     ccipca::REGISTRATION,
+    jbf::REGISTRATION,
     ssdo::REGISTRATION,
 ];
 

@@ -40,6 +40,8 @@ pub enum PassId {
     CcipcaUpdate,
     /// CCIPCA: the noisy image projected on the updated bases.
     CcipcaReconstruct,
+    /// The joint bilateral filter of the noisy gather (--indirect-filter jbf11|jbf17).
+    IndirectJbf,
     /// SSDO's pre-pass: samples per block from the normal and depth changes.
     SsdoSamples,
     /// SSDO: modulation factor and bounce in one pass, or the two-step form's directional
@@ -66,7 +68,7 @@ pub enum PassId {
 }
 
 impl PassId {
-    pub const ALL: [PassId; 29] = [
+    pub const ALL: [PassId; 30] = [
         PassId::LightView,
         PassId::GBuffer,
         PassId::Reproject,
@@ -85,6 +87,7 @@ impl PassId {
         PassId::CcipcaReproject,
         PassId::CcipcaUpdate,
         PassId::CcipcaReconstruct,
+        PassId::IndirectJbf,
         PassId::SsdoSamples,
         PassId::Ssdo,
         PassId::SsdoBounce,
@@ -118,6 +121,7 @@ impl PassId {
             PassId::CcipcaReproject => "ccipca_reproject",
             PassId::CcipcaUpdate => "ccipca_update",
             PassId::CcipcaReconstruct => "ccipca_reconstruct",
+            PassId::IndirectJbf => "indirect_jbf",
             PassId::SsdoSamples => "ssdo_samples",
             PassId::Ssdo => "ssdo",
             PassId::SsdoBounce => "ssdo_bounce",

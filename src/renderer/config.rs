@@ -243,19 +243,23 @@ pub enum IndirectFilter {
     /// Chen, Lei & Chang 2012: a new noisy gather every frame (--vpls per pixel) projected on
     /// incrementally estimated principal components (CCIPCA).
     Ccipca,
+    /// The same noisy gather, filtered within the frame by an 11x11 joint bilateral filter
+    /// (the article's baseline).
+    Jbf11,
+    /// The same with a 17x17 window.
+    Jbf17,
 }
 
 /// Whose sample count sets a CCIPCA update's step at a pixel.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, clap::ValueEnum)]
 #[serde(rename_all = "kebab-case")]
 pub enum CcipcaWeighting {
-    /// The pixel's own for the first basis, the frames since the restart for the others: a
-    /// pixel new to the view takes large steps where the image itself is learned, while the
-    /// bases of its variations keep their pace (tests/ccipca.rs measures the three).
+    /// The pixel's own for every basis (Chen et al. section 3.4.2): a pixel new to the view
+    /// takes large steps.
     #[default]
-    FirstBasis,
-    /// The pixel's own for every basis (Chen et al. section 3.4.2).
     PerPixel,
+    /// The pixel's own for the first basis, the frames since the restart for the others.
+    FirstBasis,
     /// The frames since the bases restarted, the same for every pixel (plain CCIPCA).
     Uniform,
 }
@@ -304,7 +308,7 @@ impl Default for IndirectConfig {
             interleave: 1,
             filter: IndirectFilter::Accumulate,
             bases: 3,
-            weighting: CcipcaWeighting::FirstBasis,
+            weighting: CcipcaWeighting::PerPixel,
             max_age: 256,
             ccipca_stages: CcipcaStages::All,
             input: IndirectInput::Gather,

@@ -1,11 +1,12 @@
-//! `ssgi table <thesis-4.1|thesis-walkthroughs|szentandrasi-1|sraa|chang-1>`: measure a paper table's rows,
+//! `ssgi table <thesis-4.1|thesis-walkthroughs|szentandrasi-1|sraa|chang-1|chang-flicker>`: measure a paper table's rows,
 //! offscreen or presented, and write its report, CSV and plots.
 
 use super::common::{context_options, finish};
 use crate::bench::markdown::WALKTHROUGH_LEGEND;
 use crate::bench::warmup::Warmup;
 use crate::bench::{
-    output, table41, table_chang, table_sraa, table_szentandrasi, walkthrough, TableOptions,
+    output, table41, table_chang, table_chang_flicker, table_sraa, table_szentandrasi, walkthrough,
+    TableOptions,
 };
 use crate::cli::args::{Cli, TableArgs, TableName};
 use crate::error::{Error, Result};
@@ -71,6 +72,11 @@ pub fn table(cli: &Cli, args: &TableArgs) -> Result<()> {
                 indirect: true,
                 ..Effects::NONE
             },
+            TableName::ChangFlicker => Effects {
+                direct: true,
+                indirect: true,
+                ..Effects::NONE
+            },
             _ => Effects::ALL,
         }),
         assets: cli.assets.clone().or_else(asset_dir_from_env),
@@ -117,6 +123,14 @@ pub fn table(cli: &Cli, args: &TableArgs) -> Result<()> {
                 None => table_chang::SIZES.to_vec(),
             };
             let written = table_chang::run(&ctx, sink.as_mut(), &opts, &sizes, &out)?;
+            drop(sink);
+            for path in written {
+                eprintln!("wrote {}", path.display());
+            }
+            return finish(&ctx);
+        }
+        TableName::ChangFlicker => {
+            let written = table_chang_flicker::run(&ctx, sink.as_mut(), &opts, &out)?;
             drop(sink);
             for path in written {
                 eprintln!("wrote {}", path.display());

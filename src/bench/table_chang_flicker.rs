@@ -1,0 +1,350 @@
+//! `ssgi table chang-flicker`: Chen, Lei & Chang's flicker comparison (section 4.2, Figure 7)
+//! and error (Figure 10): CCIPCA, the 11x11 and 17x17 joint bilateral filters and the thesis's
+//! accumulation, each from 1, 3, 10, 32 and 64 VPLs per pixel, on the Cornell box held still
+//! and along a slow orbit. Per row: the flicker measure (mean squared difference of
+//! consecutive output frames, and of the indirect light), whether it is under the article's
+//! "barely notable" 2.5e-5, and the error of the last frame against the exact gather (every
+//! RSM texel). Writes report.json, report.md and chang-flicker.csv.
+//!
+//! JSON, version 1 (later versions only add fields): see README, "Flicker table".
+
+use super::measure::{held_at, last_camera, measure, Flicker, RunSpec};
+use super::metrics::{image_error, Channels};
+use super::output::write_text;
+use super::table_run::TableRun;
+use super::TableOptions;
+use crate::error::{Error, Result};
+use crate::frontend::sink::FrameSink;
+use crate::renderer::config::{IndirectConfig, IndirectFilter, RenderConfig, TemporalConfig};
+use crate::renderer::pcf::Pcf;
+use crate::renderer::targets::Target;
+use crate::renderer::Renderer;
+use crate::scene::{cornell_box, Camera, CameraPath, Scene};
+use crate::vk::{Context, ImageData};
+use serde::Serialize;
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+
+pub const TABLE: &str = "chang-flicker";
+pub const TITLE: &str =
+    "Chen et al. section 4.2: flicker and error of CCIPCA, joint bilateral filters and accumulation against VPLs per pixel (Cornell box)";
+
+/// The article's sample counts.
+pub const VPLS: [u32; 5] = [1, 3, 10, 32, 64];
+pub const FILTERS: [IndirectFilter; 4] = [
+    IndirectFilter::Ccipca,
+    IndirectFilter::Jbf11,
+    IndirectFilter::Jbf17,
+    IndirectFilter::Accumulate,
+];
+/// "The flickering becomes barely notable when the measured difference is less than 2.5e-5."
+pub const THRESHOLD: f64 = 2.5e-5;
+/// Small enough for the reference to gather every texel (RenderConfig::validate).
+pub const RSM_SIZE: u32 = 128;
+
+#[derive(Clone, Debug, Serialize)]
+pub struct RowResult {
+    pub motion: &'static str,
+    pub filter: IndirectFilter,
+    pub vpls: u32,
+    /// Mean over the measured frames of the output's consecutive-frame MSD.
+    pub final_msd: Option<f64>,
+    pub indirect_msd: Option<f64>,
+    /// `final_msd` < 2.5e-5.
+    pub below_threshold: bool,
+    /// RMSE of the last frame's indirect light against the exact gather over geometry pixels,
+    /// relative to the exact gather's RMS there.
+    pub indirect_relative_rmse: Option<f64>,
+    /// RMSE of the last output (RGB as encoded) against the one with the exact gather.
+    pub final_rmse: Option<f64>,
+    /// Median GPU ms of the frame.
+    pub frame_ms: Option<f64>,
+    /// The per-frame measures.
+    pub flicker: Flicker,
+}
+
+#[derive(Clone, Debug, Serialize)]
+pub struct TableReport {
+    #[serde(flatten)]
+    pub run: TableRun,
+    pub scene: String,
+    pub width: u32,
+    pub height: u32,
+    pub rsm_size: u32,
+    pub path: String,
+    pub fps: f32,
+    pub effects: String,
+    pub frames: u32,
+    pub warmup: u32,
+    pub threshold: f64,
+    pub notes: Vec<String>,
+    pub rows: Vec<RowResult>,
+}
+
+fn config(opts: &TableOptions, filter: IndirectFilter, vpls: u32) -> RenderConfig {
+    RenderConfig {
+        width: opts.size.0,
+        height: opts.size.1,
+        rsm_size: RSM_SIZE,
+        // Only the indirect light's noise should move from frame to frame.
+        pcf: Pcf::HARD,
+        effects: opts.effects,
+        indirect: IndirectConfig {
+            vpls,
+            filter,
+            ..IndirectConfig::default()
+        },
+        ..RenderConfig::default()
+    }
+}
+
+/// The exact gather's indirect light and output at `camera` (every RSM texel, no reuse).
+fn reference(
+    ctx: &Arc<Context>,
+    opts: &TableOptions,
+    scene: &Scene,
+    camera: &Camera,
+) -> Result<(ImageData, ImageData, Vec<bool>)> {
+    let mut c = config(opts, IndirectFilter::Accumulate, 0);
+    c.indirect.half_res = false;
+    c.temporal = TemporalConfig {
+        reuse: false,
+        ..TemporalConfig::default()
+    };
+    let mut r = Renderer::new(ctx, scene.clone(), c)?;
+    r.render_frame(camera)?;
+    r.finish()?;
+    let mask = super::metrics::geometry_mask(&r.read(Target::GPosition)?);
+    Ok((r.read(Target::Indirect)?, r.read(Target::Output)?, mask))
+}
+
+/// RMS of `image`'s RGB where `mask` is set.
+fn rms(image: &ImageData, mask: &[bool]) -> Result<Option<f64>> {
+    let zero = ImageData {
+        bytes: vec![0; image.bytes.len()],
+        ..image.clone()
+    };
+    Ok(image_error(image, &zero, Channels::Rgb, Some(mask))?.rmse)
+}
+
+fn warmup_frames(opts: &TableOptions) -> u32 {
+    match opts.warmup {
+        super::warmup::Warmup::Frames(n) => n,
+        super::warmup::Warmup::Converged => 0,
+    }
+}
+
+pub fn run(
+    ctx: &Arc<Context>,
+    sink: &mut dyn FrameSink,
+    opts: &TableOptions,
+    out: &Path,
+) -> Result<Vec<PathBuf>> {
+    if !opts.effects.indirect {
+        return Err(Error::Config(
+            "chang-flicker measures indirect light's filters: --effects must include indirect"
+                .into(),
+        ));
+    }
+    if opts.frames < 2 {
+        return Err(Error::Config(
+            "the flicker measure compares consecutive frames: --frames must be at least 2".into(),
+        ));
+    }
+    let moving = CameraPath::parse(opts.path.as_deref().unwrap_or("orbit:60s"))?;
+    let scene = cornell_box();
+    std::fs::create_dir_all(out)
+        .map_err(|e| Error::Config(format!("cannot create {}: {e}", out.display())))?;
+    let held = held_at(&scene.camera);
+    let warmup = warmup_frames(opts);
+    let mut rows = Vec::new();
+    for (motion, path, along) in [("static", &held, false), ("moving", &moving, true)] {
+        let camera = last_camera(&scene, path, opts.frames, opts.fps);
+        let (exact, exact_output, mask) = reference(ctx, opts, &scene, &camera)?;
+        let exact_rms = rms(&exact, &mask)?;
+        for filter in FILTERS {
+            for vpls in VPLS {
+                let label = format!("{motion} {} {vpls} VPLs", filter_name(filter));
+                let m = measure(
+                    ctx,
+                    sink,
+                    &scene,
+                    &RunSpec {
+                        label: &label,
+                        config: config(opts, filter, vpls),
+                        path,
+                        frames: opts.frames,
+                        warmup,
+                        warmup_along_path: along,
+                        fps: opts.fps,
+                        snapshot_after_warmup: false,
+                        flicker: true,
+                        progress: opts.progress,
+                    },
+                )?;
+                let flicker = m.flicker.unwrap_or_default();
+                let final_msd = Flicker::mean(&flicker.final_msd);
+                let indirect = m.last.buffer(super::measure::Buffer::Indirect);
+                let indirect_relative_rmse = match (indirect, exact_rms) {
+                    (Some(i), Some(norm)) if norm > 0.0 => {
+                        image_error(i, &exact, Channels::Rgb, Some(&mask))?
+                            .rmse
+                            .map(|e| e / norm)
+                    }
+                    _ => None,
+                };
+                let final_rmse = match m.last.buffer(super::measure::Buffer::Final) {
+                    Some(o) => image_error(o, &exact_output, Channels::Rgb, Some(&mask))?.rmse,
+                    None => None,
+                };
+                let row = RowResult {
+                    motion,
+                    filter,
+                    vpls,
+                    final_msd,
+                    indirect_msd: Flicker::mean(&flicker.indirect_msd),
+                    below_threshold: final_msd.is_some_and(|v| v < THRESHOLD),
+                    indirect_relative_rmse,
+                    final_rmse,
+                    frame_ms: m.report.total.median_ms,
+                    flicker,
+                };
+                eprintln!("{}", summary_line(&row));
+                rows.push(row);
+            }
+        }
+    }
+    let notes = vec![
+        format!(
+            "The built-in Cornell box at {}x{}, RSM {RSM_SIZE}x{RSM_SIZE}, hard shadows, effects \
+             {}. Static: the scene's camera, --warmup frames held, then --frames measured. \
+             Moving: `{}` at {} fps, --warmup frames along the path before its time 0, then \
+             --frames measured; its frame-to-frame difference includes the motion itself, so \
+             compare filters with each other there, not with the threshold.",
+            opts.size.0,
+            opts.size.1,
+            opts.effects,
+            moving.name(),
+            opts.fps
+        ),
+        "Flicker: mean over consecutive measured frames of the mean squared RGB difference of \
+         the output (0..1 as encoded; the article: barely notable below 2.5e-5) and of the \
+         indirect light (linear). Error: the last frame against the exact gather (every RSM \
+         texel, no reuse) at the same camera, over the pixels with geometry."
+            .into(),
+        "ccipca, jbf11 and jbf17 filter the same input: a new gather of N VPLs per pixel each \
+         frame; accumulate is the thesis's cache (half resolution, N VPLs per pattern, rotated \
+         patterns, refresh)."
+            .into(),
+    ];
+    let report = TableReport {
+        run: TableRun::new(TABLE, opts.command.clone(), &ctx.info, sink.present_mode()),
+        scene: scene.name.clone(),
+        width: opts.size.0,
+        height: opts.size.1,
+        rsm_size: RSM_SIZE,
+        path: moving.name(),
+        fps: opts.fps,
+        effects: opts.effects.to_string(),
+        frames: opts.frames,
+        warmup,
+        threshold: THRESHOLD,
+        notes,
+        rows,
+    };
+    let json = serde_json::to_string_pretty(&report)
+        .map_err(|e| Error::Config(format!("JSON encoding failed: {e}")))?;
+    let files = [
+        (out.join("report.json"), json),
+        (out.join("report.md"), markdown(&report)),
+        (out.join(format!("{TABLE}.csv")), csv(&report)),
+    ];
+    let mut written = Vec::new();
+    for (path, text) in files {
+        write_text(&path, &text)?;
+        written.push(path);
+    }
+    Ok(written)
+}
+
+pub fn filter_name(f: IndirectFilter) -> &'static str {
+    match f {
+        IndirectFilter::Accumulate => "accumulate",
+        IndirectFilter::Ccipca => "ccipca",
+        IndirectFilter::Jbf11 => "jbf11",
+        IndirectFilter::Jbf17 => "jbf17",
+    }
+}
+
+fn sci(v: Option<f64>) -> String {
+    v.map_or("-".into(), |v| format!("{v:.3e}"))
+}
+
+fn fixed(v: Option<f64>, digits: usize) -> String {
+    v.map_or("-".into(), |v| format!("{v:.digits$}"))
+}
+
+fn summary_line(r: &RowResult) -> String {
+    format!(
+        "{} {} {} VPLs: flicker {} (indirect {}), indirect error {}",
+        r.motion,
+        filter_name(r.filter),
+        r.vpls,
+        sci(r.final_msd),
+        sci(r.indirect_msd),
+        fixed(r.indirect_relative_rmse, 4)
+    )
+}
+
+fn markdown(r: &TableReport) -> String {
+    let mut md = format!("# {TITLE}\n\nCommand: `{}`\n\n", r.run.command);
+    md += &format!(
+        "Device: {} ({}), {}x{}, {} frames measured per row after {} warmup frames, ssgi \
+         {}.\n\n",
+        r.run.device, r.run.driver, r.width, r.height, r.frames, r.warmup, r.run.ssgi_version
+    );
+    md += "| Motion | Filter | VPLs | Flicker (output MSD) | < 2.5e-5 | Flicker (indirect MSD) \
+           | Indirect relative RMSE | Output RMSE | Frame ms |\n";
+    md += "|---|---|---|---|---|---|---|---|---|\n";
+    for row in &r.rows {
+        md += &format!(
+            "| {} | {} | {} | {} | {} | {} | {} | {} | {} |\n",
+            row.motion,
+            filter_name(row.filter),
+            row.vpls,
+            sci(row.final_msd),
+            if row.below_threshold { "yes" } else { "no" },
+            sci(row.indirect_msd),
+            fixed(row.indirect_relative_rmse, 4),
+            fixed(row.final_rmse, 4),
+            fixed(row.frame_ms, 2),
+        );
+    }
+    md += "\n## Notes\n\n";
+    for n in &r.notes {
+        md += &format!("- {n}\n");
+    }
+    md
+}
+
+fn csv(r: &TableReport) -> String {
+    let mut out = String::from(
+        "motion,filter,vpls,final_msd,below_threshold,indirect_msd,indirect_relative_rmse,\
+         final_rmse,frame_ms\n",
+    );
+    for row in &r.rows {
+        out += &format!(
+            "{},{},{},{},{},{},{},{},{}\n",
+            row.motion,
+            filter_name(row.filter),
+            row.vpls,
+            sci(row.final_msd),
+            row.below_threshold,
+            sci(row.indirect_msd),
+            fixed(row.indirect_relative_rmse, 5),
+            fixed(row.final_rmse, 5),
+            fixed(row.frame_ms, 4),
+        );
+    }
+    out
+}

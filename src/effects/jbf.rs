@@ -1,0 +1,205 @@
+//! Indirect light from the noisy per-frame gather, filtered within the frame by a joint
+//! bilateral filter (`--indirect-filter jbf11|jbf17`): the geometry-aware baselines Chen, Lei
+//! & Chang compare CCIPCA with, on the same input (`indirect_noisy`, --vpls per pixel, new
+//! VPLs every frame). No history: a pixel's light is as new each frame as its input.
+
+use super::effect::{
+    every_pixel, Effect, EffectId, FrameInfo, Recording, Registration, Setup, TermKind,
+};
+use super::resolve::EffectResources;
+use crate::error::Result;
+use crate::passes::compute::ComputePass;
+use crate::passes::decl::{Bind, Slot, Use};
+use crate::passes::{PassId, PassLayout};
+use crate::renderer::config::{IndirectFilter, RenderConfig};
+use crate::renderer::effect::TemporalEffect;
+use crate::renderer::targets::{Target, Targets};
+use crate::shaders::{self, EffectPush};
+use crate::vk::{Context, Image, ImageDesc};
+use ash::vk;
+use std::sync::Arc;
+
+const NOISY: Slot = Slot::Own(0);
+const FILTERED: Slot = Slot::Own(1);
+
+const NOISY_GATHER: &[Bind] = &[
+    Bind::new(0, Slot::GPosition, Use::Sampled),
+    Bind::new(1, Slot::GNormal, Use::Sampled),
+    Bind::new(2, Slot::RsmPosition, Use::Sampled),
+    Bind::new(3, Slot::RsmNormal, Use::Sampled),
+    Bind::new(4, Slot::RsmFlux, Use::Sampled),
+    Bind::new(5, NOISY, Use::StorageWrite),
+];
+
+const FILTER: &[Bind] = &[
+    Bind::new(0, Slot::GPosition, Use::Sampled),
+    Bind::new(1, Slot::GNormal, Use::Sampled),
+    Bind::new(5, NOISY, Use::Sampled),
+    Bind::new(10, FILTERED, Use::StorageWrite),
+];
+
+pub const REGISTRATION: Registration = Registration {
+    id: EffectId::IndirectJbf,
+    enabled: |c| c.effects.indirect && radius(c.indirect.filter).is_some(),
+    create: |s| Ok(Box::new(JbfEffect::new(s)?)),
+    layouts,
+};
+
+fn layouts() -> Vec<PassLayout> {
+    vec![
+        ComputePass::layout(
+            PassId::IndirectNoisy,
+            &shaders::INDIRECT_NOISY_COMP_PLAIN,
+            NOISY_GATHER,
+        ),
+        ComputePass::layout(PassId::IndirectJbf, &shaders::INDIRECT_JBF_COMP, FILTER),
+    ]
+}
+
+/// Half the window's side of a joint bilateral filter.
+fn radius(filter: IndirectFilter) -> Option<u32> {
+    match filter {
+        IndirectFilter::Jbf11 => Some(5),
+        IndirectFilter::Jbf17 => Some(8),
+        IndirectFilter::Accumulate | IndirectFilter::Ccipca => None,
+    }
+}
+
+struct Sized {
+    noisy: Image,
+    filtered: Image,
+}
+
+pub struct JbfEffect {
+    noisy: ComputePass,
+    filter: ComputePass,
+    sized: Sized,
+    /// The temporal effects' push constants, which only the reprojection reads: none here.
+    no_effect_push: EffectPush,
+}
+
+impl JbfEffect {
+    pub fn new(s: &mut Setup<'_>) -> Result<Self> {
+        let r = radius(s.config.indirect.filter).unwrap_or(5);
+        Ok(Self {
+            noisy: ComputePass::new(
+                s.ctx,
+                s.pool,
+                PassId::IndirectNoisy,
+                &shaders::INDIRECT_NOISY_COMP_PLAIN,
+                NOISY_GATHER,
+            )?,
+            filter: ComputePass::specialized(
+                s.ctx,
+                s.pool,
+                PassId::IndirectJbf,
+                (&shaders::INDIRECT_JBF_COMP, FILTER),
+                &[r],
+            )?,
+            sized: Self::create_sized(s.ctx, s.config)?,
+            no_effect_push: EffectPush::default(),
+        })
+    }
+
+    fn create_sized(ctx: &Arc<Context>, c: &RenderConfig) -> Result<Sized> {
+        let image = |name: &str| {
+            Image::new(
+                ctx,
+                name,
+                ImageDesc {
+                    width: c.width,
+                    height: c.height,
+                    format: vk::Format::R32G32B32A32_SFLOAT,
+                    usage: vk::ImageUsageFlags::STORAGE
+                        | vk::ImageUsageFlags::SAMPLED
+                        | vk::ImageUsageFlags::TRANSFER_SRC,
+                },
+            )
+        };
+        Ok(Sized {
+            noisy: image("jbf.noisy")?,
+            filtered: image("jbf.filtered")?,
+        })
+    }
+
+    fn own(&self) -> [[&Image; 2]; 2] {
+        let s = &self.sized;
+        [[&s.noisy, &s.noisy], [&s.filtered, &s.filtered]]
+    }
+}
+
+impl Effect for JbfEffect {
+    fn id(&self) -> EffectId {
+        EffectId::IndirectJbf
+    }
+
+    fn passes(&self) -> &'static [PassId] {
+        &[PassId::IndirectNoisy, PassId::IndirectJbf]
+    }
+
+    fn resize(&mut self, ctx: &Arc<Context>, config: &RenderConfig) -> Result<()> {
+        self.sized = Self::create_sized(ctx, config)?;
+        Ok(())
+    }
+
+    fn bind(&self, ctx: &Context, targets: &Targets) -> Result<()> {
+        let own = self.own();
+        let res = EffectResources {
+            targets,
+            temporal: None,
+            own: &own,
+            own_buffers: &[],
+        };
+        self.noisy.bind(ctx, &res)?;
+        self.filter.bind(ctx, &res)
+    }
+
+    fn temporal(&self) -> Option<&TemporalEffect> {
+        None
+    }
+
+    fn temporal_mut(&mut self) -> Option<&mut TemporalEffect> {
+        None
+    }
+
+    /// A new sample every frame and nothing kept: the output never settles, but with
+    /// unchanged inputs a frame is as good as the next, so skipping is left to the usual rule.
+    fn prepare(&mut self, _info: &FrameInfo<'_>) {}
+
+    fn reprojects(&self, _info: &FrameInfo<'_>) -> bool {
+        false
+    }
+
+    fn push(&self) -> &EffectPush {
+        &self.no_effect_push
+    }
+
+    fn record(&self, info: &FrameInfo<'_>, r: &mut Recording<'_>) {
+        let own = self.own();
+        let res = EffectResources {
+            targets: info.targets,
+            temporal: None,
+            own: &own,
+            own_buffers: &[],
+        };
+        let pixels = every_pixel(info);
+        r.timed(PassId::IndirectNoisy, |rec, tr| {
+            self.noisy.record(rec, tr, info.frame, &res, &[], pixels)
+        });
+        r.timed(PassId::IndirectJbf, |rec, tr| {
+            self.filter.record(rec, tr, info.frame, &res, &[], pixels)
+        });
+    }
+
+    fn term<'a>(&'a self, _targets: &'a Targets, _parity: usize) -> (TermKind, &'a Image) {
+        (TermKind::VplIrradiance, &self.sized.filtered)
+    }
+
+    fn target(&self, target: Target, _parity: usize, _config: &RenderConfig) -> Option<&Image> {
+        match target {
+            Target::Indirect => Some(&self.sized.filtered),
+            Target::IndirectNoisy => Some(&self.sized.noisy),
+            _ => None,
+        }
+    }
+}
