@@ -22,6 +22,7 @@ layout(push_constant) uniform Ccipca {
     uint frames;    // frames since the bases restarted (capped at max_age): n of uniform weighting
     uint per_pixel_bases; // the first this many bases step by the pixel's own count (per-pixel weighting)
     uint sum_vec4s; // vec4 of sums this dispatch stores or adds up (at most SUM_VEC4S)
+    uint filter_radius; // basis filtering: the joint bilateral filter's radius [px]
 } ccipca;
 
 // Each shader defines the buffers it uses before including this (glslang keeps unused ones,

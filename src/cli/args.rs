@@ -3,9 +3,9 @@
 
 use crate::bench::warmup::Warmup;
 use crate::renderer::config::{
-    AaConfig, AaMode, Accumulate, AdaptiveSamples, AoConfig, AoEstimator, CcipcaWeighting, Effects,
-    Epsilon, HistoryResample, IndirectConfig, IndirectFilter, Refresh, SsdoConfig, SsdoForm,
-    TemporalConfig,
+    AaConfig, AaMode, Accumulate, AdaptiveSamples, AoConfig, AoEstimator, CcipcaProject,
+    CcipcaWeighting, Effects, Epsilon, HistoryResample, IndirectConfig, IndirectFilter, Refresh,
+    SsdoConfig, SsdoForm, TemporalConfig,
 };
 use crate::renderer::frame::Pcf;
 use crate::renderer::{RenderConfig, MAX_SIZE};
@@ -156,6 +156,14 @@ pub struct SceneArgs {
     /// restart in the others, `uniform` from the frames since the restart.
     #[arg(long, value_enum, default_value_t = CcipcaWeighting::PerPixel)]
     pub ccipca_weighting: CcipcaWeighting,
+    /// CCIPCA: project each frame on last frame's bases, `before` updating them from it (they
+    /// hold none of this frame's noise), or `after` (the article's order).
+    #[arg(long, value_enum, default_value_t = CcipcaProject::Before)]
+    pub ccipca_project: CcipcaProject,
+    /// CCIPCA basis filtering: radius in pixels (0-8) of the joint bilateral filter that
+    /// smooths every basis after the updates (0 = off).
+    #[arg(long, default_value_t = IndirectConfig::default().basis_filter, value_parser = clap::value_parser!(u32).range(0..=IndirectConfig::MAX_BASIS_FILTER as i64))]
+    pub ccipca_basis_filter: u32,
     /// CCIPCA memory: frames after which a pixel's update step stops shrinking (1..=1048576).
     #[arg(long, default_value_t = IndirectConfig::default().max_age, value_parser = clap::value_parser!(u32).range(1..=1 << 20))]
     pub ccipca_max_age: u32,
@@ -355,6 +363,8 @@ impl SceneArgs {
                 filter: self.indirect_filter,
                 bases: self.bases,
                 weighting: self.ccipca_weighting,
+                basis_filter: self.ccipca_basis_filter,
+                project: self.ccipca_project,
                 max_age: self.ccipca_max_age,
                 ..IndirectConfig::default()
             },

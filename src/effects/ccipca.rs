@@ -15,12 +15,13 @@ use crate::passes::decl::{Bind, Slot, Use};
 use crate::passes::{PassId, PassLayout};
 use crate::reference::ccipca::AMNESIC;
 use crate::renderer::config::{
-    CcipcaStages, CcipcaWeighting, IndirectConfig, IndirectFilter, RenderConfig,
+    CcipcaProject, CcipcaStages, CcipcaWeighting, IndirectConfig, IndirectFilter, RenderConfig,
 };
 use crate::renderer::effect::TemporalEffect;
 use crate::renderer::targets::{Target, Targets};
 use crate::shaders::{self, CcipcaPush, EffectPush, ShaderModuleInfo};
-use crate::vk::{Buffer, Context, DescriptorPool, Image, ImageDesc};
+use crate::vk::cmd::Recorder;
+use crate::vk::{Buffer, Context, DescriptorPool, Image, ImageDesc, Tracker};
 use ash::vk;
 use gpu_allocator::MemoryLocation;
 use std::sync::Arc;
@@ -91,6 +92,23 @@ const UPDATE: &[Bind] = &[
     Bind::new(9, TOTALS, Use::BufferRead),
 ];
 
+const BASIS_FILTER: &[Bind] = &[
+    Bind::new(0, Slot::GPosition, Use::Sampled),
+    Bind::new(1, Slot::GNormal, Use::Sampled),
+    Bind::new(6, BASES, Use::BufferWrite),
+    Bind::new(11, BASES_PREV, Use::BufferRead),
+];
+
+/// The projection on last frame's bases (--ccipca-project before).
+const PROJECT: &[Bind] = &[
+    Bind::new(5, NOISY, Use::Sampled),
+    Bind::new(6, BASES, Use::BufferRead),
+    Bind::new(7, RESIDUAL, Use::BufferReadWrite),
+    Bind::new(8, PARTIALS, Use::BufferWrite),
+    Bind::new(9, TOTALS, Use::BufferRead),
+    Bind::new(10, FILTERED, Use::StorageWrite),
+];
+
 const RECONSTRUCT: &[Bind] = &[
     Bind::new(5, NOISY, Use::Sampled),
     Bind::new(7, RESIDUAL, Use::BufferRead),
@@ -98,7 +116,7 @@ const RECONSTRUCT: &[Bind] = &[
 ];
 
 /// Every pass: its timing row, module and declaration. Each is specialized for k bases.
-const PASSES: [(PassId, &ShaderModuleInfo, &[Bind]); 7] = [
+const PASSES: [(PassId, &ShaderModuleInfo, &[Bind]); 9] = [
     (
         PassId::CcipcaReproject,
         &shaders::CCIPCA_REPROJECT_COMP,
@@ -120,11 +138,25 @@ const PASSES: [(PassId, &ShaderModuleInfo, &[Bind]); 7] = [
         NOISY_GATHER,
     ),
     (PassId::CcipcaUpdate, &shaders::CCIPCA_SUMS_COMP, SUMS),
-    (PassId::CcipcaUpdate, &shaders::CCIPCA_UPDATE_COMP, UPDATE),
+    (
+        PassId::CcipcaUpdate,
+        &shaders::CCIPCA_UPDATE_COMP_UPDATE,
+        UPDATE,
+    ),
+    (
+        PassId::CcipcaReconstruct,
+        &shaders::CCIPCA_UPDATE_COMP_PROJECT,
+        PROJECT,
+    ),
     (
         PassId::CcipcaReconstruct,
         &shaders::CCIPCA_RECONSTRUCT_COMP,
         RECONSTRUCT,
+    ),
+    (
+        PassId::CcipcaBasisFilter,
+        &shaders::CCIPCA_BASIS_FILTER_COMP,
+        BASIS_FILTER,
     ),
 ];
 
@@ -151,12 +183,16 @@ struct Passes {
     noisy: ComputePass,
     sums: ComputePass,
     update: ComputePass,
+    /// One basis of the projection on last frame's bases.
+    project: ComputePass,
     reconstruct: ComputePass,
+    /// Reads the other bases buffer, writes this one.
+    basis_filter: ComputePass,
 }
 
 impl Passes {
     fn new(ctx: &Arc<Context>, pool: &DescriptorPool, bases: u32) -> Result<Self> {
-        let [reproject, gram, orthogonalize, noisy, sums, update, reconstruct] =
+        let [reproject, gram, orthogonalize, noisy, sums, update, project, reconstruct, basis_filter] =
             PASSES.map(|(id, module, binds)| {
                 ComputePass::specialized(ctx, pool, id, (module, binds), &[bases])
             });
@@ -167,7 +203,9 @@ impl Passes {
             noisy: noisy?,
             sums: sums?,
             update: update?,
+            project: project?,
             reconstruct: reconstruct?,
+            basis_filter: basis_filter?,
         })
     }
 
@@ -181,11 +219,13 @@ impl Passes {
             noisy: i(&self.noisy)?,
             sums: i(&self.sums)?,
             update: i(&self.update)?,
+            project: i(&self.project)?,
             reconstruct: i(&self.reconstruct)?,
+            basis_filter: i(&self.basis_filter)?,
         })
     }
 
-    fn all(&self) -> [&ComputePass; 7] {
+    fn all(&self) -> [&ComputePass; 9] {
         [
             &self.reproject,
             &self.gram,
@@ -193,9 +233,16 @@ impl Passes {
             &self.noisy,
             &self.sums,
             &self.update,
+            &self.project,
             &self.reconstruct,
+            &self.basis_filter,
         ]
     }
+}
+
+/// Whether a frame ends by filtering the bases into the other buffer.
+fn filters_bases(c: &RenderConfig) -> bool {
+    c.indirect.basis_filter > 0 && c.indirect.ccipca_stages == CcipcaStages::All
 }
 
 struct Sized {
@@ -213,8 +260,11 @@ pub struct CcipcaEffect {
     /// `passes[i]` works on `bases[i]` (and warps from the other).
     passes: [Passes; 2],
     sized: Sized,
-    /// Which bases buffer holds the latest bases: flips on every frame that warps.
+    /// Which bases buffer holds the latest bases: flips on every frame that warps, and on
+    /// every frame that filters them.
     current: usize,
+    /// The bases buffer this frame's updates work on.
+    work: usize,
     /// The camera moved since last frame: this frame warps.
     warp: bool,
     push: CcipcaPush,
@@ -233,6 +283,7 @@ impl CcipcaEffect {
             passes: [first, second],
             sized: Self::create_sized(s.ctx, s.config)?,
             current: 0,
+            work: 0,
             warp: false,
             push: CcipcaPush::default(),
             age: 0,
@@ -319,7 +370,7 @@ impl Effect for CcipcaEffect {
 
     fn resize(&mut self, ctx: &Arc<Context>, config: &RenderConfig) -> Result<()> {
         self.sized = Self::create_sized(ctx, config)?;
-        (self.age, self.current) = (0, 0);
+        (self.age, self.current, self.work) = (0, 0, 0);
         Ok(())
     }
 
@@ -358,9 +409,16 @@ impl Effect for CcipcaEffect {
         let c = &info.config.indirect;
         let restart = !info.reusing();
         self.warp = !restart && info.camera_moved;
-        if self.warp {
-            self.current = 1 - self.current;
-        }
+        self.work = if self.warp {
+            1 - self.current
+        } else {
+            self.current
+        };
+        self.current = if filters_bases(info.config) {
+            1 - self.work
+        } else {
+            self.work
+        };
         self.age = if restart {
             1
         } else {
@@ -379,6 +437,7 @@ impl Effect for CcipcaEffect {
                 CcipcaWeighting::Uniform => 0,
             },
             sum_vec4s: UPDATE_SUM_VEC4S,
+            filter_radius: c.basis_filter,
         };
     }
 
@@ -391,14 +450,14 @@ impl Effect for CcipcaEffect {
     }
 
     fn record(&self, info: &FrameInfo<'_>, r: &mut Recording<'_>) {
-        let (own, buffers) = (self.own(), self.buffers(self.current));
+        let (own, buffers) = (self.own(), self.buffers(self.work));
         let res = EffectResources {
             targets: info.targets,
             temporal: None,
             own: &own,
             own_buffers: &buffers,
         };
-        let passes = &self.passes[self.current];
+        let passes = &self.passes[self.work];
         let pixels = every_pixel(info);
         let sums = |basis, sum_vec4s| {
             CcipcaPush {
@@ -432,22 +491,47 @@ impl Effect for CcipcaEffect {
                 .noisy
                 .record(rec, tr, info.frame, &res, &push(0), pixels)
         });
-        r.timed(PassId::CcipcaUpdate, |rec, tr| {
-            for basis in 0..info.config.indirect.bases {
+        let bases = info.config.indirect.bases;
+        // Each basis: its sums, then the pass that uses them.
+        let chain = |pass: &ComputePass, rec: &Recorder<'_>, tr: &mut Tracker| {
+            for basis in 0..bases {
                 let bytes = push(basis);
                 passes
                     .sums
                     .record(rec, tr, info.frame, &res, &bytes, Dispatch::Groups(1));
-                passes
-                    .update
-                    .record(rec, tr, info.frame, &res, &bytes, pixels);
+                pass.record(rec, tr, info.frame, &res, &bytes, pixels);
             }
+        };
+        let before = info.config.indirect.project == CcipcaProject::Before;
+        if before {
+            r.timed(PassId::CcipcaReconstruct, |rec, tr| {
+                chain(&passes.project, rec, tr)
+            });
+        }
+        r.timed(PassId::CcipcaUpdate, |rec, tr| {
+            chain(&passes.update, rec, tr)
         });
-        r.timed(PassId::CcipcaReconstruct, |rec, tr| {
-            passes
-                .reconstruct
-                .record(rec, tr, info.frame, &res, &push(0), pixels)
-        });
+        if !before {
+            r.timed(PassId::CcipcaReconstruct, |rec, tr| {
+                passes
+                    .reconstruct
+                    .record(rec, tr, info.frame, &res, &push(0), pixels)
+            });
+        }
+        if filters_bases(info.config) {
+            // Into the other buffer, which the next frame starts from.
+            let other = 1 - self.work;
+            let buffers = self.buffers(other);
+            let res = EffectResources {
+                own_buffers: &buffers,
+                ..res
+            };
+            r.timed(PassId::CcipcaBasisFilter, |rec, tr| {
+                self.passes[other]
+                    .basis_filter
+                    .record(rec, tr, info.frame, &res, &push(0), pixels)
+            });
+        }
     }
 
     fn buffer(&self, name: &str) -> Option<&Buffer> {

@@ -40,6 +40,8 @@ pub enum PassId {
     CcipcaUpdate,
     /// CCIPCA: the noisy image projected on the updated bases.
     CcipcaReconstruct,
+    /// CCIPCA: the bases smoothed for the next frame (--ccipca-basis-filter).
+    CcipcaBasisFilter,
     /// The joint bilateral filter of the noisy gather (--indirect-filter jbf11|jbf17).
     IndirectJbf,
     /// SSDO's pre-pass: samples per block from the normal and depth changes.
@@ -68,7 +70,7 @@ pub enum PassId {
 }
 
 impl PassId {
-    pub const ALL: [PassId; 30] = [
+    pub const ALL: [PassId; 31] = [
         PassId::LightView,
         PassId::GBuffer,
         PassId::Reproject,
@@ -87,6 +89,7 @@ impl PassId {
         PassId::CcipcaReproject,
         PassId::CcipcaUpdate,
         PassId::CcipcaReconstruct,
+        PassId::CcipcaBasisFilter,
         PassId::IndirectJbf,
         PassId::SsdoSamples,
         PassId::Ssdo,
@@ -121,6 +124,7 @@ impl PassId {
             PassId::CcipcaReproject => "ccipca_reproject",
             PassId::CcipcaUpdate => "ccipca_update",
             PassId::CcipcaReconstruct => "ccipca_reconstruct",
+            PassId::CcipcaBasisFilter => "ccipca_basis_filter",
             PassId::IndirectJbf => "indirect_jbf",
             PassId::SsdoSamples => "ssdo_samples",
             PassId::Ssdo => "ssdo",

@@ -59,8 +59,22 @@ impl Ccipca {
         self.ages.fill(0);
     }
 
+    /// The projection of `x` on the bases as they are, x - u_{k+1} (each basis taking its
+    /// projection out of the residual in turn; a zero basis takes nothing).
+    pub fn project(&self, x: &[f32]) -> Vec<f64> {
+        let mut u: Vec<f64> = x.iter().map(|&v| v as f64).collect();
+        for v in &self.bases {
+            let vv = dot(v, v);
+            if vv > 0.0 {
+                let coeff = dot(&u, v) / vv;
+                u.iter_mut().zip(v).for_each(|(uj, vj)| *uj -= coeff * vj);
+            }
+        }
+        x.iter().zip(&u).map(|(&xj, uj)| xj as f64 - uj).collect()
+    }
+
     /// Take sample `x` (`pixels * channels` values) and return its reconstruction from the
-    /// updated bases.
+    /// updated bases (the article's order; [`Ccipca::project`] before this is the other).
     pub fn update(&mut self, x: &[f32]) -> Vec<f64> {
         let c = self.channels;
         assert_eq!(x.len(), self.ages.len() * c, "sample size");

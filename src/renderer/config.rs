@@ -219,6 +219,12 @@ pub struct IndirectConfig {
     /// CCIPCA: whose sample count sets each pixel's step (Chen et al.'s per-pixel weighting,
     /// on the first basis or on all, or uniform).
     pub weighting: CcipcaWeighting,
+    /// CCIPCA: project each frame on the bases after updating them from it (the article) or
+    /// on last frame's.
+    pub project: CcipcaProject,
+    /// CCIPCA: radius [px] of the joint bilateral filter applied to every basis after the
+    /// updates (the article's basis filtering); 0 = off.
+    pub basis_filter: u32,
     /// CCIPCA: samples after which a pixel's step stops shrinking (see
     /// src/reference/ccipca.rs): the filter's memory, in frames.
     pub max_age: u32,
@@ -264,6 +270,18 @@ pub enum CcipcaWeighting {
     Uniform,
 }
 
+/// Which bases CCIPCA projects a frame on.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, clap::ValueEnum)]
+#[serde(rename_all = "lowercase")]
+pub enum CcipcaProject {
+    /// Last frame's (warped) bases, before the frame updates them: the frame's own noise is
+    /// not in the bases it is projected on. A pixel new to the view is dark for one frame.
+    #[default]
+    Before,
+    /// The bases updated from the frame (Chen et al.'s Figure 2: warp, update, project).
+    After,
+}
+
 /// The CCIPCA passes a frame records.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum CcipcaStages {
@@ -292,6 +310,8 @@ impl IndirectConfig {
 
     /// Most CCIPCA bases (the shaders' partial sums are sized for them).
     pub const MAX_BASES: u32 = 8;
+    /// Largest basis filter radius: its window is read once per basis and pixel.
+    pub const MAX_BASIS_FILTER: u32 = 8;
 
     /// Nearest step of each VPL's screen-space visibility march [px]: eq 8's log spacing
     /// starting one and a half pixels out, like SSAO's default, so the march leaves the
@@ -309,6 +329,8 @@ impl Default for IndirectConfig {
             filter: IndirectFilter::Accumulate,
             bases: 3,
             weighting: CcipcaWeighting::PerPixel,
+            project: CcipcaProject::Before,
+            basis_filter: 2,
             max_age: 256,
             ccipca_stages: CcipcaStages::All,
             input: IndirectInput::Gather,
@@ -742,6 +764,13 @@ impl RenderConfig {
                 "{} CCIPCA bases outside 1..={}",
                 self.indirect.bases,
                 IndirectConfig::MAX_BASES
+            ));
+        }
+        if self.indirect.basis_filter > IndirectConfig::MAX_BASIS_FILTER {
+            return bad(format!(
+                "CCIPCA basis filter radius {} px is more than {}",
+                self.indirect.basis_filter,
+                IndirectConfig::MAX_BASIS_FILTER
             ));
         }
         if !(1..=1 << 20).contains(&self.indirect.max_age) {
