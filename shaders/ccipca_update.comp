@@ -34,7 +34,8 @@ void main() {
         vec4 r = residual[p];
         vec3 u = r.rgb;
         uint b = basis_index(i, p);
-        vec3 v = bases[b].rgb;
+        vec4 stored = bases[b];
+        vec3 v = stored.rgb;
 #ifdef PROJECT
         // u . v / |v|^2 from the first two sums; a basis not yet started takes nothing out.
         u -= (t0.y > 0.0 ? t0.x / t0.y : 0.0) * v;
@@ -62,7 +63,8 @@ void main() {
         // u . v' / |v'|^2; a basis that is still zero takes nothing out.
         float coeff = vv_new > 0.0 ? uv_new / vv_new : 0.0;
         u -= coeff * v;
-        bases[b] = vec4(v, i == 0u ? r.a : 0.0);
+        // Basis 0's a: the pixel's sample count, kept.
+        bases[b] = vec4(v, stored.a);
         residual[p] = vec4(u, r.a);
         if (i + 1u < BASES) pixel_sums(u, bases[basis_index(i + 1u, p)].rgb, ccipca_step(r.a, i + 1u), s);
 #endif

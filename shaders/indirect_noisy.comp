@@ -4,7 +4,8 @@
 // R2 points turned by a per-pixel, per-frame random angle), no accumulation. `ccipca` also
 // starts each pixel's residual u_1 = x, counts its sample (or restarts it, zeroing the bases;
 // a pixel the warp found no history for has count 0 and bases 0 already), and stores the
-// group's sums for basis 0; `plain` only writes the image (the joint bilateral filters).
+// group's sums for basis 0, and gathers --ccipca-new-pixel-vpls VPLs where the warp found no
+// history (counted as that many regular samples, so the next ones take small steps); `plain` only writes the image (the joint bilateral filters).
 // @permutation ccipca: CCIPCA
 // @permutation plain: PLAIN
 #extension GL_GOOGLE_include_directive : require
@@ -47,11 +48,23 @@ void main() {
 #endif
     if (inside) {
         vec3 x = vec3(0.0);
+        // The sample's weight in the pixel's count: its VPLs over the regular gather's.
+        float weight = 1.0;
         vec4 g = texelFetch(g_position, pixel, 0);
         if (g.w != 0.0) {
             vec3 n = texelFetch(g_normal, pixel, 0).xyz;
             uint pattern = pixel_frame_pattern(pixel, frame.frame_index);
-            x = rsm_gather_sampled(g.xyz, n, pattern, 0u, frame.vpl_count, 0.0);
+            uint count = frame.vpl_count;
+#ifdef CCIPCA
+            // Adaptive sampling (Chen et al. Figure 6d): a pixel the warp found no history
+            // for (no samples, after a camera move) starts from more VPLs.
+            if (ccipca.restart == 0u && ccipca.new_pixel_vpls != 0u &&
+                bases[pixel_index(pixel)].a == 0.0) {
+                count = ccipca.new_pixel_vpls;
+                weight = float(count) / float(max(frame.vpl_count, 1u));
+            }
+#endif
+            x = rsm_gather_sampled(g.xyz, n, pattern, 0u, count, 0.0);
         }
         imageStore(noisy, pixel, vec4(x, 1.0));
 #ifdef CCIPCA
@@ -60,10 +73,15 @@ void main() {
             for (uint i = 1u; i < BASES; ++i) bases[basis_index(i, p)] = vec4(0.0);
         }
         vec4 v0 = ccipca.restart != 0u ? vec4(0.0) : bases[p];
-        float age = min(v0.a + 1.0, float(ccipca.max_age));
+        float age = min(v0.a + weight, float(ccipca.max_age));
         bases[p] = vec4(v0.rgb, age);
-        residual[p] = vec4(x, age);
-        pixel_sums(x, v0.rgb, ccipca_step(age, 0u), s);
+        // The count this frame's steps are taken from (residual.a): for a sample worth w
+        // regular ones, (n + l) / w - l, so that the step (1 + l) / (count + l) becomes
+        // w (1 + l) / (n + l), capped at 1 by ccipca_step: the running mean's step for a
+        // weighted sample (a new pixel's first sample replaces its zero bases whatever w is).
+        float step_count = (age + ccipca.amnesic) / weight - ccipca.amnesic;
+        residual[p] = vec4(x, step_count);
+        pixel_sums(x, v0.rgb, ccipca_step(step_count, 0u), s);
 #endif
     }
 #ifdef CCIPCA

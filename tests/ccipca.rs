@@ -340,12 +340,18 @@ fn region_error(a: &[f32], exact: &[f32], region: &[bool]) -> f64 {
 }
 
 /// Per-frame error in the region a camera step uncovers, after the step, for one weighting.
-fn disocclusion_errors(weighting: CcipcaWeighting, vpls: u32, frames: usize) -> Vec<f64> {
+fn disocclusion_errors(
+    weighting: CcipcaWeighting,
+    vpls: u32,
+    frames: usize,
+    new_pixel_vpls: u32,
+) -> Vec<f64> {
     let ctx = common::context();
     let size = 48;
     let mut c = config(size, vpls, 3);
     c.indirect.weighting = weighting;
     c.indirect.max_age = 128;
+    c.indirect.new_pixel_vpls = new_pixel_vpls;
     let mut r = Renderer::new(&ctx, cornell_box(), c).unwrap();
     let camera = r.scene.camera;
     for _ in 0..c.indirect.max_age {
@@ -367,7 +373,13 @@ fn disocclusion_errors(weighting: CcipcaWeighting, vpls: u32, frames: usize) -> 
         r.render_frame(&moved).unwrap();
         if frame == 0 {
             let (_, ages) = bases(&r.read_buffer(EffectId::Ccipca, "bases").unwrap(), 3);
-            region = ages.iter().map(|&a| a == 1.0).collect();
+            // Kept pixels have reached the memory; new ones have one sample's worth.
+            region = ages
+                .iter()
+                .map(|&a| a < c.indirect.max_age as f32)
+                .collect();
+            let n = region.iter().filter(|r| **r).count();
+            assert!((50..1000).contains(&n), "{n} pixels uncovered");
         }
         let out = rgb(&common::read(&mut r, Target::Indirect));
         errors.push(region_error(&out, &exact, &region));
@@ -391,9 +403,20 @@ fn per_pixel_weighting_converges_disocclusions_faster() {
         CcipcaWeighting::FirstBasis,
         vpls,
         frames,
+        0,
     ));
-    let uniform = smooth(disocclusion_errors(CcipcaWeighting::Uniform, vpls, frames));
-    let every = smooth(disocclusion_errors(CcipcaWeighting::PerPixel, vpls, frames));
+    let uniform = smooth(disocclusion_errors(
+        CcipcaWeighting::Uniform,
+        vpls,
+        frames,
+        0,
+    ));
+    let every = smooth(disocclusion_errors(
+        CcipcaWeighting::PerPixel,
+        vpls,
+        frames,
+        0,
+    ));
     let show = |e: &[f64]| format!("{:.3?}", &e[..8]);
     eprintln!(
         "frames to relative RMSE {threshold} in the uncovered region: first basis per pixel {}, \
@@ -535,4 +558,23 @@ fn ccipca_flickers_below_the_threshold_where_the_bilateral_filter_does_not() {
         "CCIPCA {ccipca}, JBF {jbf}"
     );
     common::assert_clean(&ctx);
+}
+
+/// Adaptive sampling (Chen et al. Figure 6d, `--ccipca-new-pixel-vpls`): pixels a camera step
+/// uncovers gather more VPLs on their first frame, so the region starts closer to the light it
+/// should show (first 4 frames after the step, 4 VPLs per pixel elsewhere).
+#[test]
+fn adaptive_sampling_lowers_the_error_of_new_pixels() {
+    let plain = disocclusion_errors(CcipcaWeighting::PerPixel, 4, 4, 0);
+    let adaptive = disocclusion_errors(CcipcaWeighting::PerPixel, 4, 4, 128);
+    let mean = |e: &[f64]| e.iter().sum::<f64>() / e.len() as f64;
+    eprintln!(
+        "uncovered region, frames 1-4: relative RMSE {:.3?} with 4 VPLs, {:.3?} with 128 for \
+         new pixels",
+        plain, adaptive
+    );
+    assert!(
+        mean(&adaptive) < 0.7 * mean(&plain),
+        "{adaptive:?} vs {plain:?}"
+    );
 }

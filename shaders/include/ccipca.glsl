@@ -2,8 +2,9 @@
 // the equations is src/reference/ccipca.rs). Every pass works on 16x16 pixel groups and sees
 // the same buffers: the k bases (v_i unnormalized, rgb per pixel, basis-major; basis 0's a
 // holds the pixel's sample count n_p, so that the warp carries it), each pixel's residual u
-// (rgb, and n_p again in a), the per-group partial sums and the image-wide sums. build.rs
-// generates the Rust struct `CcipcaPush` from the push block.
+// (rgb, and in a the count this frame's steps are taken from: n_p, or less for a sample
+// worth more than one, see indirect_noisy.comp), the per-group partial sums and the
+// image-wide sums. build.rs generates the Rust struct `CcipcaPush` from the push block.
 #ifndef CCIPCA_GLSL
 #define CCIPCA_GLSL
 
@@ -23,6 +24,7 @@ layout(push_constant) uniform Ccipca {
     uint per_pixel_bases; // the first this many bases step by the pixel's own count (per-pixel weighting)
     uint sum_vec4s; // vec4 of sums this dispatch stores or adds up (at most SUM_VEC4S)
     uint filter_radius; // basis filtering: the joint bilateral filter's radius [px]
+    uint new_pixel_vpls; // adaptive sampling: VPLs of a pixel new to the view (0 = as any other)
 } ccipca;
 
 // Each shader defines the buffers it uses before including this (glslang keeps unused ones,

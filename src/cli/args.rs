@@ -164,6 +164,10 @@ pub struct SceneArgs {
     /// smooths every basis after the updates (0 = off).
     #[arg(long, default_value_t = IndirectConfig::default().basis_filter, value_parser = clap::value_parser!(u32).range(0..=IndirectConfig::MAX_BASIS_FILTER as i64))]
     pub ccipca_basis_filter: u32,
+    /// CCIPCA adaptive sampling: VPLs gathered by a pixel new to the view after a camera move
+    /// (0 = as many as any other pixel, --vpls; at most 16384).
+    #[arg(long, default_value_t = 0, value_parser = clap::value_parser!(u32).range(0..=16384))]
+    pub ccipca_new_pixel_vpls: u32,
     /// CCIPCA memory: frames after which a pixel's update step stops shrinking (1..=1048576).
     #[arg(long, default_value_t = IndirectConfig::default().max_age, value_parser = clap::value_parser!(u32).range(1..=1 << 20))]
     pub ccipca_max_age: u32,
@@ -365,6 +369,7 @@ impl SceneArgs {
                 weighting: self.ccipca_weighting,
                 basis_filter: self.ccipca_basis_filter,
                 project: self.ccipca_project,
+                new_pixel_vpls: self.ccipca_new_pixel_vpls,
                 max_age: self.ccipca_max_age,
                 ..IndirectConfig::default()
             },

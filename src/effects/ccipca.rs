@@ -438,6 +438,7 @@ impl Effect for CcipcaEffect {
             },
             sum_vec4s: UPDATE_SUM_VEC4S,
             filter_radius: c.basis_filter,
+            new_pixel_vpls: c.new_pixel_vpls,
         };
     }
 

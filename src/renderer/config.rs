@@ -225,6 +225,9 @@ pub struct IndirectConfig {
     /// CCIPCA: radius [px] of the joint bilateral filter applied to every basis after the
     /// updates (the article's basis filtering); 0 = off.
     pub basis_filter: u32,
+    /// CCIPCA's adaptive sampling: VPLs gathered by a pixel new to the view after a camera
+    /// move (0 = `vpls`, as any other pixel).
+    pub new_pixel_vpls: u32,
     /// CCIPCA: samples after which a pixel's step stops shrinking (see
     /// src/reference/ccipca.rs): the filter's memory, in frames.
     pub max_age: u32,
@@ -331,6 +334,7 @@ impl Default for IndirectConfig {
             weighting: CcipcaWeighting::PerPixel,
             project: CcipcaProject::Before,
             basis_filter: 2,
+            new_pixel_vpls: 0,
             max_age: 256,
             ccipca_stages: CcipcaStages::All,
             input: IndirectInput::Gather,
@@ -764,6 +768,12 @@ impl RenderConfig {
                 "{} CCIPCA bases outside 1..={}",
                 self.indirect.bases,
                 IndirectConfig::MAX_BASES
+            ));
+        }
+        if self.indirect.new_pixel_vpls > 16384 {
+            return bad(format!(
+                "{} VPLs for a new pixel is more than 16384",
+                self.indirect.new_pixel_vpls
             ));
         }
         if self.indirect.basis_filter > IndirectConfig::MAX_BASIS_FILTER {
