@@ -477,3 +477,83 @@ fn explain_skips_prints_what_each_pass_follows() {
     assert!(row("ssao").contains("converges"));
     assert!(row("indirect_gather").contains("light"));
 }
+
+/// `bench --flicker`: every measured frame after the first carries its difference from the
+/// frame before, and the summary is their mean. Direct light with hard shadows on a static
+/// view is the same every frame (0 exactly); CCIPCA's indirect light from 4 new VPLs per
+/// pixel each frame is not.
+#[test]
+fn bench_flicker_measures_consecutive_frames() {
+    let run = |name: &str, extra: &[&str]| -> serde_json::Value {
+        let json = tmp(name);
+        let out = ssgi()
+            .args([
+                "--validation",
+                "bench",
+                "--scene",
+                "cornell-box",
+                "--size",
+                "32x32",
+            ])
+            .args([
+                "--frames",
+                "5",
+                "--warmup",
+                "1",
+                "--pcf",
+                "hard",
+                "--flicker",
+            ])
+            .args(extra)
+            .arg("--json")
+            .arg(&json)
+            .output()
+            .unwrap();
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert!(out.status.success(), "bench failed:\n{stderr}");
+        assert!(
+            !stderr.contains("vulkan: ["),
+            "validation messages:\n{stderr}"
+        );
+        let report: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+        schema::assert_follows("bench", &report);
+        report
+    };
+    let per_frame = |r: &serde_json::Value| -> Vec<f64> {
+        r["frames"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .filter(|f| f["warmup"] == false)
+            .filter_map(|f| f["flicker"]["final_msd"].as_f64())
+            .collect()
+    };
+    let direct = run(
+        "flicker-direct.json",
+        &["--effects", "direct", "--skip-unchanged", "off"],
+    );
+    assert_eq!(per_frame(&direct), [0.0; 4], "{}", direct["frames"]);
+    assert_eq!(direct["flicker"]["frames_below"], 4);
+    let ccipca = run(
+        "flicker-ccipca.json",
+        &[
+            "--effects",
+            "direct,indirect",
+            "--indirect-filter",
+            "ccipca",
+            "--vpls",
+            "4",
+        ],
+    );
+    let f = per_frame(&ccipca);
+    assert_eq!(f.len(), 4, "{}", ccipca["frames"]);
+    assert!(f.iter().all(|v| *v > 0.0), "{f:?}");
+    let mean = f.iter().sum::<f64>() / 4.0;
+    let reported = ccipca["flicker"]["final_msd_mean"].as_f64().unwrap();
+    assert!(
+        (reported - mean).abs() <= 1e-12 * mean.max(1.0),
+        "{reported} vs {mean}"
+    );
+    assert!(ccipca["flicker"]["indirect_msd_mean"].as_f64().unwrap() > 0.0);
+}

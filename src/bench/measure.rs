@@ -155,6 +155,56 @@ impl Flicker {
     }
 }
 
+/// Reads the output (and the indirect light) back after each frame and measures its
+/// difference from the frame before (waits for every frame: for error and flicker runs, not
+/// timing).
+#[derive(Default)]
+pub struct FlickerProbe {
+    previous: Option<(ImageData, Option<ImageData>)>,
+    /// (frame index, its measure) of every frame after the first.
+    pub measures: Vec<(u64, super::report::FrameFlicker)>,
+}
+
+impl FlickerProbe {
+    /// After `renderer` has submitted a frame.
+    pub fn after_frame(&mut self, renderer: &mut Renderer) -> Result<()> {
+        let index = renderer.frame_index().saturating_sub(1);
+        let output = renderer.read(Target::Output)?;
+        let indirect = if renderer.has_target(Target::Indirect) {
+            Some(renderer.read(Target::Indirect)?)
+        } else {
+            None
+        };
+        if let Some((o, ind)) = &self.previous {
+            let indirect_msd = match (&indirect, ind) {
+                (Some(a), Some(b)) => Some(msd(a, b)?),
+                _ => None,
+            };
+            self.measures.push((
+                index,
+                super::report::FrameFlicker {
+                    final_msd: msd(&output, o)?,
+                    indirect_msd,
+                },
+            ));
+        }
+        self.previous = Some((output, indirect));
+        Ok(())
+    }
+
+    /// The measures as the tables keep them.
+    pub fn into_flicker(self) -> Flicker {
+        Flicker {
+            final_msd: self.measures.iter().map(|(_, f)| f.final_msd).collect(),
+            indirect_msd: self
+                .measures
+                .iter()
+                .filter_map(|(_, f)| f.indirect_msd)
+                .collect(),
+        }
+    }
+}
+
 /// Mean squared difference of two images of one size over every pixel's RGB.
 pub fn msd(a: &ImageData, b: &ImageData) -> Result<f64> {
     let e = super::metrics::image_error(a, b, Channels::Rgb, None)?;
@@ -215,28 +265,16 @@ pub fn measure(
         None
     };
     let mut camera = first;
-    let mut flicker = spec.flicker.then(Flicker::default);
-    let mut previous: Option<(ImageData, Option<ImageData>)> = None;
+    let mut probe = spec.flicker.then(FlickerProbe::default);
     for i in 0..frames {
         camera = spec.path.camera_at(&base, &orbit, frame_time(i, spec.fps));
         timings.extend(sink.frame(&mut renderer, &camera)?);
-        if let Some(f) = &mut flicker {
-            let output = renderer.read(Target::Output)?;
-            let indirect = if renderer.config.effects.indirect {
-                Some(renderer.read(Target::Indirect)?)
-            } else {
-                None
-            };
-            if let Some((o, ind)) = &previous {
-                f.final_msd.push(msd(&output, o)?);
-                if let (Some(a), Some(b)) = (&indirect, ind) {
-                    f.indirect_msd.push(msd(a, b)?);
-                }
-            }
-            previous = Some((output, indirect));
+        if let Some(p) = &mut probe {
+            p.after_frame(&mut renderer)?;
         }
         bar.inc();
     }
+    let flicker = probe.map(FlickerProbe::into_flicker);
     timings.extend(renderer.finish()?);
     bar.finish();
     let last = read_frame(&mut renderer, camera)?;

@@ -53,7 +53,32 @@ pub struct FrameRow {
     /// Why each skipped pass was skipped.
     pub skip_reasons: BTreeMap<String, &'static str>,
     pub counters: BTreeMap<String, u64>,
+    /// With `bench --flicker`: this frame's difference from the frame before it.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub flicker: Option<FrameFlicker>,
 }
+
+/// Chen et al.'s flicker measure for one frame: the mean squared RGB difference from the
+/// previous frame, of the output (0..1 as encoded) and of the indirect light (linear).
+#[derive(Clone, Copy, Debug, Serialize)]
+pub struct FrameFlicker {
+    pub final_msd: f64,
+    pub indirect_msd: Option<f64>,
+}
+
+/// The flicker measure over the measured frames (`bench --flicker`).
+#[derive(Clone, Copy, Debug, Serialize)]
+pub struct FlickerSummary {
+    pub final_msd_mean: Option<f64>,
+    pub indirect_msd_mean: Option<f64>,
+    /// Chen et al.: flicker is barely notable below this.
+    pub threshold: f64,
+    /// Measured frames whose output difference is below the threshold.
+    pub frames_below: usize,
+}
+
+/// "The flickering becomes barely notable when the measured difference is less than 2.5e-5."
+pub const FLICKER_THRESHOLD: f64 = 2.5e-5;
 
 #[derive(Clone, Debug, Serialize)]
 pub struct Report {
@@ -71,6 +96,9 @@ pub struct Report {
     pub total: TotalRow,
     pub counter_means: BTreeMap<String, f64>,
     pub frames: Vec<FrameRow>,
+    /// With `bench --flicker`.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub flicker: Option<FlickerSummary>,
 }
 
 /// Each counter's mean over the measured frames that report it, and the derived mean SSDO
@@ -177,6 +205,7 @@ impl Report {
                     .iter()
                     .map(|(n, v)| (n.to_string(), *v))
                     .collect(),
+                flicker: None,
             })
             .collect();
         Report {
@@ -197,7 +226,34 @@ impl Report {
             },
             counter_means: counter_means(&measured),
             frames,
+            flicker: None,
         }
+    }
+
+    /// Add the flicker measure of frames (index, measure) to their rows and summarize it
+    /// over the measured (non-warmup) frames.
+    pub fn attach_flicker(&mut self, measures: &[(u64, FrameFlicker)]) {
+        for (index, f) in measures {
+            if let Some(row) = self.frames.iter_mut().find(|r| r.index == *index) {
+                row.flicker = Some(*f);
+            }
+        }
+        let measured: Vec<&FrameFlicker> = self
+            .frames
+            .iter()
+            .filter(|r| !r.warmup)
+            .filter_map(|r| r.flicker.as_ref())
+            .collect();
+        let mean = |v: Vec<f64>| (!v.is_empty()).then(|| v.iter().sum::<f64>() / v.len() as f64);
+        self.flicker = Some(FlickerSummary {
+            final_msd_mean: mean(measured.iter().map(|f| f.final_msd).collect()),
+            indirect_msd_mean: mean(measured.iter().filter_map(|f| f.indirect_msd).collect()),
+            threshold: FLICKER_THRESHOLD,
+            frames_below: measured
+                .iter()
+                .filter(|f| f.final_msd < FLICKER_THRESHOLD)
+                .count(),
+        });
     }
 
     /// The human-readable table.

@@ -492,6 +492,7 @@ mod tests {
             skipped: Vec::new(),
             skip_reasons: BTreeMap::new(),
             counters: BTreeMap::new(),
+            flicker: None,
         };
         assert_eq!(group_ms(&frame, &[PassId::Ssao, PassId::Blur]), Some(2.5));
         assert_eq!(group_ms(&frame, &[]), Some(3.5));

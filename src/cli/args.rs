@@ -572,6 +572,12 @@ pub struct BenchArgs {
     /// follows) before running.
     #[arg(long)]
     pub explain_skips: bool,
+    /// Read the output (and indirect light) back after every measured frame and report the
+    /// flicker measure: each frame's mean squared RGB difference from the one before, in
+    /// `frames[]` and summarized (Chen et al.: barely notable below 2.5e-5). Waits for every
+    /// frame, so frames no longer overlap.
+    #[arg(long)]
+    pub flicker: bool,
 }
 
 #[derive(Args, Debug)]

@@ -22,7 +22,9 @@ pub fn run(
     fps: f32,
     progress: bool,
 ) -> Result<Vec<FrameTiming>> {
-    run_from(renderer, sink, path, 0, frames, fps, progress)
+    run_from(renderer, sink, path, 0..frames, fps, progress, &mut |_| {
+        Ok(())
+    })
 }
 
 /// As [`run`], starting at frame `first` of the path (after a warmup of `first` frames).
@@ -30,19 +32,20 @@ pub fn run_from(
     renderer: &mut Renderer,
     sink: &mut dyn FrameSink,
     path: &CameraPath,
-    first: u32,
-    frames: u32,
+    frames: std::ops::Range<u32>,
     fps: f32,
     progress: bool,
+    after_frame: &mut dyn FnMut(&mut Renderer) -> Result<()>,
 ) -> Result<Vec<FrameTiming>> {
     let base = renderer.scene.camera;
     let orbit = renderer.scene.orbit();
-    let mut timings = Vec::with_capacity(frames as usize);
-    let mut bar = Progress::new(frames as u64, "rendering", progress);
+    let mut timings = Vec::with_capacity(frames.len());
+    let mut bar = Progress::new(frames.len() as u64, "rendering", progress);
     sink.begin(&renderer.scene.name);
-    for i in first..first.saturating_add(frames) {
+    for i in frames {
         let camera = path.camera_at(&base, &orbit, frame_time(i, fps));
         timings.extend(sink.frame(renderer, &camera)?);
+        after_frame(renderer)?;
         bar.inc();
     }
     timings.extend(renderer.finish()?);

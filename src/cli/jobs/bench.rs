@@ -3,7 +3,7 @@
 
 use super::common::{check_frames, context_options, finish, load};
 use crate::bench::compare::Comparison;
-use crate::bench::measure::{report_config, RunLength};
+use crate::bench::measure::{report_config, FlickerProbe, RunLength};
 use crate::bench::warmup::{self, Outcome, Warmup};
 use crate::bench::Report;
 use crate::cli::args::{BenchArgs, Cli};
@@ -38,17 +38,39 @@ fn measure(
 ) -> Result<Report> {
     let fps = args.scene.fps;
     let (mut timings, outcome) = warmup::run(renderer, sink, path, fps, args.warmup, true)?;
+    let mut probe = FlickerProbe::default();
     timings.extend(headless::run_from(
         renderer,
         sink,
         path,
-        outcome.frames,
-        args.frames,
+        outcome.frames..outcome.frames.saturating_add(args.frames),
         fps,
         true,
+        &mut |r| {
+            if args.flicker {
+                probe.after_frame(r)?;
+            }
+            Ok(())
+        },
     )?);
     eprintln!("{}", outcome.describe());
-    Ok(report(args, ctx, renderer, sink, path, &timings, outcome))
+    let mut report = report(args, ctx, renderer, sink, path, &timings, outcome);
+    if args.flicker {
+        report.attach_flicker(&probe.measures);
+        if let Some(f) = &report.flicker {
+            eprintln!(
+                "flicker (mean squared difference of consecutive frames): output {}, indirect \
+                 light {}; {} of {} measured frames below {:.1e}",
+                f.final_msd_mean.map_or("-".into(), |v| format!("{v:.3e}")),
+                f.indirect_msd_mean
+                    .map_or("-".into(), |v| format!("{v:.3e}")),
+                f.frames_below,
+                report.measured_frames,
+                f.threshold
+            );
+        }
+    }
+    Ok(report)
 }
 
 /// The report of a run whose first `warmup.frames` frames were warmup.
@@ -130,10 +152,10 @@ fn bench_compare_reuse(
                 &mut run.renderer,
                 sink,
                 &path,
-                run.warmup.frames,
-                behind,
+                run.warmup.frames..first,
                 fps,
                 false,
+                &mut |_| Ok(()),
             )?;
             run.timings.extend(more);
             run.warmup.frames = first;
@@ -196,6 +218,11 @@ pub fn bench(cli: &Cli, args: &BenchArgs) -> Result<()> {
     }
     if args.frames == 0 {
         return Err(Error::Config("--frames must be at least 1".into()));
+    }
+    if args.flicker && args.compare_reuse {
+        return Err(Error::Config(
+            "--flicker measures one run's frames: leave out --compare-reuse".into(),
+        ));
     }
     let (scene, path) = load(cli, &args.scene)?;
     let window = args.window.then(|| format!("ssgi bench: {}", scene.name));
