@@ -551,6 +551,14 @@ fn chang_flicker_end_to_end() {
     };
     assert!(jbf(64.0) < jbf(1.0), "{} {}", jbf(64.0), jbf(1.0));
     assert!(out.join("chang-flicker.csv").is_file());
+    for plot in [
+        "flicker-static",
+        "error-static",
+        "flicker-moving",
+        "error-moving",
+    ] {
+        assert_eq!(png_size(&out.join(format!("{plot}.png"))), (800, 500));
+    }
 }
 
 /// `ssgi table chang-1` at 48x48 under validation: three rows (3, 5, 7 bases), every CCIPCA

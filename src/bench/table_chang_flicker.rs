@@ -4,13 +4,15 @@
 //! and along a slow orbit. Per row: the flicker measure (mean squared difference of
 //! consecutive output frames, and of the indirect light), whether it is under the article's
 //! "barely notable" 2.5e-5, and the error of the last frame against the exact gather (every
-//! RSM texel). Writes report.json, report.md and chang-flicker.csv.
+//! RSM texel). Writes report.json, report.md, chang-flicker.csv and, per motion, PNG plots of
+//! flicker and error against VPLs per pixel.
 //!
 //! JSON, version 1 (later versions only add fields): see README, "Flicker table".
 
 use super::measure::{held_at, last_camera, measure, Flicker, RunSpec};
 use super::metrics::{image_error, Channels};
 use super::output::write_text;
+use super::scatter::{write_scatter_plot, ScatterPlot, ScatterSeries};
 use super::table_run::TableRun;
 use super::TableOptions;
 use crate::error::{Error, Result};
@@ -263,6 +265,51 @@ pub fn run(
     for (path, text) in files {
         write_text(&path, &text)?;
         written.push(path);
+    }
+    written.extend(plots(&report, out)?);
+    Ok(written)
+}
+
+/// Flicker and error against VPLs per pixel, one plot each per motion, log y.
+fn plots(r: &TableReport, out: &Path) -> Result<Vec<PathBuf>> {
+    type Measure = fn(&RowResult) -> Option<f64>;
+    let measures: [(&str, &str, Measure); 2] = [
+        ("flicker", "output MSD between frames", |row| row.final_msd),
+        ("error", "indirect light, relative RMSE", |row| {
+            row.indirect_relative_rmse
+        }),
+    ];
+    let mut written = Vec::new();
+    for motion in ["static", "moving"] {
+        for (name, y_label, value) in measures {
+            let series = FILTERS
+                .iter()
+                .map(|&f| ScatterSeries {
+                    name: filter_name(f),
+                    points: r
+                        .rows
+                        .iter()
+                        .filter(|row| row.motion == motion && row.filter == f)
+                        .filter_map(|row| value(row).map(|v| (row.vpls as f64, v)))
+                        .collect(),
+                })
+                .collect();
+            let title = format!("{name}, {motion} (Cornell box {}x{})", r.width, r.height);
+            let path = out.join(format!("{name}-{motion}.png"));
+            write_scatter_plot(
+                &ScatterPlot {
+                    title: &title,
+                    x_label: "VPLs per pixel",
+                    y_label,
+                    series,
+                    front: Vec::new(),
+                    log_y: true,
+                    size: (800, 500),
+                },
+                &path,
+            )?;
+            written.push(path);
+        }
     }
     Ok(written)
 }
