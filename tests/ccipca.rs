@@ -578,3 +578,41 @@ fn adaptive_sampling_lowers_the_error_of_new_pixels() {
         "{adaptive:?} vs {plain:?}"
     );
 }
+
+/// Frame skipping (`--skip-unchanged`) waits for CCIPCA to settle: with unchanged inputs it
+/// takes a sample every frame until its memory (`--ccipca-max-age`) is full, then the frames
+/// record nothing and the output stays the last one.
+#[test]
+fn skipping_waits_until_the_memory_is_full() {
+    let ctx = common::context();
+    let mut c = config(32, 4, 3);
+    c.indirect.max_age = 6;
+    c.skip_unchanged = true;
+    let mut r = Renderer::new(&ctx, cornell_box(), c).unwrap();
+    let camera = r.scene.camera;
+    let mut timings = Vec::new();
+    let mut outputs = Vec::new();
+    for _ in 0..14 {
+        timings.extend(r.render_frame(&camera).unwrap());
+        outputs.push(common::read(&mut r, Target::Indirect).bytes);
+    }
+    timings.extend(r.finish().unwrap());
+    let gathered: Vec<u64> = timings
+        .iter()
+        .filter(|t| {
+            t.passes
+                .iter()
+                .any(|(p, ms)| *p == "indirect_noisy" && ms.is_some())
+        })
+        .map(|t| t.frame)
+        .collect();
+    eprintln!("frames that gathered: {gathered:?}");
+    // Six samples, then two more frames for both halves of the ping-ponged G-buffer.
+    assert!(
+        gathered.contains(&5) && !gathered.contains(&13),
+        "{gathered:?}"
+    );
+    assert!(gathered.len() < 12, "{gathered:?}");
+    assert_eq!(outputs[12], outputs[13], "a skipped frame keeps the output");
+    common::assert_clean(&ctx);
+}
