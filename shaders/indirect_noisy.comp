@@ -40,32 +40,59 @@ uint pixel_frame_pattern(ivec2 pixel, uint frame_index) {
     return (word >> 22u) ^ word;
 }
 
+// --noisy-half-res: the 2x2 block's pixel that gathers this frame (each pixel in turn, over 4
+// frames); the others take its sample where they lie on its surface (the upsampling's test:
+// normals within 25 degrees, tangent-plane distance within 2 pixel footprints) and gather
+// themselves elsewhere.
+ivec2 block_gatherer(ivec2 pixel) {
+    const ivec2 ORDER[4] = ivec2[](ivec2(0, 0), ivec2(1, 1), ivec2(1, 0), ivec2(0, 1));
+    return (pixel & ~1) + ORDER[frame.frame_index % 4u];
+}
+
+// This workgroup's gatherers' samples, one per 2x2 block of the 16x16 group.
+shared vec3 block_sample[8][8];
+
 void main() {
     ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
     bool inside = !outside_frame(pixel);
 #ifdef CCIPCA
     vec4 s[SUM_VEC4S] = NO_SUMS;
 #endif
-    if (inside) {
-        vec3 x = vec3(0.0);
-        // The sample's weight in the pixel's count: its VPLs over the regular gather's.
-        float weight = 1.0;
-        vec4 g = texelFetch(g_position, pixel, 0);
-        if (g.w != 0.0) {
-            vec3 n = texelFetch(g_normal, pixel, 0).xyz;
-            uint pattern = pixel_frame_pattern(pixel, frame.frame_index);
-            uint count = frame.vpl_count;
+    vec3 x = vec3(0.0);
+    // The sample's weight in the pixel's count: its VPLs over the regular gather's.
+    float weight = 1.0;
+    vec4 g = inside ? texelFetch(g_position, pixel, 0) : vec4(0.0);
+    vec3 n = inside ? texelFetch(g_normal, pixel, 0).xyz : vec3(0.0);
+    bool half_res = frame.noisy_half_res != 0u;
+    ivec2 gatherer = block_gatherer(pixel);
+    bool own = g.w != 0.0 && (!half_res || pixel == gatherer);
+    uint count = frame.vpl_count;
 #ifdef CCIPCA
-            // Adaptive sampling (Chen et al. Figure 6d): a pixel the warp found no history
-            // for (no samples, after a camera move) starts from more VPLs.
-            if (ccipca.restart == 0u && ccipca.new_pixel_vpls != 0u &&
-                bases[pixel_index(pixel)].a == 0.0) {
-                count = ccipca.new_pixel_vpls;
-                weight = float(count) / float(max(frame.vpl_count, 1u));
-            }
+    // Adaptive sampling (Chen et al. Figure 6d): a pixel the warp found no history for (no
+    // samples, after a camera move) starts from more VPLs.
+    if (inside && ccipca.restart == 0u && ccipca.new_pixel_vpls != 0u &&
+        bases[pixel_index(pixel)].a == 0.0) {
+        count = ccipca.new_pixel_vpls;
+        weight = float(count) / float(max(frame.vpl_count, 1u));
+    }
 #endif
-            x = rsm_gather_sampled(g.xyz, n, pattern, 0u, count, 0.0);
+    if (own) {
+        x = rsm_gather_sampled(g.xyz, n, pixel_frame_pattern(pixel, frame.frame_index), 0u, count, 0.0);
+    }
+    if (half_res) {
+        uvec2 b = gl_LocalInvocationID.xy / 2u;
+        if (pixel == gatherer) block_sample[b.x][b.y] = x;
+        barrier();
+        if (g.w != 0.0 && pixel != gatherer) {
+            vec4 gq = outside_frame(gatherer) ? vec4(0.0) : texelFetch(g_position, gatherer, 0);
+            vec3 nq = gq.w != 0.0 ? texelFetch(g_normal, gatherer, 0).xyz : vec3(0.0);
+            float footprint = 2.0 * distance(g.xyz, frame.camera_pos) * frame.tan_half_fov / float(frame.size.y);
+            bool same = gq.w != 0.0 && dot(nq, n) >= 0.9 && abs(dot(n, gq.xyz - g.xyz)) <= 2.0 * footprint;
+            x = same ? block_sample[b.x][b.y]
+                     : rsm_gather_sampled(g.xyz, n, pixel_frame_pattern(pixel, frame.frame_index), 0u, count, 0.0);
         }
+    }
+    if (inside) {
         imageStore(noisy, pixel, vec4(x, 1.0));
 #ifdef CCIPCA
         uint p = pixel_index(pixel);

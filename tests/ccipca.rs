@@ -616,3 +616,61 @@ fn skipping_waits_until_the_memory_is_full() {
     assert_eq!(outputs[12], outputs[13], "a skipped frame keeps the output");
     common::assert_clean(&ctx);
 }
+
+/// `--noisy-half-res`: in each 2x2 block one pixel gathers (each in turn), and the others on
+/// its surface carry its sample: exactly equal values; over 64 frames the mean still
+/// approaches the full gather (every pixel gathers itself every fourth frame).
+#[test]
+fn half_resolution_input_shares_one_gather_per_block() {
+    let ctx = common::context();
+    let size = 48;
+    let mut c = config(size, 4, 3);
+    c.indirect.noisy_half_res = true;
+    let mut r = Renderer::new(&ctx, cornell_box(), c).unwrap();
+    let camera = r.scene.camera;
+    let frames = 64;
+    let mut sum = vec![0.0f32; (size * size * 3) as usize];
+    let mut shared_fraction = 0.0;
+    for frame in 0..frames {
+        r.render_frame(&camera).unwrap();
+        let noisy = common::read(&mut r, Target::IndirectNoisy);
+        rgb(&noisy).iter().zip(&mut sum).for_each(|(x, s)| *s += x);
+        if frame == 0 {
+            // Frame 0's gatherer: the top-left pixel of each block.
+            let (mut equal, mut others) = (0, 0);
+            for y in 0..size {
+                for x in 0..size {
+                    if x % 2 == 0 && y % 2 == 0 {
+                        continue;
+                    }
+                    let g = noisy.texel(x & !1, y & !1);
+                    if noisy.texel(x, y)[..3] == g[..3] {
+                        equal += 1;
+                    }
+                    others += 1;
+                }
+            }
+            shared_fraction = equal as f64 / others as f64;
+        }
+    }
+    let mask = common::read(&mut r, Target::GPosition);
+    r.finish().unwrap();
+    let mut full = config(size, 0, 3);
+    full.indirect.filter = IndirectFilter::Accumulate;
+    full.indirect.half_res = false;
+    full.temporal.reuse = false;
+    let mut reference = Renderer::new(&ctx, cornell_box(), full).unwrap();
+    reference.render_frame(&camera).unwrap();
+    let exact = rgb(&common::read(&mut reference, Target::Indirect));
+    reference.finish().unwrap();
+    let mean: Vec<f32> = sum.iter().map(|s| s / frames as f32).collect();
+    let error = relative_rmse(&mean, &exact, &mask);
+    eprintln!(
+        "frame 0: {:.1}% of the non-gathering pixels carry their block's sample; mean of {frames} \
+         frames: relative RMSE {error:.4}",
+        100.0 * shared_fraction
+    );
+    assert!(shared_fraction > 0.8, "{shared_fraction}");
+    assert!(error < 0.35, "{error}");
+    common::assert_clean(&ctx);
+}

@@ -71,6 +71,7 @@ layout(set = 0, binding = 0, std430) readonly buffer Frame {
     float aa_sigma_z;          // SRAA eq 1: scale on the relative eye-distance difference
     float aa_sigma_n;          // SRAA eq 1: scale on 1 - sat(n_j . n_i)
     float aa_sigma_shadow;     // SRAA: scale on the shadow tests' difference (0 = no term)
+    uint noisy_half_res;       // the noisy gather (CCIPCA, joint bilateral): one pixel per 2x2 block gathers (0/1)
 } frame;
 
 // Smooth spot cone: 1 inside the inner angle, 0 outside the outer, Hermite in between. As on

@@ -148,6 +148,10 @@ pub struct SceneArgs {
     /// incrementally estimated principal components).
     #[arg(long, value_enum, default_value_t = IndirectFilter::Accumulate)]
     pub indirect_filter: IndirectFilter,
+    /// The noisy gather of `ccipca` and `jbf*` at half resolution: one pixel of each 2x2 block
+    /// gathers (each in turn), the others take its sample where they lie on its surface.
+    #[arg(long, default_value = "off", value_parser = parse_on_off, action = clap::ArgAction::Set)]
+    pub noisy_half_res: bool,
     /// CCIPCA basis images (1..=8; Chen et al. use 3, 5 and 7).
     #[arg(long, default_value_t = IndirectConfig::default().bases, value_parser = clap::value_parser!(u32).range(1..=IndirectConfig::MAX_BASES as i64))]
     pub bases: u32,
@@ -365,6 +369,7 @@ impl SceneArgs {
                 half_res: self.half_res,
                 interleave: self.interleave,
                 filter: self.indirect_filter,
+                noisy_half_res: self.noisy_half_res,
                 bases: self.bases,
                 weighting: self.ccipca_weighting,
                 basis_filter: self.ccipca_basis_filter,

@@ -214,6 +214,10 @@ pub struct IndirectConfig {
     pub interleave: u32,
     /// What becomes of the noisy per-frame gather: the thesis's accumulation, or CCIPCA.
     pub filter: IndirectFilter,
+    /// The noisy gather of CCIPCA and the joint bilateral filters at half resolution: one
+    /// pixel of each 2x2 block gathers (each in turn), the others take its sample where they
+    /// lie on its surface.
+    pub noisy_half_res: bool,
     /// CCIPCA: basis images (Chen et al.'s Table 1: 3, 5, 7).
     pub bases: u32,
     /// CCIPCA: whose sample count sets each pixel's step (Chen et al.'s per-pixel weighting,
@@ -330,6 +334,7 @@ impl Default for IndirectConfig {
             half_res: true,
             interleave: 1,
             filter: IndirectFilter::Accumulate,
+            noisy_half_res: false,
             bases: 3,
             weighting: CcipcaWeighting::PerPixel,
             project: CcipcaProject::Before,

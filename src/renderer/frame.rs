@@ -56,6 +56,7 @@ pub fn frame_block(config: &RenderConfig, f: &FrameInputs<'_>) -> FrameBlock {
         aa_sigma_z: config.aa.sigma_z,
         aa_sigma_n: config.aa.sigma_n,
         aa_sigma_shadow: config.aa.shadow_scale(),
+        noisy_half_res: config.indirect.noisy_half_res as u32,
         tan_half_fov: (0.5 * f.camera.vfov_deg).to_radians().tan(),
         light_pos: light.position.to_array(),
         light_cos_outer: light.outer_deg.to_radians().cos(),
