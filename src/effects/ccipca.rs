@@ -1,9 +1,11 @@
 //! Indirect light filtered by CCIPCA (Chen, Lei & Chang 2012, `--indirect-filter ccipca`): a
 //! new noisy RSM gather of `--vpls` VPLs per pixel every frame, the k bases updated from it
 //! one after another (each update's image-wide sums reduced on the GPU, so no frame waits for
-//! the CPU), and the noisy image projected on them. When the camera moves, the bases are first
-//! warped along the reprojection and orthogonalized (section 3.4). The equations and the CPU
-//! model the passes are checked against are in src/reference/ccipca.rs.
+//! the CPU), and the noisy image projected on the bases: by default on last frame's, before
+//! the updates (`--ccipca-project`), then the bases smoothed for the next frame
+//! (`--ccipca-basis-filter`). When the camera moves, the bases are first warped along the
+//! reprojection and orthogonalized (section 3.4). The equations and the CPU model the passes
+//! are checked against are in src/reference/ccipca.rs.
 
 use super::effect::{
     every_pixel, Effect, EffectId, FrameInfo, Recording, Registration, Setup, TermKind,
