@@ -11,8 +11,7 @@
 //! JSON, version 1 (later versions only add fields): see README, "CCIPCA table".
 
 use super::measure::{measure, RunSpec};
-use super::output::write_text;
-use super::table_run::TableRun;
+use super::table_run::{fixed, pass_ms, warmup_frames, write_reports, TableRun};
 use super::{Report, TableOptions};
 use crate::error::{Error, Result};
 use crate::frontend::sink::FrameSink;
@@ -129,14 +128,6 @@ pub struct TableReport {
     pub rows: Vec<RowResult>,
 }
 
-fn pass_ms(report: &Report, pass: PassId) -> Option<f64> {
-    report
-        .passes
-        .iter()
-        .find(|p| p.name == pass.name())
-        .and_then(|p| p.median_ms)
-}
-
 fn config(opts: &TableOptions, size: (u32, u32), bases: u32) -> RenderConfig {
     RenderConfig {
         width: size.0,
@@ -154,13 +145,6 @@ fn config(opts: &TableOptions, size: (u32, u32), bases: u32) -> RenderConfig {
             ..IndirectConfig::default()
         },
         ..RenderConfig::default()
-    }
-}
-
-fn warmup_frames(opts: &TableOptions) -> u32 {
-    match opts.warmup {
-        super::warmup::Warmup::Frames(n) => n,
-        super::warmup::Warmup::Converged => 0,
     }
 }
 
@@ -258,23 +242,7 @@ pub fn run(
         notes,
         rows,
     };
-    let json = serde_json::to_string_pretty(&report)
-        .map_err(|e| Error::Config(format!("JSON encoding failed: {e}")))?;
-    let files = [
-        (out.join("report.json"), json),
-        (out.join("report.md"), markdown(&report)),
-        (out.join(format!("{TABLE}.csv")), csv(&report)),
-    ];
-    let mut written = Vec::new();
-    for (path, text) in files {
-        write_text(&path, &text)?;
-        written.push(path);
-    }
-    Ok(written)
-}
-
-fn opt(v: Option<f64>, digits: usize) -> String {
-    v.map_or("-".into(), |v| format!("{v:.digits$}"))
+    write_reports(out, TABLE, &report, markdown(&report), csv(&report))
 }
 
 fn summary_line(r: &RowResult) -> String {
@@ -283,10 +251,10 @@ fn summary_line(r: &RowResult) -> String {
         r.width,
         r.height,
         r.bases,
-        opt(r.reproject_ms, 2),
-        opt(r.ipca_ms, 2),
-        opt(r.reconstruct_ms, 2),
-        opt(r.total_ms, 2)
+        fixed(r.reproject_ms, 2),
+        fixed(r.ipca_ms, 2),
+        fixed(r.reconstruct_ms, 2),
+        fixed(r.total_ms, 2)
     )
 }
 
@@ -321,12 +289,12 @@ fn markdown(r: &TableReport) -> String {
             row.width,
             row.height,
             row.bases,
-            opt(row.reproject_ms, 2),
-            opt(row.ipca_ms, 2),
-            opt(row.reconstruct_ms, 2),
-            opt(row.total_ms, 2),
+            fixed(row.reproject_ms, 2),
+            fixed(row.ipca_ms, 2),
+            fixed(row.reconstruct_ms, 2),
+            fixed(row.total_ms, 2),
             paper,
-            opt(row.input_ms, 2),
+            fixed(row.input_ms, 2),
         );
     }
     md += "\n## Notes\n\n";
@@ -348,15 +316,15 @@ fn csv(r: &TableReport) -> String {
             row.width,
             row.height,
             row.bases,
-            opt(row.reproject_ms, 4),
-            opt(row.ipca_ms, 4),
-            opt(row.reconstruct_ms, 4),
-            opt(row.total_ms, 4),
-            opt(row.input_ms, 4),
-            opt(p(|p| p.reproject_ms), 2),
-            opt(p(|p| p.ipca_ms), 2),
-            opt(p(|p| p.reconstruct_ms), 2),
-            opt(p(|p| p.total_ms), 2),
+            fixed(row.reproject_ms, 4),
+            fixed(row.ipca_ms, 4),
+            fixed(row.reconstruct_ms, 4),
+            fixed(row.total_ms, 4),
+            fixed(row.input_ms, 4),
+            fixed(p(|p| p.reproject_ms), 2),
+            fixed(p(|p| p.ipca_ms), 2),
+            fixed(p(|p| p.reconstruct_ms), 2),
+            fixed(p(|p| p.total_ms), 2),
         );
     }
     out

@@ -11,9 +11,8 @@
 
 use super::measure::{held_at, last_camera, measure, Flicker, RunSpec};
 use super::metrics::{image_error, Channels};
-use super::output::write_text;
 use super::scatter::{write_scatter_plot, ScatterPlot, ScatterSeries};
-use super::table_run::TableRun;
+use super::table_run::{fixed, warmup_frames, write_reports, TableRun};
 use super::TableOptions;
 use crate::error::{Error, Result};
 use crate::frontend::sink::FrameSink;
@@ -127,13 +126,6 @@ fn rms(image: &ImageData, mask: &[bool]) -> Result<Option<f64>> {
         ..image.clone()
     };
     Ok(image_error(image, &zero, Channels::Rgb, Some(mask))?.rmse)
-}
-
-fn warmup_frames(opts: &TableOptions) -> u32 {
-    match opts.warmup {
-        super::warmup::Warmup::Frames(n) => n,
-        super::warmup::Warmup::Converged => 0,
-    }
 }
 
 pub fn run(
@@ -254,18 +246,7 @@ pub fn run(
         notes,
         rows,
     };
-    let json = serde_json::to_string_pretty(&report)
-        .map_err(|e| Error::Config(format!("JSON encoding failed: {e}")))?;
-    let files = [
-        (out.join("report.json"), json),
-        (out.join("report.md"), markdown(&report)),
-        (out.join(format!("{TABLE}.csv")), csv(&report)),
-    ];
-    let mut written = Vec::new();
-    for (path, text) in files {
-        write_text(&path, &text)?;
-        written.push(path);
-    }
+    let mut written = write_reports(out, TABLE, &report, markdown(&report), csv(&report))?;
     written.extend(plots(&report, out)?);
     Ok(written)
 }
@@ -325,10 +306,6 @@ pub fn filter_name(f: IndirectFilter) -> &'static str {
 
 fn sci(v: Option<f64>) -> String {
     v.map_or("-".into(), |v| format!("{v:.3e}"))
-}
-
-fn fixed(v: Option<f64>, digits: usize) -> String {
-    v.map_or("-".into(), |v| format!("{v:.digits$}"))
 }
 
 fn summary_line(r: &RowResult) -> String {

@@ -40,3 +40,48 @@ impl TableRun {
         }
     }
 }
+
+/// Median ms of `pass` in `report` (`None` when it never ran).
+pub fn pass_ms(report: &super::Report, pass: crate::passes::PassId) -> Option<f64> {
+    report
+        .passes
+        .iter()
+        .find(|p| p.name == pass.name())
+        .and_then(|p| p.median_ms)
+}
+
+/// A number with `digits` decimals, or `-`.
+pub fn fixed(v: Option<f64>, digits: usize) -> String {
+    v.map_or("-".into(), |v| format!("{v:.digits$}"))
+}
+
+/// Warmup frames of a table whose rows take `--warmup` as a count (`converged`: none).
+pub fn warmup_frames(opts: &super::TableOptions) -> u32 {
+    match opts.warmup {
+        super::warmup::Warmup::Frames(n) => n,
+        super::warmup::Warmup::Converged => 0,
+    }
+}
+
+/// Write a table's `report.json` (of `report`), `report.md` and `<table>.csv` into `out`.
+pub fn write_reports<R: Serialize>(
+    out: &std::path::Path,
+    table: &str,
+    report: &R,
+    markdown: String,
+    csv: String,
+) -> crate::error::Result<Vec<std::path::PathBuf>> {
+    let json = serde_json::to_string_pretty(report)
+        .map_err(|e| crate::error::Error::Config(format!("JSON encoding failed: {e}")))?;
+    let files = [
+        (out.join("report.json"), json),
+        (out.join("report.md"), markdown),
+        (out.join(format!("{table}.csv")), csv),
+    ];
+    let mut written = Vec::new();
+    for (path, text) in files {
+        super::output::write_text(&path, &text)?;
+        written.push(path);
+    }
+    Ok(written)
+}

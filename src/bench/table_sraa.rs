@@ -9,8 +9,7 @@
 
 use super::aa_edges::{edge_mask, rmse};
 use super::measure::{held_at, measure, Buffer, Measured, RunSpec};
-use super::output::write_text;
-use super::table_run::TableRun;
+use super::table_run::{fixed, pass_ms, warmup_frames, write_reports, TableRun};
 use super::walkthrough::WALKTHROUGHS;
 use super::{Report, TableOptions};
 use crate::error::{Error, Result};
@@ -100,14 +99,6 @@ pub struct TableReport {
     pub sizes: Vec<SizeResult>,
 }
 
-fn pass_ms(report: &Report, pass: PassId) -> Option<f64> {
-    report
-        .passes
-        .iter()
-        .find(|p| p.name == pass.name())
-        .and_then(|p| p.median_ms)
-}
-
 fn final_image(m: &Measured) -> Result<&ImageData> {
     m.last
         .buffer(Buffer::Final)
@@ -126,15 +117,6 @@ fn config(opts: &TableOptions, size: (u32, u32), mode: AaMode) -> RenderConfig {
             ..AaConfig::default()
         },
         ..RenderConfig::default()
-    }
-}
-
-/// Frames held at the camera before each row's measured ones (a static view has no moving
-/// steady state: `converged` warms up with none).
-fn warmup_frames(opts: &TableOptions) -> u32 {
-    match opts.warmup {
-        super::warmup::Warmup::Frames(n) => n,
-        super::warmup::Warmup::Converged => 0,
     }
 }
 
@@ -275,19 +257,7 @@ pub fn run(
         notes,
         sizes: results,
     };
-    let json = serde_json::to_string_pretty(&report)
-        .map_err(|e| Error::Config(format!("JSON encoding failed: {e}")))?;
-    let files = [
-        (out.join("report.json"), json),
-        (out.join("report.md"), markdown(&report)),
-        (out.join(format!("{TABLE}.csv")), csv(&report)),
-    ];
-    let mut written = Vec::new();
-    for (path, text) in files {
-        write_text(&path, &text)?;
-        written.push(path);
-    }
-    Ok(written)
+    write_reports(out, TABLE, &report, markdown(&report), csv(&report))
 }
 
 fn summary_line(s: &SizeResult) -> String {
@@ -298,16 +268,12 @@ fn summary_line(s: &SizeResult) -> String {
             format!(
                 "{} {} ms (edges {})",
                 mode_name(r.mode),
-                opt(r.total_ms, 1),
-                opt(r.rmse_edges, 4)
+                fixed(r.total_ms, 1),
+                fixed(r.rmse_edges, 4)
             )
         })
         .collect();
     format!("{}x{}: {}", s.width, s.height, parts.join(", "))
-}
-
-fn opt(v: Option<f64>, digits: usize) -> String {
-    v.map_or("-".into(), |v| format!("{v:.digits$}"))
 }
 
 fn markdown(r: &TableReport) -> String {
@@ -339,13 +305,13 @@ fn markdown(r: &TableReport) -> String {
                 s.height,
                 s.edge_pixels,
                 mode_name(row.mode),
-                opt(row.geometry_ms, 2),
-                opt(row.aa_ms, 2),
-                opt(row.total_ms, 2),
+                fixed(row.geometry_ms, 2),
+                fixed(row.aa_ms, 2),
+                fixed(row.total_ms, 2),
                 paper,
-                opt(row.speedup_over_ssaa, 2),
-                opt(row.rmse_all, 4),
-                opt(row.rmse_edges, 4),
+                fixed(row.speedup_over_ssaa, 2),
+                fixed(row.rmse_all, 4),
+                fixed(row.rmse_edges, 4),
             );
         }
     }
@@ -372,15 +338,15 @@ fn csv(r: &TableReport) -> String {
                 s.height,
                 s.edge_pixels,
                 mode_name(row.mode),
-                opt(row.geometry_ms, 4),
-                opt(row.aa_ms, 4),
-                opt(row.total_ms, 4),
-                opt(row.paper_geometry_ms, 0),
-                opt(row.paper_aa_ms, 0),
-                opt(row.paper_total_ms, 0),
-                opt(row.speedup_over_ssaa, 4),
-                opt(row.rmse_all, 5),
-                opt(row.rmse_edges, 5),
+                fixed(row.geometry_ms, 4),
+                fixed(row.aa_ms, 4),
+                fixed(row.total_ms, 4),
+                fixed(row.paper_geometry_ms, 0),
+                fixed(row.paper_aa_ms, 0),
+                fixed(row.paper_total_ms, 0),
+                fixed(row.speedup_over_ssaa, 4),
+                fixed(row.rmse_all, 5),
+                fixed(row.rmse_edges, 5),
             );
         }
     }

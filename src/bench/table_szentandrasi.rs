@@ -21,11 +21,11 @@
 use super::compare::GROUPS;
 use super::measure::{held_at, last_camera, measure, Buffer, RunSpec};
 use super::metrics::{image_error, Channels};
-use super::output::{file_stem, write_text};
+use super::output::file_stem;
 use super::rows::group_ms;
 use super::stats::summarize;
 use super::szentandrasi::{PaperRow, PaperScene, RATIOS, REFERENCE_SAMPLES, ROWS, SCENES};
-use super::table_run::TableRun;
+use super::table_run::{fixed, write_reports, TableRun};
 use super::warmup::before_path;
 use super::{Report, TableOptions};
 use crate::error::{Error, Result};
@@ -329,7 +329,7 @@ pub fn run(
         notes,
         scenes: results,
     };
-    write_reports(out, &report)
+    write_reports(out, TABLE, &report, markdown(&report), csv(&report))
 }
 
 fn summary_line(s: &SceneResult) -> String {
@@ -339,26 +339,6 @@ fn summary_line(s: &SceneResult) -> String {
         .map(|r| r.fps.map_or("-".into(), |f| format!("{f:.1}")))
         .collect();
     format!("{}: fps per row {}", s.name, fps.join(" / "))
-}
-
-fn write_reports(out: &Path, r: &TableReport) -> Result<Vec<PathBuf>> {
-    let json = serde_json::to_string_pretty(r)
-        .map_err(|e| Error::Config(format!("JSON encoding failed: {e}")))?;
-    let files = [
-        (out.join("report.json"), json),
-        (out.join("report.md"), markdown(r)),
-        (out.join(format!("{TABLE}.csv")), csv(r)),
-    ];
-    let mut written = Vec::new();
-    for (path, text) in files {
-        write_text(&path, &text)?;
-        written.push(path);
-    }
-    Ok(written)
-}
-
-fn opt(v: Option<f64>, digits: usize) -> String {
-    v.map_or("-".into(), |v| format!("{v:.digits$}"))
 }
 
 fn markdown(r: &TableReport) -> String {
@@ -395,15 +375,15 @@ fn markdown(r: &TableReport) -> String {
                 "| {} | {} | {} | {} | {} | {} | {} | {} | {} | {:.2} | {} |\n",
                 row.row.label,
                 row.row.paper_samples,
-                opt(row.samples_per_pixel, 1),
+                fixed(row.samples_per_pixel, 1),
                 if row.row.subsampling { "2x" } else { "no" },
-                opt(row.ssdo_ms, 2),
-                opt(row.total_ms, 2),
-                opt(row.fps, 1),
+                fixed(row.ssdo_ms, 2),
+                fixed(row.total_ms, 2),
+                fixed(row.fps, 1),
                 row.paper_fps,
-                opt(row.time_over_first, 2),
+                fixed(row.time_over_first, 2),
                 row.paper_time_over_first,
-                opt(row.final_rmse, 4),
+                fixed(row.final_rmse, 4),
             );
         }
         md += "\n| Frame time ratio | Ours (frame) | Ours (SSDO passes) | Paper |\n|---|---|---|---|\n";
@@ -411,8 +391,8 @@ fn markdown(r: &TableReport) -> String {
             md += &format!(
                 "| {} | {} | {} | {:.2} |\n",
                 q.what,
-                opt(q.ours_total, 2),
-                opt(q.ours_ssdo, 2),
+                fixed(q.ours_total, 2),
+                fixed(q.ours_ssdo, 2),
                 q.paper
             );
         }
@@ -439,16 +419,16 @@ fn csv(r: &TableReport) -> String {
                 i + 1,
                 row.row.label,
                 row.row.paper_samples,
-                opt(row.samples_per_pixel, 3),
+                fixed(row.samples_per_pixel, 3),
                 row.row.subsampling,
                 row.row.form,
-                opt(row.ssdo_ms, 4),
-                opt(row.total_ms, 4),
-                opt(row.fps, 3),
+                fixed(row.ssdo_ms, 4),
+                fixed(row.total_ms, 4),
+                fixed(row.fps, 3),
                 row.paper_fps,
-                opt(row.time_over_first, 4),
+                fixed(row.time_over_first, 4),
                 row.paper_time_over_first,
-                opt(row.final_rmse, 5),
+                fixed(row.final_rmse, 5),
             );
         }
     }

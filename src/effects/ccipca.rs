@@ -8,7 +8,7 @@
 //! are checked against are in src/reference/ccipca.rs.
 
 use super::effect::{
-    every_pixel, Effect, EffectId, FrameInfo, Recording, Registration, Setup, TermKind,
+    every_pixel, float_image, Effect, EffectId, FrameInfo, Recording, Registration, Setup, TermKind,
 };
 use super::resolve::EffectResources;
 use crate::error::Result;
@@ -21,9 +21,9 @@ use crate::renderer::config::{
 };
 use crate::renderer::effect::TemporalEffect;
 use crate::renderer::targets::{Target, Targets};
-use crate::shaders::{self, CcipcaPush, EffectPush, ShaderModuleInfo};
+use crate::shaders::{self, CcipcaPush, ShaderModuleInfo};
 use crate::vk::cmd::Recorder;
-use crate::vk::{Buffer, Context, DescriptorPool, Image, ImageDesc, Tracker};
+use crate::vk::{Buffer, Context, DescriptorPool, Image, Tracker};
 use ash::vk;
 use gpu_allocator::MemoryLocation;
 use std::sync::Arc;
@@ -272,9 +272,6 @@ pub struct CcipcaEffect {
     push: CcipcaPush,
     /// Frames since the bases last restarted, up to the memory (`max_age`).
     age: u32,
-    /// Only the reprojection reads the temporal effects' shared push constants; this effect
-    /// has its own (`push`).
-    no_effect_push: EffectPush,
 }
 
 impl CcipcaEffect {
@@ -289,25 +286,11 @@ impl CcipcaEffect {
             warp: false,
             push: CcipcaPush::default(),
             age: 0,
-            no_effect_push: EffectPush::default(),
         })
     }
 
     fn create_sized(ctx: &Arc<Context>, c: &RenderConfig) -> Result<Sized> {
-        let image = |name: &str| {
-            Image::new(
-                ctx,
-                name,
-                ImageDesc {
-                    width: c.width,
-                    height: c.height,
-                    format: vk::Format::R32G32B32A32_SFLOAT,
-                    usage: vk::ImageUsageFlags::STORAGE
-                        | vk::ImageUsageFlags::SAMPLED
-                        | vk::ImageUsageFlags::TRANSFER_SRC,
-                },
-            )
-        };
+        let image = |name: &str| float_image(ctx, name, c);
         let buffer = |name: &str, bytes: u64| {
             Buffer::new(
                 ctx,
@@ -446,10 +429,6 @@ impl Effect for CcipcaEffect {
 
     fn reprojects(&self, _info: &FrameInfo<'_>) -> bool {
         false
-    }
-
-    fn push(&self) -> &EffectPush {
-        &self.no_effect_push
     }
 
     fn record(&self, info: &FrameInfo<'_>, r: &mut Recording<'_>) {

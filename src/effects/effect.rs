@@ -167,8 +167,18 @@ pub trait Effect {
     fn reprojects(&self, info: &FrameInfo<'_>) -> bool;
 
     /// This frame's push constants (from `prepare`): the reprojection takes the refresh tile,
-    /// history validity and block size of its lane from them.
-    fn push(&self) -> &EffectPush;
+    /// history validity and block size of its lane from them. Only effects with a temporal
+    /// history are asked; the others have none.
+    fn push(&self) -> &EffectPush {
+        const NONE: EffectPush = EffectPush {
+            refresh_rect: [0; 4],
+            refresh_feather: 0,
+            history_valid: 0,
+            block_shift: 0,
+            pattern: 0,
+        };
+        &NONE
+    }
 
     /// Record the effect's passes.
     fn record(&self, info: &FrameInfo<'_>, r: &mut Recording<'_>);
@@ -201,6 +211,23 @@ pub fn refresh_dispatch(push: &EffectPush) -> Option<Dispatch> {
     let [x0, y0, x1, y1] = push.refresh_rect;
     let pixels = x1.saturating_sub(x0) * y1.saturating_sub(y0);
     (pixels > 0).then_some(Dispatch::Groups(pixels))
+}
+
+/// A render-sized RGBA32F image a pass writes and later passes sample or read back (the noisy
+/// gather and filtered light of the per-frame indirect filters).
+pub fn float_image(ctx: &Arc<Context>, name: &str, c: &RenderConfig) -> Result<Image> {
+    Image::new(
+        ctx,
+        name,
+        crate::vk::ImageDesc {
+            width: c.width,
+            height: c.height,
+            format: ash::vk::Format::R32G32B32A32_SFLOAT,
+            usage: ash::vk::ImageUsageFlags::STORAGE
+                | ash::vk::ImageUsageFlags::SAMPLED
+                | ash::vk::ImageUsageFlags::TRANSFER_SRC,
+        },
+    )
 }
 
 /// A dispatch over every pixel of the frame.

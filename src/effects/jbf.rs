@@ -4,7 +4,7 @@
 //! VPLs every frame). No history: a pixel's light is as new each frame as its input.
 
 use super::effect::{
-    every_pixel, Effect, EffectId, FrameInfo, Recording, Registration, Setup, TermKind,
+    every_pixel, float_image, Effect, EffectId, FrameInfo, Recording, Registration, Setup, TermKind,
 };
 use super::resolve::EffectResources;
 use crate::error::Result;
@@ -14,9 +14,8 @@ use crate::passes::{PassId, PassLayout};
 use crate::renderer::config::{IndirectFilter, RenderConfig};
 use crate::renderer::effect::TemporalEffect;
 use crate::renderer::targets::{Target, Targets};
-use crate::shaders::{self, EffectPush};
-use crate::vk::{Context, Image, ImageDesc};
-use ash::vk;
+use crate::shaders;
+use crate::vk::{Context, Image};
 use std::sync::Arc;
 
 const NOISY: Slot = Slot::Own(0);
@@ -74,8 +73,6 @@ pub struct JbfEffect {
     noisy: ComputePass,
     filter: ComputePass,
     sized: Sized,
-    /// The temporal effects' push constants, which only the reprojection reads: none here.
-    no_effect_push: EffectPush,
 }
 
 impl JbfEffect {
@@ -97,25 +94,11 @@ impl JbfEffect {
                 &[r],
             )?,
             sized: Self::create_sized(s.ctx, s.config)?,
-            no_effect_push: EffectPush::default(),
         })
     }
 
     fn create_sized(ctx: &Arc<Context>, c: &RenderConfig) -> Result<Sized> {
-        let image = |name: &str| {
-            Image::new(
-                ctx,
-                name,
-                ImageDesc {
-                    width: c.width,
-                    height: c.height,
-                    format: vk::Format::R32G32B32A32_SFLOAT,
-                    usage: vk::ImageUsageFlags::STORAGE
-                        | vk::ImageUsageFlags::SAMPLED
-                        | vk::ImageUsageFlags::TRANSFER_SRC,
-                },
-            )
-        };
+        let image = |name: &str| float_image(ctx, name, c);
         Ok(Sized {
             noisy: image("jbf.noisy")?,
             filtered: image("jbf.filtered")?,
@@ -168,10 +151,6 @@ impl Effect for JbfEffect {
 
     fn reprojects(&self, _info: &FrameInfo<'_>) -> bool {
         false
-    }
-
-    fn push(&self) -> &EffectPush {
-        &self.no_effect_push
     }
 
     fn record(&self, info: &FrameInfo<'_>, r: &mut Recording<'_>) {
