@@ -10,7 +10,8 @@ use ssgi::renderer::config::{Effects, TemporalConfig};
 use ssgi::renderer::pcf::Pcf;
 use ssgi::renderer::targets::Target;
 use ssgi::renderer::{RenderConfig, Renderer};
-use ssgi::scene::Camera;
+use ssgi::scene::path::frame_time;
+use ssgi::scene::{Camera, Keyframe, LightPath};
 use ssgi::vk::{Context, FrameTiming};
 use std::sync::Arc;
 
@@ -297,5 +298,67 @@ fn without_reuse_skipped_frames_match_a_renderer_that_never_skips() {
     let a = common::read(&mut skipping, Target::Output);
     let b = common::read(&mut always, Target::Output);
     assert_eq!(a.bytes, b.bytes);
+    common::assert_clean(&ctx);
+}
+
+/// A light path that moves the spot 2 cm on every other frame of 16 (frames 1, 3, ..., 15;
+/// `Renderer::set_time` poses it): the light view is recorded on exactly those 8 frames and
+/// the first frame of the run; the shadow and the indirect light run on each of them; AO,
+/// which does not read the light, stays converged throughout (skipped as converged).
+#[test]
+fn a_light_moving_every_other_frame_renders_the_light_view_on_exactly_those_frames() {
+    let ctx = common::context();
+    let mut scene = ssgi::scene::cornell_box();
+    let start = scene.light.position;
+    let target = start + scene.light.direction;
+    let at = |k: u32| (start + Vec3::new(0.02 * k as f32, 0.0, 0.0)).to_array();
+    let key = |time: f32, k: u32| Keyframe {
+        time,
+        position: at(k),
+        target: (target + Vec3::new(0.02 * k as f32, 0.0, 0.0)).to_array(),
+    };
+    // Cuts (equal times) at the odd frames' times; the light holds in between.
+    let mut keys = vec![key(0.0, 0)];
+    for k in 1..=8u32 {
+        let t = frame_time(2 * k - 1, 60.0);
+        keys.extend([key(t, k - 1), key(t, k)]);
+    }
+    scene.light_path = Some(LightPath::new(keys));
+    let mut r = Renderer::new(&ctx, scene, config(true, true)).expect("renderer");
+    let camera = r.scene.camera;
+    let mut timings = until_skipping(&mut r, &camera, 4);
+    let converged = timings.len();
+    for i in 0..16 {
+        r.set_time(frame_time(i, 60.0));
+        timings.extend(run(&mut r, &camera, 1));
+    }
+    let recorded = |t: &FrameTiming, pass: &str| t.passes.iter().any(|(n, _)| *n == pass);
+    let light_views: Vec<u64> = timings
+        .iter()
+        .filter(|t| recorded(t, "light_view"))
+        .map(|t| t.frame)
+        .collect();
+    let first = converged as u64;
+    let moved: Vec<u64> = (0..8).map(|k| first + 2 * k + 1).collect();
+    assert_eq!(light_views[0], 0, "the first frame renders the light view");
+    assert_eq!(
+        light_views[1..],
+        moved,
+        "light view recorded on {light_views:?}"
+    );
+    for t in &timings[converged..] {
+        if moved.contains(&t.frame) {
+            for pass in ["shadow", "indirect_gather"] {
+                assert!(recorded(t, pass), "frame {}: {pass} did not run", t.frame);
+            }
+        }
+        let ao = t.skipped.iter().find(|s| s.pass == "ssao");
+        assert!(
+            ao.is_some_and(|s| s.reason.name() == "converged"),
+            "frame {}: AO ran ({:?})",
+            t.frame,
+            t.counters
+        );
+    }
     common::assert_clean(&ctx);
 }

@@ -249,12 +249,13 @@ pub fn measure(
     let first = spec.path.camera_at(&base, &orbit, 0.0);
     sink.begin(spec.label);
     for i in 0..spec.warmup {
-        let camera = if spec.warmup_along_path {
+        let (camera, time) = if spec.warmup_along_path {
             let before = (spec.warmup - i) as f32 / spec.fps;
-            spec.path.camera_at(&base, &orbit, -before)
+            (spec.path.camera_at(&base, &orbit, -before), -before)
         } else {
-            first
+            (first, 0.0)
         };
+        renderer.set_time(time);
         timings.extend(sink.frame(&mut renderer, &camera)?);
         bar.inc();
     }
@@ -268,6 +269,7 @@ pub fn measure(
     let mut probe = spec.flicker.then(FlickerProbe::default);
     for i in 0..frames {
         camera = spec.path.camera_at(&base, &orbit, frame_time(i, spec.fps));
+        renderer.set_time(frame_time(i, spec.fps));
         timings.extend(sink.frame(&mut renderer, &camera)?);
         if let Some(p) = &mut probe {
             p.after_frame(&mut renderer)?;

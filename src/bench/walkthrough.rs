@@ -15,9 +15,8 @@ use super::thesis::{SETUP, WALKTHROUGH_NUMBERS_MISSING};
 use super::TableOptions;
 use crate::error::{Error, Result};
 use crate::frontend::sink::FrameSink;
-use crate::scene::{load_scene, Camera, CameraPath, Scene, SpotLight};
+use crate::scene::{build_scene_file, CameraPath, Scene, SceneFile};
 use crate::vk::Context;
-use glam::Vec3;
 use plotters::style::RGBColor;
 use std::path::Path;
 use std::sync::Arc;
@@ -29,13 +28,14 @@ pub struct Walkthrough {
     pub name: &'static str,
     /// The keyframe file (compiled in).
     pub path: EmbeddedPath,
-    /// Vertical field of view of the walkthrough camera, degrees.
-    pub vfov_deg: f32,
-    /// Spot light under the roof, as fractions of the bounding box (0 = min, 1 = max), aimed
-    /// straight down at the floor below it, with this outer half-angle (the automatic
-    /// headlight of a building follows the camera; the table's light stays put).
-    pub light_at: [f32; 3],
-    pub light_outer_deg: f32,
+    /// The scene file (compiled in): the model, the walkthrough camera's lens and the light.
+    pub scene: EmbeddedScene,
+}
+
+/// A scene file of `scenes/`, compiled in so the table runs without the repository.
+pub struct EmbeddedScene {
+    pub file: &'static str,
+    pub text: &'static str,
 }
 
 pub const WALKTHROUGHS: [Walkthrough; 3] = [
@@ -43,32 +43,30 @@ pub const WALKTHROUGHS: [Walkthrough; 3] = [
         asset: "sponza",
         name: "Sponza",
         path: paths::SPONZA,
-        vfov_deg: 60.0,
-        light_at: [0.5, 0.95, 0.5],
-        light_outer_deg: 60.0,
+        scene: EmbeddedScene {
+            file: "scenes/sponza.toml",
+            text: include_str!("../../scenes/sponza.toml"),
+        },
     },
     Walkthrough {
         asset: "sibenik",
         name: "Sibenik",
         path: paths::SIBENIK,
-        vfov_deg: 60.0,
-        light_at: [0.5, 0.56, 0.5],
-        light_outer_deg: 75.0,
+        scene: EmbeddedScene {
+            file: "scenes/sibenik.toml",
+            text: include_str!("../../scenes/sibenik.toml"),
+        },
     },
     Walkthrough {
         asset: "conference",
         name: "Conference",
         path: paths::CONFERENCE,
-        vfov_deg: 60.0,
-        light_at: [0.5, 0.9, 0.5],
-        light_outer_deg: 75.0,
+        scene: EmbeddedScene {
+            file: "scenes/conference.toml",
+            text: include_str!("../../scenes/conference.toml"),
+        },
     },
 ];
-
-/// Near and far planes as fractions of the scene's bounding-box diagonal: close enough to
-/// walk past columns, far enough to see the whole building, ~1:1000 for the depth buffer.
-const NEAR_FRACTION: f32 = 0.001;
-const FAR_FRACTION: f32 = 1.2;
 
 impl Walkthrough {
     /// The compiled-in keyframes, or those of `<dir>/<asset>.json` when a directory is given.
@@ -80,32 +78,15 @@ impl Walkthrough {
         Ok((self.path.parse()?, self.path.file.to_string()))
     }
 
-    /// The scene with the walkthrough's lens (first keyframe's view) and interior light.
+    /// The scene of the walkthrough's scene file (model, lens, the light that stays put while
+    /// the camera walks), its camera at the first point of `path`.
     pub fn load(&self, assets: Option<&Path>, path: &CameraPath) -> Result<Scene> {
-        let mut scene = load_scene(self.asset, assets)?;
-        let b = scene.mesh.bounds;
-        let diagonal = b.diagonal();
-        let base = scene.camera;
-        scene.camera = Camera::new(
-            base.position,
-            base.target,
-            self.vfov_deg,
-            NEAR_FRACTION * diagonal,
-            FAR_FRACTION * diagonal,
-        );
+        let origin = Path::new(self.scene.file);
+        let mut file = SceneFile::parse(origin, self.scene.text)?;
+        // The table walks `path` (compiled in, or --paths): the file's own path is not read.
+        file.camera_path = None;
+        let mut scene = build_scene_file(&file, origin, assets)?.scene;
         scene.camera = path.camera_at(&scene.camera, &scene.orbit(), 0.0);
-        let at = b.min + b.extent() * Vec3::from(self.light_at);
-        let floor = Vec3::new(at.x, b.min.y, at.z);
-        let d = at.distance(floor);
-        scene.light = SpotLight::aimed(
-            at,
-            floor,
-            Vec3::splat(d * d),
-            0.8 * self.light_outer_deg,
-            self.light_outer_deg,
-            NEAR_FRACTION * diagonal,
-            FAR_FRACTION * diagonal,
-        );
         Ok(scene)
     }
 }
@@ -149,12 +130,10 @@ pub fn run(
         vec![
             COLUMN_NOTE.to_string(),
             WALKTHROUGH_NUMBERS_MISSING.to_string(),
-            format!(
-                "Walkthrough cameras: {}° vertical field of view, near/far {} / {} of the \
-                 scene's bounding-box diagonal; one spot light under the roof aimed straight \
-                 down (position and cone per scene in walkthrough.rs).",
-                WALKTHROUGHS[0].vfov_deg, NEAR_FRACTION, FAR_FRACTION
-            ),
+            "Walkthrough scenes: scenes/sponza.toml, sibenik.toml, conference.toml (60° \
+             vertical field of view, near/far 0.001 / 1.2 of the bounding-box diagonal; one spot \
+             light under the roof aimed straight down, still while the camera walks)."
+                .to_string(),
         ],
     );
     for (w, path, path_name, scene) in loaded {

@@ -134,6 +134,7 @@ pub fn run(
     let mut steady = !converging;
     while frames < limit && !(converging && steady) {
         let camera = path.camera_at(&base, &orbit, frame_time(frames, fps));
+        renderer.set_time(frame_time(frames, fps));
         let done = sink.frame(renderer, &camera)?;
         signal.extend(done.iter().map(work));
         timings.extend(done);

@@ -62,17 +62,18 @@ pub enum Command {
 
 #[derive(Args, Debug, Clone)]
 pub struct SceneArgs {
-    /// Built-in scene (cornell-box, pyramids), an OBJ path, an asset name (e.g. bunny), or
-    /// box:<path-or-asset> for a model in a box room.
+    /// Built-in scene (cornell-box, pyramids), an OBJ path, an asset name (e.g. bunny),
+    /// box:<path-or-asset> for a model in a box room, or a scene file (.toml; see scenes/).
     #[arg(long, default_value = "cornell-box")]
     pub scene: String,
     /// Image size, WIDTHxHEIGHT.
     #[arg(long, default_value = "512x512", value_parser = parse_size)]
     pub size: (u32, u32),
     /// Camera path: static, orbit[:SECONDS] (one turn per 12 s by default), dolly[:SECONDS]
-    /// (6 s), or a keyframe file (.json / .toml, times in seconds).
-    #[arg(long, default_value = "static")]
-    pub path: String,
+    /// (6 s), or a keyframe file (.json / .toml, times in seconds). Default: the scene file's
+    /// camera path, else static.
+    #[arg(long)]
+    pub path: Option<String>,
     /// Frame rate of path time: frame i shows the path at i / fps seconds, so the motion per
     /// frame does not depend on how many frames a run has.
     #[arg(long, default_value_t = crate::scene::path::DEFAULT_FPS, value_parser = parse_fps)]
@@ -90,6 +91,21 @@ pub struct SceneArgs {
     /// reaches the whole scene from there
     #[arg(long, value_parser = parse_light)]
     pub light: Option<LightPlacement>,
+    /// The spot's cone: INNER:OUTER half-angles in degrees (0 < inner <= outer <= 89), or
+    /// OUTER alone (inner = 0.8 x outer).
+    #[arg(long, value_parser = parse_light_cone, value_name = "INNER:OUTER")]
+    pub light_cone: Option<(f32, f32)>,
+    /// The spot's radiant intensity on its axis (W/sr): one value for white or R,G,B.
+    #[arg(long, value_parser = parse_light_intensity, value_name = "I|R,G,B")]
+    pub light_intensity: Option<[f32; 3]>,
+    /// Move the light along a keyframe file (.json / .toml, as --path's: time, position,
+    /// target), or `none` to hold the scene file's moving light still.
+    #[arg(long, value_name = "FILE|none")]
+    pub light_path: Option<String>,
+    /// Write the scene as run (after --light and the other light flags) as a scene file with
+    /// every value explicit, to edit or to load again with --scene.
+    #[arg(long, value_name = "FILE")]
+    pub save_scene: Option<PathBuf>,
     /// Effects to render, comma-separated: direct, ao, indirect, ssdo (all = direct, ao,
     /// indirect; ssdo replaces ao).
     #[arg(long, default_value = "all", value_parser = parse_effects)]
@@ -747,6 +763,54 @@ pub fn parse_light(s: &str) -> std::result::Result<LightPlacement, String> {
         ));
     }
     Ok(LightPlacement { position, target })
+}
+
+/// `--light-cone INNER:OUTER` or `OUTER`.
+pub fn parse_light_cone(s: &str) -> std::result::Result<(f32, f32), String> {
+    let angle = |t: &str| -> std::result::Result<f32, String> {
+        match t.trim().parse::<f32>() {
+            Ok(a) if a.is_finite() && a > 0.0 && a <= 89.0 => Ok(a),
+            _ => Err(format!(
+                "--light-cone: {t:?} is not an angle in (0, 89] degrees"
+            )),
+        }
+    };
+    let (inner, outer) = match s.split_once(':') {
+        Some((i, o)) => (angle(i)?, angle(o)?),
+        None => {
+            let o = angle(s)?;
+            (0.8 * o, o)
+        }
+    };
+    if inner > outer {
+        return Err(format!(
+            "--light-cone: the inner angle {inner} is wider than the outer {outer}"
+        ));
+    }
+    Ok((inner, outer))
+}
+
+/// `--light-intensity I` or `R,G,B`: finite, >= 0.
+pub fn parse_light_intensity(s: &str) -> std::result::Result<[f32; 3], String> {
+    let v: Vec<f32> = s
+        .split(',')
+        .map(|c| c.trim().parse::<f32>())
+        .collect::<std::result::Result<_, _>>()
+        .map_err(|_| format!("--light-intensity takes I or R,G,B, not {s:?}"))?;
+    let rgb = match v.as_slice() {
+        [i] => [*i; 3],
+        [r, g, b] => [*r, *g, *b],
+        _ => return Err(format!("--light-intensity takes I or R,G,B, not {s:?}")),
+    };
+    if !rgb
+        .iter()
+        .all(|c| c.is_finite() && (0.0..=HUGE_COORDINATE).contains(c))
+    {
+        return Err(format!(
+            "--light-intensity: {s:?} must be finite, >= 0 and at most {HUGE_COORDINATE:e}"
+        ));
+    }
+    Ok(rgb)
 }
 
 fn parse_size(s: &str) -> std::result::Result<(u32, u32), String> {

@@ -44,6 +44,7 @@ pub fn run_from(
     sink.begin(&renderer.scene.name);
     for i in frames {
         let camera = path.camera_at(&base, &orbit, frame_time(i, fps));
+        renderer.set_time(frame_time(i, fps));
         timings.extend(sink.frame(renderer, &camera)?);
         after_frame(renderer)?;
         bar.inc();

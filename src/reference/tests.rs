@@ -67,6 +67,7 @@ fn receiver_over_floor(h: f32, floor: f32, l: SpotLight) -> Scene {
         light: l,
         ambient: Vec3::ZERO,
         orbit: None,
+        light_path: None,
     }
 }
 
@@ -136,6 +137,7 @@ fn direct_light_is_inverse_square_with_hard_shadows() {
         light: l,
         ambient: Vec3::ZERO,
         orbit: None,
+        light_path: None,
     };
     let accel = Accel::new(&scene.mesh);
     let mut r = Reference::new(

@@ -246,6 +246,15 @@ impl Renderer {
         self.scene.light = light;
     }
 
+    /// Pose what the scene animates at `time` seconds into its paths: the light along the
+    /// scene's light path (the light view re-renders on a frame whose light moved). Nothing
+    /// for a scene without one. Runs call it before each frame with the frame's path time.
+    pub fn set_time(&mut self, time: f32) {
+        if let Some(path) = &self.scene.light_path {
+            self.scene.light = path.light_at(&self.scene.light, time);
+        }
+    }
+
     /// Forget every history (camera cut): the next frame recomputes all pixels.
     pub fn reset_history(&mut self) {
         self.history = None;

@@ -2,7 +2,7 @@
 //! material so the renderer issues one draw per material.
 
 use super::mesh::{Aabb, DrawRange, LoadStats, Material, Mesh, Vertex};
-use glam::Vec3;
+use glam::{Quat, Vec3};
 
 #[derive(Default)]
 pub struct MeshBuilder {
@@ -63,14 +63,44 @@ impl MeshBuilder {
     /// Copies `mesh` in, transformed by `p * scale + offset` (uniform scale keeps normals).
     /// Its materials, counters and warnings come along.
     pub fn append(&mut self, mesh: &Mesh, scale: f32, offset: Vec3) {
+        self.append_placed(mesh, scale, Quat::IDENTITY, offset, None);
+    }
+
+    /// Copies `mesh` in, placed at `rotation * (p * scale) + offset` (uniform scale: normals
+    /// only rotate). With `albedo`, every material takes that colour and no texture.
+    pub fn append_placed(
+        &mut self,
+        mesh: &Mesh,
+        scale: f32,
+        rotation: Quat,
+        offset: Vec3,
+        albedo: Option<[f32; 3]>,
+    ) {
         let base = self.vertices.len() as u32;
+        // Without a rotation the normals are copied bit for bit.
+        let rotate = |v: Vec3| {
+            if rotation == Quat::IDENTITY {
+                v
+            } else {
+                rotation * v
+            }
+        };
         self.vertices.extend(mesh.vertices.iter().map(|v| Vertex {
-            position: (v.pos() * scale + offset).to_array(),
+            position: (rotate(v.pos() * scale) + offset).to_array(),
+            normal: rotate(Vec3::from(v.normal)).to_array(),
             ..*v
         }));
         let first_material = self.materials.len();
         for m in &mesh.materials {
-            self.add_material(m.clone());
+            let material = match albedo {
+                Some(diffuse) => Material {
+                    diffuse,
+                    diffuse_texture: None,
+                    ..m.clone()
+                },
+                None => m.clone(),
+            };
+            self.add_material(material);
         }
         for r in &mesh.ranges {
             let start = r.first_index as usize;

@@ -102,6 +102,19 @@ pub enum SceneError {
         candidates: Vec<String>,
     },
 
+    /// A scene file (TOML) is malformed: its line (when the key is written) and dotted key.
+    #[error(
+        "{}{}: {key}: {message}",
+        .path.display(),
+        .line.map(|l| format!(":{l}")).unwrap_or_default()
+    )]
+    SceneFile {
+        path: PathBuf,
+        line: Option<usize>,
+        key: String,
+        message: String,
+    },
+
     /// A camera path spec or keyframe file is invalid.
     #[error("camera path {}: {message}", .path.display())]
     CameraPath { path: PathBuf, message: String },

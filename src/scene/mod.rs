@@ -18,6 +18,8 @@ mod obj;
 pub mod path;
 mod procedural;
 mod raycast;
+mod scene_file;
+mod scene_load;
 mod serde_vec3;
 mod spec;
 mod texture;
@@ -34,12 +36,17 @@ pub use mesh::{
 };
 pub use normals::area_weighted_normals;
 pub use obj::{degeneracy, load_obj, Degeneracy, SLIVER_RELATIVE_HEIGHT};
-pub use path::{CameraPath, Keyframe, Orbit};
+pub use path::{CameraPath, Keyframe, LightPath, Orbit};
 pub use procedural::{
-    box_room, cornell_box, cornell_camera, cornell_light, pyramids, tilted_quad, CORNELL_GREEN,
-    CORNELL_RED, CORNELL_WHITE,
+    box_room, cornell_box, cornell_camera, cornell_light, pyramids, sphere, tilted_quad,
+    CORNELL_GREEN, CORNELL_RED, CORNELL_WHITE,
 };
 pub use raycast::{occlusion_span, Hit, OCCLUSION_RELATIVE_OFFSET, OCCLUSION_ULPS};
+pub use scene_file::{CameraEntry, LightEntry, MeshEntry, OrbitEntry, SceneFile, SPHERE};
+pub use scene_load::{
+    build as build_scene_file, is_scene_file, load as load_scene_with_paths, load_scene_file,
+    LoadedScene,
+};
 pub use spec::{
     asset_dir_from_env, list_assets, load_model, load_scene, resolve_model, ASSETS_ENV,
     BUILTIN_SCENES,

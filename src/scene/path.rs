@@ -253,6 +253,51 @@ impl CameraPath {
     }
 }
 
+/// A moving spot light: position and target over time in seconds, interpolated as a camera
+/// path's keyframes are (held outside them, mirrored before the first). The cone, intensity
+/// and shadow-map depth range stay those of the scene's light.
+#[derive(Clone, Debug, PartialEq)]
+pub struct LightPath(Vec<Keyframe>);
+
+impl LightPath {
+    /// `keys` must be checked (finite, times non-decreasing), as scene files' are.
+    pub fn new(keys: Vec<Keyframe>) -> Self {
+        Self(keys)
+    }
+
+    /// Reads keyframes from a `.json` / `.toml` file as [`CameraPath::from_file`] does.
+    pub fn from_file(path: &Path) -> Result<Self, SceneError> {
+        match CameraPath::from_file(path)? {
+            CameraPath::Keyframes(keys) => Ok(Self(keys)),
+            _ => unreachable!("from_file reads keyframes only"),
+        }
+    }
+
+    pub fn keys(&self) -> &[Keyframe] {
+        &self.0
+    }
+
+    /// Seconds from the first key to the last.
+    pub fn duration(&self) -> f32 {
+        match (self.0.first(), self.0.last()) {
+            (Some(a), Some(b)) => b.time - a.time,
+            _ => 0.0,
+        }
+    }
+
+    /// `base` moved to where the path has it `time` seconds after its first key.
+    pub fn light_at(&self, base: &super::light::SpotLight, time: f32) -> super::light::SpotLight {
+        match interpolate(&self.0, time) {
+            Some((position, target)) => super::light::SpotLight {
+                position,
+                direction: (target - position).normalize_or(base.direction),
+                ..*base
+            },
+            None => *base,
+        }
+    }
+}
+
 /// The outside orbit after `turns` turns.
 fn around(base: &Camera, center: Vec3, turns: f32) -> Camera {
     let offset = base.position - center;

@@ -60,6 +60,7 @@ pub fn cornell_box() -> Scene {
         light: cornell_light(),
         ambient: DEFAULT_AMBIENT,
         orbit: Some(room_orbit(min, max)),
+        light_path: None,
     }
 }
 
@@ -77,6 +78,56 @@ fn room_orbit(min: Vec3, max: Vec3) -> Orbit {
         open_towards: Some(Vec3::Z),
         start: Vec3::Z,
     }
+}
+
+/// Rings and segments of [`sphere`]: 32 x 16 quads keep the silhouette within 0.5% of the
+/// radius.
+const SPHERE_SEGMENTS: u32 = 32;
+const SPHERE_RINGS: u32 = 16;
+
+/// A sphere of radius 1 at the origin (scene files' `sphere`): smooth normals, one white
+/// material (MTL's default Kd 0.8), wound counter-clockwise seen from outside. The caps are
+/// triangle fans, so no triangle has zero area.
+pub fn sphere() -> Mesh {
+    let mut b = MeshBuilder::new();
+    let m = b.add_material(Material::colour("sphere", Material::DEFAULT_DIFFUSE));
+    let point = |ring: u32, seg: u32| {
+        let theta = std::f32::consts::PI * ring as f32 / SPHERE_RINGS as f32;
+        let phi = std::f32::consts::TAU * seg as f32 / SPHERE_SEGMENTS as f32;
+        Vec3::new(
+            theta.sin() * phi.cos(),
+            theta.cos(),
+            -theta.sin() * phi.sin(),
+        )
+    };
+    let mut index = |p: Vec3, u: f32, v: f32| b.push_vertex(super::mesh::Vertex::new(p, p, [u, v]));
+    let mut rows = Vec::new();
+    for ring in 0..=SPHERE_RINGS {
+        let row: Vec<u32> = (0..=SPHERE_SEGMENTS)
+            .map(|seg| {
+                index(
+                    point(ring, seg),
+                    seg as f32 / SPHERE_SEGMENTS as f32,
+                    ring as f32 / SPHERE_RINGS as f32,
+                )
+            })
+            .collect();
+        rows.push(row);
+    }
+    for ring in 0..SPHERE_RINGS as usize {
+        for seg in 0..SPHERE_SEGMENTS as usize {
+            let (a, b0) = (rows[ring][seg], rows[ring][seg + 1]);
+            let (c, d) = (rows[ring + 1][seg], rows[ring + 1][seg + 1]);
+            // Counter-clockwise from outside: phi grows towards -z, theta downwards.
+            if ring > 0 {
+                b.push_triangle(m, [a, c, b0]);
+            }
+            if ring + 1 < SPHERE_RINGS as usize {
+                b.push_triangle(m, [b0, c, d]);
+            }
+        }
+    }
+    b.build()
 }
 
 /// Material slots of a room.
@@ -219,6 +270,7 @@ pub fn pyramids() -> Scene {
         light,
         ambient: DEFAULT_AMBIENT,
         orbit: None,
+        light_path: None,
     }
 }
 
@@ -263,6 +315,7 @@ pub fn tilted_quad() -> Scene {
         light,
         ambient: DEFAULT_AMBIENT,
         orbit: None,
+        light_path: None,
     }
 }
 
@@ -300,6 +353,7 @@ pub fn box_room(model: &Mesh, name: &str) -> Scene {
         light: cornell_light(),
         ambient: DEFAULT_AMBIENT,
         orbit: Some(room_orbit(min, max)),
+        light_path: None,
     }
 }
 
@@ -318,6 +372,26 @@ mod tests {
                 "triangle {t}: {geometric} vs {shading}"
             );
         }
+    }
+
+    #[test]
+    fn sphere_is_closed_round_and_wound_outwards() {
+        let s = sphere();
+        assert_eq!(
+            s.triangle_count(),
+            (2 * SPHERE_RINGS as usize - 2) * SPHERE_SEGMENTS as usize
+        );
+        for t in 0..s.triangle_count() {
+            let [a, b, c] = s.triangle(t);
+            let n = (b - a).cross(c - a);
+            assert!(n.length() > 1e-6, "triangle {t} has no area");
+            assert!(n.dot(a + b + c) > 0.0, "triangle {t} faces inwards");
+        }
+        for v in &s.vertices {
+            assert!((v.pos().length() - 1.0).abs() < 1e-6);
+        }
+        assert!(s.bounds.min.abs_diff_eq(Vec3::splat(-1.0), 1e-6));
+        assert!(s.bounds.max.abs_diff_eq(Vec3::splat(1.0), 1e-6));
     }
 
     #[test]

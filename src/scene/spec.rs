@@ -34,12 +34,16 @@ pub fn asset_dir_from_env() -> Option<PathBuf> {
 /// - `cornell-box` (default), `pyramids` or `tilted-quad`: built in, no files;
 /// - a path to an `.obj` file (also tried relative to the asset directory);
 /// - an asset name: a sub-folder of the asset directory holding exactly one `.obj`;
-/// - `box:<path or asset>`: that model inside a Cornell-style box room.
+/// - `box:<path or asset>`: that model inside a Cornell-style box room;
+/// - a `.toml` scene file (`scene_file.rs`).
 ///
 /// `assets` is the asset directory; when None, `SSGI_ASSETS` is used.
 pub fn load_scene(spec: &str, assets: Option<&Path>) -> Result<Scene, SceneError> {
     let assets = assets.map(Path::to_path_buf).or_else(asset_dir_from_env);
     let assets = assets.as_deref();
+    if super::scene_load::is_scene_file(spec) {
+        return Ok(super::scene_load::load_scene_file(Path::new(spec), assets)?.scene);
+    }
     match spec {
         "cornell-box" => Ok(cornell_box()),
         "pyramids" => Ok(pyramids()),
@@ -172,25 +176,63 @@ fn unknown_scene(spec: &str, assets: Option<&Path>) -> SceneError {
 /// A loaded model on its own. A model that encloses space (a building) is seen from inside,
 /// from the eye point and direction whose view meets the fewest misses and back faces
 /// ([`interior_view`]), lit by a headlight at the eye; any other model stands on a grey ground
-/// plane twice its footprint, seen by a camera that fits its vertices from the side and
-/// height (20 or 35 degrees up) where it covers most of the view ([`outside_view`]), lit by a
-/// spot above and in front of the camera. Either light has intensity d² for the
-/// distance d to what it lights, so the irradiance there (facing the light) is 1.
+/// plane twice its footprint ([`with_ground`]), seen by a camera that fits its vertices from
+/// the side and height (20 or 35 degrees up) where it covers most of the view
+/// ([`outside_view`]), lit by a spot above and in front of the camera. Either light has
+/// intensity d² for the distance d to what it lights, so the irradiance there (facing the
+/// light) is 1.
 pub fn framed_model(name: String, mesh: Mesh) -> Scene {
     let accel = Accel::new(&mesh);
-    match interior_view(&mesh, &accel) {
-        Some(view) => interior(name, mesh, view),
-        None => on_ground(name, mesh, &accel),
+    let (mesh, view) = match interior_view(&mesh, &accel) {
+        Some(view) => (mesh, interior(view)),
+        None => {
+            let ground = with_ground(&mesh);
+            let view = outside(&mesh, &accel, &ground.bounds);
+            (ground, view)
+        }
+    };
+    Scene {
+        name,
+        mesh,
+        camera: view.camera,
+        light: view.light,
+        ambient: DEFAULT_AMBIENT,
+        orbit: Some(view.orbit),
+        light_path: None,
     }
 }
 
-fn interior(name: String, mesh: Mesh, view: InteriorView) -> Scene {
-    let camera = view.camera;
-    // The cone covers the square view's corners (half-diagonal angle) with a soft margin.
+/// Camera, light and orbit chosen for a scene's geometry.
+pub struct AutoView {
+    pub camera: Camera,
+    pub light: SpotLight,
+    pub orbit: Orbit,
+}
+
+/// The automatic view of `mesh` as a whole (scene files without a camera): from inside a
+/// building, otherwise from outside, as [`framed_model`] chooses (no ground is added).
+pub fn auto_view(mesh: &Mesh) -> AutoView {
+    let accel = Accel::new(mesh);
+    match interior_view(mesh, &accel) {
+        Some(view) => interior(view),
+        None => outside(mesh, &accel, &mesh.bounds),
+    }
+}
+
+fn interior(view: InteriorView) -> AutoView {
+    AutoView {
+        light: headlight(&view.camera),
+        camera: view.camera,
+        orbit: view.orbit,
+    }
+}
+
+/// A spot at `camera`'s eye aimed at its target, its cone covering the square view's
+/// corners (half-diagonal angle) with a soft margin; irradiance 1 at the target.
+pub fn headlight(camera: &Camera) -> SpotLight {
     let half = (0.5 * camera.vfov_deg).to_radians().tan();
-    let outer_deg = (half * std::f32::consts::SQRT_2).atan().to_degrees() + 5.0;
-    let light = unit_spot(camera.position, camera.target, outer_deg, &camera);
-    auto_scene(name, mesh, camera, light, view.orbit)
+    let outer_deg = ((half * std::f32::consts::SQRT_2).atan().to_degrees() + 5.0).min(89.0);
+    unit_spot(camera.position, camera.target, outer_deg, camera)
 }
 
 /// The automatic spot: at `position`, aimed at `target`, full intensity inside 0.8 of
@@ -209,27 +251,18 @@ fn unit_spot(position: Vec3, target: Vec3, outer_deg: f32, camera: &Camera) -> S
     )
 }
 
-fn auto_scene(name: String, mesh: Mesh, camera: Camera, light: SpotLight, orbit: Orbit) -> Scene {
-    Scene {
-        name,
-        mesh,
-        camera,
-        light,
-        ambient: DEFAULT_AMBIENT,
-        orbit: Some(orbit),
-    }
-}
-
 /// Grey albedo of the ground a single model stands on.
 const GROUND_ALBEDO: [f32; 3] = [0.6, 0.6, 0.6];
 
-fn on_ground(name: String, model: Mesh, accel: &Accel) -> Scene {
+/// `model` standing on a grey square ground at its foot, twice its largest extent wide
+/// (`--scene <model>` for a model that is not a building; scene files' `ground = true`).
+pub fn with_ground(model: &Mesh) -> Mesh {
     let b = model.bounds;
     let ext = b.extent();
     let half = ext.x.max(ext.z).max(ext.y);
     let (c, y) = (b.center(), b.min.y);
     let mut builder = MeshBuilder::new();
-    builder.append(&model, 1.0, Vec3::ZERO);
+    builder.append(model, 1.0, Vec3::ZERO);
     let ground = builder.add_material(Material::colour("ground", GROUND_ALBEDO));
     let corner = |dx: f32, dz: f32| Vec3::new(c.x + dx * half, y, c.z + dz * half);
     builder.add_flat_polygon(
@@ -242,12 +275,16 @@ fn on_ground(name: String, model: Mesh, accel: &Accel) -> Scene {
         ],
         Vec3::Y,
     );
-    let mesh = builder.build();
-    let camera = outside_view(&model, accel, AUTO_FOV_DEG, &mesh.bounds);
+    builder.build()
+}
+
+/// `model` seen from outside (its accel `accel`), in a scene whose bounds are
+/// `scene_bounds`, lit from 45 degrees up on the camera's side.
+fn outside(model: &Mesh, accel: &Accel, scene_bounds: &super::mesh::Aabb) -> AutoView {
+    let camera = outside_view(model, accel, AUTO_FOV_DEG, scene_bounds);
     let center = camera.target;
-    let radius = b.radius();
+    let radius = model.bounds.radius();
     let distance = (camera.position - center).length();
-    // 45 degrees up on the camera's side.
     let side = camera.position - center;
     let side = Vec3::new(side.x, 0.0, side.z).normalize_or(Vec3::Z);
     let position = center + (side + Vec3::Y).normalize() * distance;
@@ -255,7 +292,11 @@ fn on_ground(name: String, model: Mesh, accel: &Accel) -> Scene {
     let sphere_deg = (radius / distance).clamp(0.0, 0.99).asin().to_degrees();
     let outer_deg = (sphere_deg + 5.0).clamp(10.0, 80.0);
     let light = unit_spot(position, center, outer_deg, &camera);
-    auto_scene(name, mesh, camera, light, Orbit::around(center))
+    AutoView {
+        camera,
+        light,
+        orbit: Orbit::around(center),
+    }
 }
 
 #[cfg(test)]

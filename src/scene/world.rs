@@ -1,9 +1,9 @@
-//! The scene as the renderer takes it: mesh, camera, spot light, ambient light.
+//! The scene as the renderer takes it: mesh, camera, spot light (and its path), ambient light.
 
 use super::camera::Camera;
 use super::light::SpotLight;
 use super::mesh::Mesh;
-use super::path::Orbit;
+use super::path::{LightPath, Orbit};
 use glam::Vec3;
 
 /// Everything the renderer needs for one scene.
@@ -17,6 +17,9 @@ pub struct Scene {
     pub ambient: Vec3,
     /// Where `--path orbit` goes; None: around the mesh from outside ([`Scene::orbit`]).
     pub orbit: Option<Orbit>,
+    /// Where the light moves over time (scene files' `[[light_keyframes]]`, `--light-path`);
+    /// `Renderer::set_time` poses it. None: the light stays.
+    pub light_path: Option<LightPath>,
 }
 
 impl Scene {

@@ -167,6 +167,7 @@ fn bench_compare_reuse(
     for i in first..first.saturating_add(args.frames) {
         let camera = path.camera_at(&base, &orbit, frame_time(i, fps));
         for run in &mut runs {
+            run.renderer.set_time(frame_time(i, fps));
             run.timings.extend(sink.frame(&mut run.renderer, &camera)?);
             bar.inc();
         }

@@ -3,7 +3,9 @@
 
 use crate::cli::args::{Cli, SceneArgs};
 use crate::error::{Error, Result};
-use crate::scene::{asset_dir_from_env, load_scene, CameraPath, Scene};
+use crate::scene::{
+    asset_dir_from_env, load_scene_with_paths, CameraPath, LightPath, LoadedScene, Scene,
+};
 use crate::vk::{Context, ContextOptions};
 
 /// Frame counts above this are almost certainly a typo (a day at 1000 fps is 8.6e7).
@@ -18,19 +20,61 @@ pub(super) fn check_frames(frames: u32, what: &str) -> Result<()> {
     Ok(())
 }
 
-/// The scene and camera path of a run: everything before the GPU.
+/// The scene and camera path of a run: everything before the GPU. The light flags apply to
+/// the scene's light; `--save-scene` writes the result.
 pub(super) fn load(cli: &Cli, args: &SceneArgs) -> Result<(Scene, CameraPath)> {
-    let (mut scene, path) = load_spec(cli, &args.scene, &args.path)?;
+    let mut loaded = load_with_paths(cli, &args.scene)?;
+    let scene = &mut loaded.scene;
+    let bounds = scene.mesh.bounds;
     if let Some(l) = args.light {
-        scene.light = scene.light.placed(l.position, l.target, &scene.mesh.bounds);
+        scene.light = scene.light.placed(l.position, l.target, &bounds);
     }
-    Ok((scene, path))
+    if let Some((inner, outer)) = args.light_cone {
+        scene.light.inner_deg = inner;
+        scene.light.outer_deg = outer;
+    }
+    if let Some(i) = args.light_intensity {
+        scene.light.intensity = i.into();
+    }
+    match args.light_path.as_deref() {
+        Some("none") => scene.light_path = None,
+        Some(file) => {
+            let path = LightPath::from_file(std::path::Path::new(file))?;
+            // The shadow map reaches the whole scene from every key.
+            for k in path.keys() {
+                let placed = scene
+                    .light
+                    .placed(k.position.into(), k.target.into(), &bounds);
+                (scene.light.near, scene.light.far) = (placed.near, placed.far);
+            }
+            scene.light_path = Some(path);
+        }
+        None => {}
+    }
+    let path = match &args.path {
+        Some(p) => CameraPath::parse(p)?,
+        None => loaded.camera_path.clone().unwrap_or(CameraPath::Static),
+    };
+    loaded.camera_path = Some(path.clone());
+    if let Some(out) = &args.save_scene {
+        crate::files::write_atomic(out, loaded.describe().to_toml().as_bytes())?;
+        eprintln!("wrote {}", out.display());
+    }
+    Ok((loaded.scene, path))
 }
 
 /// The scene `spec` and camera path `path` (warnings about the model printed).
 pub(super) fn load_spec(cli: &Cli, spec: &str, path: &str) -> Result<(Scene, CameraPath)> {
+    let scene = load_with_paths(cli, spec)?.scene;
+    let path = CameraPath::parse(path)?;
+    Ok((scene, path))
+}
+
+/// A scene spec or file with the paths it brings (warnings about the model printed).
+fn load_with_paths(cli: &Cli, spec: &str) -> Result<LoadedScene> {
     let assets = cli.assets.clone().or_else(asset_dir_from_env);
-    let scene = load_scene(spec, assets.as_deref())?;
+    let loaded = load_scene_with_paths(spec, assets.as_deref())?;
+    let scene = &loaded.scene;
     for w in &scene.mesh.stats.warnings {
         eprintln!("warning: {w}");
     }
@@ -47,8 +91,7 @@ pub(super) fn load_spec(cli: &Cli, spec: &str, path: &str) -> Result<(Scene, Cam
             stats.dropped_slivers
         );
     }
-    let path = CameraPath::parse(path)?;
-    Ok((scene, path))
+    Ok(loaded)
 }
 
 /// The context every command starts from: `--validation`, `--device`, the device printed.
