@@ -20,14 +20,17 @@ layout(set = 1, binding = 0) uniform texture2D g_position;
 layout(set = 1, binding = 1) uniform texture2D g_normal;
 layout(set = 1, binding = 2) uniform texture2D prev_position;
 layout(set = 1, binding = 3) uniform texture2D prev_normal;
+layout(set = 1, binding = 4) uniform texture2D g_motion; // world-space motion since last frame
 
 // As the reprojection's facing test (shaders/reproject.comp): within 60 degrees.
 const float FACING_ACCEPT = 0.5;
 
-// Last frame's texel holding this pixel's surface, or (-1, -1).
+// Last frame's texel holding this pixel's surface, or (-1, -1); on a moving object, where its
+// point was last frame (the G-buffer's motion).
 ivec2 previous_texel(ivec2 pixel) {
     vec4 g = texelFetch(g_position, pixel, 0);
     if (g.w == 0.0) return ivec2(-1);
+    g.xyz -= texelFetch(g_motion, pixel, 0).xyz;
     vec4 c = frame.prev_view_proj * vec4(g.xyz, 1.0);
     if (!(c.w > 0.0)) return ivec2(-1);
     vec2 f = (c.xy / c.w * 0.5 + 0.5) * vec2(frame.size);

@@ -1,12 +1,15 @@
 #version 460
 // Shared vertex stage of the raster passes: G-buffer (camera), light view (RSM), and SRAA's
 // subpixel geometry (the camera shifted by a subpixel offset, chosen by the draw's instance).
+// Each draw places its object in the world (material.glsl: the identity for static geometry)
+// and hands on where the point was last frame.
 // @permutation camera: VIEW_CAMERA
 // @permutation light: VIEW_LIGHT
 // @permutation subpixel: VIEW_CAMERA SUBPIXEL
 #extension GL_GOOGLE_include_directive : require
 #include "frame.glsl"
 #include "subpixel.glsl"
+#include "material.glsl"
 
 layout(location = 0) in vec3 in_position;
 layout(location = 1) in vec3 in_normal;
@@ -15,15 +18,17 @@ layout(location = 2) in vec2 in_uv;
 layout(location = 0) out vec3 v_position;
 layout(location = 1) out vec3 v_normal;
 layout(location = 2) out vec2 v_uv;
+layout(location = 3) out vec3 v_prev_position; // the G-buffer's motion: where it was
 
 void main() {
-    v_position = in_position;
-    v_normal = in_normal;
+    v_position = place(in_position);
+    v_prev_position = place_prev(in_position);
+    v_normal = place_direction(in_normal);
     v_uv = in_uv;
 #ifdef VIEW_LIGHT
-    gl_Position = frame.light_view_proj * vec4(in_position, 1.0);
+    gl_Position = frame.light_view_proj * vec4(v_position, 1.0);
 #else
-    gl_Position = frame.view_proj * vec4(in_position, 1.0);
+    gl_Position = frame.view_proj * vec4(v_position, 1.0);
 #endif
 #ifdef SUBPIXEL
     // The pixel centre samples what lies `offset` away from it once the image moves by

@@ -24,6 +24,7 @@ layout(set = 1, binding = 0) uniform texture2D g_position;
 layout(set = 1, binding = 1) uniform texture2D g_normal;
 layout(set = 1, binding = 2) uniform texture2D prev_position; // last frame's G-buffer position
 layout(set = 1, binding = 3) uniform texture2D prev_normal;   // last frame's G-buffer normal
+layout(set = 1, binding = 4) uniform texture2D g_motion;      // world-space motion since last frame
 
 // Lane k's resources at bindings 8 + 8k ...: last frame's history (rgb value, a = estimates),
 // this frame's, the state, the counters, last frame's moments and this frame's, last frame's
@@ -53,7 +54,8 @@ layout(push_constant) uniform Reproject {
     uvec4 refresh_rect_0; // lane k's refresh tile (x0, y0, x1, y1) [px]; empty = none
     uvec4 refresh_rect_1;
     uvec4 refresh_rect_2;
-    uvec4 lane_0;         // lane k: (active, history_valid, log2 of the work-block side, 0)
+    uvec4 lane_0;         // lane k: (active, history_valid, log2 of the work-block side,
+                          //          moving objects' reach: MOVED_* below, 0 = none)
     uvec4 lane_1;
     uvec4 lane_2;
 } lanes;
@@ -75,6 +77,7 @@ struct Reprojected {
     vec2 w;        // bilinear weights
     float stretch; // area of the surface under last frame's pixel over this frame's (> 1: magnified)
     vec3 p;        // the pixel's surface point
+    vec3 motion;   // how far that point moved in the world since last frame (a moving object)
 };
 
 // Pixel footprint on the surface at p (normal n) seen from `eye`, up to the lens factor (the
@@ -121,10 +124,60 @@ bool to_screen(mat4 view_proj, vec3 q, out vec2 f) {
     f = c.w > 0.0 ? (c.xy / c.w * 0.5 + 0.5) * vec2(frame.size) : vec2(0.0);
     return c.w > 0.0; // false for NaN too
 }
-// Work blocks (quadrants of the 16x16 group) that hold pixels needing work, and the pixels
-// with no history, per lane.
+// Work blocks (quadrants of the 16x16 group) that hold pixels needing work, the pixels with no
+// history, and those a moving object took it from, per lane.
 shared uint quadrant_mask[LANES];
 shared uint group_disoccluded[LANES];
+shared uint group_invalidated[LANES];
+
+// Where a moving object changes a lane's value (EffectKind::moved, src/renderer/effect.rs),
+// tested against the box around every object that moved, at its last and its new place.
+const uint MOVED_AO = 1u;         // AO's taps can see it on the screen
+const uint MOVED_SSDO = 2u;       // SSDO's samples can
+const uint MOVED_SHADOW = 3u;     // in the box, or on its footprint on the shadow map
+const uint MOVED_INSIDE = 4u;     // in the box (what the gather receives on moved)
+
+// Distance from p to the moved box (0 inside).
+float moved_distance(vec3 p) {
+    return length(max(max(frame.moved_min - p, p - frame.moved_max), vec3(0.0)));
+}
+
+// Whether a screen-space estimate with world radius `radius` at p can read a pixel of the
+// moved box's screen footprint. Its taps read the G-buffer wherever points within the radius
+// of p project (the thesis's steps go as far as the radius projected at p's depth, Mittring's
+// and Szentandrasi's points are nearer the eye by up to the radius): so within the radius
+// projected at (depth - radius), with a floor of a tenth of the depth (a closer eye grows the
+// reach to most of the screen), plus the coarsest position level's block (far taps) and a
+// pixel. No hard cut at the radius in world space: a tap that lands on the moved object in
+// front counts, only attenuated.
+bool moved_on_screen(vec3 p, float radius) {
+    float depth = max((frame.view_proj * vec4(p, 1.0)).w, 1e-30);
+    float near = max(depth - radius, 0.1 * depth);
+    float grow = radius * float(frame.size.y) / (2.0 * frame.tan_half_fov * near) +
+                 float(1u << frame.ao_position_mips) + 1.0;
+    vec2 c = vec2(gl_GlobalInvocationID.xy) + 0.5;
+    vec4 r = frame.moved_screen_rect;
+    return all(greaterThanEqual(c, r.xy - grow)) && all(lessThanEqual(c, r.zw + grow));
+}
+
+// Whether what moved this frame reaches the value of a lane with reach `mode` at p. The
+// shadow footprint is widened by the PCF kernel (pcf_radius texels, and two for the tap's
+// bilinear reach and rounding): a shadow test there may meet the moved object, one outside it
+// cannot.
+bool moved_reaches(uint mode, vec3 p) {
+    if (frame.moved_count == 0u || mode == 0u) return false;
+    float d = moved_distance(p);
+    if (mode == MOVED_AO) return d <= 0.0 || moved_on_screen(p, frame.ao_radius);
+    if (mode == MOVED_SSDO) return d <= 0.0 || moved_on_screen(p, frame.ssdo_radius);
+    if (d <= 0.0) return true;
+    if (mode != MOVED_SHADOW) return false;
+    vec4 c = frame.light_view_proj * vec4(p, 1.0);
+    if (!(c.w > 0.0)) return false; // behind the light: unlit whatever moves
+    vec2 t = (c.xy / c.w * 0.5 + 0.5) * frame.shadow_map_size;
+    float grow = frame.pcf_radius + 2.0;
+    vec4 r = frame.moved_light_rect;
+    return all(greaterThanEqual(t, r.xy - grow)) && all(lessThanEqual(t, r.zw + grow));
+}
 
 bool tap_valid(ivec2 t, vec3 p, vec3 n, float eps) {
     if (outside_frame(t)) return false;
@@ -135,9 +188,11 @@ bool tap_valid(ivec2 t, vec3 p, vec3 n, float eps) {
 
 // Eqs 1-3 for `pixel`. Where all four taps around the previous position hold this surface,
 // each lane reads their bilinear blend or one of them (pick_registered), else the nearest
-// texel. A static camera (decided on the CPU) reuses the texel itself: eq 1's rounding noise
-// would otherwise blend neighbours into a converged value every frame, and that noise grows
-// with the coordinates' distance from the origin.
+// texel. A static camera (decided on the CPU) reuses the texel itself where nothing moved:
+// eq 1's rounding noise would otherwise blend neighbours into a converged value every frame,
+// and that noise grows with the coordinates' distance from the origin. On a moving object eq 1
+// and eq 3 take the point where it was last frame (p minus the G-buffer's motion): its history
+// follows it, and what it uncovered finds the object gone from its previous texel.
 Reprojected reproject(ivec2 pixel) {
     Reprojected r;
     r.geometry = false;
@@ -148,21 +203,25 @@ Reprojected reproject(ivec2 pixel) {
     r.w = vec2(0.0);
     r.stretch = 1.0;
     r.p = vec3(0.0);
+    r.motion = vec3(0.0);
     vec4 position = texelFetch(g_position, pixel, 0);
     if (position.w == 0.0) return r;
     r.geometry = true;
-    vec3 p = position.xyz;
-    r.p = p;
+    r.p = position.xyz;
+    r.motion = texelFetch(g_motion, pixel, 0).xyz;
+    // Where the surface point was: the point itself for what stands still (motion exactly 0).
+    vec3 p = r.p - r.motion;
+    bool still = frame.camera_static != 0u && r.motion == vec3(0.0);
     vec2 f;
     if (!to_screen(frame.prev_view_proj, p, f)) return r; // eq 1
-    if (frame.camera_static != 0u) f = vec2(pixel) + 0.5;
+    if (still) f = vec2(pixel) + 0.5;
     r.nearest = texel_of(f, vec2(frame.size));
     f = clamp(f, vec2(-1.0), vec2(frame.size) + 1.0);
     vec3 n = texelFetch(g_normal, pixel, 0).xyz;
     float eps = disocclusion_epsilon(p, n);
     r.found = tap_valid(r.nearest, p, n, eps); // eqs 2-3 on the nearest texel
-    if (!r.found || frame.camera_static != 0u) return r; // an unmoved eye: stretch 1
-    float now = surface_footprint(p, n, frame.camera_pos);
+    if (!r.found || still) return r; // an unmoved eye on an unmoved surface: stretch 1
+    float now = surface_footprint(r.p, n, frame.camera_pos);
     float before = surface_footprint(p, n, frame.prev_camera_pos);
     // Footprints are positive (distance > 0 past eq 1's w > 0 test); the ratio is finite.
     r.stretch = now > 0.0 ? (before / now) * (before / now) : 1.0;
@@ -252,13 +311,15 @@ bool in_rect(ivec2 pixel, uvec4 rect) {
 // as is a new one: their registration restarts.
 uint lane_state(Reprojected r, uvec4 lane, bool refreshed, texture2D history_prev,
                 texture2D moments_prev, texture2D registration_prev, out vec4 history,
-                out vec4 moments, out vec4 registration) {
+                out vec4 moments, out vec4 registration, out bool invalidated) {
     history = vec4(0.0);
     moments = vec4(0.0);
     registration = vec4(r.p, 1.0);
+    invalidated = false;
     if (!r.geometry) return STATE_BACKGROUND;
     uint state = STATE_NEW;
-    if (lane.y != 0u && r.found) {
+    invalidated = lane.y != 0u && r.found && moved_reaches(lane.w, r.p);
+    if (lane.y != 0u && r.found && !invalidated) {
         r = pick_registered(r, registration_prev);
         float counted;
         history = resample(r, history_prev, 3, counted);
@@ -266,18 +327,19 @@ uint lane_state(Reprojected r, uvec4 lane, bool refreshed, texture2D history_pre
         moments = resample(r, moments_prev, 2, counted);
         moments.z = counted;
         registration = resample(r, registration_prev, 3, counted);
+        registration.xyz += r.motion; // the carried point moves with its object
         float magnification = max(registration.w * r.stretch, 1.0);
         float loss = 1.0;
         if (magnification > MAGNIFICATION_LIMIT) {
             loss = magnification;
             magnification = 1.0;
         }
-        // A static camera reuses each texel as is (no drift), and its eq 1 is not evaluated:
-        // far from the origin the projection's rounding alone can move a point a pixel. A
-        // carried point behind the eye counts as displaced beyond any limit.
+        // A static camera reuses each texel of still geometry as is (no drift), and its eq 1
+        // is not evaluated there: far from the origin the projection's rounding alone can move
+        // a point a pixel. A carried point behind the eye counts as displaced beyond any limit.
         vec2 s;
         float e = 0.0;
-        if (frame.camera_static == 0u)
+        if (frame.camera_static == 0u || r.motion != vec3(0.0))
             e = to_screen(frame.view_proj, registration.xyz, s)
                     ? distance(s, vec2(gl_GlobalInvocationID.xy) + 0.5)
                     : 1.0e9;
@@ -307,11 +369,13 @@ bool needs_work(uint state) {
     if (lanes.lane_##k.x != 0u) {                                                              \
         vec4 history, moments;                                                                 \
         vec4 registration;                                                                     \
+        bool invalidated;                                                                      \
         bool refreshed = r.geometry && in_rect(pixel, lanes.refresh_rect_##k);                 \
         uint state = lane_state(r, lanes.lane_##k, refreshed, history_prev_##k,                \
                                 moments_prev_##k, registration_prev_##k, history, moments,     \
-                                registration);                                                 \
-        if (state == STATE_NEW) atomicAdd(group_disoccluded[k], 1u);                           \
+                                registration, invalidated);                                    \
+        if (invalidated) atomicAdd(group_invalidated[k], 1u);                                  \
+        else if (state == STATE_NEW) atomicAdd(group_disoccluded[k], 1u);                      \
         if (refreshed) state = STATE_REFRESH;                                                  \
         imageStore(history_cur_##k, pixel, history);                                           \
         imageStore(moments_cur_##k, pixel, moments);                                           \
@@ -335,6 +399,8 @@ uint listed_quadrants(uint mask, uint shift) {
     if (lanes.lane_##k.x != 0u) {                                                              \
         if (group_disoccluded[k] > 0u)                                                         \
             atomicAdd(counters_##k.disoccluded_pixels, group_disoccluded[k]);                  \
+        if (group_invalidated[k] > 0u)                                                         \
+            atomicAdd(counters_##k.invalidated_pixels, group_invalidated[k]);                  \
         uint shift = lanes.lane_##k.z;                                                         \
         uint mask = listed_quadrants(quadrant_mask[k], shift);                                 \
         for (uint q = 0u; q < 4u; ++q) {                                                       \
@@ -349,6 +415,7 @@ void main() {
     if (gl_LocalInvocationIndex < uint(LANES)) {
         quadrant_mask[gl_LocalInvocationIndex] = 0u;
         group_disoccluded[gl_LocalInvocationIndex] = 0u;
+        group_invalidated[gl_LocalInvocationIndex] = 0u;
     }
     barrier();
     ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);

@@ -8,9 +8,7 @@
 #include "frame.glsl"
 #include "two_sided.glsl"
 
-layout(push_constant) uniform Material {
-    vec4 albedo;
-} material;
+#include "material.glsl"
 
 #ifdef TEXTURED
 layout(set = 1, binding = 0) uniform texture2D diffuse_texture;
@@ -20,6 +18,7 @@ layout(set = 1, binding = 1) uniform sampler diffuse_sampler;
 layout(location = 0) in vec3 v_position;
 layout(location = 1) in vec3 v_normal;
 layout(location = 2) in vec2 v_uv;
+layout(location = 3) in vec3 v_prev_position; // unused here (the G-buffer's motion)
 
 layout(location = 0) out vec4 out_position;
 layout(location = 1) out vec4 out_normal;

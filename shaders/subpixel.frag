@@ -9,6 +9,7 @@
 layout(location = 0) in vec3 v_position;
 layout(location = 1) in vec3 v_normal;
 layout(location = 2) in vec2 v_uv;
+layout(location = 3) in vec3 v_prev_position; // unused here (the G-buffer's motion)
 
 layout(location = 0) out vec4 out_position;
 layout(location = 1) out vec4 out_normal;

@@ -314,6 +314,30 @@ fn thesis_walkthroughs_end_to_end() {
     std::fs::remove_dir_all(&out).ok();
 }
 
+/// `ssgi table dynamic`: the ball and the swinging light get the walkthroughs' rows and
+/// checks; the light moves on every measured frame after the first (the warmup holds time 0),
+/// so the reuse row records the light view on each of those, and the series files are there.
+#[test]
+fn dynamic_end_to_end() {
+    let assets = assets();
+    let out = out_dir("dynamic");
+    let run = Run::invariants("dynamic");
+    let report = run_table(&assets, &run, &out);
+    let scenes = check_report(&report, &out, &run, &["Ball & swinging light"]);
+    let reuse = &scenes[0]["rows"][0];
+    let passes = reuse["report"]["passes"].as_array().unwrap();
+    let light_view = passes.iter().find(|p| p["name"] == "light_view").unwrap();
+    assert_eq!(light_view["recorded"], run.frames - 1, "{light_view}");
+    for f in [
+        "dynamic-cornell-ball.csv",
+        "dynamic-cornell-ball-time.png",
+        "dynamic-cornell-ball-recomputed.png",
+    ] {
+        assert!(out.join(f).is_file(), "{f}");
+    }
+    std::fs::remove_dir_all(&out).ok();
+}
+
 /// Every effect, as the thesis ran it, at a size where lavapipe's indirect light is cheap:
 /// the indirect columns and buffers are there, the reference against itself is 0.
 #[test]

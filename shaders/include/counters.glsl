@@ -9,6 +9,7 @@
 //   fixup_dispatch_x, _y, _z  ceil(fixup_pixels / 64), y = z = 1
 //   refresh_evaluations       pattern evaluations of the refresh tile (every pattern counts)
 //   samples                   hemisphere samples taken (SSDO: their sum over computed_pixels)
+//   invalidated_pixels        pixels whose history held but a moving object's reach dropped it
 //   data[]                    blocks (x | y << 16), then fix-up pixels (x | y << 16)
 // COUNTERS_MEMBERS lets a pass that fills several effects' lists (the reprojection) declare
 // one block per effect with the same layout.
@@ -28,6 +29,7 @@
     uint fixup_dispatch_z;                                                                     \
     uint refresh_evaluations;                                                                  \
     uint samples;                                                                              \
+    uint invalidated_pixels;                                                                   \
     uint data[];
 
 #ifndef COUNTERS_LANES

@@ -72,6 +72,11 @@ layout(set = 0, binding = 0, std430) readonly buffer Frame {
     float aa_sigma_n;          // SRAA eq 1: scale on 1 - sat(n_j . n_i)
     float aa_sigma_shadow;     // SRAA: scale on the shadow tests' difference (0 = no term)
     uint noisy_half_res;       // the noisy gather (CCIPCA, joint bilateral): one pixel per 2x2 block gathers (0/1)
+    vec4 moved_light_rect;     // the moved box's footprint on the shadow map (x0, y0, x1, y1) [texels]
+    vec4 moved_screen_rect;    // its footprint on the screen (x0, y0, x1, y1) [px]
+    vec3 moved_min;            // box around what moved since last frame, at both places (world)
+    uint moved_count;          // objects that moved (0: nothing did; the box means nothing)
+    vec3 moved_max;
 } frame;
 
 // Smooth spot cone: 1 inside the inner angle, 0 outside the outer, Hermite in between. As on

@@ -27,6 +27,7 @@ pub mod szentandrasi;
 pub mod table41;
 pub mod table_chang;
 pub mod table_chang_flicker;
+pub mod table_dynamic;
 pub mod table_report;
 pub mod table_run;
 pub mod table_sraa;

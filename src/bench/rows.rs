@@ -217,9 +217,10 @@ pub struct SceneRun<'a> {
 }
 
 /// Measure every row of `scene`. The reference row renders the reference configuration held
-/// at the camera of the path's last frame: its first frame's buffers are the reference every
-/// row's last frame (same camera) is compared to, and its second frame is compared to the
-/// first, so its own error is 0 unless rendering is not deterministic.
+/// at the camera of the path's last frame (with moving objects and light where that frame has
+/// them): its first frame's buffers are the reference every row's last frame (same camera) is
+/// compared to, and its second frame is compared to the first, so its own error is 0 unless
+/// rendering is not deterministic.
 pub fn measure_rows(
     ctx: &Arc<Context>,
     sink: &mut dyn FrameSink,
@@ -229,11 +230,12 @@ pub fn measure_rows(
     let frames = run.frames.max(1);
     let camera = last_camera(scene, run.path, frames, run.fps);
     let held = held_at(&camera);
-    let truth = ground_truth_of(scene, run, camera)?;
+    let last = scene.posed(crate::scene::path::frame_time(frames - 1, run.fps));
+    let truth = ground_truth_of(&last, run, camera)?;
     let mut reference = measure(
         ctx,
         sink,
-        scene,
+        &last,
         &RunSpec {
             label: &format!("{} {}", scene.name, RowKind::Reference.short()),
             config: RowKind::Reference.config(&run.base),
@@ -284,7 +286,7 @@ pub fn measure_rows(
     // compared with: refine it (from the cache's samples) before scoring the rows.
     let mut truth = truth;
     let frames_last: Vec<&LastFrame> = runs.iter().map(|r| &r.2.last).collect();
-    refine_truth_for(&mut truth, scene, &frames_last, run.base.effects)?;
+    refine_truth_for(&mut truth, &last, &frames_last, run.base.effects)?;
     let mut rows = Vec::new();
     for (kind, config, measured, path, warmup) in runs {
         rows.push(summarize(
@@ -297,7 +299,7 @@ pub fn measure_rows(
             warmup,
         )?);
     }
-    let quality = truth_quality(&truth, &rows, scene, &reference_frame);
+    let quality = truth_quality(&truth, &rows, &last, &reference_frame);
     Ok((rows, quality))
 }
 

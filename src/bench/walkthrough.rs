@@ -159,28 +159,29 @@ pub fn run(
             None,
             rows,
         );
-        result.files = write_series(&result, w.asset, out)?;
+        result.files = write_series(&result, &format!("walkthrough-{}", w.asset), out)?;
         eprintln!("{}", result.summary_line());
         report.scenes.push(result);
     }
     Ok(report)
 }
 
-/// `walkthrough-<asset>.csv`, `-time.png` and `-recomputed.png` in `out`; returns their names.
-fn write_series(s: &SceneResult, asset: &str, out: &Path) -> Result<Vec<String>> {
+/// `<stem>.csv`, `<stem>-time.png` and `<stem>-recomputed.png` in `out` (the per-frame time
+/// and recomputed pixels with and without reuse); returns their names.
+pub(super) fn write_series(s: &SceneResult, stem: &str, out: &Path) -> Result<Vec<String>> {
     let samples = |kind| s.row(kind).map(|r| r.samples()).unwrap_or_default();
     let (reuse, no_reuse) = (samples(RowKind::Reuse), samples(RowKind::NoReuse));
     let pixels = s
         .row(RowKind::Reuse)
         .map_or(1, |r| r.report.width as u64 * r.report.height as u64);
-    let csv_name = format!("walkthrough-{asset}.csv");
+    let csv_name = format!("{stem}.csv");
     super::output::write_text(
         &out.join(&csv_name),
         &super::csv::frames(&reuse, &no_reuse, pixels),
     )?;
     let ms = |group: &'static str| move |f: &FrameSample| f.ms.get(group).copied();
     let fraction = |f: &FrameSample| f.ssao_computed_pixels.map(|n| n as f64 / pixels as f64);
-    let time_name = format!("walkthrough-{asset}-time.png");
+    let time_name = format!("{stem}-time.png");
     let title = format!("{}: GPU time per frame", s.name);
     write_line_plot(
         &LinePlot {
@@ -209,7 +210,7 @@ fn write_series(s: &SceneResult, asset: &str, out: &Path) -> Result<Vec<String>>
         },
         &out.join(&time_name),
     )?;
-    let recomputed_name = format!("walkthrough-{asset}-recomputed.png");
+    let recomputed_name = format!("{stem}-recomputed.png");
     let title = format!("{}: recomputed pixels per frame", s.name);
     write_line_plot(
         &LinePlot {

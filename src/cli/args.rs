@@ -205,6 +205,12 @@ pub struct SceneArgs {
     /// tiles at 256x256).
     #[arg(long, default_value = "5%", value_parser = parse_fraction)]
     pub refresh_budget: f32,
+    /// Drop histories where a change reaches them: a moved light restarts shadows, indirect
+    /// light and SSDO, a light view rendered again (something moved in the light's sight) the
+    /// indirect light and SSDO, a moving object each effect's pixels within its reach (AO and
+    /// SSDO radius, shadow-map footprint). `off`: only disocclusion and the gate react.
+    #[arg(long, default_value = "on", value_parser = parse_on_off, action = clap::ArgAction::Set)]
+    pub invalidate: bool,
     /// How a moving camera reads a history between texels: `bilinear` blends the four around
     /// the previous position, `point` takes the one whose carried surface point lands nearest
     /// the pixel (the estimator's own value, no smear, more pixels accumulating).
@@ -426,6 +432,7 @@ impl SceneArgs {
                 refresh: self.refresh,
                 refresh_budget: self.refresh_budget,
                 resample: self.history_resample,
+                invalidate: self.invalidate,
             },
             aa: AaConfig {
                 mode: self.aa,
@@ -640,6 +647,10 @@ pub enum TableName {
     /// accumulation from 1-64 VPLs per pixel, static and moving: flicker and error.
     #[value(name = "chang-flicker")]
     ChangFlicker,
+    /// The dynamic scene (scenes/cornell-ball.toml: a ball rolling across the Cornell box while
+    /// the spot swings), still camera: reuse vs no reuse, time and error per frame.
+    #[value(name = "dynamic")]
+    Dynamic,
 }
 
 impl TableName {
@@ -657,6 +668,8 @@ impl TableName {
             TableName::Sraa => ((512, 512), 3, Warmup::Frames(1)),
             TableName::Chang1 => ((512, 512), 8, Warmup::Frames(4)),
             TableName::ChangFlicker => ((128, 128), 16, Warmup::Frames(64)),
+            // 4 s at 60 fps: the light's whole swing, the ball's way across.
+            TableName::Dynamic => ((256, 256), 240, Warmup::Frames(10)),
         }
     }
 
@@ -668,6 +681,7 @@ impl TableName {
             TableName::Sraa => "sraa",
             TableName::Chang1 => "chang-1",
             TableName::ChangFlicker => "chang-flicker",
+            TableName::Dynamic => "dynamic",
         }
     }
 
@@ -684,6 +698,9 @@ impl TableName {
             TableName::Sraa => crate::bench::table_sraa::TITLE,
             TableName::Chang1 => crate::bench::table_chang::TITLE,
             TableName::ChangFlicker => crate::bench::table_chang_flicker::TITLE,
+            TableName::Dynamic => {
+                "Dynamic scene: a ball rolling across the Cornell box under a swinging light"
+            }
         }
     }
 }

@@ -60,6 +60,7 @@ const REPROJECT: &[Bind] = &[
     Bind::new(1, Slot::GNormal, Use::Sampled),
     Bind::new(2, Slot::GPositionPrev, Use::Sampled),
     Bind::new(3, Slot::GNormalPrev, Use::Sampled),
+    Bind::new(4, Slot::GMotion, Use::Sampled),
     Bind::new(6, BASES, Use::BufferReadWrite),
     Bind::new(8, PARTIALS, Use::BufferWrite),
     Bind::new(11, BASES_PREV, Use::BufferRead),

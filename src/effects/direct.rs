@@ -266,8 +266,10 @@ impl Effect for DirectEffect {
         }
         let refresh = info.config.temporal.refresh;
         if let Some(t) = &mut self.sized.temporal {
+            // A moved light moves every shadow; a moving object only its own (the lane's
+            // shadow-footprint reach).
             self.push = t.frame_push(
-                info.reusing(),
+                info.keeps_history(true, false),
                 refresh,
                 0,
                 info.camera_moved || info.light_changed,

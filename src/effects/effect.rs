@@ -52,12 +52,23 @@ pub struct FrameInfo<'a> {
     pub camera_moved: bool,
     /// The light differs from the one the light view was last rendered for.
     pub light_changed: bool,
+    /// The light view is rendered this frame: the light changed, or something moved where
+    /// the light sees it (the RSM and the shadow map change).
+    pub light_view: bool,
 }
 
 impl FrameInfo<'_> {
     /// Reuse is on and the histories hold last frame's data.
     pub fn reusing(&self) -> bool {
         self.config.temporal.reuse && self.history_valid
+    }
+
+    /// Whether an effect whose value depends on the light (`light`) or on the whole RSM
+    /// (`rsm`) keeps its history this frame: with `--invalidate`, a moved light restarts the
+    /// first, a re-rendered light view the second (a change there reaches every pixel).
+    pub fn keeps_history(&self, light: bool, rsm: bool) -> bool {
+        let invalidate = self.config.temporal.invalidate;
+        self.reusing() && !(invalidate && (light && self.light_changed || rsm && self.light_view))
     }
 }
 

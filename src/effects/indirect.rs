@@ -279,8 +279,10 @@ impl Effect for IndirectEffect {
         } else {
             0
         };
+        // Every pixel gathers from the whole RSM: when it is rendered again, every value may
+        // change.
         self.push = self.sized.temporal.frame_push(
-            info.reusing(),
+            info.keeps_history(true, true),
             t.refresh,
             pattern,
             info.camera_moved || info.light_changed,

@@ -26,6 +26,7 @@ pub fn shared(t: &Targets, slot: Slot, parity: usize) -> Option<&Image> {
         Slot::GNormal => Target::GNormal,
         Slot::GNormalPrev => Target::GNormalHistory,
         Slot::GAlbedo => Target::GAlbedo,
+        Slot::GMotion => Target::GMotion,
         Slot::GDepth => Target::GDepth,
         Slot::RsmPosition => Target::RsmPosition,
         Slot::RsmNormal => Target::RsmNormal,

@@ -528,9 +528,11 @@ impl Effect for SsdoEffect {
     fn prepare(&mut self, info: &FrameInfo<'_>) {
         let refresh = info.config.temporal.refresh;
         if let Some(t) = &mut self.sized.temporal {
-            // The senders' radiance and L_in follow the light: a light change refreshes too.
+            // The senders' radiance and L_in follow the light and the shadows: a light view
+            // rendered again (a moved light, or something moving in its sight) restarts the
+            // history, and refreshes after it.
             self.push = t.frame_push(
-                info.reusing(),
+                info.keeps_history(true, true),
                 refresh,
                 0,
                 info.camera_moved || info.light_changed,

@@ -21,6 +21,8 @@ pub enum Slot {
     /// Last frame's G-buffer normal: the disocclusion test's facing check.
     GNormalPrev,
     GAlbedo,
+    /// This frame's world-space motion of each pixel's surface point (the G-buffer's).
+    GMotion,
     RsmPosition,
     RsmNormal,
     RsmFlux,

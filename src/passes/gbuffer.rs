@@ -1,5 +1,5 @@
 //! G-buffer: world position (w = 1 on geometry, 0 on background), world normal (facing the
-//! eye), albedo, and depth, from the camera.
+//! eye), albedo, world-space motion since last frame, and depth, from the camera.
 
 use super::compute::FrameSet;
 use super::decl::{Bind, Resolve, Slot, Use};
@@ -19,6 +19,7 @@ const TARGETS: &[Bind] = &[
     Bind::new(0, Slot::GPosition, Use::ColorAttachment),
     Bind::new(1, Slot::GNormal, Use::ColorAttachment),
     Bind::new(2, Slot::GAlbedo, Use::ColorAttachment),
+    Bind::new(3, Slot::GMotion, Use::ColorAttachment),
     Bind::new(0, Slot::GDepth, Use::DepthAttachment),
 ];
 

@@ -133,25 +133,25 @@ impl MaterialPipelines {
     }
 
     /// Draw every material range: flat materials first, then textured ones (one pipeline bind
-    /// each), with the material colour as push constant.
+    /// each), with the material colour and the object's pose as push constants.
     pub fn draw(&self, rec: &Recorder<'_>, frame_set: vk::DescriptorSet, scene: &SceneGpu) {
         rec.bind(&self.flat, &[frame_set]);
         rec.bind_mesh(&scene.vertices, &scene.indices);
-        for range in scene.ranges.iter() {
-            let material = &scene.materials[range.material];
+        for draw in scene.draws.iter() {
+            let material = &scene.materials[draw.material];
             if material.texture_set.is_none() {
-                rec.push(&self.flat, &material.push_bytes());
-                rec.draw_indexed(range.first_index, range.index_count);
+                rec.push(&self.flat, &material.push_bytes(&scene.pose(draw)));
+                rec.draw_indexed(draw.first_index, draw.index_count);
             }
         }
         if let Some(textured) = &self.textured {
             rec.bind(textured, &[frame_set]);
-            for range in scene.ranges.iter() {
-                let material = &scene.materials[range.material];
+            for draw in scene.draws.iter() {
+                let material = &scene.materials[draw.material];
                 if let Some(set) = material.texture_set {
                     rec.bind_sets(textured, 1, &[set]);
-                    rec.push(textured, &material.push_bytes());
-                    rec.draw_indexed(range.first_index, range.index_count);
+                    rec.push(textured, &material.push_bytes(&scene.pose(draw)));
+                    rec.draw_indexed(draw.first_index, draw.index_count);
                 }
             }
         }

@@ -18,12 +18,13 @@ use std::sync::Arc;
 /// Temporal effects one reprojection serves (the shader's permutations).
 pub const MAX_LANES: usize = 3;
 
-/// What every lane shares: this frame's G-buffer and last frame's.
+/// What every lane shares: this frame's G-buffer (with its motion) and last frame's.
 const SHARED: &[Bind] = &[
     Bind::new(0, Slot::GPosition, Use::Sampled),
     Bind::new(1, Slot::GNormal, Use::Sampled),
     Bind::new(2, Slot::GPositionPrev, Use::Sampled),
     Bind::new(3, Slot::GNormalPrev, Use::Sampled),
+    Bind::new(4, Slot::GMotion, Use::Sampled),
 ];
 
 /// Lane `k`'s resources, at bindings 8 + 8k onwards (shaders/reproject.comp's LANE_RESOURCES).
@@ -81,13 +82,20 @@ pub struct LaneFrame {
     pub block_shift: u32,
     /// Refresh tile (x0, y0, x1, y1) [px]; empty = none.
     pub refresh_rect: [u32; 4],
+    /// Which pixels a moving object takes the history from (`MovedReach` code, 0 = none).
+    pub moved: u32,
 }
 
 /// The frame's push constants from each lane's part.
 pub fn push(lanes: &[LaneFrame]) -> ReprojectPush {
     let lane = |k: usize| {
         lanes.get(k).map_or([0; 4], |l| {
-            [l.active as u32, l.history_valid as u32, l.block_shift, 0]
+            [
+                l.active as u32,
+                l.history_valid as u32,
+                l.block_shift,
+                l.moved,
+            ]
         })
     };
     let rect = |k: usize| lanes.get(k).map_or([0; 4], |l| l.refresh_rect);
@@ -201,8 +209,9 @@ mod tests {
             history_valid: true,
             block_shift: 4,
             refresh_rect: [1, 2, 3, 4],
+            moved: 3,
         }]);
-        assert_eq!(p.lane_0, [1, 1, 4, 0]);
+        assert_eq!(p.lane_0, [1, 1, 4, 3]);
         assert_eq!(p.refresh_rect_0, [1, 2, 3, 4]);
         assert_eq!(p.lane_1, [0; 4]);
         assert_eq!(p.lane_2, [0; 4]);

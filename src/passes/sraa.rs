@@ -112,8 +112,10 @@ impl SraaPass {
             begin_attachments(rec, tracker, self.geometry.name, targets, frame.parity);
             rec.bind(&self.geometry, &[frame.set]);
             rec.bind_mesh(&scene.vertices, &scene.indices);
-            for range in &scene.ranges {
-                rec.draw_indexed_instance(range.first_index, range.index_count, n as u32);
+            for draw in &scene.draws {
+                let material = &scene.materials[draw.material];
+                rec.push(&self.geometry, &material.push_bytes(&scene.pose(draw)));
+                rec.draw_indexed_instance(draw.first_index, draw.index_count, n as u32);
             }
             rec.end_rendering();
         }

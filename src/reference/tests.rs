@@ -68,6 +68,7 @@ fn receiver_over_floor(h: f32, floor: f32, l: SpotLight) -> Scene {
         ambient: Vec3::ZERO,
         orbit: None,
         light_path: None,
+        objects: Vec::new(),
     }
 }
 
@@ -138,6 +139,7 @@ fn direct_light_is_inverse_square_with_hard_shadows() {
         ambient: Vec3::ZERO,
         orbit: None,
         light_path: None,
+        objects: Vec::new(),
     };
     let accel = Accel::new(&scene.mesh);
     let mut r = Reference::new(

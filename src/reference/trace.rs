@@ -37,7 +37,7 @@ impl Settings {
     pub fn for_render(config: &crate::renderer::RenderConfig, scene: &Scene) -> Self {
         Settings {
             ao: AoDefinition {
-                radius: config.ao.radius * scene.mesh.bounds.radius().max(f32::MIN_POSITIVE),
+                radius: config.ao.radius * scene.bounds().radius().max(f32::MIN_POSITIVE),
                 attenuation: config.ao.attenuation,
             },
             light_radius: 0.0,

@@ -118,6 +118,7 @@ impl Renderer {
             history_valid: true,
             camera_moved: false,
             light_changed: false,
+            light_view: false,
         };
         let mut list: Vec<AuditRequest<'_>> = Vec::new();
         for e in &self.effects {

@@ -484,6 +484,10 @@ pub struct TemporalConfig {
     /// (`temporal::budget_tile`).
     pub refresh_budget: f32,
     pub resample: HistoryResample,
+    /// Drop histories where a change reaches them (`--invalidate`): a moved light or a
+    /// re-rendered RSM restarts what depends on them, a moving object what lies within the
+    /// effect's reach of it (shaders/reproject.comp). Off: only disocclusion and the gate.
+    pub invalidate: bool,
 }
 
 /// Threads sharing out one refresh-tile pixel's patterns (`REFRESH_THREADS` of
@@ -506,6 +510,7 @@ impl Default for TemporalConfig {
             refresh: Refresh::Feathered,
             refresh_budget: REFRESH_BUDGET,
             resample: HistoryResample::Bilinear,
+            invalidate: true,
         }
     }
 }

@@ -30,6 +30,8 @@ pub enum Counter {
     Refresh,
     /// Hemisphere samples taken over the computed pixels (SSDO).
     Samples,
+    /// Pixels whose history held but lay within a moving object's reach (`--invalidate`).
+    Invalidated,
 }
 
 impl Counter {
@@ -40,6 +42,7 @@ impl Counter {
             Counter::Fixup => h.fixup_pixels,
             Counter::Refresh => h.refresh_evaluations,
             Counter::Samples => h.samples,
+            Counter::Invalidated => h.invalidated_pixels,
         }
     }
 }
@@ -81,6 +84,7 @@ pub fn record_reset(rec: &Recorder<'_>, tracker: &mut Tracker, gpu: &Buffer, max
         fixup_dispatch_z: 1,
         refresh_evaluations: 0,
         samples: 0,
+        invalidated_pixels: 0,
     };
     rec.update_buffer(gpu, &header.to_bytes());
 }

@@ -26,6 +26,28 @@ pub struct EffectKind {
     pub counters: &'static [(&'static str, Counter)],
     /// Whether the effect has a full-resolution fix-up list.
     pub fixups: bool,
+    /// Which pixels a moving object takes the history from (`--invalidate`).
+    pub moved: MovedReach,
+}
+
+/// Where a moving object changes an effect's value, so that its history there is dropped (the
+/// lane's `w` in shaders/reproject.comp, which tests each pixel's surface point against the box
+/// around what moved). Disocclusion is separate: the reprojection follows moving surfaces.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum MovedReach {
+    /// Where AO's taps can read the box's screen footprint: within the AO radius projected
+    /// near the pixel's depth (the taps read whatever the G-buffer shows there, attenuated,
+    /// not cut, beyond the radius in world space).
+    AoRadius = 1,
+    /// The same for SSDO's hemisphere radius.
+    SsdoRadius = 2,
+    /// In the box, or where it falls on the shadow map (widened by the PCF kernel): the
+    /// only pixels whose shadow test can meet it.
+    ShadowFootprint = 3,
+    /// In the box: the gather sums every VPL, so a moved object that the light sees changes
+    /// every pixel and the whole history restarts (`Effect::prepare`); this is for one the
+    /// light does not see.
+    Inside = 4,
 }
 
 pub const AO: EffectKind = EffectKind {
@@ -36,8 +58,10 @@ pub const AO: EffectKind = EffectKind {
         ("disoccluded_pixels", Counter::Disoccluded),
         ("ssao_computed_pixels", Counter::Computed),
         ("ssao_refresh_evaluations", Counter::Refresh),
+        ("ssao_invalidated_pixels", Counter::Invalidated),
     ],
     fixups: false,
+    moved: MovedReach::AoRadius,
 };
 
 pub const SHADOW: EffectKind = EffectKind {
@@ -47,8 +71,10 @@ pub const SHADOW: EffectKind = EffectKind {
     counters: &[
         ("shadow_computed_pixels", Counter::Computed),
         ("shadow_refresh_evaluations", Counter::Refresh),
+        ("shadow_invalidated_pixels", Counter::Invalidated),
     ],
     fixups: false,
+    moved: MovedReach::ShadowFootprint,
 };
 
 pub const INDIRECT: EffectKind = EffectKind {
@@ -59,8 +85,10 @@ pub const INDIRECT: EffectKind = EffectKind {
         ("indirect_computed_pixels", Counter::Computed),
         ("indirect_fixup_pixels", Counter::Fixup),
         ("indirect_refresh_evaluations", Counter::Refresh),
+        ("indirect_invalidated_pixels", Counter::Invalidated),
     ],
     fixups: true,
+    moved: MovedReach::Inside,
 };
 
 /// SSDO with the cache (`--reuse on`): the factor's running mean rides in the moments' w.
@@ -73,8 +101,10 @@ pub const SSDO: EffectKind = EffectKind {
         ("ssdo_computed_pixels", Counter::Computed),
         ("ssdo_samples", Counter::Samples),
         ("ssdo_refresh_evaluations", Counter::Refresh),
+        ("ssdo_invalidated_pixels", Counter::Invalidated),
     ],
     fixups: false,
+    moved: MovedReach::SsdoRadius,
 };
 
 const STORAGE_READ: vk::ImageUsageFlags = vk::ImageUsageFlags::from_raw(

@@ -29,6 +29,8 @@ pub struct FrameInputs<'a> {
     pub frame: u64,
     /// Bounding radius of the scene: the AO radius is relative to it.
     pub scene_radius: f32,
+    /// What moved since last frame (`motion::Moved`), if anything did.
+    pub moved: Option<super::motion::Moved>,
 }
 
 /// The per-frame uniform block (`Frame` in shaders/include/frame.glsl), filled member by member.
@@ -115,6 +117,11 @@ pub fn frame_block(config: &RenderConfig, f: &FrameInputs<'_>) -> FrameBlock {
         // rather than by a pixel threshold on eq 1, whose fp32 error grows with coordinates.
         camera_static: (view_proj == f.prev_view_proj) as u32,
         indirect_ramp: (ind.input == IndirectInput::Ramp) as u32,
+        moved_light_rect: f.moved.map_or([0.0; 4], |m| m.light_rect),
+        moved_screen_rect: f.moved.map_or([0.0; 4], |m| m.screen_rect),
+        moved_min: f.moved.map_or([0.0; 3], |m| m.bounds.min.to_array()),
+        moved_count: f.moved.map_or(0, |m| m.count),
+        moved_max: f.moved.map_or([0.0; 3], |m| m.bounds.max.to_array()),
     }
 }
 
@@ -144,6 +151,7 @@ mod tests {
                     ambient: scene.ambient,
                     frame: 1,
                     scene_radius: 1.0,
+                    moved: None,
                 },
             )
         };

@@ -10,6 +10,7 @@ pub mod config;
 pub mod counters;
 pub mod effect;
 pub mod frame;
+mod motion;
 pub mod pcf;
 pub mod reprojection;
 pub mod scene_gpu;
@@ -39,6 +40,7 @@ pub use config::{RenderConfig, FRAMES_IN_FLIGHT, MAX_SIZE};
 use frame::{frame_block, FrameBlock, FrameInputs};
 use glam::Mat4;
 use gpu_allocator::MemoryLocation;
+use motion::{light_sees_motion, Motion};
 use reprojection::Reprojection;
 use scene_gpu::SceneGpu;
 use skip::{Inputs, Plan, SkipTracker};
@@ -95,6 +97,10 @@ pub struct Renderer {
     reprojection: Reprojection,
     /// What frames leave out when nothing they read changed (`skip.rs`).
     skips: SkipTracker,
+    /// The moving objects' transforms (`motion.rs`).
+    motion: Motion,
+    /// Objects each slot's last frame moved (its timing's `moved_objects`).
+    moved: [usize; FRAMES_IN_FLIGHT],
     _pool: DescriptorPool,
 }
 
@@ -102,7 +108,8 @@ impl Renderer {
     pub fn new(ctx: &Arc<Context>, scene: Scene, config: RenderConfig) -> Result<Self> {
         config.validate()?;
         let rendered = config.rendered();
-        let textured = scene.mesh.has_textures();
+        let textured =
+            scene.mesh.has_textures() || scene.objects.iter().any(|o| o.mesh.has_textures());
         let pool = DescriptorPool::new(ctx, 52 + scene.mesh.materials.len() as u32)?;
         let light_view = LightViewPass::new(ctx, textured)?;
         let mut tracker = Tracker::new();
@@ -111,6 +118,7 @@ impl Renderer {
             &mut tracker,
             &pool,
             &scene.mesh,
+            &scene.objects,
             light_view.material_layout(),
         )?;
         let effects = effects::create(&mut Setup {
@@ -152,6 +160,7 @@ impl Renderer {
                 .write(ctx, set);
             frames.push(FrameResources { uniforms, set });
         }
+        let scene_objects = scene.objects.clone();
         let renderer = Self {
             ctx: ctx.clone(),
             targets,
@@ -176,6 +185,8 @@ impl Renderer {
             last_pass: [None; FRAMES_IN_FLIGHT],
             reprojection,
             skips: SkipTracker::new(effects_len),
+            motion: Motion::new(&scene_objects),
+            moved: [0; FRAMES_IN_FLIGHT],
             _pool: pool,
         };
         renderer.bind()?;
@@ -253,12 +264,14 @@ impl Renderer {
         if let Some(path) = &self.scene.light_path {
             self.scene.light = path.light_at(&self.scene.light, time);
         }
+        self.motion.set_time(&self.scene.objects, time);
     }
 
     /// Forget every history (camera cut): the next frame recomputes all pixels.
     pub fn reset_history(&mut self) {
         self.history = None;
         self.skips.forget();
+        self.motion.forget();
     }
 
     /// What makes each pass run again (`skip::explain`).
@@ -274,6 +287,7 @@ impl Renderer {
             light: self.scene.light,
             ambient: self.scene.ambient,
             config: self.config,
+            poses: self.motion.revision(self.history.is_some()),
         }
     }
 
@@ -288,6 +302,7 @@ impl Renderer {
         let slot = self.next_slot();
         let cmd = self.begin_slot(slot)?;
         let previous = self.collect(slot);
+        self.moved[slot] = 0;
         self.timer
             .skip(slot, PassId::LightView.name(), SkipReason::Unchanged);
         self.skips
@@ -343,8 +358,29 @@ impl Renderer {
         let previous = self.collect(slot);
         // 1. Scene update: constants, change flags, each effect's refresh tile and pattern.
         let view_proj = inputs.view_proj;
-        self.write_uniforms(slot, camera, view_proj)?;
+        let (poses, moved) = self.motion.poses(self.history.is_some());
+        self.scene_gpu.poses = poses;
+        self.moved[slot] = moved;
+        let rendered = self.config.rendered();
+        let what_moved = motion::moved(
+            &self.scene.objects,
+            &self.scene_gpu.poses,
+            &motion::Views {
+                light: self.scene.light,
+                map_size: self.config.rsm_size,
+                camera: view_proj,
+                size: (rendered.width, rendered.height),
+            },
+        );
+        self.write_uniforms(slot, camera, view_proj, what_moved)?;
         let light_changed = self.rsm_light != Some(self.scene.light);
+        // The light view also shows what moved where the light sees it.
+        let light_view = light_changed
+            || light_sees_motion(
+                &self.scene.light,
+                &self.scene.objects,
+                &self.scene_gpu.poses,
+            );
         let rendered = self.config.rendered();
         let info = FrameInfo {
             config: &rendered,
@@ -357,6 +393,7 @@ impl Renderer {
             history_valid: self.history.is_some(),
             camera_moved: self.history.map(|(m, _)| m) != Some(view_proj),
             light_changed,
+            light_view,
         };
         for (i, e) in self.effects.iter_mut().enumerate() {
             if !plan.effect(i) {
@@ -372,8 +409,8 @@ impl Renderer {
         };
         let (frame, t, scene) = (info.frame, &self.targets, &self.scene_gpu);
         let shared = SharedTargets(t);
-        // 2. Light view, only when the light changed (geometry is static for the renderer).
-        if light_changed {
+        // 2. Light view, only when the light changed or moved geometry in its frustum.
+        if light_view {
             r.timed(PassId::LightView, |rec, tr| {
                 self.light_view.record(rec, tr, frame, scene, &shared)
             });
@@ -433,6 +470,7 @@ impl Renderer {
         if light_changed {
             self.rsm_light = Some(self.scene.light);
         }
+        self.motion.drawn(moved);
         self.last_frame_reused = self.history.is_some();
         self.history = Some((view_proj, camera.position));
         self.frame_index += 1;
@@ -470,13 +508,22 @@ impl Renderer {
             }
             counters.extend(c);
         }
+        if !self.scene.objects.is_empty() {
+            counters.push(("moved_objects", self.moved[slot] as u64));
+        }
         counters
     }
 
     /// The frame's constants into this slot's uniform buffer (host write before submission: the
     /// submit makes it visible, no barrier needed). `view_proj` is the camera's, as the skip
     /// plan computed it.
-    fn write_uniforms(&mut self, slot: usize, camera: &Camera, view_proj: Mat4) -> Result<()> {
+    fn write_uniforms(
+        &mut self,
+        slot: usize,
+        camera: &Camera,
+        view_proj: Mat4,
+        moved: Option<motion::Moved>,
+    ) -> Result<()> {
         let block = frame_block(
             &self.config.rendered(),
             &FrameInputs {
@@ -486,7 +533,9 @@ impl Renderer {
                 light: &self.scene.light,
                 ambient: self.scene.ambient,
                 frame: self.frame_index,
-                scene_radius: self.scene.mesh.bounds.radius(),
+                // Everywhere a moving object goes counts: the radius stays put.
+                scene_radius: self.scene.bounds().radius(),
+                moved,
             },
         );
         self.frames[slot].uniforms.write(&block.to_bytes())?;

@@ -119,6 +119,11 @@ impl Reprojection {
                 history_valid: push.history_valid != 0,
                 block_shift: t.kind.block_shift,
                 refresh_rect: push.refresh_rect,
+                moved: if info.config.temporal.invalidate {
+                    t.kind.moved as u32
+                } else {
+                    0
+                },
             };
             count += 1;
         }

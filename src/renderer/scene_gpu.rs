@@ -1,14 +1,16 @@
-//! The scene on the GPU: one vertex and one index buffer, per-material colour and (optional)
-//! diffuse texture with its descriptor set.
+//! The scene on the GPU: one vertex and one index buffer (what stands still, then each moving
+//! object in its own space), per-material colour and (optional) diffuse texture with its
+//! descriptor set, and the draws: a material's range of one of them, with the object's pose.
 
 use crate::error::{Error, Result};
-use crate::scene::{DrawRange, Mesh, TextureImage};
+use crate::scene::{DynamicObject, Mesh, TextureImage};
 use crate::shaders::MaterialPush;
 use crate::vk::{
     upload_buffer, upload_image, Access, Buffer, Context, DescriptorPool, Image, ImageDesc,
     Sampler, SetWriter, Tracker,
 };
 use ash::vk;
+use glam::Affine3A;
 use gpu_allocator::MemoryLocation;
 use std::collections::HashMap;
 use std::sync::Arc;
@@ -19,40 +21,135 @@ pub struct MaterialGpu {
     pub texture_set: Option<vk::DescriptorSet>,
 }
 
+/// Where a drawn object stands this frame and stood last frame.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Pose {
+    pub now: Affine3A,
+    pub before: Affine3A,
+}
+
+impl Pose {
+    /// What stands still.
+    pub const STILL: Pose = Pose {
+        now: Affine3A::IDENTITY,
+        before: Affine3A::IDENTITY,
+    };
+
+    /// Whether the object moved since last frame.
+    pub fn moved(&self) -> bool {
+        self.now != self.before
+    }
+}
+
+/// Row `i` of an affine transform (the `Material` block's `model_x/y/z`).
+fn row(t: &Affine3A, i: usize) -> [f32; 4] {
+    let m = t.matrix3;
+    [m.x_axis[i], m.y_axis[i], m.z_axis[i], t.translation[i]]
+}
+
 impl MaterialGpu {
-    /// The `Material` push-constant block (vec4 albedo).
-    pub fn push_bytes(&self) -> [u8; MaterialPush::SIZE] {
+    /// The `Material` push-constant block: the colour and the draw's placement.
+    pub fn push_bytes(&self, pose: &Pose) -> [u8; MaterialPush::SIZE] {
         MaterialPush {
             albedo: [self.albedo[0], self.albedo[1], self.albedo[2], 1.0],
+            model_x: row(&pose.now, 0),
+            model_y: row(&pose.now, 1),
+            model_z: row(&pose.now, 2),
+            prev_model_x: row(&pose.before, 0),
+            prev_model_y: row(&pose.before, 1),
+            prev_model_z: row(&pose.before, 2),
         }
         .to_bytes()
     }
 }
 
+/// One draw: a run of indices with one material, of what stands still (`object` None) or of a
+/// moving object.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Draw {
+    pub material: usize,
+    pub first_index: u32,
+    pub index_count: u32,
+    pub object: Option<usize>,
+}
+
 pub struct SceneGpu {
     pub vertices: Buffer,
     pub indices: Buffer,
-    pub ranges: Vec<DrawRange>,
+    pub draws: Vec<Draw>,
     pub materials: Vec<MaterialGpu>,
+    /// Each moving object's pose for the frame being recorded (`Renderer::set_time`).
+    pub poses: Vec<Pose>,
     _textures: Vec<Image>,
     _sampler: Option<Sampler>,
 }
 
+/// `statics` and every object's mesh in one vertex and index list (indices offset to their
+/// vertices), their materials in one list, and the draws.
+fn combine(statics: &Mesh, objects: &[DynamicObject]) -> (Vec<u8>, Vec<u8>, Vec<Draw>) {
+    let mut vertices = statics.vertex_bytes();
+    let mut indices = statics.index_bytes();
+    let mut draws: Vec<Draw> = statics
+        .ranges
+        .iter()
+        .map(|r| Draw {
+            material: r.material,
+            first_index: r.first_index,
+            index_count: r.index_count,
+            object: None,
+        })
+        .collect();
+    let (mut vertex_base, mut index_base) = (statics.vertices.len(), statics.indices.len());
+    let mut material_base = statics.materials.len();
+    for (o, object) in objects.iter().enumerate() {
+        let m = &object.mesh;
+        vertices.extend(m.vertex_bytes());
+        // Vertex counts come from meshes held in memory: far below u32::MAX.
+        indices.extend(
+            m.indices
+                .iter()
+                .flat_map(|i| (i + vertex_base as u32).to_le_bytes()),
+        );
+        draws.extend(m.ranges.iter().map(|r| Draw {
+            material: material_base + r.material,
+            first_index: index_base as u32 + r.first_index,
+            index_count: r.index_count,
+            object: Some(o),
+        }));
+        vertex_base += m.vertices.len();
+        index_base += m.indices.len();
+        material_base += m.materials.len();
+    }
+    (vertices, indices, draws)
+}
+
 impl SceneGpu {
-    /// Upload `mesh`. `material_layout` is the textured permutation's set-1 layout, present
-    /// only when the mesh has textures.
+    /// The pose of `draw`'s object (still for what stands still).
+    pub fn pose(&self, draw: &Draw) -> Pose {
+        draw.object
+            .and_then(|o| self.poses.get(o).copied())
+            .unwrap_or(Pose::STILL)
+    }
+
+    /// Upload `mesh` (what stands still) and `objects`. `material_layout` is the textured
+    /// permutation's set-1 layout, present only when a material has a texture.
     pub fn new(
         ctx: &Arc<Context>,
         tracker: &mut Tracker,
         pool: &DescriptorPool,
         mesh: &Mesh,
+        objects: &[DynamicObject],
         material_layout: Option<vk::DescriptorSetLayout>,
     ) -> Result<Self> {
         if mesh.indices.is_empty() || mesh.vertices.is_empty() {
             return Err(Error::Config("the scene has no triangles to draw".into()));
         }
-        let vdata = mesh.vertex_bytes();
-        let idata = mesh.index_bytes();
+        let (vdata, idata, draws) = combine(mesh, objects);
+        let all_materials: Vec<&crate::scene::Material> = mesh
+            .materials
+            .iter()
+            .chain(objects.iter().flat_map(|o| &o.mesh.materials))
+            .collect();
         let vertices = Buffer::new(
             ctx,
             "vertices",
@@ -74,7 +171,7 @@ impl SceneGpu {
         let mut unique: Vec<Arc<TextureImage>> = Vec::new();
         let mut index_of: HashMap<*const TextureImage, usize> = HashMap::new();
         if material_layout.is_some() {
-            for m in &mesh.materials {
+            for m in &all_materials {
                 if let Some(t) = &m.diffuse_texture {
                     index_of.entry(Arc::as_ptr(t)).or_insert_with(|| {
                         unique.push(t.clone());
@@ -111,7 +208,7 @@ impl SceneGpu {
             Some(Sampler::linear_repeat(ctx)?)
         };
         let mut materials = Vec::new();
-        for m in &mesh.materials {
+        for m in &all_materials {
             let texture_set = match (&m.diffuse_texture, material_layout, &sampler) {
                 (Some(t), Some(layout), Some(s)) => {
                     let set = pool.allocate(layout, &format!("material {} texture set", m.name))?;
@@ -131,8 +228,9 @@ impl SceneGpu {
         Ok(Self {
             vertices,
             indices,
-            ranges: mesh.ranges.clone(),
+            draws,
             materials,
+            poses: vec![Pose::STILL; objects.len()],
             _textures: textures,
             _sampler: sampler,
         })

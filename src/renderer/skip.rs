@@ -26,6 +26,8 @@ pub struct Inputs {
     pub light: SpotLight,
     pub ambient: Vec3,
     pub config: RenderConfig,
+    /// Changes whenever a moving object's transform does (`Renderer::set_time`).
+    pub poses: u64,
 }
 
 /// What one effect reads of them (the light only if its output depends on it).
@@ -35,6 +37,7 @@ struct EffectInputs {
     eye: Vec3,
     light: Option<SpotLight>,
     config: RenderConfig,
+    poses: u64,
 }
 
 /// A value and the first frame that saw it.
@@ -80,7 +83,7 @@ impl Plan {
 
 pub struct SkipTracker {
     frame: Option<Since<Inputs>>,
-    camera: Option<Since<(Mat4, Vec3)>>,
+    camera: Option<Since<(Mat4, Vec3, u64)>>,
     tracks: Vec<EffectTrack>,
     /// The passes recorded since the configuration last changed, and whether each
     /// accumulates into a reused history (a skipped one is then `converged`).
@@ -141,7 +144,12 @@ impl SkipTracker {
             self.known.clear();
         }
         let (frame_steady, _) = steady(&mut self.frame, inputs, n);
-        let (camera_steady, _) = steady(&mut self.camera, (inputs.view_proj, inputs.eye), n);
+        // The G-buffer sees the camera and the moving objects.
+        let (camera_steady, _) = steady(
+            &mut self.camera,
+            (inputs.view_proj, inputs.eye, inputs.poses),
+            n,
+        );
         let mut plan = Plan {
             gbuffer: on && camera_steady,
             ..Plan::default()
@@ -153,6 +161,7 @@ impl SkipTracker {
                 eye: inputs.eye,
                 light: e.reads_light().then_some(inputs.light),
                 config: inputs.config,
+                poses: inputs.poses,
             };
             let (unchanged, since) = steady(&mut track.inputs, key, n);
             let converged = !e.settling(config)
@@ -254,11 +263,13 @@ pub fn explain(config: &RenderConfig, effects: &[Box<dyn Effect>]) -> String {
     let mut rows: Vec<(PassId, String)> = vec![
         (
             PassId::LightView,
-            "the light (geometry is static)".to_string(),
+            "the light, or a moving object whose bounds (this frame's or the last one's) \
+             meet the light's frustum"
+                .to_string(),
         ),
         (
             PassId::GBuffer,
-            "the camera (view-projection or eye)".to_string(),
+            "the camera (view-projection or eye), a moving object".to_string(),
         ),
     ];
     for e in effects {
@@ -272,7 +283,7 @@ pub fn explain(config: &RenderConfig, effects: &[Box<dyn Effect>]) -> String {
             rows.push((
                 pass,
                 format!(
-                    "{:?} effect: camera, configuration{light}{converge}",
+                    "{:?} effect: camera, configuration, moving objects{light}{converge}",
                     e.id()
                 ),
             ));

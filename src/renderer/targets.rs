@@ -8,11 +8,13 @@ use ash::vk;
 use std::sync::Arc;
 
 pub const DEPTH_FORMAT: vk::Format = vk::Format::D32_SFLOAT;
-/// World position needs fp32 (large scenes); normals and flux/radiance are fine in fp16.
-pub const GBUFFER_COLOR_FORMATS: [vk::Format; 3] = [
+/// World position needs fp32 (large scenes); normals and flux/radiance are fine in fp16, and
+/// so is motion (a displacement: its rounding is relative to the step, 0 stays exactly 0).
+pub const GBUFFER_COLOR_FORMATS: [vk::Format; 4] = [
     vk::Format::R32G32B32A32_SFLOAT,
     vk::Format::R16G16B16A16_SFLOAT,
     vk::Format::R8G8B8A8_UNORM,
+    vk::Format::R16G16B16A16_SFLOAT,
 ];
 pub const RSM_COLOR_FORMATS: [vk::Format; 3] = [
     vk::Format::R32G32B32A32_SFLOAT,
@@ -102,6 +104,9 @@ pub struct GBuffer {
     /// facing away: the back of a thin wall sits at the same position as its front).
     pub normal: PingPong,
     pub albedo: Image,
+    /// How far each pixel's surface point moved in the world since last frame (xyz; 0 for
+    /// what stands still): a moving object's pixels reproject to where they were.
+    pub motion: Image,
     pub depth: Image,
 }
 
@@ -160,6 +165,8 @@ pub enum Target {
     /// Last frame's G-buffer normal.
     GNormalHistory,
     GAlbedo,
+    /// World-space motion of each pixel's surface point since last frame.
+    GMotion,
     GDepth,
     RsmPosition,
     RsmNormal,
@@ -189,7 +196,7 @@ pub enum Target {
 }
 
 impl Target {
-    pub const ALL: [Target; 25] = [
+    pub const ALL: [Target; 26] = [
         Target::Output,
         Target::Shaded,
         Target::Direct,
@@ -198,6 +205,7 @@ impl Target {
         Target::GNormal,
         Target::GNormalHistory,
         Target::GAlbedo,
+        Target::GMotion,
         Target::GDepth,
         Target::RsmPosition,
         Target::RsmNormal,
@@ -227,6 +235,7 @@ impl Target {
             Target::GNormal => "gbuffer_normal",
             Target::GNormalHistory => "gbuffer_normal_history",
             Target::GAlbedo => "gbuffer_albedo",
+            Target::GMotion => "gbuffer_motion",
             Target::GDepth => "gbuffer_depth",
             Target::RsmPosition => "rsm_position",
             Target::RsmNormal => "rsm_normal",
@@ -249,7 +258,7 @@ impl Target {
 }
 
 fn subpixels(ctx: &Arc<Context>, s: (u32, u32)) -> Result<Subpixels> {
-    let [gp, gn, _] = GBUFFER_COLOR_FORMATS;
+    let [gp, gn, _, _] = GBUFFER_COLOR_FORMATS;
     let four = |what: &str, format| -> Result<[Image; 4]> {
         let layer = |i: usize| image(ctx, &format!("sraa.{what}.{i}"), s, format, ATTACHMENT_READ);
         Ok([layer(0)?, layer(1)?, layer(2)?, layer(3)?])
@@ -283,7 +292,7 @@ impl Targets {
             None
         };
         let r = (rsm_size, rsm_size);
-        let [gp, gn, ga] = GBUFFER_COLOR_FORMATS;
+        let [gp, gn, ga, gm] = GBUFFER_COLOR_FORMATS;
         let [rp, rn, rf] = RSM_COLOR_FORMATS;
         Ok(Self {
             width,
@@ -298,6 +307,7 @@ impl Targets {
                     image(ctx, "gbuffer.normal.1", s, gn, ATTACHMENT_READ)?,
                 ]),
                 albedo: image(ctx, "gbuffer.albedo", s, ga, ATTACHMENT_READ)?,
+                motion: image(ctx, "gbuffer.motion", s, gm, ATTACHMENT_READ)?,
                 depth: image(ctx, "gbuffer.depth", s, DEPTH_FORMAT, DEPTH_READ)?,
             },
             rsm: Rsm {
@@ -324,6 +334,7 @@ impl Targets {
             Target::GNormal => self.gbuffer.normal.current(parity),
             Target::GNormalHistory => self.gbuffer.normal.previous(parity),
             Target::GAlbedo => &self.gbuffer.albedo,
+            Target::GMotion => &self.gbuffer.motion,
             Target::GDepth => &self.gbuffer.depth,
             Target::RsmPosition => &self.rsm.position,
             Target::RsmNormal => &self.rsm.normal,

@@ -15,6 +15,7 @@ mod light;
 mod mesh;
 mod normals;
 mod obj;
+mod object;
 pub mod path;
 mod procedural;
 mod raycast;
@@ -36,6 +37,7 @@ pub use mesh::{
 };
 pub use normals::area_weighted_normals;
 pub use obj::{degeneracy, load_obj, Degeneracy, SLIVER_RELATIVE_HEIGHT};
+pub use object::{euler_deg, posed_mesh, DynamicObject, ObjectKey};
 pub use path::{CameraPath, Keyframe, LightPath, Orbit};
 pub use procedural::{
     box_room, cornell_box, cornell_camera, cornell_light, pyramids, sphere, tilted_quad,
@@ -44,12 +46,11 @@ pub use procedural::{
 pub use raycast::{occlusion_span, Hit, OCCLUSION_RELATIVE_OFFSET, OCCLUSION_ULPS};
 pub use scene_file::{CameraEntry, LightEntry, MeshEntry, OrbitEntry, SceneFile, SPHERE};
 pub use scene_load::{
-    build as build_scene_file, is_scene_file, load as load_scene_with_paths, load_scene_file,
-    LoadedScene,
+    build as build_scene_file, is_scene_file, load as load_scene_with_paths, load_scene,
+    load_scene_file, LoadedScene,
 };
 pub use spec::{
-    asset_dir_from_env, list_assets, load_model, load_scene, resolve_model, ASSETS_ENV,
-    BUILTIN_SCENES,
+    asset_dir_from_env, list_assets, load_model, resolve_model, ASSETS_ENV, BUILTIN_SCENES,
 };
 pub use validate::HUGE_COORDINATE;
 pub use world::Scene;

@@ -61,6 +61,7 @@ pub fn cornell_box() -> Scene {
         ambient: DEFAULT_AMBIENT,
         orbit: Some(room_orbit(min, max)),
         light_path: None,
+        objects: Vec::new(),
     }
 }
 
@@ -271,6 +272,7 @@ pub fn pyramids() -> Scene {
         ambient: DEFAULT_AMBIENT,
         orbit: None,
         light_path: None,
+        objects: Vec::new(),
     }
 }
 
@@ -316,6 +318,7 @@ pub fn tilted_quad() -> Scene {
         ambient: DEFAULT_AMBIENT,
         orbit: None,
         light_path: None,
+        objects: Vec::new(),
     }
 }
 
@@ -354,6 +357,7 @@ pub fn box_room(model: &Mesh, name: &str) -> Scene {
         ambient: DEFAULT_AMBIENT,
         orbit: Some(room_orbit(min, max)),
         light_path: None,
+        objects: Vec::new(),
     }
 }
 

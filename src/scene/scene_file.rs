@@ -14,6 +14,7 @@
 //! scale = 1.0                        # optional, uniform
 //! ground = true                      # optional: on the ground `--scene <model>` gives it
 //! albedo = [0.8, 0.1, 0.1]           # optional: every material this colour, untextured
+//! [[mesh.keyframes]]                 # optional: a moving object (time, position, rotation_deg)
 //!
 //! [camera]                           # optional: automatic framing
 //! position = [..]
@@ -34,6 +35,7 @@
 //! Errors name the file, the line and the key (`file:line: key: message`).
 
 use super::error::SceneError;
+use super::object::ObjectKey;
 use super::path::Keyframe;
 use super::validate::HUGE_COORDINATE;
 use serde::{Deserialize, Serialize};
@@ -60,6 +62,10 @@ pub struct MeshEntry {
     /// Linear diffuse albedo replacing every material's (textures dropped).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub albedo: Option<[f32; 3]>,
+    /// A moving object's path (`[[mesh.keyframes]]`: time, position, rotation_deg); its
+    /// keys place it, so `position` and `rotation_deg` are not given with them.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub keyframes: Vec<ObjectKey>,
 }
 
 /// The built-in shape a mesh entry may name: a sphere of radius 1 at the origin.
@@ -240,8 +246,11 @@ impl SceneFile {
                 "a light path needs a [light] table (its cone and intensity)".into(),
             ));
         }
+        let mut key_index = 0;
         for (i, m) in self.meshes.iter().enumerate() {
             check_mesh(i, m)?;
+            check_object_keys(i, key_index, m)?;
+            key_index += m.keyframes.len();
         }
         if let Some(c) = &self.camera {
             check_camera(c)?;
@@ -342,6 +351,51 @@ fn check_mesh(i: usize, m: &MeshEntry) -> Result<(), Fault> {
             return Err(at(
                 "albedo",
                 format!("{a:?}: every channel must be in 0..=1"),
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// A moving object's keys; `first` is the index of its first `[[mesh.keyframes]]` table in
+/// the file (they are counted over every mesh, as the locator counts headers).
+fn check_object_keys(i: usize, first: usize, m: &MeshEntry) -> Result<(), Fault> {
+    if m.keyframes.is_empty() {
+        return Ok(());
+    }
+    for (key, given) in [
+        ("position", m.position.is_some()),
+        ("rotation_deg", m.rotation_deg.is_some()),
+    ] {
+        if given {
+            return Err(fault(
+                "mesh",
+                i,
+                key,
+                "a moving mesh is placed by its [[mesh.keyframes]]: give it there".into(),
+            ));
+        }
+    }
+    for (k, key) in m.keyframes.iter().enumerate() {
+        let at = |what, message| fault("mesh.keyframes", first + k, what, message);
+        if !key.time.is_finite() || (k > 0 && key.time < m.keyframes[k - 1].time) {
+            return Err(at(
+                "time",
+                format!("{}: times must be finite and non-decreasing", key.time),
+            ));
+        }
+        point(key.position).map_err(|e| at("position", e))?;
+        if !key
+            .rotation_deg
+            .iter()
+            .all(|a| a.is_finite() && a.abs() <= 36_000.0)
+        {
+            return Err(at(
+                "rotation_deg",
+                format!(
+                    "{:?}: angles must be finite, within +-36000 degrees",
+                    key.rotation_deg
+                ),
             ));
         }
     }
@@ -552,7 +606,9 @@ fn locate(text: &str, table: &str, index: usize, key: &str) -> (Option<usize>, S
 fn dotted(table: &str, index: usize, key: &str) -> String {
     match table {
         "" => key.to_owned(),
-        "mesh" | "camera_keyframes" | "light_keyframes" => format!("{table}[{index}].{key}"),
+        "mesh" | "camera_keyframes" | "light_keyframes" | "mesh.keyframes" => {
+            format!("{table}[{index}].{key}")
+        }
         _ => format!("{table}.{key}"),
     }
 }
@@ -603,6 +659,14 @@ mod tests {
             ),
             ("[[mesh]\nmodel = 1\n", "s.toml:1:"),
             (
+                "[[mesh]]\nmodel = \"a\"\n[[mesh.keyframes]]\ntime = 0\nposition = [0, 0, 0]\n[[mesh]]\nmodel = \"b\"\n[[mesh.keyframes]]\ntime = 1\nposition = [0, 0, 0]\n[[mesh.keyframes]]\ntime = 0.5\nposition = [1, 0, 0]\n",
+                "s.toml:12: mesh.keyframes[2].time",
+            ),
+            (
+                "[[mesh]]\nmodel = \"a\"\nposition = [1, 0, 0]\n[[mesh.keyframes]]\ntime = 0\nposition = [0, 0, 0]\n",
+                "s.toml:3: mesh[0].position: a moving mesh",
+            ),
+            (
                 "[[mesh]]\nmodel = \"a\"\n[light]\nposition = [0, 1, 0]\n",
                 "s.toml:4: light.position: the light needs a target",
             ),
@@ -640,6 +704,24 @@ mod tests {
                     scale: Some(0.2),
                     albedo: Some([0.9, 0.1, 0.1]),
                     ground: None,
+                    keyframes: Vec::new(),
+                },
+                MeshEntry {
+                    model: SPHERE.into(),
+                    scale: Some(0.1),
+                    keyframes: vec![
+                        ObjectKey {
+                            time: 0.0,
+                            position: [0.0, 0.1, 0.0],
+                            rotation_deg: [0.0; 3],
+                        },
+                        ObjectKey {
+                            time: 1.5,
+                            position: [0.5, 0.1, 0.0],
+                            rotation_deg: [0.0, 0.0, -286.5],
+                        },
+                    ],
+                    ..Default::default()
                 },
             ],
             camera: Some(CameraEntry {

@@ -7,14 +7,15 @@ use super::camera::Camera;
 use super::error::SceneError;
 use super::light::SpotLight;
 use super::mesh::{Aabb, Mesh};
+use super::object::{euler_deg, DynamicObject};
 use super::path::{CameraPath, LightPath, Orbit};
 use super::procedural::{sphere, DEFAULT_AMBIENT};
 use super::scene_file::{
     CameraEntry, LightEntry, MeshEntry, OrbitEntry, SceneFile, DEFAULT_OUTER_DEG, SPHERE,
 };
-use super::spec::{auto_view, headlight, load_model, load_scene, with_ground, AutoView};
+use super::spec::{auto_view, headlight, load_model, load_spec, with_ground, AutoView};
 use super::world::Scene;
-use glam::{EulerRot, Quat, Vec3};
+use glam::{Quat, Vec3};
 use std::path::{Path, PathBuf};
 
 /// Field of view of a scene file's camera without one.
@@ -42,12 +43,23 @@ pub fn is_scene_file(spec: &str) -> bool {
         .is_some_and(|e| e.eq_ignore_ascii_case("toml"))
 }
 
-/// Any scene spec: a scene file, or what [`load_scene`] takes (described as one mesh entry).
+/// Loads a scene from a spec: a scene file (`.toml`), or a built-in scene, OBJ path, asset
+/// name or `box:<model>` ([`load_spec`]). `assets` is the asset directory; when None,
+/// `SSGI_ASSETS` is used.
+pub fn load_scene(spec: &str, assets: Option<&Path>) -> Result<Scene, SceneError> {
+    if is_scene_file(spec) {
+        return Ok(load_scene_file(Path::new(spec), assets)?.scene);
+    }
+    load_spec(spec, assets)
+}
+
+/// Any scene spec with the paths its file brings: a scene file, or what [`load_spec`] takes
+/// (described as one mesh entry).
 pub fn load(spec: &str, assets: Option<&Path>) -> Result<LoadedScene, SceneError> {
     if is_scene_file(spec) {
         return load_scene_file(Path::new(spec), assets);
     }
-    let mut scene = load_scene(spec, assets)?;
+    let mut scene = load_spec(spec, assets)?;
     // Explicit, as a scene file's always is (the same orbit either way).
     scene.orbit = Some(scene.orbit());
     // A model that is not a building stands on its ground (`framed_model`), and its orbit goes
@@ -98,22 +110,48 @@ pub fn build(
     };
     let mut builder = MeshBuilder::new();
     let mut meshes = Vec::with_capacity(file.meshes.len());
+    let mut objects = Vec::new();
     for (i, entry) in file.meshes.iter().enumerate() {
         let model = absolute_if_file(&entry.model, dir);
         let mesh = entry_mesh(&model, entry.ground == Some(true), assets)
             .map_err(|e| in_file(format!("mesh[{i}].model"), e))?;
         let scale = entry.scale.unwrap_or(1.0);
-        let [rx, ry, rz] = entry.rotation_deg.unwrap_or_default().map(f32::to_radians);
-        let rotation = Quat::from_euler(EulerRot::ZYX, rz, ry, rx);
-        let offset = Vec3::from(entry.position.unwrap_or_default());
-        builder.append_placed(&mesh, scale, rotation, offset, entry.albedo);
+        if entry.keyframes.is_empty() {
+            let rotation = euler_deg(entry.rotation_deg.unwrap_or_default());
+            let offset = Vec3::from(entry.position.unwrap_or_default());
+            builder.append_placed(&mesh, scale, rotation, offset, entry.albedo);
+        } else {
+            // A moving object keeps its own space; its keys place it each frame.
+            let mut own = MeshBuilder::new();
+            own.append_placed(&mesh, scale, Quat::IDENTITY, Vec3::ZERO, entry.albedo);
+            objects.push(DynamicObject {
+                name: format!("mesh[{i}] {}", entry.model),
+                mesh: own.build(),
+                keys: entry.keyframes.clone(),
+            });
+        }
         meshes.push(MeshEntry {
             model,
             ..entry.clone()
         });
     }
     let mesh = builder.build();
-    let bounds = mesh.bounds;
+    if mesh.triangle_count() == 0 {
+        return Err(in_file(
+            "mesh".into(),
+            SceneError::UnknownScene {
+                spec: origin.display().to_string(),
+                details: "nothing stands still: at least one mesh must have no keyframes".into(),
+            },
+        ));
+    }
+    // Bounds of everything, moving objects wherever they go: depth ranges reach all of it.
+    let mut bounds = mesh.bounds;
+    for o in &objects {
+        let s = o.swept_bounds();
+        bounds.grow(s.min);
+        bounds.grow(s.max);
+    }
     // The automatic view costs ray casts over the whole mesh: only when something is missing.
     // (A missing light with a camera given is a headlight at that camera.)
     let auto: Option<AutoView> =
@@ -151,6 +189,7 @@ pub fn build(
             ambient: file.ambient.map_or(DEFAULT_AMBIENT, Vec3::from),
             orbit: Some(orbit),
             light_path,
+            objects,
         },
         meshes,
         camera_path,
@@ -173,7 +212,7 @@ fn entry_mesh(model: &str, ground: bool, assets: Option<&Path>) -> Result<Mesh, 
             details: "a mesh entry names a model, not another scene file".into(),
         });
     } else if super::spec::BUILTIN_SCENES.contains(&model) || model.starts_with("box:") {
-        load_scene(model, assets)?.mesh
+        load_spec(model, assets)?.mesh
     } else {
         load_model(model, assets)?.1
     };

@@ -34,16 +34,14 @@ pub fn asset_dir_from_env() -> Option<PathBuf> {
 /// - `cornell-box` (default), `pyramids` or `tilted-quad`: built in, no files;
 /// - a path to an `.obj` file (also tried relative to the asset directory);
 /// - an asset name: a sub-folder of the asset directory holding exactly one `.obj`;
-/// - `box:<path or asset>`: that model inside a Cornell-style box room;
-/// - a `.toml` scene file (`scene_file.rs`).
+/// - `box:<path or asset>`: that model inside a Cornell-style box room.
+///
+/// Scene files are `scene_load::load_scene`'s, which calls this for everything else.
 ///
 /// `assets` is the asset directory; when None, `SSGI_ASSETS` is used.
-pub fn load_scene(spec: &str, assets: Option<&Path>) -> Result<Scene, SceneError> {
+pub fn load_spec(spec: &str, assets: Option<&Path>) -> Result<Scene, SceneError> {
     let assets = assets.map(Path::to_path_buf).or_else(asset_dir_from_env);
     let assets = assets.as_deref();
-    if super::scene_load::is_scene_file(spec) {
-        return Ok(super::scene_load::load_scene_file(Path::new(spec), assets)?.scene);
-    }
     match spec {
         "cornell-box" => Ok(cornell_box()),
         "pyramids" => Ok(pyramids()),
@@ -60,7 +58,7 @@ pub fn load_scene(spec: &str, assets: Option<&Path>) -> Result<Scene, SceneError
     }
 }
 
-/// The model a spec names (an OBJ path or an asset name, as [`load_scene`] finds it), alone:
+/// The model a spec names (an OBJ path or an asset name, as [`load_spec`] finds it), alone:
 /// its name (the file stem) and its mesh as loaded, with no ground, room or framing.
 pub fn load_model(spec: &str, assets: Option<&Path>) -> Result<(String, Mesh), SceneError> {
     let assets = assets.map(Path::to_path_buf).or_else(asset_dir_from_env);
@@ -199,6 +197,7 @@ pub fn framed_model(name: String, mesh: Mesh) -> Scene {
         ambient: DEFAULT_AMBIENT,
         orbit: Some(view.orbit),
         light_path: None,
+        objects: Vec::new(),
     }
 }
 
@@ -306,7 +305,7 @@ mod tests {
     #[test]
     fn builtins_need_no_files() {
         for name in BUILTIN_SCENES {
-            let s = load_scene(name, Some(Path::new("/nonexistent"))).unwrap();
+            let s = load_spec(name, Some(Path::new("/nonexistent"))).unwrap();
             assert_eq!(s.name, name);
             assert!(s.mesh.triangle_count() > 0);
         }
@@ -314,7 +313,7 @@ mod tests {
 
     #[test]
     fn unknown_spec_explains_itself() {
-        let e = load_scene("teapot", Some(Path::new("/nonexistent-assets"))).unwrap_err();
+        let e = load_spec("teapot", Some(Path::new("/nonexistent-assets"))).unwrap_err();
         assert!(matches!(e, SceneError::UnknownScene { .. }));
         let msg = e.to_string();
         for needle in [

@@ -19,9 +19,11 @@ pub fn reference(cli: &Cli, args: &ReferenceArgs) -> Result<()> {
     }
     let time = crate::scene::path::frame_time(frame, args.fps);
     let camera = path.camera_at(&scene.camera, &scene.orbit(), time);
+    // Moving objects and light where the frame has them.
+    let scene = scene.posed(time);
     let settings = Settings {
         ao: AoDefinition {
-            radius: args.ao_radius * scene.mesh.bounds.radius().max(f32::MIN_POSITIVE),
+            radius: args.ao_radius * scene.bounds().radius().max(f32::MIN_POSITIVE),
             attenuation: args.ao_attenuation,
         },
         light_radius: args.light_radius,

@@ -51,7 +51,12 @@ pub fn sweep(cli: &Cli, args: &SweepArgs) -> Result<()> {
     let settings = Settings::for_render(&base, &scene);
     let cache = (!args.no_cache).then(|| args.cache_dir.clone().unwrap_or_else(default_dir));
     let (w, h) = args.scene.size;
-    let mut truth = Session::start(&scene, camera, w, h, settings, cache, true)?;
+    // Moving objects and light where the last frame has them.
+    let posed = scene.posed(crate::scene::path::frame_time(
+        args.frames.max(1) - 1,
+        args.scene.fps,
+    ));
+    let mut truth = Session::start(&posed, camera, w, h, settings, cache, true)?;
     truth.ensure(RefBuffer::Ao, DEFAULT_AO_SAMPLES)?;
     truth.ensure(RefBuffer::Direct, 1)?;
     truth.ensure(RefBuffer::Indirect, DEFAULT_INDIRECT_SAMPLES)?;

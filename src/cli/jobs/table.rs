@@ -1,12 +1,12 @@
-//! `ssgi table <thesis-4.1|thesis-walkthroughs|szentandrasi-1|sraa|chang-1|chang-flicker>`: measure a paper table's rows,
+//! `ssgi table <thesis-4.1|thesis-walkthroughs|szentandrasi-1|sraa|chang-1|chang-flicker|dynamic>`: measure a table's rows,
 //! offscreen or presented, and write its report, CSV and plots.
 
 use super::common::{context_options, finish};
 use crate::bench::markdown::WALKTHROUGH_LEGEND;
 use crate::bench::warmup::Warmup;
 use crate::bench::{
-    output, table41, table_chang, table_chang_flicker, table_sraa, table_szentandrasi, walkthrough,
-    TableOptions,
+    output, table41, table_chang, table_chang_flicker, table_dynamic, table_sraa,
+    table_szentandrasi, walkthrough, TableOptions,
 };
 use crate::cli::args::{Cli, TableArgs, TableName};
 use crate::error::{Error, Result};
@@ -91,6 +91,10 @@ pub fn table(cli: &Cli, args: &TableArgs) -> Result<()> {
         TableName::Thesis41 => (table41::run(&ctx, sink.as_mut(), &opts)?, ""),
         TableName::ThesisWalkthroughs => (
             walkthrough::run(&ctx, sink.as_mut(), &opts, &out)?,
+            WALKTHROUGH_LEGEND,
+        ),
+        TableName::Dynamic => (
+            table_dynamic::run(&ctx, sink.as_mut(), &opts, &out)?,
             WALKTHROUGH_LEGEND,
         ),
         // Its own report (rows of configurations, not reuse vs no reuse).

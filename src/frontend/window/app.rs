@@ -91,6 +91,7 @@ pub fn run(
         last_frame: None,
         view: None,
         camera: None,
+        scene_time: 0.0,
     };
     let result = event_loop.run_app(&mut app);
     // `exiting` normally shut down already; make sure (an error before the loop started).
@@ -142,6 +143,9 @@ struct App {
     view: Option<ViewState>,
     /// The viewer's camera (None until the first frame: the scene camera).
     camera: Option<Camera>,
+    /// Seconds into the scene's light and object paths: they play at wall-clock speed while
+    /// frames are drawn (a minimised window pauses them).
+    scene_time: f32,
 }
 
 impl App {
@@ -441,6 +445,7 @@ impl App {
             .last_frame
             .map_or(0.0, |t| (now - t).as_secs_f32().min(0.1));
         let camera = self.update_camera(dt);
+        self.scene_time += dt;
         let capture_now =
             self.options.capture.is_some() && self.total_frames() == Some(self.presented + 1);
         let source = self
@@ -455,6 +460,7 @@ impl App {
             live.capture = Some(live.swapchain.readback_buffer()?);
         }
         let capture = live.capture.as_ref().filter(|_| capture_now);
+        renderer.set_time(self.scene_time);
         let timing =
             match render_and_present(&mut live.swapchain, renderer, &camera, source, capture)? {
                 Presented::Frame(timing) => timing,
