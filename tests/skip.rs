@@ -362,3 +362,57 @@ fn a_light_moving_every_other_frame_renders_the_light_view_on_exactly_those_fram
     }
     common::assert_clean(&ctx);
 }
+
+/// An object that moves once (the dynamic-scenes input of the dependency table): the frame
+/// after converging records the light view (the ball is in the light's sight), the G-buffer,
+/// the reprojection and every effect, and its image equals that of a renderer that never
+/// skips, bit for bit; held still again, frames are skipped once more.
+#[test]
+fn a_moved_object_renders_what_depends_on_it() {
+    let ctx = common::context();
+    let ball = || {
+        let mut scene = ssgi::scene::cornell_box();
+        let mut b = ssgi::scene::MeshBuilder::new();
+        b.append(&ssgi::scene::sphere(), 0.2, Vec3::ZERO);
+        let key = |time: f32, x: f32| ssgi::scene::ObjectKey {
+            time,
+            position: [x, 0.2, 0.4],
+            rotation_deg: [0.0; 3],
+        };
+        scene.objects.push(ssgi::scene::DynamicObject {
+            name: "ball".into(),
+            mesh: b.build(),
+            keys: vec![key(0.0, -0.6), key(1.0, 0.4)],
+        });
+        scene
+    };
+    let mut p = Pair {
+        skipping: Renderer::new(&ctx, ball(), config(true, true)).expect("renderer"),
+        always: Renderer::new(&ctx, ball(), config(true, false)).expect("renderer"),
+    };
+    let camera = p.skipping.scene.camera;
+    p.converge(&camera);
+    p.skipping.set_time(0.05);
+    p.always.set_time(0.05);
+    let frame = p.frame(&camera);
+    assert_ran(
+        &frame,
+        &[
+            "light_view",
+            "gbuffer",
+            "reproject",
+            "shadow",
+            "direct",
+            "ssao",
+            "indirect_gather",
+            "composite",
+        ],
+    );
+    assert_eq!(
+        frame.counters.iter().find(|(n, _)| *n == "moved_objects"),
+        Some(&("moved_objects", 1))
+    );
+    p.assert_same("after the object moved");
+    until_skipping(&mut p.skipping, &camera, 4);
+    common::assert_clean(&ctx);
+}

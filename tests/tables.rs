@@ -314,26 +314,35 @@ fn thesis_walkthroughs_end_to_end() {
     std::fs::remove_dir_all(&out).ok();
 }
 
-/// `ssgi table dynamic`: the ball and the swinging light get the walkthroughs' rows and
-/// checks; the light moves on every measured frame after the first (the warmup holds time 0),
-/// so the reuse row records the light view on each of those, and the series files are there.
+/// `ssgi table dynamic`: the ball with the swinging light, and with the light still, get the
+/// walkthroughs' rows and checks; something the light sees moves on every measured frame
+/// after the first (the warmup holds time 0), so the reuse rows record the light view on each
+/// of those, and the series files are there.
 #[test]
 fn dynamic_end_to_end() {
     let assets = assets();
     let out = out_dir("dynamic");
     let run = Run::invariants("dynamic");
     let report = run_table(&assets, &run, &out);
-    let scenes = check_report(&report, &out, &run, &["Ball & swinging light"]);
-    let reuse = &scenes[0]["rows"][0];
-    let passes = reuse["report"]["passes"].as_array().unwrap();
-    let light_view = passes.iter().find(|p| p["name"] == "light_view").unwrap();
-    assert_eq!(light_view["recorded"], run.frames - 1, "{light_view}");
-    for f in [
-        "dynamic-cornell-ball.csv",
-        "dynamic-cornell-ball-time.png",
-        "dynamic-cornell-ball-recomputed.png",
-    ] {
-        assert!(out.join(f).is_file(), "{f}");
+    let scenes = check_report(
+        &report,
+        &out,
+        &run,
+        &["Ball & swinging light", "Ball, light still"],
+    );
+    // The swinging light moves on every measured frame but the first; the ball, in the
+    // light's sight, moves the light view on each of them too.
+    for s in &scenes {
+        let reuse = &s["rows"][0];
+        let passes = reuse["report"]["passes"].as_array().unwrap();
+        let light_view = passes.iter().find(|p| p["name"] == "light_view").unwrap();
+        assert_eq!(light_view["recorded"], run.frames - 1, "{light_view}");
+        let stem = s["spec"].as_str().unwrap();
+        for f in ["csv", "time.png", "recomputed.png"] {
+            let sep = if f == "csv" { "." } else { "-" };
+            let file = format!("dynamic-{stem}{sep}{f}");
+            assert!(out.join(&file).is_file(), "{file}");
+        }
     }
     std::fs::remove_dir_all(&out).ok();
 }
