@@ -8,11 +8,13 @@ mod common;
 use glam::Vec3;
 use ssgi::renderer::config::{Effects, TemporalConfig};
 use ssgi::renderer::pcf::Pcf;
+use ssgi::renderer::skip::Change;
 use ssgi::renderer::targets::Target;
 use ssgi::renderer::{RenderConfig, Renderer};
 use ssgi::scene::path::frame_time;
 use ssgi::scene::{Camera, Keyframe, LightPath};
 use ssgi::vk::{Context, FrameTiming};
+use std::collections::BTreeSet;
 use std::sync::Arc;
 
 const SIZE: u32 = 32;
@@ -166,9 +168,11 @@ impl Pair {
     }
 
     /// Render until the skipping one skips 4 frames in a row; the other as many frames.
-    fn converge(&mut self, camera: &Camera) {
-        let n = until_skipping(&mut self.skipping, camera, 4).len() as u32;
-        run(&mut self.always, camera, n);
+    /// Returns the skipping one's timings.
+    fn converge(&mut self, camera: &Camera) -> Vec<FrameTiming> {
+        let timings = until_skipping(&mut self.skipping, camera, 4);
+        run(&mut self.always, camera, timings.len() as u32);
+        timings
     }
 
     /// One frame of both; the skipping one's timing.
@@ -185,6 +189,34 @@ impl Pair {
             "{what}: the image differs from the unskipped one"
         );
     }
+}
+
+/// The passes of `t` but the refresh tiles' (those run on the refresh schedule's frames).
+fn scheduled(t: &FrameTiming) -> BTreeSet<&str> {
+    t.passes
+        .iter()
+        .map(|(n, _)| *n)
+        .filter(|n| !n.ends_with("_refresh"))
+        .collect()
+}
+
+/// The passes the dependency table says `change` runs again, among those the configuration
+/// records (the passes of `from_scratch`, frames that recorded everything), refresh tiles aside.
+fn predicted<'a>(
+    r: &Renderer,
+    from_scratch: &'a [FrameTiming],
+    change: Change,
+) -> BTreeSet<&'a str> {
+    let table = r.dependency_table();
+    from_scratch
+        .iter()
+        .flat_map(scheduled)
+        .filter(|name| {
+            table
+                .iter()
+                .any(|t| t.pass.name() == *name && t.changes.contains(&change))
+        })
+        .collect()
 }
 
 /// The passes `t` recorded; panics naming any of `passes` it did not.
@@ -205,7 +237,8 @@ fn a_change_renders_again() {
     let ctx = common::context();
     let mut p = Pair::new(&ctx);
     let camera = p.skipping.scene.camera;
-    p.converge(&camera);
+    let first = p.converge(&camera);
+    let from_scratch = &first[..3];
     let moved = Camera {
         position: camera.position + Vec3::new(0.002, 0.0, 0.0),
         target: camera.target + Vec3::new(0.002, 0.0, 0.0),
@@ -224,6 +257,11 @@ fn a_change_renders_again() {
         ],
     );
     assert!(frame.skipped("light_view"));
+    assert_eq!(
+        scheduled(&frame),
+        predicted(&p.skipping, from_scratch, Change::Camera),
+        "camera move"
+    );
     p.assert_same("after the camera move");
     p.converge(&moved);
     let mut light = p.skipping.scene.light;
@@ -255,6 +293,11 @@ fn a_change_renders_again() {
             "{pass}: {reasons:?} ran {recorded:?}"
         );
     }
+    assert_eq!(
+        scheduled(&frame),
+        predicted(&p.skipping, from_scratch, Change::Light),
+        "light move"
+    );
     p.assert_same("after the light move");
     until_skipping(&mut p.skipping, &moved, 4);
     common::assert_clean(&ctx);
@@ -269,7 +312,7 @@ fn a_configuration_change_reruns_the_effects_but_not_the_gbuffer() {
     let ctx = common::context();
     let mut p = Pair::new(&ctx);
     let camera = p.skipping.scene.camera;
-    p.converge(&camera);
+    let first = p.converge(&camera);
     p.skipping.config.pcf = Pcf::HARD;
     p.always.config.pcf = Pcf::HARD;
     let frame = p.frame(&camera);
@@ -278,6 +321,11 @@ fn a_configuration_change_reruns_the_effects_but_not_the_gbuffer() {
         &["shadow", "direct", "ssao", "indirect_gather", "composite"],
     );
     assert!(!recorded.contains(&"gbuffer"), "{recorded:?}");
+    assert_eq!(
+        scheduled(&frame),
+        predicted(&p.skipping, &first[..3], Change::Config),
+        "configuration change"
+    );
     p.assert_same("after the configuration change");
     until_skipping(&mut p.skipping, &camera, 4);
     common::assert_clean(&ctx);
@@ -391,7 +439,7 @@ fn a_moved_object_renders_what_depends_on_it() {
         always: Renderer::new(&ctx, ball(), config(true, false)).expect("renderer"),
     };
     let camera = p.skipping.scene.camera;
-    p.converge(&camera);
+    let first = p.converge(&camera);
     p.skipping.set_time(0.05);
     p.always.set_time(0.05);
     let frame = p.frame(&camera);
@@ -411,6 +459,11 @@ fn a_moved_object_renders_what_depends_on_it() {
     assert_eq!(
         frame.counters.iter().find(|(n, _)| *n == "moved_objects"),
         Some(&("moved_objects", 1))
+    );
+    assert_eq!(
+        scheduled(&frame),
+        predicted(&p.skipping, &first[..3], Change::Object),
+        "object move"
     );
     p.assert_same("after the object moved");
     until_skipping(&mut p.skipping, &camera, 4);

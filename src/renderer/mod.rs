@@ -279,6 +279,11 @@ impl Renderer {
         skip::explain(&self.config, &self.effects)
     }
 
+    /// The dependency table itself: each pass and the changes that make it run again.
+    pub fn dependency_table(&self) -> Vec<skip::Trigger> {
+        skip::triggers(&self.config, &self.effects)
+    }
+
     fn frame_inputs(&self, camera: &Camera) -> Inputs {
         let aspect = self.config.width as f32 / self.config.height as f32;
         Inputs {

@@ -257,42 +257,75 @@ impl SkipTracker {
     }
 }
 
-/// The dependency table of `effects` under `config`: for each pass, what makes it run again
-/// (`ssgi bench --explain-skips`, docs/ARCHITECTURE.md).
-pub fn explain(config: &RenderConfig, effects: &[Box<dyn Effect>]) -> String {
-    let mut rows: Vec<(PassId, String)> = vec![
-        (
-            PassId::LightView,
-            "the light, or a moving object whose bounds (this frame's or the last one's) \
-             meet the light's frustum"
-                .to_string(),
-        ),
-        (
-            PassId::GBuffer,
-            "the camera (view-projection or eye), a moving object".to_string(),
-        ),
+/// An input whose change makes passes run again.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Change {
+    /// The camera's view-projection or eye.
+    Camera,
+    /// The spot light.
+    Light,
+    /// A moving object's transform (for the light view: one the light's frustum meets).
+    Object,
+    /// The configuration (the viewer's switches).
+    Config,
+}
+
+/// One row of the dependency table: a pass and the changes that make it run again.
+pub struct Trigger {
+    pub pass: PassId,
+    pub changes: &'static [Change],
+    /// The effect the pass belongs to, and whether it accumulates (it then also runs on
+    /// until its history converges).
+    pub effect: Option<(crate::effects::EffectId, bool)>,
+}
+
+const EVERYTHING: &[Change] = &[
+    Change::Camera,
+    Change::Light,
+    Change::Object,
+    Change::Config,
+];
+const LIT_EFFECT: &[Change] = EVERYTHING;
+const UNLIT_EFFECT: &[Change] = &[Change::Camera, Change::Object, Change::Config];
+
+/// The dependency table of `effects` under `config`, from each effect's declarations
+/// (`passes`, `reads_light`, whether it accumulates): for each pass, the changes that make it
+/// run again. The frame planner follows it (`SkipTracker::plan`), `explain` prints it, and the
+/// tests compare each change's recorded passes with it.
+pub fn triggers(config: &RenderConfig, effects: &[Box<dyn Effect>]) -> Vec<Trigger> {
+    let mut rows = vec![
+        Trigger {
+            pass: PassId::LightView,
+            changes: &[Change::Light, Change::Object],
+            effect: None,
+        },
+        Trigger {
+            pass: PassId::GBuffer,
+            changes: &[Change::Camera, Change::Object],
+            effect: None,
+        },
     ];
     for e in effects {
-        let light = if e.reads_light() { ", light" } else { "" };
-        let converge = if accumulates(config, e.as_ref()) {
-            "; every frame until its history converges"
+        let changes = if e.reads_light() {
+            LIT_EFFECT
         } else {
-            ""
+            UNLIT_EFFECT
         };
         for &pass in e.passes() {
-            rows.push((
+            rows.push(Trigger {
                 pass,
-                format!(
-                    "{:?} effect: camera, configuration, moving objects{light}{converge}",
-                    e.id()
-                ),
-            ));
+                changes,
+                effect: Some((e.id(), accumulates(config, e.as_ref()))),
+            });
         }
     }
-    rows.push((
-        PassId::Reproject,
-        "any effect with a reused history running (one lane each)".to_string(),
-    ));
+    // Any effect with a reused history running runs its lane; the composite and what follows
+    // it run on every frame that runs anything.
+    rows.push(Trigger {
+        pass: PassId::Reproject,
+        changes: EVERYTHING,
+        effect: None,
+    });
     let mut last = vec![PassId::Composite];
     if config.aa.mode.subpixel() {
         last.extend([PassId::SraaGeometry, PassId::Sraa]);
@@ -300,20 +333,52 @@ pub fn explain(config: &RenderConfig, effects: &[Box<dyn Effect>]) -> String {
     if config.aa.mode.supersampling() > 1 {
         last.push(PassId::SsaaDownsample);
     }
-    for pass in last {
-        rows.push((
-            pass,
-            "anything (only a frame that changes nothing leaves it out)".to_string(),
-        ));
+    rows.extend(last.into_iter().map(|pass| Trigger {
+        pass,
+        changes: EVERYTHING,
+        effect: None,
+    }));
+    rows.sort_by_key(|t| PassId::ALL.iter().position(|q| *q == t.pass));
+    rows.dedup_by_key(|t| t.pass);
+    rows
+}
+
+/// Why a row of the dependency table runs again, in words.
+fn why(t: &Trigger) -> String {
+    match (t.pass, t.effect) {
+        (PassId::LightView, _) => "the light, or a moving object whose bounds (this frame's or \
+                                   the last one's) meet the light's frustum"
+            .to_string(),
+        (PassId::GBuffer, _) => "the camera (view-projection or eye), a moving object".to_string(),
+        (PassId::Reproject, _) => {
+            "any effect with a reused history running (one lane each)".to_string()
+        }
+        (_, Some((id, converges))) => {
+            let light = if t.changes.contains(&Change::Light) {
+                ", light"
+            } else {
+                ""
+            };
+            let converge = if converges {
+                "; every frame until its history converges"
+            } else {
+                ""
+            };
+            format!("{id:?} effect: camera, configuration, moving objects{light}{converge}")
+        }
+        (_, None) => "anything (only a frame that changes nothing leaves it out)".to_string(),
     }
-    rows.sort_by_key(|(p, _)| PassId::ALL.iter().position(|q| *q == *p));
-    rows.dedup_by_key(|(p, _)| *p);
+}
+
+/// The dependency table of `effects` under `config`: for each pass, what makes it run again
+/// (`ssgi bench --explain-skips`, docs/ARCHITECTURE.md).
+pub fn explain(config: &RenderConfig, effects: &[Box<dyn Effect>]) -> String {
     let mut out = String::from(
         "pass (those an effect may record)  runs again when this changed in the last two \
          frames\n",
     );
-    for (pass, why) in rows {
-        out += &format!("{:<18} {why}\n", pass.name());
+    for t in triggers(config, effects) {
+        out += &format!("{:<18} {}\n", t.pass.name(), why(&t));
     }
     if !config.skip_unchanged {
         out += "(--skip-unchanged off: every pass runs every frame)\n";
