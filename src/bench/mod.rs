@@ -17,6 +17,7 @@ pub mod paths;
 pub mod plot;
 pub mod report;
 pub mod rows;
+pub mod rows_table;
 pub mod scatter;
 pub mod stats;
 pub mod stress;

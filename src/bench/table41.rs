@@ -4,9 +4,9 @@
 
 use super::decimate::decimate;
 use super::paths::EmbeddedPath;
-use super::rows::{measure_rows, SceneRun};
-use super::table_report::{Header, SceneResult, TableReport, COLUMN_NOTE};
-use super::thesis::{table_4_1, SETUP};
+use super::rows_table::RowsTable;
+use super::table_report::{SceneResult, TableReport, COLUMN_NOTE};
+use super::thesis::table_4_1;
 use super::TableOptions;
 use crate::error::Result;
 use crate::frontend::sink::FrameSink;
@@ -86,39 +86,10 @@ pub fn run(
     for s in &SCENES {
         loaded.push((s, load(s, opts.assets.as_deref())?));
     }
-    let base = super::rows::base_config(opts.size.0, opts.size.1, opts.effects);
-    let (warmup, warmup_along_path) =
-        super::warmup::before_path(opts.warmup, base.temporal.rotation_limit);
-    let mut report = TableReport::new(
-        Header {
-            table: "thesis-4.1",
-            command: opts.command.clone(),
-            device: &ctx.info,
-            present_mode: sink.present_mode(),
-            base_config: base,
-            frames: opts.frames,
-            warmup,
-            warmup_along_path,
-            fps: opts.fps,
-        },
-        SETUP,
-        vec![COLUMN_NOTE.to_string()],
-    );
+    let (rows_table, mut report) =
+        RowsTable::start("thesis-4.1", ctx, sink, opts, vec![COLUMN_NOTE.to_string()]);
     for (s, (scene, note)) in loaded {
-        let rows = measure_rows(
-            ctx,
-            sink,
-            &scene,
-            &SceneRun {
-                base,
-                path: &path,
-                frames: opts.frames,
-                warmup,
-                warmup_along_path,
-                fps: opts.fps,
-                progress: opts.progress,
-            },
-        )?;
+        let rows = rows_table.measure(ctx, sink, &scene, &path)?;
         let mut result = SceneResult::new(
             scene.name.clone(),
             s.thesis.to_string(),

@@ -5,9 +5,8 @@
 //! that moment. The thesis leaves dynamic scenes open (section 5); this measures what the
 //! motion-aware reprojection and `--invalidate` keep of the cache.
 
-use super::rows::{measure_rows, SceneRun};
-use super::table_report::{Header, SceneResult, TableReport, COLUMN_NOTE};
-use super::thesis::SETUP;
+use super::rows_table::RowsTable;
+use super::table_report::{SceneResult, TableReport, COLUMN_NOTE};
 use super::walkthrough::{write_series, EmbeddedScene};
 use super::TableOptions;
 use crate::error::Result;
@@ -41,22 +40,11 @@ pub fn run(
         Some(p) => CameraPath::parse(p)?,
         None => CameraPath::Static,
     };
-    let base = super::rows::base_config(opts.size.0, opts.size.1, opts.effects);
-    let (warmup, warmup_along_path) =
-        super::warmup::before_path(opts.warmup, base.temporal.rotation_limit);
-    let mut report = TableReport::new(
-        Header {
-            table: "dynamic",
-            command: opts.command.clone(),
-            device: &ctx.info,
-            present_mode: sink.present_mode(),
-            base_config: base,
-            frames: opts.frames,
-            warmup,
-            warmup_along_path,
-            fps: opts.fps,
-        },
-        SETUP,
+    let (rows_table, mut report) = RowsTable::start(
+        "dynamic",
+        ctx,
+        sink,
+        opts,
         vec![
             COLUMN_NOTE.to_string(),
             format!(
@@ -75,20 +63,7 @@ pub fn run(
         ("cornell-ball-still-light", "Ball, light still", still),
     ];
     for (stem, name, scene) in scenes {
-        let rows = measure_rows(
-            ctx,
-            sink,
-            &scene,
-            &SceneRun {
-                base,
-                path: &path,
-                frames: opts.frames,
-                warmup,
-                warmup_along_path,
-                fps: opts.fps,
-                progress: opts.progress,
-            },
-        )?;
+        let rows = rows_table.measure(ctx, sink, &scene, &path)?;
         let triangles = scene.mesh.triangle_count()
             + scene
                 .objects

@@ -9,9 +9,10 @@ use super::plot::{
     write_line_plot, LinePlot, Series, NO_REUSE_AO_COLOR, NO_REUSE_COLOR, NO_REUSE_INDIRECT_COLOR,
     REUSE_AO_COLOR, REUSE_COLOR, REUSE_INDIRECT_COLOR,
 };
-use super::rows::{measure_rows, FrameSample, RowKind, SceneRun};
-use super::table_report::{Header, SceneResult, TableReport, COLUMN_NOTE};
-use super::thesis::{SETUP, WALKTHROUGH_NUMBERS_MISSING};
+use super::rows::{FrameSample, RowKind};
+use super::rows_table::RowsTable;
+use super::table_report::{SceneResult, TableReport, COLUMN_NOTE};
+use super::thesis::WALKTHROUGH_NUMBERS_MISSING;
 use super::TableOptions;
 use crate::error::{Error, Result};
 use crate::frontend::sink::FrameSink;
@@ -111,22 +112,11 @@ pub fn run(
         let scene = w.load(opts.assets.as_deref(), &path)?;
         loaded.push((w, path, path_name, scene));
     }
-    let base = super::rows::base_config(opts.size.0, opts.size.1, opts.effects);
-    let (warmup, warmup_along_path) =
-        super::warmup::before_path(opts.warmup, base.temporal.rotation_limit);
-    let mut report = TableReport::new(
-        Header {
-            table: "thesis-walkthroughs",
-            command: opts.command.clone(),
-            device: &ctx.info,
-            present_mode: sink.present_mode(),
-            base_config: base,
-            frames: opts.frames,
-            warmup,
-            warmup_along_path,
-            fps: opts.fps,
-        },
-        SETUP,
+    let (rows_table, mut report) = RowsTable::start(
+        "thesis-walkthroughs",
+        ctx,
+        sink,
+        opts,
         vec![
             COLUMN_NOTE.to_string(),
             WALKTHROUGH_NUMBERS_MISSING.to_string(),
@@ -137,20 +127,7 @@ pub fn run(
         ],
     );
     for (w, path, path_name, scene) in loaded {
-        let rows = measure_rows(
-            ctx,
-            sink,
-            &scene,
-            &SceneRun {
-                base,
-                path: &path,
-                frames: opts.frames,
-                warmup,
-                warmup_along_path,
-                fps: opts.fps,
-                progress: opts.progress,
-            },
-        )?;
+        let rows = rows_table.measure(ctx, sink, &scene, &path)?;
         let mut result = SceneResult::new(
             w.asset.to_string(),
             w.name.to_string(),
