@@ -363,8 +363,9 @@ impl Renderer {
         let previous = self.collect(slot);
         // 1. Scene update: constants, change flags, each effect's refresh tile and pattern.
         let view_proj = inputs.view_proj;
-        let (poses, moved) = self.motion.poses(self.history.is_some());
-        self.scene_gpu.poses = poses;
+        let moved = self
+            .motion
+            .write_poses(self.history.is_some(), &mut self.scene_gpu.poses);
         self.moved[slot] = moved;
         let rendered = self.config.rendered();
         let what_moved = motion::moved(

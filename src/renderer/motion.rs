@@ -9,8 +9,10 @@ use glam::{Affine3A, Vec4};
 pub struct Motion {
     /// Where each object is for the next frame.
     next: Vec<Affine3A>,
-    /// Where the last frame drew it (None before the first frame and after a cut).
-    drawn: Option<Vec<Affine3A>>,
+    /// Where the last frame drew it; meaningless until `has_drawn` (before the first frame
+    /// and after a cut). Sized once: frames copy into it, nothing is allocated per frame.
+    drawn: Vec<Affine3A>,
+    has_drawn: bool,
     /// Counts the frames on which something moved: the frame-skipping key of geometry.
     revision: u64,
 }
@@ -18,9 +20,11 @@ pub struct Motion {
 impl Motion {
     /// Every object at the start of its path.
     pub fn new(objects: &[DynamicObject]) -> Self {
+        let next: Vec<Affine3A> = objects.iter().map(|o| o.transform_at(0.0)).collect();
         Self {
-            next: objects.iter().map(|o| o.transform_at(0.0)).collect(),
-            drawn: None,
+            drawn: next.clone(),
+            next,
+            has_drawn: false,
             revision: 0,
         }
     }
@@ -32,30 +36,33 @@ impl Motion {
         }
     }
 
-    /// The next frame's poses (last frame's transform as `before`; the same as `now` when the
-    /// last frame's G-buffer is not reused, so its motion is 0), and how many objects moved.
-    pub fn poses(&self, history_valid: bool) -> (Vec<Pose>, usize) {
-        let poses: Vec<Pose> = self
-            .next
-            .iter()
-            .enumerate()
-            .map(|(i, &now)| Pose {
-                now,
-                before: match (&self.drawn, history_valid) {
-                    (Some(d), true) => d.get(i).copied().unwrap_or(now),
-                    _ => now,
-                },
-            })
-            .collect();
-        let moved = poses.iter().filter(|p| p.moved()).count();
-        (poses, moved)
+    /// Object `i`'s pose for the next frame: last frame's transform as `before`, or `now`
+    /// when last frame's G-buffer is not reused (its motion is then 0).
+    fn pose(&self, i: usize, history_valid: bool) -> Pose {
+        let now = self.next[i];
+        let before = if self.has_drawn && history_valid {
+            self.drawn[i]
+        } else {
+            now
+        };
+        Pose { now, before }
+    }
+
+    /// Write the next frame's poses into `out` (one per object) and count those that moved.
+    pub fn write_poses(&self, history_valid: bool, out: &mut [Pose]) -> usize {
+        let mut moved = 0;
+        for (i, p) in out.iter_mut().enumerate().take(self.next.len()) {
+            *p = self.pose(i, history_valid);
+            moved += usize::from(p.moved());
+        }
+        moved
     }
 
     /// The frame-skipping key of geometry for the next frame: it changes on every frame that
     /// moves something.
     pub fn revision(&self, history_valid: bool) -> u64 {
-        let (_, moved) = self.poses(history_valid);
-        self.revision + u64::from(moved > 0)
+        let moved = (0..self.next.len()).any(|i| self.pose(i, history_valid).moved());
+        self.revision + u64::from(moved)
     }
 
     /// The next frame was recorded with these transforms.
@@ -63,12 +70,13 @@ impl Motion {
         if moved > 0 {
             self.revision += 1;
         }
-        self.drawn = Some(self.next.clone());
+        self.drawn.copy_from_slice(&self.next);
+        self.has_drawn = true;
     }
 
     /// Forget last frame's transforms (a camera cut, a resize): the next frame has no motion.
     pub fn forget(&mut self) {
-        self.drawn = None;
+        self.has_drawn = false;
     }
 }
 
@@ -167,18 +175,16 @@ pub fn in_frustum(view_proj: &glam::Mat4, b: &Aabb) -> bool {
     if b.is_empty() {
         return false;
     }
-    let corners: Vec<Vec4> = (0..8)
-        .map(|i| {
-            let pick = |bit: usize, lo: f32, hi: f32| if i & bit == 0 { lo } else { hi };
-            *view_proj
-                * Vec4::new(
-                    pick(1, b.min.x, b.max.x),
-                    pick(2, b.min.y, b.max.y),
-                    pick(4, b.min.z, b.max.z),
-                    1.0,
-                )
-        })
-        .collect();
+    let corners: [Vec4; 8] = std::array::from_fn(|i| {
+        let pick = |bit: usize, lo: f32, hi: f32| if i & bit == 0 { lo } else { hi };
+        *view_proj
+            * Vec4::new(
+                pick(1, b.min.x, b.max.x),
+                pick(2, b.min.y, b.max.y),
+                pick(4, b.min.z, b.max.z),
+                1.0,
+            )
+    });
     let planes: [fn(&Vec4) -> bool; 6] = [
         |c| c.x < -c.w,
         |c| c.x > c.w,
@@ -219,16 +225,17 @@ mod tests {
     fn poses_carry_last_frame_and_count_what_moved() {
         let objects = [ball([0.0; 3], [1.0, 0.0, 0.0])];
         let mut m = Motion::new(&objects);
-        let (p, moved) = m.poses(false);
+        let mut p = [Pose::STILL];
+        let moved = m.write_poses(false, &mut p);
         assert_eq!((p[0].now, moved), (Affine3A::IDENTITY, 0));
         m.drawn(moved);
         m.set_time(&objects, 0.5);
-        let (p, moved) = m.poses(true);
+        let moved = m.write_poses(true, &mut p);
         assert_eq!(moved, 1);
         assert_eq!(p[0].before, Affine3A::IDENTITY);
         assert_eq!(p[0].now.translation, Vec3::new(0.5, 0.0, 0.0).into());
         // Without a reused history the frame has no motion.
-        assert_eq!(m.poses(false).1, 0);
+        assert_eq!(m.write_poses(false, &mut p), 0);
         let r = m.revision(true);
         m.drawn(moved);
         assert_eq!(m.revision(true), r, "held still: the key stays");
@@ -240,15 +247,16 @@ mod tests {
         let light = cornell_light();
         let below = [ball([0.0, 0.5, 0.0], [0.1, 0.5, 0.0])];
         let above = [ball([0.0, 5.0, 0.0], [0.1, 5.0, 0.0])];
+        let mut poses = [Pose::STILL];
         let mut m = Motion::new(&below);
         m.drawn(0);
         m.set_time(&below, 1.0);
-        let (poses, _) = m.poses(true);
+        m.write_poses(true, &mut poses);
         assert!(light_sees_motion(&light, &below, &poses));
         let mut m = Motion::new(&above);
         m.drawn(0);
         m.set_time(&above, 1.0);
-        let (poses, _) = m.poses(true);
+        m.write_poses(true, &mut poses);
         assert!(!light_sees_motion(&light, &above, &poses));
         // Still objects are never a reason.
         assert!(!light_sees_motion(&light, &below, &[Pose::STILL]));
