@@ -48,7 +48,7 @@ pub fn run(
         vec![
             COLUMN_NOTE.to_string(),
             format!(
-                "Dynamic scene {}: a 0.2 m ball rolls 1 m across the floor and back every 8 s, \
+                "Dynamic scene {}: a 0.2 m ball rolls 0.5 m across the floor and back every 8 s, \
                  the spot swings 1.2 m and back every 4 s (\"light still\": held where the swing \
                  starts); camera path {}. Frame i is at i / fps seconds of both paths (warmup \
                  frames before it). Errors are of the last frame, against the reference and the \
