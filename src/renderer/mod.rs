@@ -387,7 +387,6 @@ impl Renderer {
                 &self.scene.objects,
                 &self.scene_gpu.poses,
             );
-        let rendered = self.config.rendered();
         let info = FrameInfo {
             config: &rendered,
             targets: &self.targets,
