@@ -9,8 +9,8 @@
 //! Tolerance: lavapipe is deterministic for a given shader binary, so the same code reproduces
 //! every byte. A refactor may legitimately reorder floating-point operations (another shader
 //! permutation mechanism, another evaluation order), which moves a channel by a code or two
-//! after tonemapping. So each channel may differ by at most [`MAX_CHANNEL_DIFF`] codes, and at
-//! most [`MAX_CHANGED_FRACTION`] of the pixels may differ at all; anything larger is a change
+//! after tonemapping. So each channel may differ by at most `common::MAX_CHANNEL_DIFF` codes, and
+//! at most `common::MAX_CHANGED_FRACTION` of the pixels may differ at all; anything larger is a change
 //! in behaviour, and the failure message names the image, the worst pixel and both values.
 //!
 //! Re-bless (only for an intended change of the image, stated in the commit):
@@ -29,10 +29,6 @@ const SIZE: u32 = 64;
 const FRAMES: u32 = 4;
 /// The orbit's frame count: 1/240 of a turn (1.5 degrees) per frame.
 const ORBIT_FRAMES: u32 = 240;
-/// Largest accepted difference of one 8-bit channel (see the module comment).
-const MAX_CHANNEL_DIFF: u8 = 3;
-/// Largest accepted fraction of pixels with any difference.
-const MAX_CHANGED_FRACTION: f64 = 0.02;
 
 fn golden_dir() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/golden")
@@ -114,7 +110,7 @@ fn check(scene_spec: &str, file_stem: &str) {
                 .unwrap_or_else(|e| panic!("golden image {} missing: {e}", file.display()))
                 .to_rgba8();
             assert_eq!(want.dimensions(), (SIZE, SIZE), "{}", file.display());
-            if let Some(msg) = compare(&got, want.as_raw()) {
+            if let Some(msg) = common::golden_compare(&got, want.as_raw(), SIZE) {
                 failures.push(format!("{}: {msg}", file.display()));
             }
         }
@@ -124,35 +120,6 @@ fn check(scene_spec: &str, file_stem: &str) {
         "golden mismatch:\n{}",
         failures.join("\n")
     );
-}
-
-/// `None` when `got` matches `want` within the tolerance, else what differs.
-fn compare(got: &[u8], want: &[u8]) -> Option<String> {
-    let mut changed = 0usize;
-    let mut worst = (0u8, 0usize);
-    for (i, (g, w)) in got.chunks(4).zip(want.chunks(4)).enumerate() {
-        let d = g.iter().zip(w).map(|(a, b)| a.abs_diff(*b)).max().unwrap();
-        if d > 0 {
-            changed += 1;
-        }
-        if d > worst.0 {
-            worst = (d, i);
-        }
-    }
-    let fraction = changed as f64 / (got.len() / 4) as f64;
-    if worst.0 <= MAX_CHANNEL_DIFF && fraction <= MAX_CHANGED_FRACTION {
-        return None;
-    }
-    let i = worst.1;
-    Some(format!(
-        "{changed} pixels differ ({:.2}%), worst {} codes at ({}, {}): got {:?}, golden {:?}",
-        100.0 * fraction,
-        worst.0,
-        i as u32 % SIZE,
-        i as u32 / SIZE,
-        &got[4 * i..4 * i + 4],
-        &want[4 * i..4 * i + 4]
-    ))
 }
 
 #[test]
@@ -169,8 +136,8 @@ fn golden_bunny_in_box() {
 fn comparison_catches_a_changed_pixel() {
     let a = vec![10u8; 4 * 64 * 64];
     let mut b = a.clone();
-    assert!(compare(&a, &b).is_none());
-    b[4 * 100 + 1] = 10 + MAX_CHANNEL_DIFF + 1;
-    let msg = compare(&b, &a).expect("a 4-code difference fails");
+    assert!(common::golden_compare(&a, &b, 64).is_none());
+    b[4 * 100 + 1] = 10 + common::MAX_CHANNEL_DIFF + 1;
+    let msg = common::golden_compare(&b, &a, 64).expect("a 4-code difference fails");
     assert!(msg.contains("(36, 1)"), "{msg}");
 }

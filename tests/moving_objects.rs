@@ -8,7 +8,7 @@ mod common;
 
 use glam::Vec3;
 use ssgi::effects::EffectId;
-use ssgi::renderer::config::{Effects, TemporalConfig};
+use ssgi::renderer::config::{Effects, Refresh, TemporalConfig};
 use ssgi::renderer::pcf::Pcf;
 use ssgi::renderer::targets::Target;
 use ssgi::renderer::{RenderConfig, Renderer};
@@ -42,16 +42,19 @@ fn ball_scene() -> Scene {
     scene
 }
 
-fn config(invalidate: bool) -> RenderConfig {
+/// `refresh`: whether a moved object brings a refresh pass over the image where invalidation
+/// is off (`FrameInfo::refresh_cover`); off, what the reprojection alone keeps shows.
+fn config(invalidate: bool, refresh: Refresh) -> RenderConfig {
     RenderConfig {
         width: SIZE,
         height: SIZE,
         rsm_size: 128,
         effects: Effects::ALL,
         pcf: Pcf::NINE,
-        // A quick refresh after the first frame (as tests/skip.rs).
+        // A quick refresh pass (ten frames' evaluations per frame) where one runs.
         temporal: TemporalConfig {
             refresh_budget: 10.0,
+            refresh,
             invalidate,
             ..Default::default()
         },
@@ -96,11 +99,12 @@ fn counter(t: &FrameTiming, name: &str) -> Option<u64> {
     t.counters.iter().find(|(n, _)| *n == name).map(|(_, v)| *v)
 }
 
-/// Without invalidation, what a step changes in the state images is its disocclusion alone.
+/// Without invalidation (and refresh), what a step changes in the state images is its
+/// disocclusion alone.
 #[test]
 fn a_moving_ball_uncovers_only_what_was_behind_it() {
     let ctx = common::context();
-    let mut r = Renderer::new(&ctx, ball_scene(), config(false)).expect("renderer");
+    let mut r = Renderer::new(&ctx, ball_scene(), config(false, Refresh::Off)).expect("renderer");
     let camera = r.scene.camera;
     let settled = converge(&mut r, &camera, 0.0);
     let step = STEP;
@@ -220,15 +224,22 @@ fn ao_reaches(r: &Renderer, (lo, hi): (Vec3, Vec3), x: u32, y: u32, p: Vec3) -> 
 /// With `--invalidate`, AO drops exactly the kept pixels its taps can see the moved ball from
 /// (checked per pixel against that rule on the CPU), the shadow drops pixels too, and after
 /// the ball stops the converged AO and shadow equal those of a renderer that saw the ball
-/// only at its new place. Without it the old shadow stays: the test can tell.
+/// only at its new place. Without it, and without refresh, the old shadow stays: the test can
+/// tell. Without invalidation but with the refresh, the refresh pass the move brings cleans
+/// it (more slowly: it converges once the tiles have covered the image).
 #[test]
 fn a_moving_ball_drops_what_it_reaches_and_leaves_nothing_stale() {
     let ctx = common::context();
     let before = Vec3::from(FROM);
     let now = before + (Vec3::from(TO) - before) * STEP;
     let mut stale = Vec::new();
-    for invalidate in [true, false] {
-        let mut r = Renderer::new(&ctx, ball_scene(), config(invalidate)).expect("renderer");
+    for (invalidate, refresh) in [
+        (true, Refresh::Feathered),
+        (false, Refresh::Off),
+        (false, Refresh::Feathered),
+    ] {
+        let mut r =
+            Renderer::new(&ctx, ball_scene(), config(invalidate, refresh)).expect("renderer");
         let camera = r.scene.camera;
         converge(&mut r, &camera, 0.0);
         let step = frames(&mut r, &camera, STEP, 1);
@@ -270,7 +281,8 @@ fn a_moving_ball_drops_what_it_reaches_and_leaves_nothing_stale() {
             assert_eq!(counter(frame, "ssao_invalidated_pixels"), Some(0));
         }
         converge(&mut r, &camera, STEP);
-        let mut fresh = Renderer::new(&ctx, ball_scene(), config(invalidate)).expect("renderer");
+        let mut fresh =
+            Renderer::new(&ctx, ball_scene(), config(invalidate, refresh)).expect("renderer");
         converge(&mut fresh, &camera, STEP);
         let mut worst = Vec::new();
         for target in [Target::Ao, Target::Shadow] {
@@ -282,13 +294,15 @@ fn a_moving_ball_drops_what_it_reaches_and_leaves_nothing_stale() {
                     max = max.max((a.texel(x, y)[0] - b.texel(x, y)[0]).abs());
                 }
             }
-            eprintln!("invalidate {invalidate}: {target:?} differs by up to {max}");
+            eprintln!(
+                "invalidate {invalidate}, refresh {refresh:?}: {target:?} differs by up to {max}"
+            );
             worst.push(max);
         }
-        if invalidate {
+        if invalidate || refresh != Refresh::Off {
             assert!(
                 worst.iter().all(|m| *m < 0.01),
-                "stale after the step: {worst:?}"
+                "invalidate {invalidate}, refresh {refresh:?}: stale after the step: {worst:?}"
             );
         } else {
             stale = worst;

@@ -43,7 +43,8 @@ fn counter(t: &FrameTiming, name: &str) -> Option<u64> {
     t.counters.iter().find(|(n, _)| *n == name).map(|(_, v)| *v)
 }
 
-/// Move the camera for a few frames (the refresh starts after a change), then hold it: on every frame each effect's refresh evaluations stay within the budget times its
+/// Move the camera for a few frames (tiles run while it moves), then hold it: on every frame
+/// each effect's refresh evaluations stay within the budget times its
 /// evaluations of a full frame (pixels; low-resolution samples for half-resolution indirect
 /// light), and they are not zero where a tile fits, so the count is really taken.
 #[test]
@@ -102,22 +103,34 @@ fn msd(a: &ImageData, b: &ImageData) -> f64 {
     sum / n as f64
 }
 
-/// After the camera stops, the refresh tiles go on running for many frames; once the pixels
-/// the motion disoccluded have converged, consecutive final frames differ by a mean squared
-/// difference below 2.5e-5 (Chen, Lei, Chang 2012's threshold for barely notable flicker),
-/// while the refresh counters show tiles still running; the refreshed AO still matches a
+/// On a converged view the refresh runs after a change nothing restarts: with `--invalidate
+/// off`, a light moved by a tenth of a millimetre makes shadows, indirect light's tiles pass
+/// over every pixel while the image stays what it was. Consecutive final frames then differ by
+/// a mean squared difference below 2.5e-5 (Chen, Lei, Chang 2012's threshold for barely
+/// notable flicker) while the counters show tiles running; with the camera still and nothing
+/// changed no tile runs; and the AO refreshed while the camera moved still matches a
 /// 1024-sample reference.
 #[test]
 fn converged_view_does_not_flicker_while_refreshing() {
     let ctx = common::context();
     let size = 128u32;
-    let mut r = Renderer::new(&ctx, cornell_box(), config(size)).expect("renderer");
+    let kept = RenderConfig {
+        temporal: TemporalConfig {
+            invalidate: false,
+            ..Default::default()
+        },
+        ..config(size)
+    };
+    let mut r = Renderer::new(&ctx, cornell_box(), kept).expect("renderer");
     let base = r.scene.camera;
     let mut timings = Vec::new();
     for frame in 0..40u32 {
         timings.extend(r.render_frame(&stepped(base, frame.min(4))).expect("frame"));
     }
     let held = stepped(base, 4);
+    let mut light = r.scene.light;
+    light.position += Vec3::new(1e-4, 0.0, 0.0);
+    r.set_light(light);
     let mut previous = None;
     let mut worst = 0.0f64;
     for _ in 0..12 {
@@ -129,12 +142,28 @@ fn converged_view_does_not_flicker_while_refreshing() {
         previous = Some(out);
     }
     timings.extend(r.finish().expect("finish"));
-    let refreshed: u64 = timings[40..]
+    let sum = |range: std::ops::Range<usize>, name: &str| -> u64 {
+        timings[range]
+            .iter()
+            .map(|t| counter(t, name).unwrap_or(0))
+            .sum()
+    };
+    // The camera stopped on frame 5: from the next frame on, until the light moved, no tile.
+    let still: u64 = ["ssao", "shadow", "indirect"]
         .iter()
-        .map(|t| counter(t, "ssao_refresh_evaluations").unwrap_or(0))
+        .map(|n| sum(6..40, &format!("{n}_refresh_evaluations")))
         .sum();
-    eprintln!("largest consecutive-frame MSD {worst:.3e}; AO refresh evaluations {refreshed}");
-    assert!(refreshed > 0, "no refresh ran while the view was held");
+    let shadow = sum(40..52, "shadow_refresh_evaluations");
+    let indirect = sum(40..52, "indirect_refresh_evaluations");
+    eprintln!(
+        "largest consecutive-frame MSD {worst:.3e}; refresh evaluations with the camera still \
+         {still}, after the light's nudge: shadow {shadow}, indirect {indirect}"
+    );
+    assert_eq!(still, 0, "tiles ran on a still view with nothing changed");
+    assert!(
+        shadow > 0 && indirect > 0,
+        "no refresh ran after the light moved"
+    );
     assert!(worst < 2.5e-5, "consecutive frames differ by MSD {worst}");
     // The refreshed result is still the estimator's mean: against 32 patterns x 32 samples at
     // the held camera, the bound of tests/ssao.rs's static convergence.

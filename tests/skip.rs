@@ -1,11 +1,15 @@
 //! Nothing changed, nothing recorded (`RenderConfig::skip_unchanged`): once camera, light and
 //! configuration stay put and every temporal effect has converged (its counters read back
 //! zero work), a frame records no pass; its output is the previous frame's, bit for bit; a
-//! change renders again.
+//! change (camera, light, configuration, a moving object) records the passes the dependency
+//! table predicts, draws what a renderer that never skips draws, bit for bit, and once
+//! converged again matches a render from scratch of the new state within the golden-image
+//! tolerance (`common::golden_compare`).
 
 mod common;
 
 use glam::Vec3;
+use ssgi::renderer::antialias::{AaConfig, AaMode};
 use ssgi::renderer::config::{Effects, TemporalConfig};
 use ssgi::renderer::pcf::Pcf;
 use ssgi::renderer::skip::Change;
@@ -161,9 +165,14 @@ struct Pair {
 
 impl Pair {
     fn new(ctx: &Arc<Context>) -> Self {
+        Self::with(ctx, |c| c)
+    }
+
+    /// The pair under `config(true, _)` changed by `f`.
+    fn with(ctx: &Arc<Context>, f: impl Fn(RenderConfig) -> RenderConfig) -> Self {
         Self {
-            skipping: renderer(ctx, config(true, true)),
-            always: renderer(ctx, config(true, false)),
+            skipping: renderer(ctx, f(config(true, true))),
+            always: renderer(ctx, f(config(true, false))),
         }
     }
 
@@ -179,6 +188,19 @@ impl Pair {
     fn frame(&mut self, camera: &Camera) -> FrameTiming {
         run(&mut self.always, camera, 1);
         run(&mut self.skipping, camera, 1).pop().unwrap()
+    }
+
+    /// The skipping one, converged again after a change, against `fresh` (a renderer that
+    /// saw only the new state) converged at `camera`: equal within the golden tolerance.
+    fn assert_like_fresh(&mut self, mut fresh: Renderer, camera: &Camera, what: &str) {
+        let frames = until_skipping(&mut self.skipping, camera, 4).len();
+        run(&mut self.always, camera, frames as u32);
+        until_skipping(&mut fresh, camera, 4);
+        let x = common::read(&mut self.skipping, Target::Output);
+        let y = common::read(&mut fresh, Target::Output);
+        if let Some(msg) = common::golden_compare(&x.bytes, &y.bytes, x.width) {
+            panic!("{what}: against a render from scratch of the new state: {msg}");
+        }
     }
 
     fn assert_same(&mut self, what: &str) {
@@ -228,10 +250,14 @@ fn assert_ran<'a>(t: &'a FrameTiming, passes: &[&str]) -> Vec<&'a str> {
     recorded
 }
 
-/// After skipping: moving the camera renders the G-buffer and every effect again, but not the
-/// light view; moving the light then renders the light view and what the light reaches, but
-/// not the G-buffer (the camera stood still) or AO (converged, independent of the light);
-/// each time until everything converges once more.
+/// After skipping: moving the light renders the light view and what the light reaches, but
+/// not the G-buffer (the camera stood still) or AO (converged, independent of the light), and
+/// once converged the image is a render from scratch of the moved light's; moving the camera
+/// by one pixel then renders the G-buffer and every effect again, but not the light view.
+/// Each time the passes are those the dependency table predicts and the image is that of a
+/// renderer that never skips, bit for bit, until everything converges once more. (After a
+/// camera move the converged image keeps what reprojection did to the histories while it
+/// moved, skipping or not: README "Refresh only where it serves".)
 #[test]
 fn a_change_renders_again() {
     let ctx = common::context();
@@ -239,36 +265,11 @@ fn a_change_renders_again() {
     let camera = p.skipping.scene.camera;
     let first = p.converge(&camera);
     let from_scratch = &first[..3];
-    let moved = Camera {
-        position: camera.position + Vec3::new(0.002, 0.0, 0.0),
-        target: camera.target + Vec3::new(0.002, 0.0, 0.0),
-        ..camera
-    };
-    let frame = p.frame(&moved);
-    assert_ran(
-        &frame,
-        &[
-            "gbuffer",
-            "reproject",
-            "ssao",
-            "shadow",
-            "indirect_gather",
-            "composite",
-        ],
-    );
-    assert!(frame.skipped("light_view"));
-    assert_eq!(
-        scheduled(&frame),
-        predicted(&p.skipping, from_scratch, Change::Camera),
-        "camera move"
-    );
-    p.assert_same("after the camera move");
-    p.converge(&moved);
     let mut light = p.skipping.scene.light;
     light.position += Vec3::new(0.05, 0.0, 0.0);
     p.skipping.set_light(light);
     p.always.set_light(light);
-    let frame = p.frame(&moved);
+    let frame = p.frame(&camera);
     let recorded = assert_ran(
         &frame,
         &[
@@ -299,14 +300,47 @@ fn a_change_renders_again() {
         "light move"
     );
     p.assert_same("after the light move");
-    until_skipping(&mut p.skipping, &moved, 4);
+    let mut fresh = renderer(&ctx, config(true, true));
+    fresh.set_light(light);
+    p.assert_like_fresh(fresh, &camera, "after the light moved");
+    p.converge(&camera);
+    // One pixel sideways at the target's distance.
+    let distance = (camera.target - camera.position).length();
+    let pixel = 2.0 * distance * (camera.vfov_deg.to_radians() / 2.0).tan() / SIZE as f32;
+    let moved = Camera {
+        position: camera.position + Vec3::new(pixel, 0.0, 0.0),
+        target: camera.target + Vec3::new(pixel, 0.0, 0.0),
+        ..camera
+    };
+    let frame = p.frame(&moved);
+    assert_ran(
+        &frame,
+        &[
+            "gbuffer",
+            "reproject",
+            "ssao",
+            "shadow",
+            "indirect_gather",
+            "composite",
+        ],
+    );
+    assert!(frame.skipped("light_view"));
+    assert_eq!(
+        scheduled(&frame),
+        predicted(&p.skipping, from_scratch, Change::Camera),
+        "camera move"
+    );
+    p.assert_same("after the camera move");
+    p.converge(&moved);
+    p.assert_same("converged after the camera move");
     common::assert_clean(&ctx);
 }
 
 /// A configuration change through the viewer (its soft-shadow switch changes the PCF kernel
 /// in place): every effect runs again (its inputs include the configuration), the G-buffer
 /// does not (the camera stood still), and the image equals that of a renderer that never
-/// skips, bit for bit.
+/// skips, bit for bit, and, converged, a render from scratch of the new state. Switched back to
+/// the accumulated disc after the light moved, the shadows restart rather than come back stale.
 #[test]
 fn a_configuration_change_reruns_the_effects_but_not_the_gbuffer() {
     let ctx = common::context();
@@ -327,7 +361,72 @@ fn a_configuration_change_reruns_the_effects_but_not_the_gbuffer() {
         "configuration change"
     );
     p.assert_same("after the configuration change");
+    let fresh = renderer(
+        &ctx,
+        RenderConfig {
+            pcf: Pcf::HARD,
+            ..config(true, true)
+        },
+    );
+    p.assert_like_fresh(fresh, &camera, "after the configuration change");
+    // The light moves while the shadows are hard; back on the accumulated disc, the shadow
+    // history (of the old light) restarts instead of coming back stale.
+    let mut light = p.skipping.scene.light;
+    light.position += Vec3::new(0.3, 0.0, 0.0);
+    p.skipping.set_light(light);
     until_skipping(&mut p.skipping, &camera, 4);
+    p.skipping.config.pcf = Pcf::NINE;
+    let mut fresh = renderer(&ctx, config(true, true));
+    fresh.set_light(light);
+    p.assert_like_fresh(fresh, &camera, "back on the accumulated disc");
+    common::assert_clean(&ctx);
+}
+
+/// With SRAA the subpixel geometry is the G-buffer's kin: a moved light records the
+/// reconstruction (it filters the new shading) but not the subpixel renders, which see only
+/// the camera and the objects, as the table says; the image equals a renderer that never
+/// skips, bit for bit.
+#[test]
+fn with_sraa_a_light_move_keeps_the_subpixel_geometry() {
+    let ctx = common::context();
+    let mut p = Pair::with(&ctx, |c| RenderConfig {
+        aa: AaConfig {
+            mode: AaMode::Sraa,
+            ..AaConfig::default()
+        },
+        ..c
+    });
+    let camera = p.skipping.scene.camera;
+    let first = p.converge(&camera);
+    assert_ran(&first[0], &["sraa_geometry", "sraa"]);
+    let mut light = p.skipping.scene.light;
+    light.position += Vec3::new(0.05, 0.0, 0.0);
+    p.skipping.set_light(light);
+    p.always.set_light(light);
+    let frame = p.frame(&camera);
+    let recorded = assert_ran(&frame, &["light_view", "composite", "sraa"]);
+    assert!(
+        frame.skipped("sraa_geometry") && frame.skipped("gbuffer"),
+        "{recorded:?}"
+    );
+    assert_eq!(
+        scheduled(&frame),
+        predicted(&p.skipping, &first[..3], Change::Light),
+        "light move"
+    );
+    p.assert_same("after the light move");
+    let mut fresh = renderer(
+        &ctx,
+        RenderConfig {
+            aa: AaConfig {
+                mode: AaMode::Sraa,
+                ..AaConfig::default()
+            },
+            ..config(true, true)
+        },
+    );
+    fresh.set_light(light);
+    p.assert_like_fresh(fresh, &camera, "after the light move");
     common::assert_clean(&ctx);
 }
 
@@ -466,6 +565,8 @@ fn a_moved_object_renders_what_depends_on_it() {
         "object move"
     );
     p.assert_same("after the object moved");
-    until_skipping(&mut p.skipping, &camera, 4);
+    let mut fresh = Renderer::new(&ctx, ball(), config(true, true)).expect("renderer");
+    fresh.set_time(0.05);
+    p.assert_like_fresh(fresh, &camera, "after the object moved");
     common::assert_clean(&ctx);
 }

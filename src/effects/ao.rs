@@ -281,10 +281,6 @@ impl Effect for AoEffect {
         ]
     }
 
-    fn reads_light(&self) -> bool {
-        false
-    }
-
     fn accumulating(&self) -> &'static [PassId] {
         &[PassId::Ssao, PassId::SsaoRefresh]
     }
@@ -324,10 +320,13 @@ impl Effect for AoEffect {
 
     fn prepare(&mut self, info: &FrameInfo<'_>) {
         let t = &info.config.temporal;
-        self.push = self
-            .sized
-            .temporal
-            .frame_push(info.reusing(), t.refresh, 0, info.camera_moved);
+        self.push = self.sized.temporal.frame_push(
+            info.reusing(),
+            t.refresh,
+            0,
+            info.camera_moved,
+            info.refresh_cover(false, false),
+        );
     }
 
     fn reprojects(&self, info: &FrameInfo<'_>) -> bool {

@@ -15,7 +15,7 @@ use crate::passes::decl::{Bind, Slot, Use};
 use crate::passes::{PassId, PassLayout};
 use crate::renderer::config::RenderConfig;
 use crate::renderer::effect::{self, TemporalEffect};
-use crate::renderer::pcf::PcfKernel;
+use crate::renderer::pcf::{Pcf, PcfKernel};
 use crate::renderer::targets::{Target, Targets, AO_FORMAT};
 use crate::renderer::temporal::Sampling;
 use crate::shaders::{self, EffectPush};
@@ -99,6 +99,10 @@ pub struct DirectEffect {
     reuse: Option<Reuse>,
     sized: Sized,
     push: EffectPush,
+    /// The kernel the last frame recorded accumulated shadows with. A history left while a
+    /// grid ran (the viewer's soft-shadow switch) belongs to an older view and light, and one
+    /// of another kernel to another estimator: either restarts.
+    accumulated: Option<Pcf>,
 }
 
 /// Whether shadows come from the accumulated history this frame: reuse on and a disc kernel
@@ -150,6 +154,7 @@ impl DirectEffect {
             reuse,
             sized: Self::create_sized(s.ctx, s.config)?,
             push: EffectPush::default(),
+            accumulated: None,
         })
     }
 
@@ -261,7 +266,9 @@ impl Effect for DirectEffect {
     }
 
     fn prepare(&mut self, info: &FrameInfo<'_>) {
-        if !self.counts(info.config) {
+        let now = self.counts(info.config).then_some(info.config.pcf);
+        let before = std::mem::replace(&mut self.accumulated, now);
+        if now.is_none() {
             return;
         }
         let refresh = info.config.temporal.refresh;
@@ -269,10 +276,11 @@ impl Effect for DirectEffect {
             // A moved light moves every shadow; a moving object only its own (the lane's
             // shadow-footprint reach).
             self.push = t.frame_push(
-                info.keeps_history(true, false),
+                before == now && info.keeps_history(true, false),
                 refresh,
                 0,
-                info.camera_moved || info.light_changed,
+                info.camera_moved,
+                info.refresh_cover(true, false),
             );
         }
     }

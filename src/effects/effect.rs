@@ -55,6 +55,8 @@ pub struct FrameInfo<'a> {
     /// The light view is rendered this frame: the light changed, or something moved where
     /// the light sees it (the RSM and the shadow map change).
     pub light_view: bool,
+    /// A moving object's transform changed since last frame.
+    pub objects_moved: bool,
 }
 
 impl FrameInfo<'_> {
@@ -69,6 +71,18 @@ impl FrameInfo<'_> {
     pub fn keeps_history(&self, light: bool, rsm: bool) -> bool {
         let invalidate = self.config.temporal.invalidate;
         self.reusing() && !(invalidate && (light && self.light_changed || rsm && self.light_view))
+    }
+
+    /// Whether this frame's change makes the refresh pass over every pixel once
+    /// (`TemporalEffect::frame_push`), for an effect whose value depends on the light (`light`)
+    /// or on the whole RSM (`rsm`): with `--invalidate off` (where nothing restarts, so the
+    /// refresh is what brings stale pixels up to date), a moved light, a light view rendered
+    /// again or a moved object. With `--invalidate on` those restart the pixels they reach,
+    /// which then recompute by themselves. (The viewer's in-place switch, the PCF kernel,
+    /// restarts the shadows' history: `DirectEffect::prepare`.)
+    pub fn refresh_cover(&self, light: bool, rsm: bool) -> bool {
+        let stale = self.objects_moved || light && self.light_changed || rsm && self.light_view;
+        !self.config.temporal.invalidate && stale
     }
 }
 
@@ -122,12 +136,6 @@ pub trait Effect {
     /// back). The viewer changes the PCF kernel in place, so it is asked per frame.
     fn counts(&self, _config: &RenderConfig) -> bool {
         self.temporal().is_some()
-    }
-
-    /// Whether the effect's output depends on the light (a light that moved makes it run
-    /// again; AO does not).
-    fn reads_light(&self) -> bool {
-        true
     }
 
     /// Whether the effect's output still changes with unchanged inputs (an estimate that

@@ -285,7 +285,8 @@ impl Effect for IndirectEffect {
             info.keeps_history(true, true),
             t.refresh,
             pattern,
-            info.camera_moved || info.light_changed,
+            info.camera_moved,
+            info.refresh_cover(true, true),
         );
     }
 

@@ -535,7 +535,8 @@ impl Effect for SsdoEffect {
                 info.keeps_history(true, true),
                 refresh,
                 0,
-                info.camera_moved || info.light_changed,
+                info.camera_moved,
+                info.refresh_cover(true, true),
             );
         }
     }

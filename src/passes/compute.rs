@@ -61,6 +61,7 @@ impl ComputePass {
             pass: id,
             modules: vec![module],
             declared: decl::layout(binds),
+            binds: binds.to_vec(),
         }
     }
 

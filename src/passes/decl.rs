@@ -3,10 +3,17 @@
 //! against the shader's reflection when the pipeline is built), the descriptor writes, and the
 //! tracker accesses that produce the barriers, so the three cannot disagree.
 
-use super::layout::FRAME_BINDING;
 use crate::error::{Error, Result};
 use crate::shaders::{DescriptorKind, ReflectedBinding};
 use crate::vk::{Access, Buffer, Image, SetWriter, Tracker};
+
+/// The per-frame uniform buffer every pass reads (set 0, binding 0).
+pub const FRAME_BINDING: ReflectedBinding = ReflectedBinding {
+    set: 0,
+    binding: 0,
+    kind: DescriptorKind::StorageBuffer,
+    count: 1,
+};
 
 /// A resource as a pass names it; the renderer resolves it to an image or buffer for the
 /// frame's parity (the one place that knows which image backs what).

@@ -35,11 +35,13 @@ pub fn layouts() -> Vec<PassLayout> {
             pass: PassId::GBuffer,
             modules: vec![MODULES.vertex, MODULES.flat],
             declared: FLAT_BINDINGS.to_vec(),
+            binds: TARGETS.to_vec(),
         },
         PassLayout {
             pass: PassId::GBuffer,
             modules: vec![MODULES.vertex, MODULES.textured],
             declared: TEXTURED_BINDINGS.to_vec(),
+            binds: TARGETS.to_vec(),
         },
     ]
 }

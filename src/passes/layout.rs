@@ -1,15 +1,10 @@
 //! What a pipeline of a pass declares, for the check against the shaders' reflection.
 
+use super::decl::Bind;
 use super::pass_id::PassId;
 use crate::shaders::{DescriptorKind, ReflectedBinding, ShaderModuleInfo};
 
-/// The per-frame uniform buffer every pass reads (set 0, binding 0).
-pub const FRAME_BINDING: ReflectedBinding = ReflectedBinding {
-    set: 0,
-    binding: 0,
-    kind: DescriptorKind::StorageBuffer,
-    count: 1,
-};
+pub use super::decl::FRAME_BINDING;
 
 pub(crate) const fn binding(set: u32, binding: u32, kind: DescriptorKind) -> ReflectedBinding {
     ReflectedBinding {
@@ -20,9 +15,12 @@ pub(crate) const fn binding(set: u32, binding: u32, kind: DescriptorKind) -> Ref
     }
 }
 
-/// One pipeline of a pass: the modules it is built from and the layout the pass declares.
+/// One pipeline of a pass: the modules it is built from, the layout the pass declares and
+/// the resources behind it (what it reads and writes of other passes' outputs: the
+/// dependency table is derived from them, `renderer::dependencies`).
 pub struct PassLayout {
     pub pass: PassId,
     pub modules: Vec<&'static ShaderModuleInfo>,
     pub declared: Vec<ReflectedBinding>,
+    pub binds: Vec<Bind>,
 }

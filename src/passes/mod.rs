@@ -16,7 +16,7 @@ pub mod sraa;
 pub mod ssaa;
 
 pub use layout::{PassLayout, FRAME_BINDING};
-pub use pass_id::PassId;
+pub use pass_id::{Change, PassId};
 
 /// Every pipeline of the passes every frame runs (the effects add theirs: see
 /// `effects::all_layouts`), for the reflection check (also done at pipeline creation).

@@ -69,6 +69,38 @@ pub enum PassId {
     SsaaDownsample,
 }
 
+/// A scene input whose change makes passes run again (`renderer::dependencies`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord)]
+pub enum Change {
+    /// The camera's view-projection or eye.
+    Camera,
+    /// The lights: the spot light (position, axis, cone, intensity, depth range) and the
+    /// ambient radiance.
+    Light,
+    /// A moving object's transform (for the light view: one the light's frustum meets).
+    Object,
+    /// The configuration (the viewer's in-place switches; other changes rebuild).
+    Config,
+}
+
+impl Change {
+    pub const ALL: [Change; 4] = [
+        Change::Camera,
+        Change::Light,
+        Change::Object,
+        Change::Config,
+    ];
+
+    pub fn name(self) -> &'static str {
+        match self {
+            Change::Camera => "camera",
+            Change::Light => "light",
+            Change::Object => "moving objects",
+            Change::Config => "configuration",
+        }
+    }
+}
+
 impl PassId {
     pub const ALL: [PassId; 31] = [
         PassId::LightView,
@@ -103,6 +135,47 @@ impl PassId {
         PassId::Sraa,
         PassId::SsaaDownsample,
     ];
+
+    /// The scene inputs the pass reads itself: the frame block's camera and light members its
+    /// shaders use, the objects it draws (or whose motion it follows), the configuration. What
+    /// it reads of other passes' outputs comes from its resource declaration (`PassLayout::
+    /// binds`); `renderer::dependencies` puts the two together, and `tests/dependencies.rs`
+    /// checks this list against the frame members each compute shader names.
+    pub fn inputs(self) -> &'static [Change] {
+        use Change::*;
+        match self {
+            PassId::LightView => &[Light, Object],
+            PassId::GBuffer | PassId::SraaGeometry => &[Camera, Object],
+            // Moving objects' reach; the shadow lane's footprint on the shadow map.
+            PassId::Reproject => &[Camera, Light, Object, Config],
+            PassId::Shadow
+            | PassId::ShadowRefresh
+            | PassId::IndirectGather
+            | PassId::IndirectUpsample
+            | PassId::IndirectFixup
+            | PassId::IndirectRefresh
+            | PassId::IndirectNoisy
+            | PassId::Ssdo
+            | PassId::SsdoBounce
+            | PassId::SsdoRefresh
+            | PassId::SsdoResolve
+            | PassId::Sraa => &[Camera, Light, Config],
+            PassId::Direct | PassId::Composite => &[Light, Config],
+            PassId::Ssao
+            | PassId::SsaoRefresh
+            | PassId::CcipcaReproject
+            | PassId::CcipcaBasisFilter
+            | PassId::IndirectJbf
+            | PassId::SsdoSamples
+            | PassId::SsdoBilateral
+            | PassId::SsdoUpsample => &[Camera, Config],
+            PassId::AoPositionChain
+            | PassId::Blur
+            | PassId::CcipcaUpdate
+            | PassId::CcipcaReconstruct
+            | PassId::SsaaDownsample => &[Config],
+        }
+    }
 
     pub fn name(self) -> &'static str {
         match self {

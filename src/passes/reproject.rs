@@ -68,6 +68,7 @@ pub fn layouts() -> Vec<PassLayout> {
             pass: PassId::Reproject,
             modules: vec![module(n)],
             declared: decl::layout(&binds(n)),
+            binds: binds(n),
         })
         .collect()
 }

@@ -61,6 +61,7 @@ pub fn layouts() -> Vec<PassLayout> {
             pass: PassId::SraaGeometry,
             modules: vec![&shaders::MESH_VERT_SUBPIXEL, &shaders::SUBPIXEL_FRAG],
             declared: FLAT_BINDINGS.to_vec(),
+            binds: SUBPIXEL_TARGETS.concat(),
         },
         ComputePass::layout(PassId::Sraa, &shaders::SRAA_COMP, RECONSTRUCT),
     ]

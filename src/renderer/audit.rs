@@ -119,6 +119,7 @@ impl Renderer {
             camera_moved: false,
             light_changed: false,
             light_view: false,
+            objects_moved: false,
         };
         let mut list: Vec<AuditRequest<'_>> = Vec::new();
         for e in &self.effects {

@@ -196,29 +196,35 @@ impl TemporalEffect {
     }
 
     /// This frame's push constants; `pattern` is the frame's pattern index. A refresh tile is
-    /// drawn only while the history is reused (`reusing`), tiled refresh is on, and a change
-    /// of what the effect reads (`inputs_changed`: the camera; for shadows and indirect light
-    /// also the light) is recent. A refresh recomputes what a pixel would get from its
-    /// patterns, which is what a converged pixel already holds unless the camera moved
-    /// (reprojection drift, a screen-space effect's view) or the light did. After the last
-    /// change the tiles run until every pixel has been in a tile's core once
-    /// (`RefreshSchedule::frames_to_cover`), then stop: a static view costs no refresh.
+    /// drawn only while the history is reused (`reusing`) and tiled refresh is on, and only
+    /// where it serves (the refresh rule, README "Refresh only where it serves"):
+    /// - on every frame the camera moved (`camera_moved`): each reprojection resamples the
+    ///   history, and the tiles bound how long a value drifts (Nehab et al. 2007). With the
+    ///   camera still the reprojection is the identity, nothing drifts, and the tiles stop;
+    /// - after a change whose stale values nothing else restarts (`cover`,
+    ///   `FrameInfo::refresh_cover`): tiles run until every pixel has been in a tile's core
+    ///   once (`RefreshSchedule::frames_to_cover`), then stop.
+    ///
+    /// Pixels not yet converged need no tile: they keep accumulating by themselves.
     pub fn frame_push(
         &mut self,
         reusing: bool,
         refresh: Refresh,
         pattern: u32,
-        inputs_changed: bool,
+        camera_moved: bool,
+        cover: bool,
     ) -> EffectPush {
         // Below 4 pixels a tile has no core inside its feather: tiles that small replace.
         let feathered = refresh == Refresh::Feathered && self.schedule.tile() >= 4;
-        if !reusing || refresh == Refresh::Off || self.schedule.tile() == 0 {
+        let on = reusing && refresh != Refresh::Off && self.schedule.tile() > 0;
+        if !on {
             self.refresh_left = 0;
-        } else if inputs_changed {
+        } else if cover {
             self.refresh_left = self.schedule.frames_to_cover(feathered);
         }
-        let tile = (self.refresh_left > 0).then(|| {
-            self.refresh_left -= 1;
+        let draw = on && (camera_moved || self.refresh_left > 0);
+        let tile = draw.then(|| {
+            self.refresh_left = self.refresh_left.saturating_sub(1);
             self.schedule.next_tile(feathered)
         });
         // An empty rectangle: no refresh this frame. A feather of 0: hard tiles.

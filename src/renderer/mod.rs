@@ -8,6 +8,7 @@ pub mod antialias;
 pub mod audit;
 pub mod config;
 pub mod counters;
+pub mod dependencies;
 pub mod effect;
 pub mod frame;
 mod motion;
@@ -65,6 +66,10 @@ struct FrameResources {
 
 pub struct Renderer {
     ctx: Arc<Context>,
+    /// Changed in place, it takes effect on the next frame and the histories stay: the
+    /// effects run again (their inputs include it) and the shadows restart on a new PCF kernel
+    /// (the viewer's soft-shadow switch); after a change of what an estimator computes, call
+    /// `reset_history` (the viewer rebuilds the renderer for those).
     pub config: RenderConfig,
     pub scene: Scene,
     light_view: LightViewPass,
@@ -128,7 +133,7 @@ impl Renderer {
             tracker: &mut tracker,
         })?;
         let reprojection = Reprojection::new(ctx, &pool, &effects)?;
-        let effects_len = effects.len();
+        let reads = dependencies::of(&effects).effects;
         let aa = config.aa.mode;
         let targets = Targets::new(ctx, rendered.width, rendered.height, config.rsm_size, aa)?;
         let kinds: Vec<u32> = effects
@@ -184,7 +189,7 @@ impl Renderer {
             audit: None,
             last_pass: [None; FRAMES_IN_FLIGHT],
             reprojection,
-            skips: SkipTracker::new(effects_len),
+            skips: SkipTracker::new(&reads),
             motion: Motion::new(&scene_objects),
             moved: [0; FRAMES_IN_FLIGHT],
             _pool: pool,
@@ -276,12 +281,12 @@ impl Renderer {
 
     /// What makes each pass run again (`skip::explain`).
     pub fn explain_skips(&self) -> String {
-        skip::explain(&self.config, &self.effects)
+        dependencies::explain(&self.config, &self.effects)
     }
 
     /// The dependency table itself: each pass and the changes that make it run again.
-    pub fn dependency_table(&self) -> Vec<skip::Trigger> {
-        skip::triggers(&self.config, &self.effects)
+    pub fn dependency_table(&self) -> Vec<dependencies::Trigger> {
+        dependencies::triggers(&self.config, &self.effects)
     }
 
     fn frame_inputs(&self, camera: &Camera) -> Inputs {
@@ -399,6 +404,7 @@ impl Renderer {
             camera_moved: self.history.map(|(m, _)| m) != Some(view_proj),
             light_changed,
             light_view,
+            objects_moved: moved > 0,
         };
         for (i, e) in self.effects.iter_mut().enumerate() {
             if !plan.effect(i) {
@@ -447,9 +453,12 @@ impl Renderer {
         });
         // 6b. Antialiasing of the composite's display-linear image into the output.
         if let Some(sraa) = &self.sraa {
-            r.timed(PassId::SraaGeometry, |rec, tr| {
-                sraa.record_geometry(rec, tr, frame, scene, &shared)
-            });
+            // The subpixel geometry, as the G-buffer, only while the camera or objects move.
+            if !plan.gbuffer {
+                r.timed(PassId::SraaGeometry, |rec, tr| {
+                    sraa.record_geometry(rec, tr, frame, scene, &shared)
+                });
+            }
             r.timed(PassId::Sraa, |rec, tr| {
                 sraa.record_reconstruct(rec, tr, frame, &shared, (t.width, t.height))
             });

@@ -12,7 +12,11 @@
 //! fixed-pattern estimate from the same inputs, so unchanged inputs suffice.
 
 use super::config::{RenderConfig, FRAMES_IN_FLIGHT};
+pub use super::dependencies::accumulates;
+use super::dependencies::Changes;
+pub use super::dependencies::{explain, triggers, Trigger};
 use crate::effects::Effect;
+pub use crate::passes::Change;
 use crate::passes::PassId;
 use crate::scene::SpotLight;
 use crate::vk::{GpuTimer, SkipReason};
@@ -30,14 +34,26 @@ pub struct Inputs {
     pub poses: u64,
 }
 
-/// What one effect reads of them (the light only if its output depends on it).
+/// What one effect reads of them: those its passes depend on (`dependencies.rs`; AO, for
+/// one, not the light).
 #[derive(Clone, Copy, PartialEq)]
 struct EffectInputs {
-    view_proj: Mat4,
-    eye: Vec3,
-    light: Option<SpotLight>,
-    config: RenderConfig,
-    poses: u64,
+    camera: Option<(Mat4, Vec3)>,
+    light: Option<(SpotLight, Vec3)>,
+    config: Option<RenderConfig>,
+    poses: Option<u64>,
+}
+
+impl EffectInputs {
+    fn new(inputs: &Inputs, reads: Changes) -> Self {
+        let has = |c| reads.contains(c);
+        Self {
+            camera: has(Change::Camera).then_some((inputs.view_proj, inputs.eye)),
+            light: has(Change::Light).then_some((inputs.light, inputs.ambient)),
+            config: has(Change::Config).then_some(inputs.config),
+            poses: has(Change::Object).then_some(inputs.poses),
+        }
+    }
 }
 
 /// A value and the first frame that saw it.
@@ -59,8 +75,9 @@ fn steady<K: PartialEq + Copy>(since: &mut Option<Since<K>>, key: K, n: u64) -> 
     }
 }
 
-#[derive(Default)]
 struct EffectTrack {
+    /// The changes its passes depend on.
+    reads: Changes,
     inputs: Option<Since<EffectInputs>>,
     /// The newest frame read back in which the effect computed nothing.
     idle: Option<u64>,
@@ -92,11 +109,6 @@ pub struct SkipTracker {
     slots: [Plan; FRAMES_IN_FLIGHT],
 }
 
-/// Whether `e` accumulates into a reused history under `config`.
-pub fn accumulates(config: &RenderConfig, e: &dyn Effect) -> bool {
-    config.temporal.reuse && e.counts(config) && e.temporal().is_some()
-}
-
 /// Pixels and pattern evaluations an effect's counters say it spent this frame.
 fn work(counters: &[(&'static str, u64)]) -> u64 {
     counters
@@ -111,11 +123,19 @@ fn work(counters: &[(&'static str, u64)]) -> u64 {
 }
 
 impl SkipTracker {
-    pub fn new(effects: usize) -> Self {
+    /// A tracker for effects whose passes depend on `reads` (one entry per effect).
+    pub fn new(reads: &[Changes]) -> Self {
         Self {
             frame: None,
             camera: None,
-            tracks: (0..effects).map(|_| EffectTrack::default()).collect(),
+            tracks: reads
+                .iter()
+                .map(|&reads| EffectTrack {
+                    reads,
+                    inputs: None,
+                    idle: None,
+                })
+                .collect(),
             known: Vec::new(),
             slots: [Plan::default(); FRAMES_IN_FLIGHT],
         }
@@ -126,7 +146,8 @@ impl SkipTracker {
         self.frame = None;
         self.camera = None;
         for t in &mut self.tracks {
-            *t = EffectTrack::default();
+            t.inputs = None;
+            t.idle = None;
         }
     }
 
@@ -156,13 +177,7 @@ impl SkipTracker {
         };
         let config = &inputs.config;
         for (i, (e, track)) in effects.iter().zip(&mut self.tracks).enumerate() {
-            let key = EffectInputs {
-                view_proj: inputs.view_proj,
-                eye: inputs.eye,
-                light: e.reads_light().then_some(inputs.light),
-                config: inputs.config,
-                poses: inputs.poses,
-            };
+            let key = EffectInputs::new(&inputs, track.reads);
             let (unchanged, since) = steady(&mut track.inputs, key, n);
             let converged = !e.settling(config)
                 && (!accumulates(config, e.as_ref())
@@ -216,7 +231,7 @@ impl SkipTracker {
                 continue;
             }
             let left_out = plan.frame
-                || (pass == PassId::GBuffer && plan.gbuffer)
+                || (matches!(pass, PassId::GBuffer | PassId::SraaGeometry) && plan.gbuffer)
                 // No lane ran: every temporal effect was left out.
                 || pass == PassId::Reproject
                 || effects
@@ -255,135 +270,6 @@ impl SkipTracker {
                 .sort_by_key(|(p, _)| PassId::ALL.iter().position(|q| q == p));
         }
     }
-}
-
-/// An input whose change makes passes run again.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Change {
-    /// The camera's view-projection or eye.
-    Camera,
-    /// The spot light.
-    Light,
-    /// A moving object's transform (for the light view: one the light's frustum meets).
-    Object,
-    /// The configuration (the viewer's switches).
-    Config,
-}
-
-/// One row of the dependency table: a pass and the changes that make it run again.
-pub struct Trigger {
-    pub pass: PassId,
-    pub changes: &'static [Change],
-    /// The effect the pass belongs to, and whether it accumulates (it then also runs on
-    /// until its history converges).
-    pub effect: Option<(crate::effects::EffectId, bool)>,
-}
-
-const EVERYTHING: &[Change] = &[
-    Change::Camera,
-    Change::Light,
-    Change::Object,
-    Change::Config,
-];
-const LIT_EFFECT: &[Change] = EVERYTHING;
-const UNLIT_EFFECT: &[Change] = &[Change::Camera, Change::Object, Change::Config];
-
-/// The dependency table of `effects` under `config`, from each effect's declarations
-/// (`passes`, `reads_light`, whether it accumulates): for each pass, the changes that make it
-/// run again. The frame planner follows it (`SkipTracker::plan`), `explain` prints it, and the
-/// tests compare each change's recorded passes with it.
-pub fn triggers(config: &RenderConfig, effects: &[Box<dyn Effect>]) -> Vec<Trigger> {
-    let mut rows = vec![
-        Trigger {
-            pass: PassId::LightView,
-            changes: &[Change::Light, Change::Object],
-            effect: None,
-        },
-        Trigger {
-            pass: PassId::GBuffer,
-            changes: &[Change::Camera, Change::Object],
-            effect: None,
-        },
-    ];
-    for e in effects {
-        let changes = if e.reads_light() {
-            LIT_EFFECT
-        } else {
-            UNLIT_EFFECT
-        };
-        for &pass in e.passes() {
-            rows.push(Trigger {
-                pass,
-                changes,
-                effect: Some((e.id(), accumulates(config, e.as_ref()))),
-            });
-        }
-    }
-    // Any effect with a reused history running runs its lane; the composite and what follows
-    // it run on every frame that runs anything.
-    rows.push(Trigger {
-        pass: PassId::Reproject,
-        changes: EVERYTHING,
-        effect: None,
-    });
-    let mut last = vec![PassId::Composite];
-    if config.aa.mode.subpixel() {
-        last.extend([PassId::SraaGeometry, PassId::Sraa]);
-    }
-    if config.aa.mode.supersampling() > 1 {
-        last.push(PassId::SsaaDownsample);
-    }
-    rows.extend(last.into_iter().map(|pass| Trigger {
-        pass,
-        changes: EVERYTHING,
-        effect: None,
-    }));
-    rows.sort_by_key(|t| PassId::ALL.iter().position(|q| *q == t.pass));
-    rows.dedup_by_key(|t| t.pass);
-    rows
-}
-
-/// Why a row of the dependency table runs again, in words.
-fn why(t: &Trigger) -> String {
-    match (t.pass, t.effect) {
-        (PassId::LightView, _) => "the light, or a moving object whose bounds (this frame's or \
-                                   the last one's) meet the light's frustum"
-            .to_string(),
-        (PassId::GBuffer, _) => "the camera (view-projection or eye), a moving object".to_string(),
-        (PassId::Reproject, _) => {
-            "any effect with a reused history running (one lane each)".to_string()
-        }
-        (_, Some((id, converges))) => {
-            let light = if t.changes.contains(&Change::Light) {
-                ", light"
-            } else {
-                ""
-            };
-            let converge = if converges {
-                "; every frame until its history converges"
-            } else {
-                ""
-            };
-            format!("{id:?} effect: camera, configuration, moving objects{light}{converge}")
-        }
-        (_, None) => "anything (only a frame that changes nothing leaves it out)".to_string(),
-    }
-}
-
-/// The dependency table of `effects` under `config`: for each pass, what makes it run again
-/// (`ssgi bench --explain-skips`, docs/ARCHITECTURE.md).
-pub fn explain(config: &RenderConfig, effects: &[Box<dyn Effect>]) -> String {
-    let mut out = String::from(
-        "pass (those an effect may record)  runs again when this changed in the last two \
-         frames\n",
-    );
-    for t in triggers(config, effects) {
-        out += &format!("{:<18} {}\n", t.pass.name(), why(&t));
-    }
-    if !config.skip_unchanged {
-        out += "(--skip-unchanged off: every pass runs every frame)\n";
-    }
-    out
 }
 
 #[cfg(test)]

@@ -96,3 +96,44 @@ pub fn open_plane() -> Scene {
     };
     scene
 }
+
+/// Largest accepted difference of one 8-bit channel between two renders of the same state
+/// (tests/golden.rs explains the tolerance).
+pub const MAX_CHANNEL_DIFF: u8 = 3;
+/// Largest accepted fraction of pixels with any difference.
+pub const MAX_CHANGED_FRACTION: f64 = 0.02;
+
+/// `None` when the RGBA8 image `got` (`width` pixels wide) matches `want` within the golden
+/// tolerance, else what differs.
+pub fn golden_compare(got: &[u8], want: &[u8], width: u32) -> Option<String> {
+    let mut changed = 0usize;
+    let mut worst = (0u8, 0usize);
+    for (i, (g, w)) in got.chunks(4).zip(want.chunks(4)).enumerate() {
+        let d = g
+            .iter()
+            .zip(w)
+            .map(|(a, b)| a.abs_diff(*b))
+            .max()
+            .unwrap_or(0);
+        if d > 0 {
+            changed += 1;
+        }
+        if d > worst.0 {
+            worst = (d, i);
+        }
+    }
+    let fraction = changed as f64 / (got.len() / 4).max(1) as f64;
+    if worst.0 <= MAX_CHANNEL_DIFF && fraction <= MAX_CHANGED_FRACTION {
+        return None;
+    }
+    let i = worst.1;
+    Some(format!(
+        "{changed} pixels differ ({:.2}%), worst {} codes at ({}, {}): got {:?}, want {:?}",
+        100.0 * fraction,
+        worst.0,
+        i as u32 % width,
+        i as u32 / width,
+        &got[4 * i..4 * i + 4],
+        &want[4 * i..4 * i + 4]
+    ))
+}
