@@ -382,6 +382,17 @@ fn a_configuration_change_reruns_the_effects_but_not_the_gbuffer() {
     common::assert_clean(&ctx);
 }
 
+/// `c` with SRAA.
+fn sraa(c: RenderConfig) -> RenderConfig {
+    RenderConfig {
+        aa: AaConfig {
+            mode: AaMode::Sraa,
+            ..AaConfig::default()
+        },
+        ..c
+    }
+}
+
 /// With SRAA the subpixel geometry is the G-buffer's kin: a moved light records the
 /// reconstruction (it filters the new shading) but not the subpixel renders, which see only
 /// the camera and the objects, as the table says; the image equals a renderer that never
@@ -389,13 +400,7 @@ fn a_configuration_change_reruns_the_effects_but_not_the_gbuffer() {
 #[test]
 fn with_sraa_a_light_move_keeps_the_subpixel_geometry() {
     let ctx = common::context();
-    let mut p = Pair::with(&ctx, |c| RenderConfig {
-        aa: AaConfig {
-            mode: AaMode::Sraa,
-            ..AaConfig::default()
-        },
-        ..c
-    });
+    let mut p = Pair::with(&ctx, sraa);
     let camera = p.skipping.scene.camera;
     let first = p.converge(&camera);
     assert_ran(&first[0], &["sraa_geometry", "sraa"]);
@@ -415,16 +420,7 @@ fn with_sraa_a_light_move_keeps_the_subpixel_geometry() {
         "light move"
     );
     p.assert_same("after the light move");
-    let mut fresh = renderer(
-        &ctx,
-        RenderConfig {
-            aa: AaConfig {
-                mode: AaMode::Sraa,
-                ..AaConfig::default()
-            },
-            ..config(true, true)
-        },
-    );
+    let mut fresh = renderer(&ctx, sraa(config(true, true)));
     fresh.set_light(light);
     p.assert_like_fresh(fresh, &camera, "after the light move");
     common::assert_clean(&ctx);

@@ -136,6 +136,11 @@ impl PassId {
         PassId::SsaaDownsample,
     ];
 
+    /// Position in the recording order (`ALL`, declared in the enum's own order).
+    pub fn index(self) -> usize {
+        self as usize
+    }
+
     /// The scene inputs the pass reads itself: the frame block's camera and light members its
     /// shaders use, the objects it draws (or whose motion it follows), the configuration. What
     /// it reads of other passes' outputs comes from its resource declaration (`PassLayout::
@@ -210,6 +215,18 @@ impl PassId {
             PassId::SraaGeometry => "sraa_geometry",
             PassId::Sraa => "sraa",
             PassId::SsaaDownsample => "ssaa_downsample",
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn index_is_the_position_in_all() {
+        for (i, p) in PassId::ALL.into_iter().enumerate() {
+            assert_eq!(p.index(), i, "{p:?}");
         }
     }
 }

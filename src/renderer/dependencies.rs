@@ -99,10 +99,6 @@ fn source(slot: Slot) -> Source {
 /// the shadow map, and the shadow effect's own passes read the light anyway.
 const LANE: &[Change] = &[Change::Camera, Change::Object, Change::Config];
 
-fn index(p: PassId) -> usize {
-    PassId::ALL.iter().position(|q| *q == p).unwrap_or(0)
-}
-
 /// Every pass's changes and every effect's (the union of its passes').
 pub struct Dependencies {
     passes: [Changes; PassId::ALL.len()],
@@ -111,7 +107,7 @@ pub struct Dependencies {
 
 impl Dependencies {
     pub fn pass(&self, p: PassId) -> Changes {
-        self.passes[index(p)]
+        self.passes[p.index()]
     }
 }
 
@@ -126,12 +122,12 @@ pub fn derive(frame: &[PassLayout], effects: &[Vec<PassLayout>]) -> Dependencies
         let producer = |slot: Slot, t: &[Changes]| {
             all()
                 .filter(|l| l.binds.iter().any(|b| b.slot == slot && writes(b.usage)))
-                .fold(Changes::default(), |c, l| c | t[index(l.pass)])
+                .fold(Changes::default(), |c, l| c | t[l.pass.index()])
         };
         let any_effect = effects
             .iter()
             .flatten()
-            .fold(Changes::default(), |c, l| c | t[index(l.pass)]);
+            .fold(Changes::default(), |c, l| c | t[l.pass.index()]);
         // What a pass reads: its own inputs, and its sources' changes.
         let read = |l: &PassLayout, own: Changes, inputs: Changes, t: &[Changes]| {
             l.binds
@@ -151,12 +147,12 @@ pub fn derive(frame: &[PassLayout], effects: &[Vec<PassLayout>]) -> Dependencies
         }
         let mut next = t;
         for l in frame.iter().filter(|l| l.pass != PassId::Reproject) {
-            next[index(l.pass)] |= read(l, Changes::default(), Changes::of(l.pass.inputs()), &t);
+            next[l.pass.index()] |= read(l, Changes::default(), Changes::of(l.pass.inputs()), &t);
         }
         let mut reproject = Changes::of(PassId::Reproject.inputs()) | lane_shared;
         for (e, layouts) in effects.iter().enumerate() {
             for l in layouts {
-                next[index(l.pass)] |= read(l, local[e], Changes::of(l.pass.inputs()), &t);
+                next[l.pass.index()] |= read(l, local[e], Changes::of(l.pass.inputs()), &t);
             }
             let writers = layouts
                 .iter()
@@ -165,11 +161,11 @@ pub fn derive(frame: &[PassLayout], effects: &[Vec<PassLayout>]) -> Dependencies
                         .iter()
                         .any(|b| writes(b.usage) && source(b.slot) == Source::Local)
                 })
-                .fold(Changes::default(), |c, l| c | next[index(l.pass)]);
+                .fold(Changes::default(), |c, l| c | next[l.pass.index()]);
             local[e] |= lane_shared | writers;
             reproject |= local[e];
         }
-        next[index(PassId::Reproject)] |= reproject;
+        next[PassId::Reproject.index()] |= reproject;
         t = next;
         if (t, local.clone()) == before {
             break;
@@ -180,7 +176,7 @@ pub fn derive(frame: &[PassLayout], effects: &[Vec<PassLayout>]) -> Dependencies
         .map(|layouts| {
             layouts
                 .iter()
-                .fold(Changes::default(), |c, l| c | t[index(l.pass)])
+                .fold(Changes::default(), |c, l| c | t[l.pass.index()])
         })
         .collect();
     Dependencies { passes: t, effects }
@@ -237,7 +233,7 @@ pub fn triggers(config: &RenderConfig, effects: &[Box<dyn Effect>]) -> Vec<Trigg
     if config.aa.mode.supersampling() > 1 {
         rows.push(row(PassId::SsaaDownsample, None));
     }
-    rows.sort_by_key(|t| index(t.pass));
+    rows.sort_by_key(|t| t.pass.index());
     rows.dedup_by_key(|t| t.pass);
     rows
 }

@@ -266,8 +266,7 @@ impl SkipTracker {
             added = true;
         }
         if added {
-            self.known
-                .sort_by_key(|(p, _)| PassId::ALL.iter().position(|q| q == p));
+            self.known.sort_by_key(|(p, _)| p.index());
         }
     }
 }
