@@ -58,6 +58,7 @@ layout(push_constant) uniform Reproject {
                           //          moving objects' reach: MOVED_* below, 0 = none)
     uvec4 lane_1;
     uvec4 lane_2;
+    uvec4 reaccumulate;   // x: bit k set = lane k starts re-accumulating this frame
 } lanes;
 
 // Beyond eq 3: a history texel must also face the pixel's way, within 60 degrees. The back of
@@ -249,6 +250,39 @@ float blend_count(vec4 n, vec4 w) {
     return spread > 0.0 ? min(floor(1.0 / spread), strongest) : strongest;
 }
 
+// Re-accumulation (--reaccumulate, RenderConfig::temporal): when the camera stops, every
+// reused history restarts its pattern count and takes the rotation limit's L patterns afresh,
+// while the value the motion left (O, which the bilinear resampling above smoothed frame
+// after frame) fades out one L-th per frame: after n patterns the pixel shows
+//     D_n = O (L - n) / L + (x_0 + ... + x_{n-1}) / L,
+// which at n = L is the mean of the patterns, the value a render from scratch converges to,
+// whatever O was; each frame changes it by (x_n - O) / L, a pattern's share, so nothing pops.
+// The effects merge as always (the gated running mean, temporal.glsl): this pass hands them
+// V = (L D_n - O) / (L - 1) holding L - 1 estimates, whose merge with x_n is exactly D_{n+1}.
+// O rides in the registration (xyz), which a still camera does not need, and its w marks the
+// pixel as re-accumulating: -(1 + the pattern count it had before). Should the camera (or the
+// surface) move before L frames, the pixel keeps D_n with its old count, and its registration
+// restarts at the surface point last frame's texel showed.
+const uint TAP_PLAIN = 0u;
+const uint TAP_HISTORY = 1u;
+const uint TAP_REGISTRATION = 2u;
+
+bool reaccumulating(vec4 registration) {
+    return registration.w < 0.0;
+}
+
+// Texel `t` of a lane's texture of kind `kind` for resampling under motion: a re-accumulation
+// the motion interrupts gives back its count and its registration.
+vec4 lane_tap(texture2D tex, ivec2 t, uint kind, texture2D registration_prev) {
+    vec4 v = texelFetch(tex, t, 0);
+    if (kind == TAP_PLAIN) return v;
+    vec4 reg = kind == TAP_REGISTRATION ? v : texelFetch(registration_prev, t, 0);
+    if (!reaccumulating(reg)) return v;
+    if (kind == TAP_REGISTRATION) return vec4(texelFetch(prev_position, t, 0).xyz, 1.0);
+    v.a = max(v.a, -reg.w - 1.0);
+    return v;
+}
+
 // Point resampling (--history-resample point; frame.history_resample 0): where all four taps
 // hold the surface, the history is read from the one whose carried registration point,
 // projected with this frame's camera, lands nearest the pixel's centre (value, counts and point
@@ -266,7 +300,8 @@ Reprojected pick_registered(Reprojected r, texture2D registration_prev) {
     for (int k = 0; k < 4; ++k) {
         ivec2 t = r.base + ivec2(k & 1, k >> 1);
         vec2 s;
-        if (!to_screen(frame.view_proj, texelFetch(registration_prev, t, 0).xyz, s)) continue;
+        vec4 reg = lane_tap(registration_prev, t, TAP_REGISTRATION, registration_prev);
+        if (!to_screen(frame.view_proj, reg.xyz, s)) continue;
         vec2 d = s - centre;
         float d2 = dot(d, d);
         if (d2 < best) { // false for NaN: such a tap is never picked
@@ -280,19 +315,20 @@ Reprojected pick_registered(Reprojected r, texture2D registration_prev) {
     return r;
 }
 
-// A lane's texture at the previous position: the bilinear blend, or the nearest texel;
-// `counted` holds, in the channel `channel`, the estimates the blend holds (blend_count of the
-// taps' values in that channel).
-vec4 resample(Reprojected r, texture2D t, int channel, out float counted) {
+// A lane's texture (of kind `kind`: lane_tap) at the previous position: the bilinear blend,
+// or the nearest texel; `counted` holds, in the channel `channel`, the estimates the blend
+// holds (blend_count of the taps' values in that channel).
+vec4 resample(Reprojected r, texture2D t, int channel, uint kind, texture2D registration_prev,
+              out float counted) {
     if (!r.bilinear) {
-        vec4 v = texelFetch(t, r.nearest, 0);
+        vec4 v = lane_tap(t, r.nearest, kind, registration_prev);
         counted = v[channel];
         return v;
     }
-    vec4 t00 = texelFetch(t, r.base, 0);
-    vec4 t10 = texelFetch(t, r.base + ivec2(1, 0), 0);
-    vec4 t01 = texelFetch(t, r.base + ivec2(0, 1), 0);
-    vec4 t11 = texelFetch(t, r.base + ivec2(1, 1), 0);
+    vec4 t00 = lane_tap(t, r.base, kind, registration_prev);
+    vec4 t10 = lane_tap(t, r.base + ivec2(1, 0), kind, registration_prev);
+    vec4 t01 = lane_tap(t, r.base + ivec2(0, 1), kind, registration_prev);
+    vec4 t11 = lane_tap(t, r.base + ivec2(1, 1), kind, registration_prev);
     vec4 w = vec4((1.0 - r.w.x) * (1.0 - r.w.y), r.w.x * (1.0 - r.w.y), (1.0 - r.w.x) * r.w.y,
                   r.w.x * r.w.y);
     counted = blend_count(vec4(t00[channel], t10[channel], t01[channel], t11[channel]), w);
@@ -309,7 +345,7 @@ bool in_rect(ivec2 pixel, uvec4 rect) {
 // has been magnified or displaced (at least one estimate stays: the value is not thrown
 // away). A pixel in the refresh tile (`refreshed`) is recomputed at its own point this frame,
 // as is a new one: their registration restarts.
-uint lane_state(Reprojected r, uvec4 lane, bool refreshed, texture2D history_prev,
+uint lane_state(Reprojected r, uvec4 lane, bool refreshed, bool start, texture2D history_prev,
                 texture2D moments_prev, texture2D registration_prev, out vec4 history,
                 out vec4 moments, out vec4 registration, out bool invalidated) {
     history = vec4(0.0);
@@ -321,12 +357,17 @@ uint lane_state(Reprojected r, uvec4 lane, bool refreshed, texture2D history_pre
     invalidated = lane.y != 0u && r.found && moved_reaches(lane.w, r.p);
     if (lane.y != 0u && r.found && !invalidated) {
         r = pick_registered(r, registration_prev);
+        // An unmoved eye on an unmoved surface: the texel itself, as it is.
+        bool still = frame.camera_static != 0u && r.motion == vec3(0.0);
         float counted;
-        history = resample(r, history_prev, 3, counted);
+        history = resample(r, history_prev, 3, still ? TAP_PLAIN : TAP_HISTORY,
+                           registration_prev, counted);
         history.a = counted;
-        moments = resample(r, moments_prev, 2, counted);
+        moments = resample(r, moments_prev, 2, TAP_PLAIN, registration_prev, counted);
         moments.z = counted;
-        registration = resample(r, registration_prev, 3, counted);
+        vec4 held = texelFetch(registration_prev, r.nearest, 0); // still: the pixel's own
+        registration = resample(r, registration_prev, 3, still ? TAP_PLAIN : TAP_REGISTRATION,
+                                registration_prev, counted);
         registration.xyz += r.motion; // the carried point moves with its object
         float magnification = max(registration.w * r.stretch, 1.0);
         float loss = 1.0;
@@ -355,6 +396,21 @@ uint lane_state(Reprojected r, uvec4 lane, bool refreshed, texture2D history_pre
         state = history.a >= float(frame.rotation_limit) ? STATE_CONVERGED : STATE_ACCUMULATING;
         if (state == STATE_ACCUMULATING)
             registration.xyz = mix(registration.xyz, r.p, 1.0 / (history.a + 1.0));
+        float limit = float(frame.rotation_limit);
+        bool going = still && reaccumulating(held);
+        if (going && history.a >= limit) {
+            registration = vec4(r.p, 1.0); // done: the mean of L fresh patterns
+        } else if (still && !refreshed && limit >= 2.0 && (going || start)) {
+            vec3 o = going ? held.xyz : history.rgb;
+            registration = going ? held : vec4(o, -1.0 - history.a);
+            if (!going) history.a = 0.0;
+            // D_n -> V: the merge with this frame's pattern gives D_{n+1}. No gate crossing
+            // carries over (y = 0): the value changes by design, and a crossing needs two
+            // frames in a row.
+            history.rgb = (limit * history.rgb - o) / (limit - 1.0);
+            moments.yz = vec2(0.0, limit - 1.0);
+            state = STATE_ACCUMULATING;
+        }
     }
     if (refreshed) registration = vec4(r.p, 1.0);
     return state;
@@ -371,7 +427,8 @@ bool needs_work(uint state) {
         vec4 registration;                                                                     \
         bool invalidated;                                                                      \
         bool refreshed = r.geometry && in_rect(pixel, lanes.refresh_rect_##k);                 \
-        uint state = lane_state(r, lanes.lane_##k, refreshed, history_prev_##k,                \
+        bool start = (lanes.reaccumulate.x >> k & 1u) != 0u;                                   \
+        uint state = lane_state(r, lanes.lane_##k, refreshed, start, history_prev_##k,         \
                                 moments_prev_##k, registration_prev_##k, history, moments,     \
                                 registration, invalidated);                                    \
         if (invalidated) atomicAdd(group_invalidated[k], 1u);                                  \

@@ -11,7 +11,7 @@ use ssgi::renderer::targets::Target;
 use ssgi::renderer::temporal::{tile_evaluations, Sampling};
 use ssgi::renderer::Renderer;
 use ssgi::scene::{cornell_box, Camera};
-use ssgi::vk::{FrameTiming, ImageData};
+use ssgi::vk::FrameTiming;
 
 fn config(size: u32) -> RenderConfig {
     RenderConfig {
@@ -90,19 +90,6 @@ fn refresh_evaluations_stay_within_the_budget() {
     common::assert_clean(&ctx);
 }
 
-/// Mean squared difference of the RGB channels of two RGBA8 frames, in [0, 1] units.
-fn msd(a: &ImageData, b: &ImageData) -> f64 {
-    let (mut sum, mut n) = (0.0, 0usize);
-    for (pa, pb) in a.bytes.chunks(4).zip(b.bytes.chunks(4)) {
-        for c in 0..3 {
-            let d = (pa[c] as f64 - pb[c] as f64) / 255.0;
-            sum += d * d;
-            n += 1;
-        }
-    }
-    sum / n as f64
-}
-
 /// On a converged view the refresh runs after a change nothing restarts: with `--invalidate
 /// off`, a light moved by a tenth of a millimetre makes shadows, indirect light's tiles pass
 /// over every pixel while the image stays what it was. Consecutive final frames then differ by
@@ -137,7 +124,7 @@ fn converged_view_does_not_flicker_while_refreshing() {
         timings.extend(r.render_frame(&held).expect("frame"));
         let out = r.read(Target::Output).expect("output");
         if let Some(p) = &previous {
-            worst = worst.max(msd(p, &out));
+            worst = worst.max(common::msd(p, &out));
         }
         previous = Some(out);
     }

@@ -67,6 +67,13 @@ float fresh_weight(float n, float change, float l_old, float l_fresh, inout vec4
     return persists ? 1.0 : 1.0 / (in_mean + 1.0);
 }
 
+// Whether a history of `n` patterns holds nothing. A re-accumulating pixel (reproject.comp)
+// restarts its pattern count at 0 but keeps a value, which its gated mean counts as
+// rotation limit - 1 estimates (moments.z): it is merged, not replaced.
+bool history_empty(float n, vec4 moments) {
+    return n < 0.5 && moments.z < 0.5;
+}
+
 // Moments after a merge with weight `w` of an estimate of squared luminance `l2`.
 vec4 merged_moments(vec4 moments, float w, float l2) {
     moments.x += w * (l2 - moments.x);
@@ -79,7 +86,7 @@ vec4 merged_moments(vec4 moments, float w, float l2) {
 // crossing, estimates in the mean) is updated in place; its w is left to the caller (0 after a
 // restart from an empty history).
 float merge_weight(float old, float n, float fresh, inout vec4 moments) {
-    if (n < 0.5) {
+    if (history_empty(n, moments)) {
         moments = vec4(fresh * fresh, 0.0, 1.0, 0.0);
         return 1.0;
     }
@@ -103,7 +110,7 @@ vec2 accumulate(float old, float n, float fresh, inout vec4 moments) {
 vec4 accumulate3(vec3 old, float n, vec3 fresh, inout vec4 moments) {
     fresh = clamp(fresh, vec3(-HISTORY_MAX), vec3(HISTORY_MAX));
     float l_fresh = dot(fresh, LUMA);
-    if (n < 0.5) {
+    if (history_empty(n, moments)) {
         moments = vec4(l_fresh * l_fresh, 0.0, 1.0, 0.0);
         return vec4(fresh, 1.0);
     }

@@ -34,6 +34,7 @@ pub enum Key {
     RotationLimit,
     Epsilon,
     Resample,
+    Reaccumulate,
     Vpls,
     Interleave,
     Visibility,
@@ -49,7 +50,7 @@ pub enum Key {
 
 impl Key {
     /// Every key, in the order `help_table` lists them.
-    pub const ALL: [Key; 23] = [
+    pub const ALL: [Key; 24] = [
         Key::AoSamples,
         Key::AoEstimator,
         Key::AoRadius,
@@ -62,6 +63,7 @@ impl Key {
         Key::RotationLimit,
         Key::Epsilon,
         Key::Resample,
+        Key::Reaccumulate,
         Key::Vpls,
         Key::Interleave,
         Key::Visibility,
@@ -90,6 +92,7 @@ impl Key {
             Key::RotationLimit => "temporal.rotation_limit",
             Key::Epsilon => "temporal.epsilon",
             Key::Resample => "temporal.resample",
+            Key::Reaccumulate => "temporal.reaccumulate",
             Key::Vpls => "indirect.vpls",
             Key::Interleave => "indirect.interleave",
             Key::Visibility => "indirect.visibility",
@@ -126,6 +129,7 @@ impl Key {
             Key::RotationLimit => "patterns per pixel before it counts as converged",
             Key::Epsilon => "disocclusion threshold: pixel footprints, or abs: world units",
             Key::Resample => "history read between texels under motion (--history-resample)",
+            Key::Reaccumulate => "histories re-accumulate when the camera stops (--reaccumulate)",
             Key::Vpls => "VPLs gathered per pixel and frame; all = every RSM texel (--vpls)",
             Key::Interleave => "interleaved gather: NxN blocks share the VPLs (--interleave)",
             Key::Visibility => "screen-space visibility test per VPL (--vpl-visibility)",
@@ -148,7 +152,7 @@ impl Key {
             Key::AoRadius => "number in (0, 10]",
             Key::AoPatterns => "integer 1..=1024",
             Key::AoPositionMips => "integer 0..=3",
-            Key::Reuse | Key::Visibility | Key::HalfRes => "on|off",
+            Key::Reuse | Key::Reaccumulate | Key::Visibility | Key::HalfRes => "on|off",
             Key::Refresh => "feathered|on|hard|off",
             Key::RefreshBudget => "PERCENT% or fraction in (0, 100]",
             Key::Accumulate => "gated[:SIGMAS]|confidence[:BIAS]|ema[:ALPHA]|mean[:CAP]",
@@ -246,6 +250,7 @@ pub fn apply(config: &mut RenderConfig, key: Key, value: &str) -> Result<()> {
         },
         Setting::Flag(on) => match key {
             Key::Reuse => config.temporal.reuse = on,
+            Key::Reaccumulate => config.temporal.reaccumulate = on,
             Key::Visibility => config.indirect.visibility = on,
             _ => config.indirect.half_res = on,
         },
@@ -419,7 +424,9 @@ impl Setting {
             Key::Refresh => Refresh::from_str(v, false).map(Setting::Refresh),
             Key::Resample => HistoryResample::from_str(v, false).map(Setting::Resample),
             Key::RefreshBudget => parse_fraction(v).map(Setting::Budget),
-            Key::Reuse | Key::Visibility | Key::HalfRes => parse_on_off(v).map(Setting::Flag),
+            Key::Reuse | Key::Reaccumulate | Key::Visibility | Key::HalfRes => {
+                parse_on_off(v).map(Setting::Flag)
+            }
             Key::SsdoSamples => count(SsdoConfig::MAX_SAMPLES),
             Key::SsdoForm => SsdoForm::from_str(v, false).map(Setting::Form),
             Key::SsdoFilter => parse_bilateral(v).map(Setting::Filter),
@@ -495,6 +502,9 @@ mod tests {
             (Key::SsdoFilter, "off", |c| c.ssdo.filter = 0),
             (Key::SsdoScale, "0.5", |c| c.ssdo.scale = 2),
             (Key::Reuse, "off", |c| c.temporal.reuse = false),
+            (Key::Reaccumulate, "off", |c| {
+                c.temporal.reaccumulate = false
+            }),
             (Key::Accumulate, "ema:0.25", |c| {
                 c.temporal.accumulate = Accumulate::Ema { alpha: 0.25 }
             }),

@@ -211,6 +211,12 @@ pub struct SceneArgs {
     /// SSDO radius, shadow-map footprint). `off`: only disocclusion and the gate react.
     #[arg(long, default_value = "on", value_parser = parse_on_off, action = clap::ArgAction::Set)]
     pub invalidate: bool,
+    /// Re-accumulate when the camera stops: the histories the moving camera resampled take
+    /// every pattern afresh over the next frames (their old value fading out a pattern's share
+    /// per frame), so a still view ends where a render from scratch does. `off`: a still view
+    /// keeps what the motion left (cheaper, not the estimator's own value).
+    #[arg(long, default_value = "on", value_parser = parse_on_off, action = clap::ArgAction::Set)]
+    pub reaccumulate: bool,
     /// How a moving camera reads a history between texels: `bilinear` blends the four around
     /// the previous position, `point` takes the one whose carried surface point lands nearest
     /// the pixel (the estimator's own value, no smear, more pixels accumulating).
@@ -433,6 +439,7 @@ impl SceneArgs {
                 refresh_budget: self.refresh_budget,
                 resample: self.history_resample,
                 invalidate: self.invalidate,
+                reaccumulate: self.reaccumulate,
             },
             aa: AaConfig {
                 mode: self.aa,

@@ -4,8 +4,8 @@
 use crate::error::Result;
 use crate::passes::compute::{Dispatch, FrameSet};
 use crate::passes::{PassId, PassLayout};
-use crate::renderer::config::RenderConfig;
-use crate::renderer::effect::TemporalEffect;
+use crate::renderer::config::{Accumulate, RenderConfig};
+use crate::renderer::effect::{EffectKind, TemporalEffect};
 use crate::renderer::targets::{Target, Targets};
 use crate::shaders::EffectPush;
 use crate::vk::cmd::Recorder;
@@ -50,6 +50,9 @@ pub struct FrameInfo<'a> {
     pub history_valid: bool,
     /// The view-projection differs from last frame's (or there is no last frame).
     pub camera_moved: bool,
+    /// The camera moved last frame and not this one: the histories start re-accumulating
+    /// (`TemporalConfig::reaccumulate`).
+    pub camera_stopped: bool,
     /// The light differs from the one the light view was last rendered for.
     pub light_changed: bool,
     /// The light view is rendered this frame: the light changed, or something moved where
@@ -71,6 +74,19 @@ impl FrameInfo<'_> {
     pub fn keeps_history(&self, light: bool, rsm: bool) -> bool {
         let invalidate = self.config.temporal.invalidate;
         self.reusing() && !(invalidate && (light && self.light_changed || rsm && self.light_view))
+    }
+
+    /// Whether the histories of an effect of kind `kind` start re-accumulating this frame:
+    /// the camera came to rest, the histories hold last frame's data, and the accumulation
+    /// is the gated running mean of at least two patterns (`TemporalConfig::reaccumulate`).
+    pub fn starts_reaccumulating(&self, kind: &EffectKind) -> bool {
+        let t = &self.config.temporal;
+        self.camera_stopped
+            && self.reusing()
+            && t.reaccumulate
+            && kind.reaccumulates
+            && matches!(t.accumulate, Accumulate::Gated { .. })
+            && t.rotation_limit >= 2
     }
 
     /// Whether this frame's change makes the refresh pass over every pixel once

@@ -85,6 +85,9 @@ pub struct LaneFrame {
     pub refresh_rect: [u32; 4],
     /// Which pixels a moving object takes the history from (`MovedReach` code, 0 = none).
     pub moved: u32,
+    /// The camera came to rest: the lane's histories start re-accumulating
+    /// (`TemporalConfig::reaccumulate`).
+    pub reaccumulate: bool,
 }
 
 /// The frame's push constants from each lane's part.
@@ -100,6 +103,11 @@ pub fn push(lanes: &[LaneFrame]) -> ReprojectPush {
         })
     };
     let rect = |k: usize| lanes.get(k).map_or([0; 4], |l| l.refresh_rect);
+    let starts = lanes
+        .iter()
+        .enumerate()
+        .filter(|(_, l)| l.reaccumulate)
+        .fold(0u32, |mask, (k, _)| mask | 1 << k);
     ReprojectPush {
         refresh_rect_0: rect(0),
         refresh_rect_1: rect(1),
@@ -107,6 +115,7 @@ pub fn push(lanes: &[LaneFrame]) -> ReprojectPush {
         lane_0: lane(0),
         lane_1: lane(1),
         lane_2: lane(2),
+        reaccumulate: [starts, 0, 0, 0],
     }
 }
 
@@ -211,10 +220,23 @@ mod tests {
             block_shift: 4,
             refresh_rect: [1, 2, 3, 4],
             moved: 3,
+            reaccumulate: false,
         }]);
         assert_eq!(p.lane_0, [1, 1, 4, 3]);
         assert_eq!(p.refresh_rect_0, [1, 2, 3, 4]);
         assert_eq!(p.lane_1, [0; 4]);
         assert_eq!(p.lane_2, [0; 4]);
+        assert_eq!(p.reaccumulate, [0; 4]);
+    }
+
+    #[test]
+    fn reaccumulating_lanes_are_a_bit_mask() {
+        let lane = |reaccumulate| LaneFrame {
+            active: true,
+            reaccumulate,
+            ..Default::default()
+        };
+        let p = push(&[lane(true), lane(false), lane(true)]);
+        assert_eq!(p.reaccumulate, [0b101, 0, 0, 0]);
     }
 }

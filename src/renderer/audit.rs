@@ -30,7 +30,8 @@ pub enum AuditKind {
     History,
     /// A temporal effect's moments (mean squared luminance, gate flag, estimates in the mean).
     Moments,
-    /// A temporal effect's history registration (surface point, magnification >= 1).
+    /// A temporal effect's history registration (surface point, magnification >= 1; while it
+    /// re-accumulates, the value it fades out and a negative marker: shaders/reproject.comp).
     Registration,
 }
 
@@ -96,8 +97,9 @@ fn signed_channels(target: Target) -> u32 {
 
 /// The moments' g is the side of a pending gate crossing, -1, 0 or +1.
 const MOMENTS_SIGNED: u32 = 0b0010;
-/// A registration's point is a world position (any sign); its magnification is not.
-const POSITION_SIGNED: u32 = 0b0111;
+/// A registration's point is a world position (any sign); its w a magnification (>= 1) or a
+/// re-accumulation's marker (< 0).
+const POSITION_SIGNED: u32 = 0b1111;
 
 impl Renderer {
     /// Audit every float target and every history, moments and registration image of the last
@@ -117,6 +119,7 @@ impl Renderer {
             frame_index: self.frame_index,
             history_valid: true,
             camera_moved: false,
+            camera_stopped: false,
             light_changed: false,
             light_view: false,
             objects_moved: false,

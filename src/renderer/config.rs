@@ -488,6 +488,13 @@ pub struct TemporalConfig {
     /// re-rendered RSM restarts what depends on them, a moving object what lies within the
     /// effect's reach of it (shaders/reproject.comp). Off: only disocclusion and the gate.
     pub invalidate: bool,
+    /// Re-accumulate when the camera stops (`--reaccumulate`): every reused history, which the
+    /// reprojection resampled while the camera moved, takes the rotation limit's patterns
+    /// afresh on the frames after the camera comes to rest, its resampled value fading out
+    /// one pattern's share per frame (shaders/reproject.comp), so the still view converges to
+    /// what a render from scratch shows. Gated accumulation only (the others are no running
+    /// mean of the patterns to begin with).
+    pub reaccumulate: bool,
 }
 
 /// Threads sharing out one refresh-tile pixel's patterns (`REFRESH_THREADS` of
@@ -511,6 +518,7 @@ impl Default for TemporalConfig {
             refresh_budget: REFRESH_BUDGET,
             resample: HistoryResample::Bilinear,
             invalidate: true,
+            reaccumulate: true,
         }
     }
 }

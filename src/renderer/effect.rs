@@ -28,6 +28,10 @@ pub struct EffectKind {
     pub fixups: bool,
     /// Which pixels a moving object takes the history from (`--invalidate`).
     pub moved: MovedReach,
+    /// Whether its histories re-accumulate when the camera stops (`--reaccumulate`): the
+    /// value alone is merged with the running mean's weight. SSDO's cache also carries its
+    /// factor's mean in the moments, which the re-accumulation has no room to fade out.
+    pub reaccumulates: bool,
 }
 
 /// Where a moving object changes an effect's value, so that its history there is dropped (the
@@ -62,6 +66,7 @@ pub const AO: EffectKind = EffectKind {
     ],
     fixups: false,
     moved: MovedReach::AoRadius,
+    reaccumulates: true,
 };
 
 pub const SHADOW: EffectKind = EffectKind {
@@ -75,6 +80,7 @@ pub const SHADOW: EffectKind = EffectKind {
     ],
     fixups: false,
     moved: MovedReach::ShadowFootprint,
+    reaccumulates: true,
 };
 
 pub const INDIRECT: EffectKind = EffectKind {
@@ -89,6 +95,7 @@ pub const INDIRECT: EffectKind = EffectKind {
     ],
     fixups: true,
     moved: MovedReach::Inside,
+    reaccumulates: true,
 };
 
 /// SSDO with the cache (`--reuse on`): the factor's running mean rides in the moments' w.
@@ -105,6 +112,7 @@ pub const SSDO: EffectKind = EffectKind {
     ],
     fixups: false,
     moved: MovedReach::SsdoRadius,
+    reaccumulates: false,
 };
 
 const STORAGE_READ: vk::ImageUsageFlags = vk::ImageUsageFlags::from_raw(

@@ -95,6 +95,9 @@ pub struct Renderer {
     /// The last frame read last frame's G-buffer (its history was valid): until then the
     /// G-buffer's other half holds nothing of this size and view (`audit` leaves it out).
     last_frame_reused: bool,
+    /// Last frame reused the histories and its camera had moved: if this one's has not, the
+    /// histories start re-accumulating (`TemporalConfig::reaccumulate`).
+    camera_was_moving: bool,
     /// The numerical audit's pipeline, built on the first `audit`.
     audit: Option<crate::vk::Pipeline>,
     /// The last pass recorded into each slot's command buffer (device-loss reports).
@@ -186,6 +189,7 @@ impl Renderer {
             rsm_light: None,
             history: None,
             last_frame_reused: false,
+            camera_was_moving: false,
             audit: None,
             last_pass: [None; FRAMES_IN_FLIGHT],
             reprojection,
@@ -392,6 +396,12 @@ impl Renderer {
                 &self.scene.objects,
                 &self.scene_gpu.poses,
             );
+        let camera_moved = self.history.map(|(m, _)| m) != Some(view_proj);
+        let camera_stopped = self.camera_was_moving && !camera_moved && self.history.is_some();
+        if camera_stopped {
+            self.skips.restart(self.frame_index);
+        }
+        self.camera_was_moving = camera_moved && self.history.is_some();
         let info = FrameInfo {
             config: &rendered,
             targets: &self.targets,
@@ -401,7 +411,8 @@ impl Renderer {
             },
             frame_index: self.frame_index,
             history_valid: self.history.is_some(),
-            camera_moved: self.history.map(|(m, _)| m) != Some(view_proj),
+            camera_moved,
+            camera_stopped,
             light_changed,
             light_view,
             objects_moved: moved > 0,

@@ -124,6 +124,7 @@ impl Reprojection {
                 } else {
                     0
                 },
+                reaccumulate: push.history_valid != 0 && info.starts_reaccumulating(&t.kind),
             };
             count += 1;
         }

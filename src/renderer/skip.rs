@@ -81,6 +81,9 @@ struct EffectTrack {
     inputs: Option<Since<EffectInputs>>,
     /// The newest frame read back in which the effect computed nothing.
     idle: Option<u64>,
+    /// The last frame whose histories restarted work with unchanged inputs (the camera came
+    /// to rest: re-accumulation); an idle frame before it says nothing.
+    restarted: u64,
 }
 
 /// This frame's decisions; `true` = skipped.
@@ -134,6 +137,7 @@ impl SkipTracker {
                     reads,
                     inputs: None,
                     idle: None,
+                    restarted: 0,
                 })
                 .collect(),
             known: Vec::new(),
@@ -181,7 +185,9 @@ impl SkipTracker {
             let (unchanged, since) = steady(&mut track.inputs, key, n);
             let converged = !e.settling(config)
                 && (!accumulates(config, e.as_ref())
-                    || (track.idle.is_some_and(|f| f >= since && n >= f + 2)
+                    || (track
+                        .idle
+                        .is_some_and(|f| f >= since.max(track.restarted) && n >= f + 2)
                         && e.temporal().is_some_and(|t| t.refresh_left == 0)));
             if on && unchanged && converged {
                 plan.effects |= 1 << i;
@@ -190,6 +196,15 @@ impl SkipTracker {
         let all = plan.effects.count_ones() as usize == effects.len();
         plan.frame = on && frame_steady && plan.gbuffer && all;
         plan
+    }
+
+    /// The histories restart work on frame `n` with unchanged inputs (the camera came to
+    /// rest): no effect counts as converged on an idle frame from before it.
+    pub fn restart(&mut self, n: u64) {
+        for t in &mut self.tracks {
+            t.idle = None;
+            t.restarted = n;
+        }
     }
 
     /// Note what `slot`'s frame skipped (before its counters are next read).

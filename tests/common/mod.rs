@@ -137,3 +137,17 @@ pub fn golden_compare(got: &[u8], want: &[u8], width: u32) -> Option<String> {
         &want[4 * i..4 * i + 4]
     ))
 }
+
+/// Mean squared difference of the RGB channels of two RGBA8 frames, in [0, 1] units (Chen,
+/// Lei, Chang 2012 call below 2.5e-5 between consecutive frames barely notable flicker).
+pub fn msd(a: &ImageData, b: &ImageData) -> f64 {
+    let (mut sum, mut n) = (0.0, 0usize);
+    for (pa, pb) in a.bytes.chunks(4).zip(b.bytes.chunks(4)) {
+        for c in 0..3 {
+            let d = (pa[c] as f64 - pb[c] as f64) / 255.0;
+            sum += d * d;
+            n += 1;
+        }
+    }
+    sum / n as f64
+}
