@@ -263,24 +263,22 @@ float blend_count(vec4 n, vec4 w) {
 // pixel as re-accumulating: -(1 + the pattern count it had before). Should the camera (or the
 // surface) move before L frames, the pixel keeps D_n with its old count, and its registration
 // restarts at the surface point last frame's texel showed.
-const uint TAP_PLAIN = 0u;
-const uint TAP_HISTORY = 1u;
-const uint TAP_REGISTRATION = 2u;
-
 bool reaccumulating(vec4 registration) {
     return registration.w < 0.0;
 }
 
-// Texel `t` of a lane's texture of kind `kind` for resampling under motion: a re-accumulation
-// the motion interrupts gives back its count and its registration.
-vec4 lane_tap(texture2D tex, ivec2 t, uint kind, texture2D registration_prev) {
-    vec4 v = texelFetch(tex, t, 0);
-    if (kind == TAP_PLAIN) return v;
-    vec4 reg = kind == TAP_REGISTRATION ? v : texelFetch(registration_prev, t, 0);
-    if (!reaccumulating(reg)) return v;
-    if (kind == TAP_REGISTRATION) return vec4(texelFetch(prev_position, t, 0).xyz, 1.0);
-    v.a = max(v.a, -reg.w - 1.0);
-    return v;
+// No floor on a tap's count (resample's `floors`).
+const float NO_FLOOR = -1.0e30;
+
+// Registration texel `t` for resampling under motion. A re-accumulation the motion interrupts
+// restarts at the surface point the texel showed, and `before` gets the pattern count its
+// history had before (the floor of that tap's count; NO_FLOOR where none ran).
+vec4 registration_tap(texture2D registration_prev, ivec2 t, out float before) {
+    vec4 v = texelFetch(registration_prev, t, 0);
+    before = NO_FLOOR;
+    if (!reaccumulating(v)) return v;
+    before = -v.w - 1.0;
+    return vec4(texelFetch(prev_position, t, 0).xyz, 1.0);
 }
 
 // Point resampling (--history-resample point; frame.history_resample 0): where all four taps
@@ -300,7 +298,8 @@ Reprojected pick_registered(Reprojected r, texture2D registration_prev) {
     for (int k = 0; k < 4; ++k) {
         ivec2 t = r.base + ivec2(k & 1, k >> 1);
         vec2 s;
-        vec4 reg = lane_tap(registration_prev, t, TAP_REGISTRATION, registration_prev);
+        float before;
+        vec4 reg = registration_tap(registration_prev, t, before);
         if (!to_screen(frame.view_proj, reg.xyz, s)) continue;
         vec2 d = s - centre;
         float d2 = dot(d, d);
@@ -315,23 +314,44 @@ Reprojected pick_registered(Reprojected r, texture2D registration_prev) {
     return r;
 }
 
-// A lane's texture (of kind `kind`: lane_tap) at the previous position: the bilinear blend,
-// or the nearest texel; `counted` holds, in the channel `channel`, the estimates the blend
-// holds (blend_count of the taps' values in that channel).
-vec4 resample(Reprojected r, texture2D t, int channel, uint kind, texture2D registration_prev,
-              out float counted) {
+// A lane's texture at the previous position: the bilinear blend, or the nearest texel (its
+// taps' a raised to at least `floors`, in tap order: x the nearest or lower-left, y right, z
+// up, w up-right); `counted` holds, in the channel `channel`, the estimates the blend holds
+// (blend_count of the taps' values in that channel).
+vec4 resample(Reprojected r, texture2D t, int channel, vec4 floors, out float counted) {
     if (!r.bilinear) {
-        vec4 v = lane_tap(t, r.nearest, kind, registration_prev);
+        vec4 v = texelFetch(t, r.nearest, 0);
+        v.a = max(v.a, floors.x);
         counted = v[channel];
         return v;
     }
-    vec4 t00 = lane_tap(t, r.base, kind, registration_prev);
-    vec4 t10 = lane_tap(t, r.base + ivec2(1, 0), kind, registration_prev);
-    vec4 t01 = lane_tap(t, r.base + ivec2(0, 1), kind, registration_prev);
-    vec4 t11 = lane_tap(t, r.base + ivec2(1, 1), kind, registration_prev);
+    vec4 t00 = texelFetch(t, r.base, 0);
+    vec4 t10 = texelFetch(t, r.base + ivec2(1, 0), 0);
+    vec4 t01 = texelFetch(t, r.base + ivec2(0, 1), 0);
+    vec4 t11 = texelFetch(t, r.base + ivec2(1, 1), 0);
+    t00.a = max(t00.a, floors.x);
+    t10.a = max(t10.a, floors.y);
+    t01.a = max(t01.a, floors.z);
+    t11.a = max(t11.a, floors.w);
     vec4 w = vec4((1.0 - r.w.x) * (1.0 - r.w.y), r.w.x * (1.0 - r.w.y), (1.0 - r.w.x) * r.w.y,
                   r.w.x * r.w.y);
     counted = blend_count(vec4(t00[channel], t10[channel], t01[channel], t11[channel]), w);
+    return mix(mix(t00, t10, r.w.x), mix(t01, t11, r.w.x), r.w.y);
+}
+
+// The registration at the previous position under motion, as `resample` blends it, each tap
+// read once through registration_tap; `floors` gets the taps' counts from before an
+// interrupted re-accumulation, for the history's resample.
+vec4 resample_registration(Reprojected r, texture2D registration_prev, out vec4 floors) {
+    if (!r.bilinear) {
+        vec4 v = registration_tap(registration_prev, r.nearest, floors.x);
+        floors.yzw = floors.xxx;
+        return v;
+    }
+    vec4 t00 = registration_tap(registration_prev, r.base, floors.x);
+    vec4 t10 = registration_tap(registration_prev, r.base + ivec2(1, 0), floors.y);
+    vec4 t01 = registration_tap(registration_prev, r.base + ivec2(0, 1), floors.z);
+    vec4 t11 = registration_tap(registration_prev, r.base + ivec2(1, 1), floors.w);
     return mix(mix(t00, t10, r.w.x), mix(t01, t11, r.w.x), r.w.y);
 }
 
@@ -359,15 +379,15 @@ uint lane_state(Reprojected r, uvec4 lane, bool refreshed, bool start, texture2D
         r = pick_registered(r, registration_prev);
         // An unmoved eye on an unmoved surface: the texel itself, as it is.
         bool still = frame.camera_static != 0u && r.motion == vec3(0.0);
+        // Still: the pixel's own registration, as it is (a re-accumulation's marker kept).
+        vec4 held = still ? texelFetch(registration_prev, r.nearest, 0) : vec4(0.0);
+        vec4 floors = vec4(NO_FLOOR);
+        registration = still ? held : resample_registration(r, registration_prev, floors);
         float counted;
-        history = resample(r, history_prev, 3, still ? TAP_PLAIN : TAP_HISTORY,
-                           registration_prev, counted);
+        history = resample(r, history_prev, 3, floors, counted);
         history.a = counted;
-        moments = resample(r, moments_prev, 2, TAP_PLAIN, registration_prev, counted);
+        moments = resample(r, moments_prev, 2, vec4(NO_FLOOR), counted);
         moments.z = counted;
-        vec4 held = texelFetch(registration_prev, r.nearest, 0); // still: the pixel's own
-        registration = resample(r, registration_prev, 3, still ? TAP_PLAIN : TAP_REGISTRATION,
-                                registration_prev, counted);
         registration.xyz += r.motion; // the carried point moves with its object
         float magnification = max(registration.w * r.stretch, 1.0);
         float loss = 1.0;

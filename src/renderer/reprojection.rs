@@ -124,7 +124,8 @@ impl Reprojection {
                 } else {
                     0
                 },
-                reaccumulate: push.history_valid != 0 && info.starts_reaccumulating(&t.kind),
+                // The shader starts only lanes whose history is valid.
+                reaccumulate: info.starts_reaccumulating(&t.kind),
             };
             count += 1;
         }

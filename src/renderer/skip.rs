@@ -202,7 +202,6 @@ impl SkipTracker {
     /// rest): no effect counts as converged on an idle frame from before it.
     pub fn restart(&mut self, n: u64) {
         for t in &mut self.tracks {
-            t.idle = None;
             t.restarted = n;
         }
     }
