@@ -321,6 +321,12 @@ Reprojected pick_registered(Reprojected r, texture2D registration_prev) {
     return r;
 }
 
+// The bilinear blend of the four taps around the previous position (lower-left, right, up,
+// up-right).
+vec4 bilerp(Reprojected r, vec4 t00, vec4 t10, vec4 t01, vec4 t11) {
+    return mix(mix(t00, t10, r.w.x), mix(t01, t11, r.w.x), r.w.y);
+}
+
 // A lane's texture at the previous position: the bilinear blend, or the nearest texel (its
 // taps' a raised to at least `floors`, in tap order: x the nearest or lower-left, y right, z
 // up, w up-right); `counted` holds, in the channel `channel`, the estimates the blend holds
@@ -343,7 +349,7 @@ vec4 resample(Reprojected r, texture2D t, int channel, vec4 floors, out float co
     vec4 w = vec4((1.0 - r.w.x) * (1.0 - r.w.y), r.w.x * (1.0 - r.w.y), (1.0 - r.w.x) * r.w.y,
                   r.w.x * r.w.y);
     counted = blend_count(vec4(t00[channel], t10[channel], t01[channel], t11[channel]), w);
-    return mix(mix(t00, t10, r.w.x), mix(t01, t11, r.w.x), r.w.y);
+    return bilerp(r, t00, t10, t01, t11);
 }
 
 // The registration at the previous position under motion, as `resample` blends it, each tap
@@ -359,7 +365,7 @@ vec4 resample_registration(Reprojected r, texture2D registration_prev, out vec4 
     vec4 t10 = registration_tap(registration_prev, r.base + ivec2(1, 0), floors.y);
     vec4 t01 = registration_tap(registration_prev, r.base + ivec2(0, 1), floors.z);
     vec4 t11 = registration_tap(registration_prev, r.base + ivec2(1, 1), floors.w);
-    return mix(mix(t00, t10, r.w.x), mix(t01, t11, r.w.x), r.w.y);
+    return bilerp(r, t00, t10, t01, t11);
 }
 
 bool in_rect(ivec2 pixel, uvec4 rect) {
