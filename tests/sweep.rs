@@ -115,6 +115,10 @@ fn sweep_two_keys_by_two_values() {
             .as_f64()
             .is_some_and(|f| f > 0.0 && f < 1.0));
         assert!(row["converged"]["ao"]["rmse"].as_f64().is_some());
+        // The final image is scored in FLIP against the converged estimator too.
+        assert!(row["converged"]["final"]["flip"]
+            .as_f64()
+            .is_some_and(|f| (0.0..1.0).contains(&f)));
         assert!(row["ms"]["total"].as_f64().is_some_and(|t| t > 0.0));
         assert!(
             row["truth"].get("indirect").is_none(),

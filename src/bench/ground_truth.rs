@@ -14,9 +14,10 @@ use crate::vk::ImageData;
 use serde::Serialize;
 use std::collections::BTreeMap;
 
-/// One buffer's error against the ground truth.
+/// One buffer's error against an expected frame (the ground truth or the converged
+/// estimator).
 #[derive(Clone, Copy, Debug, Serialize)]
-pub struct TruthError {
+pub struct FrameError {
     #[serde(flatten)]
     pub error: BufferError,
     /// Mean FLIP over covered pixels (final image only).
@@ -36,7 +37,7 @@ pub struct TruthQuality {
 
 /// The smallest non-zero RMSE of `errors`: a tenth of it bounds the ground truth's standard
 /// error (a zero error is an exact match and sets no bound).
-pub fn smallest_rmse<'a>(errors: impl Iterator<Item = &'a TruthError>) -> Option<f64> {
+pub fn smallest_rmse<'a>(errors: impl Iterator<Item = &'a FrameError>) -> Option<f64> {
     errors
         .map(|e| e.error.rmse)
         .filter(|e| *e > 0.0)
@@ -131,7 +132,7 @@ pub fn errors(
     reference: &Reference,
     scene: &Scene,
     effects: Effects,
-) -> Result<BTreeMap<Buffer, TruthError>> {
+) -> Result<BTreeMap<Buffer, FrameError>> {
     if last.geometry.len() != reference.primary.len() {
         return Err(Error::Config(format!(
             "the ground truth has {} pixels, the frame {}",
@@ -147,16 +148,39 @@ pub fn errors(
             got,
             truth,
         } = compared(*b, image, last, reference, scene, effects);
-        let error = buffer_error(&got, &truth, ch, &m)?;
-        let flip = if *b == Buffer::Final {
-            let f = flip_ldr(&to_rgb8(&got), &to_rgb8(&truth), image.width, image.height)?;
-            masked_mean(&f.per_pixel, &m)?
-        } else {
-            None
-        };
-        out.insert(*b, TruthError { error, flip });
+        out.insert(
+            *b,
+            frame_error(*b, &got, &truth, ch, &m, (image.width, image.height))?,
+        );
     }
     Ok(out)
+}
+
+/// `got` against `expected` for buffer `b` of `size` (width, height): the buffer's error over
+/// the pixels of `m`, and FLIP for the final image.
+fn frame_error(
+    b: Buffer,
+    got: &[f32],
+    expected: &[f32],
+    ch: usize,
+    m: &[bool],
+    (width, height): (u32, u32),
+) -> Result<FrameError> {
+    let error = buffer_error(got, expected, ch, m)?;
+    let flip = if b == Buffer::Final {
+        let f = flip_ldr(&to_rgb8(got), &to_rgb8(expected), width, height)?;
+        masked_mean(&f.per_pixel, m)?
+    } else {
+        None
+    };
+    Ok(FrameError { error, flip })
+}
+
+/// The frame's size (width, height); (0, 0) for a frame without buffers.
+fn size(last: &LastFrame) -> (u32, u32) {
+    last.buffers
+        .first()
+        .map_or((0, 0), |(_, i)| (i.width, i.height))
 }
 
 /// The pixels `last` and `converged` both cover, and the buffers both have, as compared:
@@ -185,15 +209,15 @@ fn against_converged(
 }
 
 /// Every buffer of `last` against the same buffers of `converged` (the estimator with many
-/// samples), over the pixels both cover.
+/// samples), over the pixels both cover; FLIP for the final image, as against the truth.
 pub fn errors_against(
     last: &LastFrame,
     converged: &LastFrame,
-) -> Result<BTreeMap<Buffer, BufferError>> {
+) -> Result<BTreeMap<Buffer, FrameError>> {
     let mut out = BTreeMap::new();
     let (m, buffers) = against_converged(last, converged);
     for (b, ch, got, conv) in buffers {
-        out.insert(b, buffer_error(&got, &conv, ch, &m)?);
+        out.insert(b, frame_error(b, &got, &conv, ch, &m, size(last))?);
     }
     Ok(out)
 }
@@ -209,11 +233,7 @@ pub fn write_converged_maps(
     stem: &str,
 ) -> Result<Vec<std::path::PathBuf>> {
     use super::error_metrics::{abs_error_per_pixel, write_error_map};
-    let (w, h) = last
-        .buffers
-        .first()
-        .map(|(_, i)| (i.width, i.height))
-        .unwrap_or((0, 0));
+    let (w, h) = size(last);
     let mut written = Vec::new();
     let (m, buffers) = against_converged(last, converged);
     for (b, ch, got, conv) in buffers {

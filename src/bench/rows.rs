@@ -3,7 +3,7 @@
 //! last frame against the reference rendered from the same camera.
 
 use super::compare::{group_median, in_group, GROUPS};
-use super::ground_truth::{self, TruthError, TruthQuality};
+use super::ground_truth::{self, FrameError, TruthQuality};
 use super::measure::{held_at, last_camera, measure, Buffer, LastFrame, Measured, RunSpec};
 use super::metrics::{image_error, ImageError};
 use super::report::FrameRow;
@@ -150,7 +150,7 @@ pub struct RowResult {
     /// Error of the last frame against the reference, per buffer.
     pub error: BTreeMap<String, ImageError>,
     /// Error of the last frame against the CPU ground truth, per buffer.
-    pub truth: BTreeMap<String, TruthError>,
+    pub truth: BTreeMap<String, FrameError>,
     pub report: Report,
     /// The last frame's output image (written as PNG beside the report, not into JSON).
     #[serde(skip)]

@@ -4,8 +4,7 @@
 //! ground truth and against the converged estimator of the same technique.
 
 use super::compare::{group_median, GROUPS};
-use super::error_metrics::BufferError;
-use super::ground_truth::{self, reference_buffer, TruthError, TruthQuality};
+use super::ground_truth::{self, reference_buffer, FrameError, TruthQuality};
 use super::measure::{held_at, last_camera, measure, Buffer, LastFrame, RunSpec};
 use super::rows::{RowKind, REFERENCE_FRAMES};
 use super::sweep_keys::{describe, Label};
@@ -32,9 +31,9 @@ pub struct SweepRow {
     /// Median GPU milliseconds of each pass over the measured frames in which it ran.
     pub passes: BTreeMap<String, Option<f64>>,
     /// Per buffer: error against the ground truth.
-    pub truth: BTreeMap<String, TruthError>,
+    pub truth: BTreeMap<String, FrameError>,
     /// Per buffer: error against the converged estimator (same technique, many samples).
-    pub converged: BTreeMap<String, BufferError>,
+    pub converged: BTreeMap<String, FrameError>,
     /// Per buffer: whether this row is on the Pareto front of (time, ground-truth error).
     pub pareto: BTreeMap<String, bool>,
     /// The work counters had settled by the end of the warmup (`warmup::settled`).
