@@ -95,6 +95,11 @@ pub fn csv(rows: &[SweepRow]) -> String {
     out
 }
 
+/// An error in sweep.md: five decimals, "-" where there is none.
+fn error_cell(v: Option<f64>) -> String {
+    v.map_or("-".into(), |v| format!("{v:.5}"))
+}
+
 /// sweep.md: one table per buffer, rows sorted by time, Pareto-optimal rows marked ★.
 pub fn markdown(
     header: &SweepHeader,
@@ -183,11 +188,7 @@ pub fn markdown(
             };
             let c = r.converged.get(b.name());
             let flip_cell = if b == Buffer::Final {
-                format!(
-                    " {} |",
-                    c.and_then(|c| c.flip)
-                        .map_or("-".into(), |f| format!("{f:.5}"))
-                )
+                format!(" {} |", error_cell(c.and_then(|c| c.flip)))
             } else {
                 String::new()
             };
@@ -195,14 +196,14 @@ pub fn markdown(
                 "| {star} | {} | {} | {} | {:.4} | {} | {} |{flip_cell}\n",
                 row_label(r, "base"),
                 time_of(r, b).map_or("-".into(), |v| format!("{v:.3}")),
-                error_of(r, b).map_or("-".into(), |v| format!("{v:.5}")),
+                error_cell(error_of(r, b)),
                 t.error.rel_mse,
                 if t.error.psnr.is_finite() {
                     format!("{:.1}", t.error.psnr)
                 } else {
                     "∞".into()
                 },
-                c.map_or("-".into(), |e| format!("{:.5}", e.error.rmse)),
+                error_cell(c.map(|e| e.error.rmse)),
             );
         }
     }
