@@ -1,5 +1,7 @@
 #version 460
-// Half-resolution RSM gather over the 16x16 blocks the reprojection listed: each workgroup
+// Half-resolution RSM gather with interleaving (without, indirect_spread.comp's `gather` runs
+// over the samples indirect_classify.comp lists): over the 16x16 blocks the reprojection
+// listed, each workgroup
 // computes the block's 8x8 low-resolution pixels plus a one-pixel apron on the right and
 // bottom (9x9) into the block's own slot of the low-resolution buffer, so the upsampling of
 // the block reads only values computed this frame. Low-resolution pixel i samples the G-buffer
@@ -75,6 +77,9 @@ void main() {
     if (!computed) value = vec4(0.0);
     lowres[gl_WorkGroupID.x * 81u + gl_LocalInvocationIndex] = value;
     barrier();
-    if (gl_LocalInvocationIndex == 0u && group_computed > 0u)
-        atomicAdd(counters.computed_pixels, group_computed);
+    if (gl_LocalInvocationIndex != 0u) return;
+    if (group_computed > 0u) atomicAdd(counters.computed_pixels, group_computed);
+    uint shares = frame.vpl_interleave * frame.vpl_interleave;
+    COUNT_WORK(gather, INTERLEAVE_PIXELS, group_computed,
+               group_computed > 0u ? (rsm_gather_evaluations() + shares - 1u) / shares : 0u)
 }

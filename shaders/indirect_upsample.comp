@@ -4,6 +4,10 @@
 // weight at its position (one, two or four; `same_surface`: normal within ~25 degrees, and on
 // the pixel's tangent plane within two pixel footprints) and interpolates bilinearly from the
 // accepted ones; a pixel with none is discarded, marked in the mask (Figure 4.1) and appended to the fix-up list for a full-resolution gather.
+// `image`: the samples are in the low-resolution image (indirect_lowres.comp's `compact`);
+// `slots`: in each listed block's 9x9 slot of the low-resolution buffer (`blocks`).
+// @permutation image: IMAGE
+// @permutation slots: SLOTS
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_samplerless_texture_functions : require
 #include "frame.glsl"
@@ -14,7 +18,11 @@
 
 layout(local_size_x = 16, local_size_y = 16) in;
 
+#ifdef IMAGE
+layout(set = 1, binding = 6, rgba32f) uniform readonly image2D lowres;
+#else
 layout(set = 1, binding = 6, std430) readonly buffer LowRes { vec4 lowres[]; };
+#endif
 layout(set = 1, binding = 7, rgba32f) uniform image2D history;
 layout(set = 1, binding = 8, r32ui) uniform readonly uimage2D state_in;
 layout(set = 1, binding = 9, r32ui) uniform writeonly uimage2D discard_mask;
@@ -57,8 +65,12 @@ void main() {
         vec4 g = texelFetch(g_position, low * 2, 0);
         if (g.w == 0.0) continue;
         if (!same_surface(p, n, g.xyz, texelFetch(g_normal, low * 2, 0).xyz, footprint)) continue;
+#ifdef IMAGE
+        sum += weight * imageLoad(lowres, low);
+#else
         ivec2 local = low - apron_origin;
         sum += weight * lowres[gl_WorkGroupID.x * 81u + uint(local.y * 9 + local.x)];
+#endif
         weight_sum += weight;
     }
     bool discarded = weight_sum <= 0.0;
@@ -66,7 +78,11 @@ void main() {
     if (discarded) {
         uint slot = atomicAdd(counters.fixup_pixels, 1u);
         counters.data[counters.max_blocks + slot] = uint(pixel.x) | (uint(pixel.y) << 16);
-        if (slot % 64u == 0u) atomicAdd(counters.fixup_dispatch_x, 1u);
+        // indirect_spread.comp's `fixup` takes SPREAD_LANES / L pixels per workgroup; past
+        // Vulkan's least maxComputeWorkGroupCount its workgroups stride over the list.
+        uint per_group = SPREAD_LANES / spread_lanes_per_estimate(SPREAD_LANES);
+        if (slot % per_group == 0u && slot / per_group < 65535u)
+            atomicAdd(counters.fixup_dispatch_x, 1u);
         return;
     }
     merge(pixel, imageLoad(history, pixel), sum / weight_sum, false);

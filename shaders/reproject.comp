@@ -54,8 +54,9 @@ layout(push_constant) uniform Reproject {
     uvec4 refresh_rect_0; // lane k's refresh tile (x0, y0, x1, y1) [px]; empty = none
     uvec4 refresh_rect_1;
     uvec4 refresh_rect_2;
-    uvec4 lane_0;         // lane k: (active, history_valid, log2 of the work-block side,
-                          //          moving objects' reach: MOVED_* below, 0 = none)
+    uvec4 lane_0;         // lane k: (active, history_valid, log2 of the work-block side (0: a
+                          //          list of single pixels), moving objects' reach: MOVED_*
+                          //          below, 0 = none)
     uvec4 lane_1;
     uvec4 lane_2;
     uvec4 reaccumulate;   // x: bit k set = lane k starts re-accumulating this frame
@@ -99,7 +100,7 @@ float surface_footprint(vec3 p, vec3 n, vec3 eye) {
 //   of fewer patterns per pixel of surface, interpolated between texels that lie further apart
 //   on it. Without this, a surface first seen edge-on (eq 3's threshold grows as 1 / cos, so
 //   its few grazing pixels pass the test) kept their values, stretched over the many pixels it
-//   covers later, as converged (docs/results/lavapipe-orbit-lag-2026-12-02). The per-frame
+//   covers later, as converged (docs/results/DECISIONS.md, orbit-lag). The per-frame
 //   area ratios multiply (minification pays back, down to 1); past MAGNIFICATION_LIMIT the
 //   counts are divided by the product and it restarts at 1. Carried rather than applied each
 //   frame: counts are whole numbers (they index patterns), and a camera step of a fraction of
@@ -130,6 +131,10 @@ bool to_screen(mat4 view_proj, vec3 q, out vec2 f) {
 shared uint quadrant_mask[LANES];
 shared uint group_disoccluded[LANES];
 shared uint group_invalidated[LANES];
+// Lanes listing single pixels (block shift 0): the group's new and accumulating pixels, and
+// where its run starts in the lane's list.
+shared uint group_listed[LANES];
+shared uint group_list_base[LANES];
 
 // Where a moving object changes a lane's value (EffectKind::moved, src/renderer/effect.rs),
 // tested against the box around every object that moved, at its last and its new place.
@@ -249,7 +254,7 @@ Reprojected reproject(ivec2 pixel) {
 // smoothing persists. Capped at the taps' weighted mean count instead, the box:bunny orbit's
 // indirect light ends 0.042 (RMSE) from its converged estimator instead of 0.102, but 88% of
 // the low-resolution samples are gathered every frame instead of 36%, 1.9 times the gather's
-// time (docs/results/lavapipe-orbit-diagnosis-2026-12-03).
+// time (docs/results/DECISIONS.md, orbit-diagnosis).
 float blend_count(vec4 n, vec4 w) {
     vec4 inv = mix(vec4(1.0e30), 1.0 / max(n, vec4(1e-30)), greaterThan(n, vec4(0.0)));
     float spread = dot(w * w, mix(inv, vec4(0.0), equal(w, vec4(0.0))));
@@ -297,7 +302,7 @@ vec4 registration_tap(texture2D registration_prev, ivec2 t, out float before) {
 // (RMSE) from the estimator's own converged value with the blend, 0.036 with this choice, the
 // no-reuse level. But the blend's smoothing brings it nearer the ground truth (0.128 against
 // 0.147), and since counts no longer borrow from neighbours here, more pixels accumulate and
-// the frame costs twice as much (docs/results/lavapipe-orbit-resample-2026-12-03).
+// the frame costs twice as much (docs/results/DECISIONS.md, orbit-resample).
 Reprojected pick_registered(Reprojected r, texture2D registration_prev) {
     if (!r.bilinear || frame.history_resample != 0u) return r;
     vec2 centre = vec2(gl_GlobalInvocationID.xy) + 0.5;
@@ -472,6 +477,8 @@ bool needs_work(uint state) {
         imageStore(registration_cur_##k, pixel, registration);                                 \
         imageStore(state_out_##k, pixel, uvec4(state));                                        \
         if (needs_work(state)) atomicOr(quadrant_mask[k], quadrant_bit);                       \
+        if (lanes.lane_##k.z == 0u && (state == STATE_NEW || state == STATE_ACCUMULATING))     \
+            list_slot[k] = atomicAdd(group_listed[k], 1u);                                     \
     }
 
 // Work block `q` of this group in the lane's list: 16x16 blocks are the whole group (q = 0
@@ -485,6 +492,9 @@ uint listed_quadrants(uint mask, uint shift) {
     return shift == 4u ? uint(mask != 0u) : mask;
 }
 
+// Vulkan's least maxComputeWorkGroupCount[0]: a pixel list's dispatch grows in y beyond it.
+const uint MAX_GROUPS_X = 65535u;
+
 #define LANE_LIST(k)                                                                           \
     if (lanes.lane_##k.x != 0u) {                                                              \
         if (group_disoccluded[k] > 0u)                                                         \
@@ -492,8 +502,18 @@ uint listed_quadrants(uint mask, uint shift) {
         if (group_invalidated[k] > 0u)                                                         \
             atomicAdd(counters_##k.invalidated_pixels, group_invalidated[k]);                  \
         uint shift = lanes.lane_##k.z;                                                         \
+        if (shift == 0u) {                                                                     \
+            uint n = group_listed[k];                                                          \
+            uint base = n > 0u ? atomicAdd(counters_##k.listed_pixels, n) : 0u;                \
+            group_list_base[k] = base;                                                         \
+            uint groups = (base + n + 63u) / 64u;                                              \
+            if (n > 0u) {                                                                      \
+                atomicMax(counters_##k.dispatch_x, min(groups, MAX_GROUPS_X));                 \
+                atomicMax(counters_##k.dispatch_y, (groups + MAX_GROUPS_X - 1u) / MAX_GROUPS_X); \
+            }                                                                                  \
+        }                                                                                      \
         uint mask = listed_quadrants(quadrant_mask[k], shift);                                 \
-        for (uint q = 0u; q < 4u; ++q) {                                                       \
+        for (uint q = 0u; q < 4u && shift != 0u; ++q) {                                        \
             if ((mask & (1u << q)) == 0u) continue;                                            \
             uvec2 b = listed_block(q, shift);                                                  \
             uint slot = atomicAdd(counters_##k.dispatch_x, 1u);                                \
@@ -501,12 +521,22 @@ uint listed_quadrants(uint mask, uint shift) {
         }                                                                                      \
     }
 
+// This pixel's entry in each pixel-listing lane's run (NOT_LISTED: none).
+const uint NOT_LISTED = 0xffffffffu;
+uint list_slot[LANES];
+
+#define LANE_WRITE(k)                                                                          \
+    if (list_slot[k] != NOT_LISTED)                                                            \
+        counters_##k.data[group_list_base[k] + list_slot[k]] = uint(pixel.x) | (uint(pixel.y) << 16);
+
 void main() {
     if (gl_LocalInvocationIndex < uint(LANES)) {
         quadrant_mask[gl_LocalInvocationIndex] = 0u;
         group_disoccluded[gl_LocalInvocationIndex] = 0u;
         group_invalidated[gl_LocalInvocationIndex] = 0u;
+        group_listed[gl_LocalInvocationIndex] = 0u;
     }
+    for (int k = 0; k < LANES; ++k) list_slot[k] = NOT_LISTED;
     barrier();
     ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
     if (!outside_frame(pixel)) {
@@ -531,4 +561,12 @@ void main() {
         LANE_LIST(2)
 #endif
     }
+    barrier();
+    LANE_WRITE(0)
+#if LANES > 1
+    LANE_WRITE(1)
+#endif
+#if LANES > 2
+    LANE_WRITE(2)
+#endif
 }

@@ -51,6 +51,7 @@ void main() {
     imageStore(moments, pixel, m);
     atomicAdd(counters.computed_pixels, 1u);
     atomicAdd(counters.refresh_evaluations, limit);
+    refresh_count_work(limit, shadow_taps());
 }
 #else
 layout(local_size_x = 8, local_size_y = 8) in;
@@ -76,7 +77,8 @@ void main() {
         }
     }
     barrier();
-    if (gl_LocalInvocationIndex == 0u && group_computed > 0u)
-        atomicAdd(counters.computed_pixels, group_computed);
+    if (gl_LocalInvocationIndex != 0u) return;
+    if (group_computed > 0u) atomicAdd(counters.computed_pixels, group_computed);
+    COUNT_WORK(gather, 64u, group_computed, group_computed > 0u ? shadow_taps() : 0u)
 }
 #endif

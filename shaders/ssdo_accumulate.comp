@@ -125,17 +125,20 @@ void main() {
     atomicAdd(counters.computed_pixels, 1u);
     atomicAdd(counters.refresh_evaluations, limit);
     atomicAdd(counters.samples, limit * count);
+    refresh_count_work(limit, count);
 }
 #else
 layout(local_size_x = 8, local_size_y = 8) in;
 
 shared uint group_computed;
 shared uint group_samples;
+shared uint group_serial;
 
 void main() {
     if (gl_LocalInvocationIndex == 0u) {
         group_computed = 0u;
         group_samples = 0u;
+        group_serial = 0u;
     }
     barrier();
     ivec2 pixel = block_pixel(gl_WorkGroupID.x, gl_LocalInvocationID.xy);
@@ -156,13 +159,16 @@ void main() {
             imageStore(moments, pixel, m);
             atomicAdd(group_computed, 1u);
             atomicAdd(group_samples, count);
+            atomicMax(group_serial, count);
         }
     }
     barrier();
-    if (gl_LocalInvocationIndex == 0u && group_computed > 0u) {
+    if (gl_LocalInvocationIndex != 0u) return;
+    if (group_computed > 0u) {
         atomicAdd(counters.computed_pixels, group_computed);
         atomicAdd(counters.samples, group_samples);
     }
+    COUNT_WORK(gather, 64u, group_computed, group_serial)
 }
 #endif
 #endif

@@ -137,6 +137,7 @@ fn bench_json_has_every_pass_and_skips_the_static_light_view() {
             "shadow",
             "direct",
             "ssao",
+            "indirect_classify",
             "indirect_gather",
             "indirect_upsample",
             "indirect_fixup",

@@ -54,7 +54,7 @@ fn probe(ctx: &Arc<Context>, push: ProbePush, pixels: u32) -> Vec<[f32; 4]> {
     }];
     let pipeline =
         Pipeline::compute(ctx, "pattern_offsets", &PATTERN_OFFSETS_COMP, &declared).unwrap();
-    let pool = DescriptorPool::new(ctx, 1).unwrap();
+    let pool = DescriptorPool::new(ctx).unwrap();
     let set = pool
         .allocate(pipeline.set_layouts[0], "pattern offsets")
         .unwrap();

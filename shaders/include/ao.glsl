@@ -148,6 +148,11 @@ float ao_szentandrasi(ivec2 pixel, vec3 p, vec3 n, uint pattern) {
 
 // Occlusion averaged over `patterns` consecutive patterns starting at `first` (a whole number:
 // pattern indices arrive as floats from the history's count channel, exact below 2^24).
+// Taps one pattern of the configured estimator reads (the work counters' evaluations).
+uint ao_taps() {
+    return frame.ao_estimator == 0u ? frame.ao_directions * frame.ao_steps : frame.ao_samples;
+}
+
 float ao_estimate(ivec2 pixel, vec3 p, vec3 n, float first, uint patterns) {
     float sum = 0.0;
     for (uint j = 0u; j < patterns; ++j) {

@@ -1,7 +1,9 @@
 // Per-effect GPU counters and work lists (indirect dispatch arguments first). build.rs
 // generates the Rust struct `CountersHeader` from the block `Counters`; the CPU resets it
 // every frame. The members, in order:
-//   dispatch_x, _y, _z        work blocks listed (indirect dispatch x), y = z = 1
+//   dispatch_x, _y, _z        work blocks listed (indirect dispatch x), y = z = 1; for a list of
+//                             single pixels (block shift 0), its 64-pixel workgroups as x * y
+//   listed_pixels             entries of a list of single pixels
 //   disoccluded_pixels        pixels that failed eq 3 (or had no history)
 //   computed_pixels           pixels the effect evaluated (low-resolution ones for half res)
 //   fixup_pixels              full-resolution fix-ups (half-resolution indirect light)
@@ -10,7 +12,15 @@
 //   refresh_evaluations       pattern evaluations of the refresh tile (every pattern counts)
 //   samples                   hemisphere samples taken (SSDO: their sum over computed_pixels)
 //   invalidated_pixels        pixels whose history held but a moving object's reach dropped it
-//   data[]                    blocks (x | y << 16), then fix-up pixels (x | y << 16)
+//   lowres_samples            low-resolution samples listed for the gather (half-res indirect)
+//   lowres_dispatch_x, _y, _z the spread gather's workgroups (classify), y = z = 1
+//   lowres_list               index in `data` of the low-resolution sample list
+//   {gather,fixup,refresh}_   work efficiency of the effect's estimating passes, each:
+//     invocations             lanes launched (workgroups x local size, per pass over a list)
+//     active_invocations      lanes that evaluated an estimate (or part of one)
+//     serial_evaluations      the most estimator evaluations (VPLs, taps, samples) one lane ran
+//   data[]                    blocks (x | y << 16), then fix-up pixels, then low-resolution
+//                             samples (x | y << 16)
 // COUNTERS_MEMBERS lets a pass that fills several effects' lists (the reprojection) declare
 // one block per effect with the same layout.
 #ifndef COUNTERS_GLSL
@@ -20,6 +30,7 @@
     uint dispatch_x;                                                                           \
     uint dispatch_y;                                                                           \
     uint dispatch_z;                                                                           \
+    uint listed_pixels;                                                                        \
     uint disoccluded_pixels;                                                                   \
     uint computed_pixels;                                                                      \
     uint fixup_pixels;                                                                         \
@@ -30,6 +41,20 @@
     uint refresh_evaluations;                                                                  \
     uint samples;                                                                              \
     uint invalidated_pixels;                                                                   \
+    uint lowres_samples;                                                                       \
+    uint lowres_dispatch_x;                                                                    \
+    uint lowres_dispatch_y;                                                                    \
+    uint lowres_dispatch_z;                                                                    \
+    uint lowres_list;                                                                          \
+    uint gather_invocations;                                                                   \
+    uint gather_active_invocations;                                                            \
+    uint gather_serial_evaluations;                                                            \
+    uint fixup_invocations;                                                                    \
+    uint fixup_active_invocations;                                                             \
+    uint fixup_serial_evaluations;                                                             \
+    uint refresh_invocations;                                                                  \
+    uint refresh_active_invocations;                                                           \
+    uint refresh_serial_evaluations;                                                           \
     uint data[];
 
 #ifndef COUNTERS_LANES
@@ -39,6 +64,17 @@
 layout(set = 1, binding = COUNTERS_BINDING, std430) buffer Counters {
     COUNTERS_MEMBERS
 } counters;
+#endif
+
+#ifndef COUNTERS_LANES
+// One workgroup's share of a pass's work-efficiency counters, called by one invocation per
+// workgroup: `launched` lanes, `active` of them evaluating, the most evaluations of one lane.
+#define COUNT_WORK(role, launched, active, serial)                                              \
+    {                                                                                          \
+        atomicAdd(counters.role##_invocations, launched);                                      \
+        if ((active) > 0u) atomicAdd(counters.role##_active_invocations, active);              \
+        if ((serial) > 0u) atomicMax(counters.role##_serial_evaluations, serial);              \
+    }
 #endif
 
 #endif // COUNTERS_GLSL

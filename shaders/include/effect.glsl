@@ -10,12 +10,21 @@ layout(push_constant) uniform Effect {
     uvec4 refresh_rect;    // refresh tile [x0, x1) x [y0, y1) as (x0, y0, x1, y1) [px]; empty = none
     uint refresh_feather;  // width of the refresh tile's blend ramp [px]; 0 = hard tile
     uint history_valid;    // 0 on the first frame, after a resize or a camera cut
-    uint block_shift;      // log2 of the work-block side (3: 8x8, 4: 16x16)
+    uint block_shift;      // log2 of the work-block side (3: 8x8, 4: 16x16; 0: single pixels)
     uint pattern;          // this frame's pattern index
 } effect;
 
-// Full-resolution pixel of local invocation `local` in listed work block `index`.
+// Full-resolution pixel of local invocation `local` in listed work block `index`; with a
+// list of single pixels (block shift 0), entry 64 w + i of the list for invocation i of
+// workgroup w (in x then y), or (-1, -1), outside the frame, past the list's end.
 ivec2 block_pixel(uint index, uvec2 local) {
+    if (effect.block_shift == 0u) {
+        uint group = gl_WorkGroupID.y * gl_NumWorkGroups.x + gl_WorkGroupID.x;
+        uint i = group * 64u + local.y * 8u + local.x;
+        if (i >= counters.listed_pixels) return ivec2(-1);
+        uint packed = counters.data[i];
+        return ivec2(packed & 0xffffu, packed >> 16);
+    }
     uint packed = counters.data[index];
     return ivec2(uvec2(packed & 0xffffu, packed >> 16) << effect.block_shift) + ivec2(local);
 }

@@ -55,6 +55,7 @@ layout(set = 0, binding = 0, std430) readonly buffer Frame {
     uint vpl_visibility;       // screen-space visibility test of each VPL (0/1)
     float vpl_march_near_px;   // nearest step of that visibility march [px]
     uint vpl_interleave;       // interleaved gather: block side N, one VPL subset per pixel (1 = off)
+    uint vpl_lanes;            // lanes sharing a low-resolution sample's VPLs (compacted gather)
     uint ssdo_samples;         // SSDO hemisphere samples per pixel (K), without the pre-pass
     uint ssdo_min_samples;     // with the pre-pass: a flat block's samples (whole Halton periods)
     uint ssdo_prepass_scale;   // with the pre-pass: its resolution divisor

@@ -35,6 +35,13 @@ vec4 indirect_share(vec3 p, vec3 n, ivec2 pixel) {
     return indirect_pattern(p, n, effect.pattern, pixel, frame.vpl_interleave);
 }
 
+// One lane's part of pattern `pattern`'s every-VPL estimate (rgb only): the parts of lanes
+// 0..lanes-1 sum to indirect_pattern(p, n, pattern, pixel, 1u).rgb.
+vec3 indirect_part(vec3 p, vec3 n, uint pattern, ivec2 pixel, uint lane, uint lanes) {
+    if (frame.indirect_ramp != 0u) return lane == 0u ? p : vec3(0.0);
+    return rsm_gather_part(p, n, pattern, pixel, lane, lanes);
+}
+
 // World-space size of one pixel at p, at a sampling step of `step` full-resolution pixels.
 float pixel_footprint(vec3 p, float step) {
     return 2.0 * distance(p, frame.camera_pos) * frame.tan_half_fov / float(frame.size.y) * step;

@@ -34,4 +34,13 @@ vec4 refresh_sum(vec4 mine) {
     return refresh_partial[0];
 }
 
+// The refresh workgroup's work counters (one invocation calls it): REFRESH_THREADS lanes
+// launched, the first `limit` of them evaluating ceil(limit / REFRESH_THREADS) patterns of
+// `taps` evaluations each. Needs counters.glsl.
+void refresh_count_work(uint limit, uint taps) {
+    uint busy = min(limit, REFRESH_THREADS);
+    uint per_lane = (limit + REFRESH_THREADS - 1u) / REFRESH_THREADS;
+    COUNT_WORK(refresh, REFRESH_THREADS, busy, per_lane * taps)
+}
+
 #endif // REFRESH_GLSL

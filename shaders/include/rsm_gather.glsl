@@ -6,6 +6,7 @@
 
 #include "frame.glsl"
 #include "patterns.glsl"
+#include "spread.glsl"
 
 // Flux Phi_q of the VPL at RSM texel `texel`, world position q: the stored albedo x I times
 // the factors rsm.frag leaves out to keep fp16 values normal, the spot's cone factor and the
@@ -117,6 +118,16 @@ vec3 rsm_gather_all(vec3 p, vec3 n, uvec2 share, uint side) {
     return side == 1u ? sum : sum * float(side * side);
 }
 
+// Lane `lane` of `lanes` of the every-texel gather (side 1): texels lane, lane + lanes, ... in
+// row-major order, unscaled. The lanes' sum is rsm_gather_all(p, n, uvec2(0), 1).
+vec3 rsm_gather_all_part(vec3 p, vec3 n, uint lane, uint lanes) {
+    uint size = uint(frame.shadow_map_size);
+    vec3 sum = vec3(0.0);
+    for (uint k = lane; k < size * size; k += lanes)
+        sum += vpl_term(p, n, ivec2(k % size, k / size));
+    return sum;
+}
+
 // VPLs drawn around p's projection into the RSM with a density that falls off as
 // 1/r^2 beyond one texel (uniform inside it), each weighted by the inverse density, i.e. by its
 // squared distance (Dachsbacher & Stamminger's weighting). The disc reaches the farthest RSM
@@ -126,7 +137,7 @@ vec3 rsm_gather_all(vec3 p, vec3 n, uvec2 share, uint side) {
 // points (every k-th point instead would lie on a few lines: a stride of the R2 lattice is a
 // poor lattice). `pattern` rotates the points and shifts the radii (a new pattern each
 // frame); `seed` rotates per pixel (per interleaving block).
-vec3 rsm_gather_sampled(vec3 p, vec3 n, uint pattern, uint first, uint end, float seed) {
+vec3 rsm_sampled_sum(vec3 p, vec3 n, uint pattern, uint first, uint end, uint stride, float seed) {
     float size = frame.shadow_map_size;
     vec2 c = rsm_centre(p);
     vec2 far_corner = max(abs(c), abs(c - vec2(size)));
@@ -143,7 +154,7 @@ vec3 rsm_gather_sampled(vec3 p, vec3 n, uint pattern, uint first, uint end, floa
     float angle = TWO_PI * (float(bitfieldReverse(j) >> 8) * (1.0 / 16777216.0) + seed);
     uint shift = j * INV_GOLDEN_RATIO_FIXED;
     vec3 sum = vec3(0.0);
-    for (uint i = first; i < end; ++i) {
+    for (uint i = first; i < end; i += stride) {
         vec2 u = r2_point(i, shift);
         float u1 = u.x;
         float u2 = u.y;
@@ -155,7 +166,12 @@ vec3 rsm_gather_sampled(vec3 p, vec3 n, uint pattern, uint first, uint end, floa
         float weight = max(r, r0) * max(r, r0) / (density * r0 * r0);
         sum += weight * vpl_term(p, n, ivec2(floor(x)));
     }
-    return sum / float(max(end - first, 1u));
+    return sum;
+}
+
+// The mean over points [first, end) of the sequence: one pattern's estimate from that run.
+vec3 rsm_gather_sampled(vec3 p, vec3 n, uint pattern, uint first, uint end, float seed) {
+    return rsm_sampled_sum(p, n, pattern, first, end, 1u, seed) / float(max(end - first, 1u));
 }
 
 // Pattern `pattern` at `pixel` from the pixel's share of the VPLs: every VPL with
@@ -175,6 +191,16 @@ vec3 rsm_gather(vec3 p, vec3 n, uint pattern, ivec2 pixel, uint interleave) {
     float seed = interleaved_gradient_noise(pixel / int(interleave));
     // vpls <= 16384 and shares <= 64 (RenderConfig::validate): no overflow.
     return rsm_gather_sampled(p, n, pattern, share * vpls / shares, (share + 1u) * vpls / shares, seed);
+}
+
+// Lane `lane` of `lanes` of pattern `pattern`'s every-VPL gather at `pixel` (rsm_gather with
+// interleave 1): the lanes' parts sum to it, each lane evaluating every lanes-th VPL, so a
+// workgroup gathers one pixel in 1 / lanes of one thread's time.
+vec3 rsm_gather_part(vec3 p, vec3 n, uint pattern, ivec2 pixel, uint lane, uint lanes) {
+    uint vpls = frame.vpl_count;
+    if (vpls == 0u) return rsm_gather_all_part(p, n, lane, lanes);
+    float seed = interleaved_gradient_noise(pixel);
+    return rsm_sampled_sum(p, n, pattern, lane, vpls, lanes, seed) / float(vpls);
 }
 
 #endif // RSM_GATHER_GLSL

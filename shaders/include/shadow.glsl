@@ -100,6 +100,11 @@ float pcf_disc(Receiver r, uint count, uint pattern, ivec2 pixel) {
 
 // Visibility of world point p (normal n) seen at `pixel` with the configured kernel; `pattern`
 // (a whole number, carried as a float like the history's count) picks the disc's pattern.
+// Shadow-map taps of one pattern (the work counters' evaluations).
+uint shadow_taps() {
+    return frame.pcf_kernel == 1u ? frame.pcf_count : frame.pcf_count * frame.pcf_count;
+}
+
 float shadow_visibility(vec3 p, vec3 n, float pattern, ivec2 pixel) {
     vec3 l = safe_normalize(frame.light_pos - p, -frame.light_dir);
     float cos_surface = dot(n, l);

@@ -11,7 +11,9 @@
 //!                                                     // over the measured frames that did work
 //!   "skipped_frames": n,  // measured frames that recorded no pass (`--skip-unchanged`)
 //!   "counter_means": { name: mean },  // each counter's mean over measured frames, and
-//!                                     // ssdo_samples_per_pixel = ssdo_samples / ssdo_computed_pixels
+//!                                     // ssdo_samples_per_pixel = ssdo_samples / ssdo_computed_pixels,
+//!                                     // <pass>_lane_efficiency = sum of <pass>_active_invocations
+//!                                     //   / sum of <pass>_invocations
 //!   "frames": [ { "index", "warmup", "passes": { name: ms }, "skipped": [name],
 //!                 "skip_reasons": { name: "unchanged" | "converged" },
 //!                 "counters": { name: n } } ] }     // every frame, warmup ones marked
@@ -123,7 +125,26 @@ fn counter_means(measured: &[&FrameTiming]) -> BTreeMap<String, f64> {
             means.insert("ssdo_samples_per_pixel".into(), samples / pixels);
         }
     }
+    for (pass, efficiency) in lane_efficiencies(&sums) {
+        means.insert(format!("{pass}_lane_efficiency"), efficiency);
+    }
     means
+}
+
+/// Per pass with work-efficiency counters (`<pass>_invocations`, `<pass>_active_invocations`):
+/// active over launched lanes, a ratio of sums over the frames (frames weigh by their lanes).
+/// A GPU charges a launched lane whether or not it works; lavapipe charges the work.
+fn lane_efficiencies(sums: &BTreeMap<String, (f64, usize)>) -> Vec<(String, f64)> {
+    sums.iter()
+        .filter_map(|(name, (launched, _))| {
+            let pass = name.strip_suffix("_invocations")?;
+            if pass.ends_with("_active") || *launched <= 0.0 {
+                return None;
+            }
+            let (active, _) = sums.get(&format!("{pass}_active_invocations"))?;
+            Some((pass.to_string(), active / launched))
+        })
+        .collect()
 }
 
 fn fps(ms: Option<f64>) -> Option<f64> {
@@ -272,12 +293,12 @@ impl Report {
         let f = |v: Option<f64>| v.map_or("-".to_string(), |v| format!("{v:.3}"));
         let f1 = |v: Option<f64>| v.map_or("-".to_string(), |v| format!("{v:.1}"));
         out += &format!(
-            "{:<14} {:>10} {:>10} {:>10} {:>10} {:>9} {:>8}\n",
+            "{:<18} {:>10} {:>10} {:>10} {:>10} {:>9} {:>8}\n",
             "pass", "median ms", "mean ms", "p95 ms", "fps equiv", "recorded", "skipped"
         );
         for p in &self.passes {
             out += &format!(
-                "{:<14} {:>10} {:>10} {:>10} {:>10} {:>9} {:>8}\n",
+                "{:<18} {:>10} {:>10} {:>10} {:>10} {:>9} {:>8}\n",
                 p.name,
                 f(p.median_ms),
                 f(p.mean_ms),
@@ -288,7 +309,7 @@ impl Report {
             );
         }
         out += &format!(
-            "{:<14} {:>10} {:>10} {:>10} {:>10}\n",
+            "{:<18} {:>10} {:>10} {:>10} {:>10}\n",
             "total",
             f(self.total.median_ms),
             f(self.total.mean_ms),
@@ -302,6 +323,19 @@ impl Report {
                 .map(|(n, v)| format!("{n} {v:.1}"))
                 .collect();
             out += &format!("counters (mean per frame): {}\n", means.join(", "));
+            let lanes: Vec<String> = self
+                .counter_means
+                .iter()
+                .filter_map(|(n, v)| {
+                    Some(format!("{} {v:.2}", n.strip_suffix("_lane_efficiency")?))
+                })
+                .collect();
+            if !lanes.is_empty() {
+                out += &format!(
+                    "lane efficiency (active / launched invocations): {}\n",
+                    lanes.join(", ")
+                );
+            }
         }
         out
     }
@@ -329,6 +363,17 @@ mod tests {
         assert_eq!(m["ssdo_samples"], 8000.0);
         // 16000 samples over 400 pixels, not the mean of 10 and 50.
         assert_eq!(m["ssdo_samples_per_pixel"], 40.0);
+        let lanes = counter_means(&[
+            &frame(vec![
+                ("indirect_fixup_invocations", 128),
+                ("indirect_fixup_active_invocations", 64),
+            ]),
+            &frame(vec![
+                ("indirect_fixup_invocations", 64),
+                ("indirect_fixup_active_invocations", 64),
+            ]),
+        ]);
+        assert_eq!(lanes["indirect_fixup_lane_efficiency"], 128.0 / 192.0);
         let none = counter_means(&[&frame(vec![
             ("ssdo_computed_pixels", 0),
             ("ssdo_samples", 0),

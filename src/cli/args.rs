@@ -159,6 +159,10 @@ pub struct SceneArgs {
     /// geometry-aware NxN filter combines them (1 = off, up to 8).
     #[arg(long, default_value_t = IndirectConfig::default().interleave, value_parser = clap::value_parser!(u32).range(1..=IndirectConfig::MAX_INTERLEAVE as i64))]
     pub interleave: u32,
+    /// Lanes that share each low-resolution sample's VPLs in the half-resolution gather (a
+    /// power of two, 1-64; more lanes hide a GPU's memory latency, fewer sum less).
+    #[arg(long, default_value_t = IndirectConfig::default().vpl_lanes)]
+    pub vpl_lanes: u32,
     /// How indirect light is smoothed over time: `accumulate` (the thesis's cache) or `ccipca`
     /// (Chen et al. 2012: a new noisy gather of --vpls per pixel each frame, projected on
     /// incrementally estimated principal components).
@@ -396,6 +400,7 @@ impl SceneArgs {
                 visibility: self.vpl_visibility,
                 half_res: self.half_res,
                 interleave: self.interleave,
+                vpl_lanes: self.vpl_lanes,
                 filter: self.indirect_filter,
                 noisy_half_res: self.noisy_half_res,
                 bases: self.bases,

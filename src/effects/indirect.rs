@@ -1,34 +1,60 @@
 //! One-bounce indirect light from the reflective shadow map (Lin 2013 section 3.3, eqs 9-10):
-//! the gather at half resolution over the blocks that need work, geometry-aware upsampling
-//! with a discard mask, and a full-resolution fix-up over the compacted list of discarded
-//! pixels, all merged into the indirect history. Without half resolution, one
-//! full-resolution gather per block. It always goes through the reprojection: without reuse
-//! every pixel is new and every block listed, with the fixed pattern 0.
+//! the gather at half resolution over a compacted list of the low-resolution samples that
+//! pixels needing work read (over the listed blocks with interleaving), geometry-aware
+//! upsampling with a discard mask, and a full-resolution fix-up over the compacted list of
+//! discarded pixels, all merged into the indirect history. Without half resolution, one
+//! full-resolution gather per block. The fix-up and the refresh tile spread each pixel's
+//! VPLs over a workgroup (indirect_spread.comp). It always goes through the reprojection:
+//! without reuse every pixel is new and every block listed, with the fixed pattern 0.
 
-use super::effect::{
-    refresh_dispatch, Effect, EffectId, FrameInfo, Recording, Registration, Setup, TermKind,
-};
+use super::effect::{Effect, EffectId, FrameInfo, Recording, Registration, Setup, TermKind};
 use super::resolve::EffectResources;
 use crate::error::Result;
 use crate::passes::compute::{ComputePass, Dispatch};
 use crate::passes::decl::{Bind, Slot, Use};
 use crate::passes::{PassId, PassLayout};
 use crate::renderer::config::{IndirectFilter, RenderConfig};
-use crate::renderer::counters::FIXUP_DISPATCH_OFFSET;
+use crate::renderer::counters::{FIXUP_DISPATCH_OFFSET, LOWRES_DISPATCH_OFFSET};
 use crate::renderer::effect::{self, TemporalEffect};
 use crate::renderer::targets::{Target, Targets, STATE_FORMAT};
 use crate::renderer::temporal::Sampling;
 use crate::shaders::{self, EffectPush};
-use crate::vk::{Buffer, Context, Image, ImageDesc};
+use crate::vk::cmd::Recorder;
+use crate::vk::{Access, Buffer, Context, Image, ImageDesc, Tracker};
 use ash::vk;
 use gpu_allocator::MemoryLocation;
+use std::cell::Cell;
 use std::sync::Arc;
 
 /// 1 where the upsampling found no acceptable neighbour (Figure 4.1). Written only for the
 /// pixels recomputed this frame, so it is not discarded between frames.
 const DISCARD: Slot = Slot::Own(0);
-/// One 9x9 low-resolution tile (block plus its right and bottom apron) per listed block.
+/// With interleaving: one 9x9 low-resolution tile (block plus its right and bottom apron) per
+/// listed block.
 const LOWRES: Slot = Slot::OwnBuffer(0);
+/// Without: the low-resolution samples, each computed once, where the classification listed it.
+const LOWRES_IMAGE: Slot = Slot::Own(1);
+/// Per low-resolution sample, in rows: 1 where a workgroup of the classification listed a
+/// block-border sample this frame; the gather sets it back to 0. (A buffer: naga reads no
+/// image atomics.)
+const CLAIMS: Slot = Slot::OwnBuffer(2);
+/// One estimate (rgb, squared luminance) per refresh-tile pixel and pattern.
+const PARTIALS: Slot = Slot::OwnBuffer(1);
+
+/// Lanes of indirect_spread.comp's workgroups (`SPREAD_LANES`).
+const SPREAD_LANES: u32 = 64;
+/// Vulkan's least `maxComputeWorkGroupCount[0]`: longer lists are strided over.
+const MAX_GROUPS: u32 = 65535;
+
+/// Lanes that share one every-VPL estimate in indirect_spread.comp
+/// (`spread_lanes_per_estimate`): all of them, or for fewer evaluations the next power of two.
+pub fn lanes_per_estimate(c: &RenderConfig) -> u32 {
+    let evaluations = match c.indirect.vpls {
+        0 => c.rsm_size * c.rsm_size,
+        v => v,
+    };
+    evaluations.clamp(1, SPREAD_LANES).next_power_of_two()
+}
 
 /// Bindings 0-5 of every indirect pass.
 macro_rules! gather_inputs {
@@ -44,6 +70,34 @@ macro_rules! gather_inputs {
         ]
     };
 }
+
+const CLASSIFY: &[Bind] = &[
+    Bind::new(0, Slot::GPosition, Use::Sampled),
+    Bind::new(5, Slot::Counters, Use::WorkList),
+    Bind::new(7, Slot::State, Use::StorageRead),
+    Bind::new(11, CLAIMS, Use::BufferReadWrite),
+];
+
+const LOWRES_COMPACT: &[Bind] = gather_inputs![
+    Bind::new(6, LOWRES_IMAGE, Use::StorageWrite),
+    Bind::new(11, CLAIMS, Use::BufferReadWrite),
+];
+
+const UPSAMPLE_IMAGE: &[Bind] = gather_inputs![
+    Bind::new(6, LOWRES_IMAGE, Use::StorageRead),
+    Bind::new(7, Slot::History, Use::StorageReadWrite),
+    Bind::new(8, Slot::State, Use::StorageRead),
+    Bind::new(9, DISCARD, Use::StorageReadWrite),
+    Bind::new(10, Slot::Moments, Use::StorageReadWrite),
+];
+
+/// The refresh tile's patterns into the partials, and their resolve into the history.
+const REFRESH: &[Bind] = gather_inputs![
+    Bind::new(6, Slot::History, Use::StorageReadWrite),
+    Bind::new(7, Slot::State, Use::StorageRead),
+    Bind::new(8, Slot::Moments, Use::StorageReadWrite),
+    Bind::new(9, PARTIALS, Use::BufferReadWrite),
+];
 
 const LOWRES_GATHER: &[Bind] = gather_inputs![
     Bind::new(6, LOWRES, Use::BufferWrite),
@@ -75,36 +129,68 @@ pub const REGISTRATION: Registration = Registration {
 fn layouts() -> Vec<PassLayout> {
     vec![
         ComputePass::layout(
+            PassId::IndirectClassify,
+            &shaders::INDIRECT_CLASSIFY_COMP,
+            CLASSIFY,
+        ),
+        ComputePass::layout(
+            PassId::IndirectGather,
+            &shaders::INDIRECT_SPREAD_COMP_GATHER,
+            LOWRES_COMPACT,
+        ),
+        ComputePass::layout(
             PassId::IndirectGather,
             &shaders::INDIRECT_LOWRES_COMP,
             LOWRES_GATHER,
         ),
         ComputePass::layout(
             PassId::IndirectUpsample,
-            &shaders::INDIRECT_UPSAMPLE_COMP,
+            &shaders::INDIRECT_UPSAMPLE_COMP_IMAGE,
+            UPSAMPLE_IMAGE,
+        ),
+        ComputePass::layout(
+            PassId::IndirectUpsample,
+            &shaders::INDIRECT_UPSAMPLE_COMP_SLOTS,
             UPSAMPLE,
         ),
         ComputePass::layout(
             PassId::IndirectFixup,
-            &shaders::INDIRECT_GATHER_COMP_FIXUP,
+            &shaders::INDIRECT_SPREAD_COMP_FIXUP,
             GATHER,
         ),
         ComputePass::layout(
             PassId::IndirectGather,
-            &shaders::INDIRECT_GATHER_COMP_BLOCKS,
+            &shaders::INDIRECT_GATHER_COMP,
             GATHER,
         ),
         ComputePass::layout(
             PassId::IndirectRefresh,
-            &shaders::INDIRECT_GATHER_COMP_REFRESH,
-            GATHER,
+            &shaders::INDIRECT_SPREAD_COMP_REFRESH,
+            REFRESH,
+        ),
+        ComputePass::layout(
+            PassId::IndirectRefresh,
+            &shaders::INDIRECT_SPREAD_COMP_RESOLVE,
+            REFRESH,
         ),
     ]
 }
 
+/// How the half-resolution gather finds its samples.
+enum LowRes {
+    /// A list of the samples needed (classification), each sample's VPLs spread over
+    /// `--vpl-lanes` lanes (no interleaving).
+    Compact {
+        classify: ComputePass,
+        gather: ComputePass,
+    },
+    /// Every sample of each listed block's 9x9 tile (interleaving reconstructs across it).
+    Blocks(ComputePass),
+}
+
 /// The half-resolution chain: gather, upsample, fix-up.
 struct HalfRes {
-    lowres: ComputePass,
+    lowres: LowRes,
     upsample: ComputePass,
     fixup: ComputePass,
 }
@@ -118,13 +204,20 @@ enum Gather {
 struct Sized {
     temporal: TemporalEffect,
     lowres: Buffer,
+    lowres_image: Image,
+    claims: Buffer,
+    /// Whether `claims` has been cleared (once, before its first use).
+    claims_cleared: Cell<bool>,
+    partials: Buffer,
     discard: Image,
 }
 
 pub struct IndirectEffect {
     gather: Gather,
-    /// The refresh tile at full resolution, one workgroup per pixel.
+    /// The refresh tile at full resolution: every (pixel, pattern) spread over lanes, then
+    /// each pixel's patterns resolved into the history.
     refresh: ComputePass,
+    resolve: ComputePass,
     sized: Sized,
     push: EffectPush,
 }
@@ -133,38 +226,71 @@ impl IndirectEffect {
     pub fn new(s: &mut Setup<'_>) -> Result<Self> {
         let pass = |id, module, binds| ComputePass::new(s.ctx, s.pool, id, module, binds);
         let gather = if s.config.indirect.half_res {
+            let compact = s.config.indirect.interleave <= 1;
+            let (lowres, upsample) = if compact {
+                (
+                    LowRes::Compact {
+                        classify: pass(
+                            PassId::IndirectClassify,
+                            &shaders::INDIRECT_CLASSIFY_COMP,
+                            CLASSIFY,
+                        )?,
+                        gather: pass(
+                            PassId::IndirectGather,
+                            &shaders::INDIRECT_SPREAD_COMP_GATHER,
+                            LOWRES_COMPACT,
+                        )?,
+                    },
+                    pass(
+                        PassId::IndirectUpsample,
+                        &shaders::INDIRECT_UPSAMPLE_COMP_IMAGE,
+                        UPSAMPLE_IMAGE,
+                    )?,
+                )
+            } else {
+                (
+                    LowRes::Blocks(pass(
+                        PassId::IndirectGather,
+                        &shaders::INDIRECT_LOWRES_COMP,
+                        LOWRES_GATHER,
+                    )?),
+                    pass(
+                        PassId::IndirectUpsample,
+                        &shaders::INDIRECT_UPSAMPLE_COMP_SLOTS,
+                        UPSAMPLE,
+                    )?,
+                )
+            };
             Gather::Half(HalfRes {
-                lowres: pass(
-                    PassId::IndirectGather,
-                    &shaders::INDIRECT_LOWRES_COMP,
-                    LOWRES_GATHER,
-                )?,
-                upsample: pass(
-                    PassId::IndirectUpsample,
-                    &shaders::INDIRECT_UPSAMPLE_COMP,
-                    UPSAMPLE,
-                )?,
+                lowres,
+                upsample,
                 fixup: pass(
                     PassId::IndirectFixup,
-                    &shaders::INDIRECT_GATHER_COMP_FIXUP,
+                    &shaders::INDIRECT_SPREAD_COMP_FIXUP,
                     GATHER,
                 )?,
             })
         } else {
             Gather::Full(pass(
                 PassId::IndirectGather,
-                &shaders::INDIRECT_GATHER_COMP_BLOCKS,
+                &shaders::INDIRECT_GATHER_COMP,
                 GATHER,
             )?)
         };
         let refresh = pass(
             PassId::IndirectRefresh,
-            &shaders::INDIRECT_GATHER_COMP_REFRESH,
-            GATHER,
+            &shaders::INDIRECT_SPREAD_COMP_REFRESH,
+            REFRESH,
+        )?;
+        let resolve = pass(
+            PassId::IndirectRefresh,
+            &shaders::INDIRECT_SPREAD_COMP_RESOLVE,
+            REFRESH,
         )?;
         Ok(Self {
             gather,
             refresh,
+            resolve,
             sized: Self::create_sized(s.ctx, s.config)?,
             push: EffectPush::default(),
         })
@@ -177,7 +303,41 @@ impl IndirectEffect {
             Sampling::FullRes
         };
         let temporal = TemporalEffect::new(ctx, effect::INDIRECT, c, sampling)?;
+        let low = |name, format, usage| {
+            Image::new(
+                ctx,
+                name,
+                ImageDesc {
+                    width: c.width.div_ceil(2),
+                    height: c.height.div_ceil(2),
+                    format,
+                    usage,
+                },
+            )
+        };
+        let tile = temporal.schedule.tile() as u64;
         Ok(Sized {
+            lowres_image: low(
+                "indirect.lowres_image",
+                vk::Format::R32G32B32A32_SFLOAT,
+                vk::ImageUsageFlags::STORAGE | vk::ImageUsageFlags::TRANSFER_SRC,
+            )?,
+            claims: Buffer::new(
+                ctx,
+                "indirect.claims",
+                c.width.div_ceil(2) as u64 * c.height.div_ceil(2) as u64 * 4,
+                vk::BufferUsageFlags::STORAGE_BUFFER | vk::BufferUsageFlags::TRANSFER_DST,
+                MemoryLocation::GpuOnly,
+            )?,
+            claims_cleared: Cell::new(false),
+            // One vec4 per tile pixel and pattern.
+            partials: Buffer::new(
+                ctx,
+                "indirect.partials",
+                (tile * tile * c.temporal.rotation_limit as u64 * 16).max(16),
+                vk::BufferUsageFlags::STORAGE_BUFFER,
+                MemoryLocation::GpuOnly,
+            )?,
             // 9x9 texels of 16 bytes per block.
             lowres: Buffer::new(
                 ctx,
@@ -200,15 +360,21 @@ impl IndirectEffect {
         })
     }
 
-    fn own(&self) -> [[&Image; 2]; 1] {
-        [[&self.sized.discard, &self.sized.discard]]
+    fn own(&self) -> [[&Image; 2]; 2] {
+        let s = &self.sized;
+        [[&s.discard, &s.discard], [&s.lowres_image, &s.lowres_image]]
+    }
+
+    fn buffers(&self) -> [&Buffer; 3] {
+        let s = &self.sized;
+        [&s.lowres, &s.partials, &s.claims]
     }
 
     fn resources<'a>(
         &'a self,
         targets: &'a Targets,
-        own: &'a [[&'a Image; 2]; 1],
-        buffers: &'a [&'a Buffer; 1],
+        own: &'a [[&'a Image; 2]; 2],
+        buffers: &'a [&'a Buffer; 3],
     ) -> EffectResources<'a> {
         EffectResources {
             targets,
@@ -219,16 +385,52 @@ impl IndirectEffect {
     }
 
     fn passes(&self) -> Vec<&ComputePass> {
-        match &self.gather {
-            Gather::Half(h) => vec![&h.lowres, &h.upsample, &h.fixup, &self.refresh],
-            Gather::Full(p) => vec![p, &self.refresh],
+        let mut passes = match &self.gather {
+            Gather::Half(h) => match &h.lowres {
+                LowRes::Compact { classify, gather } => vec![classify, gather],
+                LowRes::Blocks(p) => vec![p],
+            }
+            .into_iter()
+            .chain([&h.upsample, &h.fixup])
+            .collect(),
+            Gather::Full(p) => vec![p],
+        };
+        passes.extend([&self.refresh, &self.resolve]);
+        passes
+    }
+
+    /// The claims start at zero; afterwards the gather releases each one it was given.
+    fn clear_claims(&self, rec: &Recorder<'_>, tracker: &mut Tracker) {
+        if self.sized.claims_cleared.replace(true) {
+            return;
         }
+        tracker.buffer(&self.sized.claims, Access::TransferDst);
+        tracker.flush(rec.device, rec.cmd);
+        rec.fill_zero(&self.sized.claims);
+    }
+
+    /// The refresh tile's two dispatches: (pixel, pattern) estimates spread over lanes, at
+    /// most MAX_GROUPS workgroups (they stride beyond), then one lane per pixel.
+    fn refresh_dispatches(&self, config: &RenderConfig) -> Option<(Dispatch, Dispatch)> {
+        let [x0, y0, x1, y1] = self.push.refresh_rect;
+        let pixels = x1.saturating_sub(x0) * y1.saturating_sub(y0);
+        if pixels == 0 {
+            return None;
+        }
+        let per_group = SPREAD_LANES / lanes_per_estimate(config);
+        let estimates = pixels as u64 * config.temporal.rotation_limit as u64;
+        let groups = estimates.div_ceil(per_group as u64).min(MAX_GROUPS as u64) as u32;
+        Some((
+            Dispatch::Groups(groups),
+            Dispatch::Groups(pixels.div_ceil(SPREAD_LANES)),
+        ))
     }
 }
 
 impl Effect for IndirectEffect {
     fn passes(&self) -> &'static [PassId] {
         &[
+            PassId::IndirectClassify,
             PassId::IndirectGather,
             PassId::IndirectUpsample,
             PassId::IndirectFixup,
@@ -238,6 +440,7 @@ impl Effect for IndirectEffect {
 
     fn accumulating(&self) -> &'static [PassId] {
         &[
+            PassId::IndirectClassify,
             PassId::IndirectGather,
             PassId::IndirectUpsample,
             PassId::IndirectFixup,
@@ -255,7 +458,7 @@ impl Effect for IndirectEffect {
     }
 
     fn bind(&self, ctx: &Context, targets: &Targets) -> Result<()> {
-        let (own, buffers) = (self.own(), [&self.sized.lowres]);
+        let (own, buffers) = (self.own(), self.buffers());
         let res = self.resources(targets, &own, &buffers);
         for p in self.passes() {
             p.bind(ctx, &res)?;
@@ -299,30 +502,43 @@ impl Effect for IndirectEffect {
     }
 
     fn record(&self, info: &FrameInfo<'_>, r: &mut Recording<'_>) {
-        let (own, buffers) = (self.own(), [&self.sized.lowres]);
+        let (own, buffers) = (self.own(), self.buffers());
         let res = self.resources(info.targets, &own, &buffers);
         let push = self.push.to_bytes();
         let blocks = Dispatch::Indirect { offset: 0 };
-        let mut run = |pass: &ComputePass, dispatch| {
-            r.timed(pass.id, |rec, tr| {
-                pass.record(rec, tr, info.frame, &res, &push, dispatch)
-            })
+        let record = |pass: &ComputePass, rec: &Recorder<'_>, tr: &mut Tracker, dispatch| {
+            pass.record(rec, tr, info.frame, &res, &push, dispatch)
         };
         match &self.gather {
-            Gather::Full(p) => run(p, blocks),
+            Gather::Full(p) => r.timed(p.id, |rec, tr| record(p, rec, tr, blocks)),
             Gather::Half(h) => {
-                run(&h.lowres, blocks);
-                run(&h.upsample, blocks);
-                run(
-                    &h.fixup,
-                    Dispatch::Indirect {
-                        offset: FIXUP_DISPATCH_OFFSET,
-                    },
-                );
+                match &h.lowres {
+                    LowRes::Compact { classify, gather } => {
+                        r.timed(classify.id, |rec, tr| {
+                            self.clear_claims(rec, tr);
+                            record(classify, rec, tr, blocks)
+                        });
+                        let listed = Dispatch::Indirect {
+                            offset: LOWRES_DISPATCH_OFFSET,
+                        };
+                        r.timed(gather.id, |rec, tr| record(gather, rec, tr, listed));
+                    }
+                    LowRes::Blocks(p) => r.timed(p.id, |rec, tr| record(p, rec, tr, blocks)),
+                }
+                r.timed(h.upsample.id, |rec, tr| {
+                    record(&h.upsample, rec, tr, blocks)
+                });
+                let fixups = Dispatch::Indirect {
+                    offset: FIXUP_DISPATCH_OFFSET,
+                };
+                r.timed(h.fixup.id, |rec, tr| record(&h.fixup, rec, tr, fixups));
             }
         }
-        if let Some(tile) = refresh_dispatch(&self.push) {
-            run(&self.refresh, tile);
+        if let Some((estimates, pixels)) = self.refresh_dispatches(info.config) {
+            r.timed(self.refresh.id, |rec, tr| {
+                record(&self.refresh, rec, tr, estimates);
+                record(&self.resolve, rec, tr, pixels);
+            });
         }
     }
 

@@ -556,7 +556,7 @@ impl Effect for SsdoEffect {
         let grid = &self.sized.images[1].desc;
         // With the cache the reprojection resets the temporal counters.
         if let Some(c) = &self.own_counters {
-            counters::record_reset(&r.rec, r.tracker, &c.gpu, 0);
+            counters::record_reset(&r.rec, r.tracker, &c.gpu, 0, 0);
         }
         let all = Dispatch::Pixels {
             width: grid.width,

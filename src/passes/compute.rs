@@ -132,7 +132,8 @@ impl ComputePass {
         decl::access(self.id.name(), self.binds, res, frame.parity, tracker);
         tracker.flush(rec.device, rec.cmd);
         rec.bind(&self.pipeline, &[frame.set, self.sets[frame.parity]]);
-        if !push.is_empty() {
+        // A shader without a push block (the classification) takes none.
+        if !push.is_empty() && !self.pipeline.push_stages.is_empty() {
             rec.push(&self.pipeline, push);
         }
         match dispatch {

@@ -24,6 +24,8 @@ pub enum PassId {
     SsaoRefresh,
     /// 5x5 Gaussian blur of the AO (no-reuse baseline only).
     Blur,
+    /// The half-resolution gather's list: the low-resolution samples the upsampling reads.
+    IndirectClassify,
     /// RSM gather (half resolution, or full resolution without half-res).
     IndirectGather,
     /// Geometry-aware upsampling of the half-resolution gather.
@@ -102,7 +104,7 @@ impl Change {
 }
 
 impl PassId {
-    pub const ALL: [PassId; 31] = [
+    pub const ALL: [PassId; 32] = [
         PassId::LightView,
         PassId::GBuffer,
         PassId::Reproject,
@@ -113,6 +115,7 @@ impl PassId {
         PassId::Ssao,
         PassId::SsaoRefresh,
         PassId::Blur,
+        PassId::IndirectClassify,
         PassId::IndirectGather,
         PassId::IndirectUpsample,
         PassId::IndirectFixup,
@@ -155,6 +158,7 @@ impl PassId {
             PassId::Reproject => &[Camera, Light, Object, Config],
             PassId::Shadow
             | PassId::ShadowRefresh
+            | PassId::IndirectClassify
             | PassId::IndirectGather
             | PassId::IndirectUpsample
             | PassId::IndirectFixup
@@ -194,6 +198,7 @@ impl PassId {
             PassId::Ssao => "ssao",
             PassId::SsaoRefresh => "ssao_refresh",
             PassId::Blur => "blur",
+            PassId::IndirectClassify => "indirect_classify",
             PassId::IndirectGather => "indirect_gather",
             PassId::IndirectUpsample => "indirect_upsample",
             PassId::IndirectFixup => "indirect_fixup",

@@ -221,7 +221,7 @@ pub fn audit_images(
     if list.is_empty() {
         return Ok(Vec::new());
     }
-    let pool = DescriptorPool::new(ctx, list.len() as u32)?;
+    let pool = DescriptorPool::new(ctx)?;
     let mut buffers = Vec::with_capacity(list.len());
     let mut sets = Vec::with_capacity(list.len());
     for a in list {

@@ -212,6 +212,10 @@ pub struct IndirectConfig {
     /// disjoint subsets of the VPLs (vpls / N^2 each) and a geometry-aware N x N filter puts
     /// them back together. 1 = every pixel gathers every VPL.
     pub interleave: u32,
+    /// Lanes that share one low-resolution sample's VPLs in the compacted half-resolution
+    /// gather (a power of two, 1-64): a GPU hides the RSM reads' latency only with enough lanes
+    /// in flight, and one lane looping over every VPL is one long dependency chain.
+    pub vpl_lanes: u32,
     /// What becomes of the noisy per-frame gather: the thesis's accumulation, or CCIPCA.
     pub filter: IndirectFilter,
     /// The noisy gather of CCIPCA and the joint bilateral filters at half resolution: one
@@ -333,6 +337,7 @@ impl Default for IndirectConfig {
             visibility: false,
             half_res: true,
             interleave: 1,
+            vpl_lanes: 16,
             filter: IndirectFilter::Accumulate,
             noisy_half_res: false,
             bases: 3,
@@ -453,7 +458,7 @@ pub enum HistoryResample {
     /// The default: the bilinear blend of the four texels around the previous position. Each
     /// frame mixes neighbouring values again, so an ageing history drifts from the estimator's
     /// own converged value towards a smoother one, which on the box:bunny orbit is nearer the
-    /// ground truth (docs/results/lavapipe-orbit-resample-2026-12-03).
+    /// ground truth (docs/results/DECISIONS.md (lavapipe-orbit-resample-2026-12-03)).
     Bilinear,
     /// Of the four texels, the one whose carried surface point lands nearest the pixel, as it
     /// is (value, counts and point): no smear along the flow, the estimator's own value, but
@@ -770,6 +775,13 @@ impl RenderConfig {
             return bad(format!(
                 "interleaving block side {il} outside 1..={}",
                 IndirectConfig::MAX_INTERLEAVE
+            ));
+        }
+        let lanes = self.indirect.vpl_lanes;
+        if !(lanes.is_power_of_two() && lanes <= 64) {
+            return bad(format!(
+                "--vpl-lanes {lanes}: lanes sharing a sample's VPLs must be a power of two from 1 \
+                 to 64 (a workgroup's width)"
             ));
         }
         if self.indirect.vpls != 0 && self.indirect.vpls < il * il {

@@ -15,6 +15,19 @@ use std::sync::Arc;
 const HEADER_BYTES: u64 = CountersHeader::SIZE as u64;
 /// Byte offset of the fix-up pass's indirect dispatch arguments.
 pub const FIXUP_DISPATCH_OFFSET: u64 = CountersHeader::OFFSET_FIXUP_DISPATCH_X as u64;
+/// Byte offset of the compacted low-resolution gather's indirect dispatch arguments.
+pub const LOWRES_DISPATCH_OFFSET: u64 = CountersHeader::OFFSET_LOWRES_DISPATCH_X as u64;
+
+/// An estimating pass whose work efficiency the header counts (`COUNT_WORK` in counters.glsl).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Role {
+    /// The effect's main estimate over its list (the gather, SSAO, shadow, SSDO).
+    Gather,
+    /// The full-resolution fix-up of discarded pixels.
+    Fixup,
+    /// The refresh tile.
+    Refresh,
+}
 
 /// A header field an effect reports.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -32,6 +45,14 @@ pub enum Counter {
     Samples,
     /// Pixels whose history held but lay within a moving object's reach (`--invalidate`).
     Invalidated,
+    /// Low-resolution samples listed for the compacted half-resolution gather.
+    LowresSamples,
+    /// Lanes a pass launched (workgroups x local size; per round for a pass that strides).
+    Invocations(Role),
+    /// Launched lanes that evaluated an estimate or part of one.
+    ActiveInvocations(Role),
+    /// The most estimator evaluations (VPLs, taps, samples) one lane of the pass ran.
+    SerialEvaluations(Role),
 }
 
 impl Counter {
@@ -43,22 +64,38 @@ impl Counter {
             Counter::Refresh => h.refresh_evaluations,
             Counter::Samples => h.samples,
             Counter::Invalidated => h.invalidated_pixels,
+            Counter::LowresSamples => h.lowres_samples,
+            Counter::Invocations(r) => match r {
+                Role::Gather => h.gather_invocations,
+                Role::Fixup => h.fixup_invocations,
+                Role::Refresh => h.refresh_invocations,
+            },
+            Counter::ActiveInvocations(r) => match r {
+                Role::Gather => h.gather_active_invocations,
+                Role::Fixup => h.fixup_active_invocations,
+                Role::Refresh => h.refresh_active_invocations,
+            },
+            Counter::SerialEvaluations(r) => match r {
+                Role::Gather => h.gather_serial_evaluations,
+                Role::Fixup => h.fixup_serial_evaluations,
+                Role::Refresh => h.refresh_serial_evaluations,
+            },
         }
     }
 }
 
-/// The device-side buffer: header, one entry per work block, then (when `fixups`) one entry
-/// per pixel for the fix-up list.
+/// The device-side buffer: header, one entry per work block, then `lists` more entries (the
+/// half-resolution indirect light's fix-up pixels and low-resolution samples).
 pub fn create_gpu_buffer(
     ctx: &Arc<Context>,
     name: &str,
     max_blocks: u32,
-    fixups: u32,
+    lists: u64,
 ) -> Result<Buffer> {
     Buffer::new(
         ctx,
         name,
-        HEADER_BYTES + (max_blocks as u64 + fixups as u64) * 4,
+        HEADER_BYTES + (max_blocks as u64 + lists) * 4,
         vk::BufferUsageFlags::STORAGE_BUFFER
             | vk::BufferUsageFlags::INDIRECT_BUFFER
             | vk::BufferUsageFlags::TRANSFER_DST
@@ -67,14 +104,22 @@ pub fn create_gpu_buffer(
     )
 }
 
-/// Zero the counters, set both indirect dispatches to (0, 1, 1) and record the block-list size.
-pub fn record_reset(rec: &Recorder<'_>, tracker: &mut Tracker, gpu: &Buffer, max_blocks: u32) {
+/// Zero the counters, set the indirect dispatches to (0, 1, 1) and record the block-list size
+/// and where the low-resolution sample list starts in `data`.
+pub fn record_reset(
+    rec: &Recorder<'_>,
+    tracker: &mut Tracker,
+    gpu: &Buffer,
+    max_blocks: u32,
+    lowres_list: u32,
+) {
     tracker.buffer(gpu, Access::TransferDst);
     tracker.flush(rec.device, rec.cmd);
     let header = CountersHeader {
         dispatch_x: 0,
         dispatch_y: 1,
         dispatch_z: 1,
+        listed_pixels: 0,
         disoccluded_pixels: 0,
         computed_pixels: 0,
         fixup_pixels: 0,
@@ -85,6 +130,20 @@ pub fn record_reset(rec: &Recorder<'_>, tracker: &mut Tracker, gpu: &Buffer, max
         refresh_evaluations: 0,
         samples: 0,
         invalidated_pixels: 0,
+        lowres_samples: 0,
+        lowres_dispatch_x: 0,
+        lowres_dispatch_y: 1,
+        lowres_dispatch_z: 1,
+        lowres_list,
+        gather_invocations: 0,
+        gather_active_invocations: 0,
+        gather_serial_evaluations: 0,
+        fixup_invocations: 0,
+        fixup_active_invocations: 0,
+        fixup_serial_evaluations: 0,
+        refresh_invocations: 0,
+        refresh_active_invocations: 0,
+        refresh_serial_evaluations: 0,
     };
     rec.update_buffer(gpu, &header.to_bytes());
 }

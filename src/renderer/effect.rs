@@ -3,7 +3,7 @@
 //! reprojection pass and the accumulation rules are the same for every effect.
 
 use super::config::{Refresh, RenderConfig, FRAMES_IN_FLIGHT};
-use super::counters::{self, Counter, CounterReadback};
+use super::counters::{self, Counter, CounterReadback, Role};
 use super::targets::{PingPong, HISTORY_FORMAT, MOMENTS_FORMAT, REGISTRATION_FORMAT, STATE_FORMAT};
 use super::temporal::{budget_tile, RefreshSchedule, Sampling};
 use crate::error::Result;
@@ -17,14 +17,16 @@ use std::sync::Arc;
 #[derive(Clone, Copy, Debug)]
 pub struct EffectKind {
     pub name: &'static str,
-    /// log2 of the work-block side: 3 (8x8) or 4 (16x16).
+    /// log2 of the work-block side: 4 (16x16), 3 (8x8), or 0: a compacted list of single
+    /// pixels, 64 per workgroup (an effect whose pixels do not share a workgroup's data).
     pub block_shift: u32,
     /// Largest side of the refresh tile (the thesis: 64 for SSAO and shadows, 16 for indirect
     /// light); the refresh budget may make it smaller.
     pub refresh_tile: u32,
     /// Report names of the header words (see counters.rs) this effect fills.
     pub counters: &'static [(&'static str, Counter)],
-    /// Whether the effect has a full-resolution fix-up list.
+    /// Whether the effect has the half-resolution lists: full-resolution fix-up pixels and
+    /// low-resolution samples (`data` after the blocks, counters.glsl).
     pub fixups: bool,
     /// Which pixels a moving object takes the history from (`--invalidate`).
     pub moved: MovedReach,
@@ -56,13 +58,34 @@ pub enum MovedReach {
 
 pub const AO: EffectKind = EffectKind {
     name: "ao",
-    block_shift: 3,
+    block_shift: 0,
     refresh_tile: 64,
     counters: &[
         ("disoccluded_pixels", Counter::Disoccluded),
         ("ssao_computed_pixels", Counter::Computed),
         ("ssao_refresh_evaluations", Counter::Refresh),
         ("ssao_invalidated_pixels", Counter::Invalidated),
+        ("ssao_invocations", Counter::Invocations(Role::Gather)),
+        (
+            "ssao_active_invocations",
+            Counter::ActiveInvocations(Role::Gather),
+        ),
+        (
+            "ssao_serial_evaluations",
+            Counter::SerialEvaluations(Role::Gather),
+        ),
+        (
+            "ssao_refresh_invocations",
+            Counter::Invocations(Role::Refresh),
+        ),
+        (
+            "ssao_refresh_active_invocations",
+            Counter::ActiveInvocations(Role::Refresh),
+        ),
+        (
+            "ssao_refresh_serial_evaluations",
+            Counter::SerialEvaluations(Role::Refresh),
+        ),
     ],
     fixups: false,
     moved: MovedReach::AoRadius,
@@ -71,12 +94,33 @@ pub const AO: EffectKind = EffectKind {
 
 pub const SHADOW: EffectKind = EffectKind {
     name: "shadow",
-    block_shift: 3,
+    block_shift: 0,
     refresh_tile: 64,
     counters: &[
         ("shadow_computed_pixels", Counter::Computed),
         ("shadow_refresh_evaluations", Counter::Refresh),
         ("shadow_invalidated_pixels", Counter::Invalidated),
+        ("shadow_invocations", Counter::Invocations(Role::Gather)),
+        (
+            "shadow_active_invocations",
+            Counter::ActiveInvocations(Role::Gather),
+        ),
+        (
+            "shadow_serial_evaluations",
+            Counter::SerialEvaluations(Role::Gather),
+        ),
+        (
+            "shadow_refresh_invocations",
+            Counter::Invocations(Role::Refresh),
+        ),
+        (
+            "shadow_refresh_active_invocations",
+            Counter::ActiveInvocations(Role::Refresh),
+        ),
+        (
+            "shadow_refresh_serial_evaluations",
+            Counter::SerialEvaluations(Role::Refresh),
+        ),
     ],
     fixups: false,
     moved: MovedReach::ShadowFootprint,
@@ -92,6 +136,43 @@ pub const INDIRECT: EffectKind = EffectKind {
         ("indirect_fixup_pixels", Counter::Fixup),
         ("indirect_refresh_evaluations", Counter::Refresh),
         ("indirect_invalidated_pixels", Counter::Invalidated),
+        ("indirect_lowres_samples", Counter::LowresSamples),
+        (
+            "indirect_gather_invocations",
+            Counter::Invocations(Role::Gather),
+        ),
+        (
+            "indirect_gather_active_invocations",
+            Counter::ActiveInvocations(Role::Gather),
+        ),
+        (
+            "indirect_gather_serial_evaluations",
+            Counter::SerialEvaluations(Role::Gather),
+        ),
+        (
+            "indirect_fixup_invocations",
+            Counter::Invocations(Role::Fixup),
+        ),
+        (
+            "indirect_fixup_active_invocations",
+            Counter::ActiveInvocations(Role::Fixup),
+        ),
+        (
+            "indirect_fixup_serial_evaluations",
+            Counter::SerialEvaluations(Role::Fixup),
+        ),
+        (
+            "indirect_refresh_invocations",
+            Counter::Invocations(Role::Refresh),
+        ),
+        (
+            "indirect_refresh_active_invocations",
+            Counter::ActiveInvocations(Role::Refresh),
+        ),
+        (
+            "indirect_refresh_serial_evaluations",
+            Counter::SerialEvaluations(Role::Refresh),
+        ),
     ],
     fixups: true,
     moved: MovedReach::Inside,
@@ -101,7 +182,7 @@ pub const INDIRECT: EffectKind = EffectKind {
 /// SSDO with the cache (`--reuse on`): the factor's running mean rides in the moments' w.
 pub const SSDO: EffectKind = EffectKind {
     name: "ssdo",
-    block_shift: 3,
+    block_shift: 0,
     refresh_tile: 64,
     counters: &[
         ("disoccluded_pixels", Counter::Disoccluded),
@@ -109,6 +190,27 @@ pub const SSDO: EffectKind = EffectKind {
         ("ssdo_samples", Counter::Samples),
         ("ssdo_refresh_evaluations", Counter::Refresh),
         ("ssdo_invalidated_pixels", Counter::Invalidated),
+        ("ssdo_invocations", Counter::Invocations(Role::Gather)),
+        (
+            "ssdo_active_invocations",
+            Counter::ActiveInvocations(Role::Gather),
+        ),
+        (
+            "ssdo_serial_evaluations",
+            Counter::SerialEvaluations(Role::Gather),
+        ),
+        (
+            "ssdo_refresh_invocations",
+            Counter::Invocations(Role::Refresh),
+        ),
+        (
+            "ssdo_refresh_active_invocations",
+            Counter::ActiveInvocations(Role::Refresh),
+        ),
+        (
+            "ssdo_refresh_serial_evaluations",
+            Counter::SerialEvaluations(Role::Refresh),
+        ),
     ],
     fixups: false,
     moved: MovedReach::SsdoRadius,
@@ -135,6 +237,8 @@ pub struct TemporalEffect {
     pub state: Image,
     pub counters: Buffer,
     pub max_blocks: u32,
+    /// Index in the counters' `data` of the low-resolution sample list.
+    pub lowres_list: u32,
     pub schedule: RefreshSchedule,
     /// Refresh tiles still to draw after the last change of camera or light.
     pub refresh_left: u32,
@@ -172,9 +276,15 @@ impl TemporalEffect {
             )
         };
         let side = 1u32 << kind.block_shift;
-        // Blocks are listed by 16x16 reprojection groups, so count whole groups.
+        // Blocks are listed by 16x16 reprojection groups, so count whole groups (single
+        // pixels: every pixel).
         let max_blocks = width.div_ceil(16) * height.div_ceil(16) * (16 / side) * (16 / side);
-        let fixups = if kind.fixups { width * height } else { 0 };
+        // Fix-ups: every pixel at most; then every low-resolution sample at most.
+        let (fixups, lowres) = if kind.fixups {
+            (width * height, width.div_ceil(2) * height.div_ceil(2))
+        } else {
+            (0, 0)
+        };
         Ok(Self {
             kind,
             history: PingPong::new([
@@ -194,9 +304,10 @@ impl TemporalEffect {
                 ctx,
                 &format!("{}.counters", kind.name),
                 max_blocks,
-                fixups,
+                fixups as u64 + lowres as u64,
             )?,
             max_blocks,
+            lowres_list: max_blocks + fixups,
             schedule: RefreshSchedule::with_tile(width, height, tile),
             refresh_left: 0,
             readback: CounterReadback::new(ctx, FRAMES_IN_FLIGHT)?,
@@ -251,7 +362,13 @@ impl TemporalEffect {
     }
 
     pub fn reset_counters(&self, rec: &Recorder<'_>, tracker: &mut Tracker) {
-        counters::record_reset(rec, tracker, &self.counters, self.max_blocks);
+        counters::record_reset(
+            rec,
+            tracker,
+            &self.counters,
+            self.max_blocks,
+            self.lowres_list,
+        );
     }
 
     /// Copy this frame's counters for reading when `slot` comes round again.

@@ -104,6 +104,7 @@ pub fn frame_block(config: &RenderConfig, f: &FrameInputs<'_>) -> FrameBlock {
         vpl_visibility: ind.visibility as u32,
         vpl_march_near_px: IndirectConfig::MARCH_NEAR_PX,
         vpl_interleave: ind.interleave,
+        vpl_lanes: ind.vpl_lanes,
         ssdo_samples: config.ssdo.samples,
         ssdo_min_samples: config.ssdo.adaptive.map_or(0, |a| a.min),
         ssdo_prepass_scale: config.ssdo.adaptive.map_or(1, |a| a.scale),

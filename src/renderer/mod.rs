@@ -109,7 +109,7 @@ pub struct Renderer {
     motion: Motion,
     /// Objects each slot's last frame moved (its timing's `moved_objects`).
     moved: [usize; FRAMES_IN_FLIGHT],
-    _pool: DescriptorPool,
+    pool: DescriptorPool,
 }
 
 impl Renderer {
@@ -118,7 +118,7 @@ impl Renderer {
         let rendered = config.rendered();
         let textured =
             scene.mesh.has_textures() || scene.objects.iter().any(|o| o.mesh.has_textures());
-        let pool = DescriptorPool::new(ctx, 52 + scene.mesh.materials.len() as u32)?;
+        let pool = DescriptorPool::new(ctx)?;
         let light_view = LightViewPass::new(ctx, textured)?;
         let mut tracker = Tracker::new();
         let scene_gpu = SceneGpu::new(
@@ -196,7 +196,7 @@ impl Renderer {
             skips: SkipTracker::new(&reads),
             motion: Motion::new(&scene_objects),
             moved: [0; FRAMES_IN_FLIGHT],
-            _pool: pool,
+            pool,
         };
         renderer.bind()?;
         Ok(renderer)
@@ -262,6 +262,11 @@ impl Renderer {
     }
 
     /// Change the light; the light view is re-rendered on the next frame.
+    /// The descriptor sets this renderer allocated (`DescriptorPool::allocated`, `pools`).
+    pub fn descriptor_pool(&self) -> &DescriptorPool {
+        &self.pool
+    }
+
     pub fn set_light(&mut self, light: SpotLight) {
         self.scene.light = light;
     }

@@ -130,6 +130,17 @@ impl<'a> Recorder<'a> {
         };
     }
 
+    /// Fill the whole of `buffer` with zeros. The tracker must have put it in
+    /// `Access::TransferDst`.
+    pub fn fill_zero(&self, buffer: &Buffer) {
+        // SAFETY: recording outside rendering; the buffer has TRANSFER_DST usage (caller) and
+        // is in the transfer-write state (tracker); WHOLE_SIZE rounds down to a multiple of 4.
+        unsafe {
+            self.device
+                .cmd_fill_buffer(self.cmd, buffer.raw, 0, vk::WHOLE_SIZE, 0)
+        };
+    }
+
     /// Copy the whole of `image` into the start of `buffer` (tightly packed texels). The tracker
     /// must have put `image` in `Access::TransferSrc` and `buffer` in `Access::TransferDst`.
     pub fn copy_image_to_buffer(&self, image: &Image, buffer: &Buffer) {

@@ -2,6 +2,7 @@
 //! features ssgi needs, one graphics+compute queue, the allocator and the deletion queue.
 
 use super::debug::DebugNames;
+use super::descriptor_counts::DescriptorCounts;
 use super::instance::{Instance, ValidationLog};
 use crate::error::{Error, Result, VkContext};
 use ash::vk;
@@ -74,6 +75,10 @@ pub struct Context {
     submitted: AtomicU64,
     completed: AtomicU64,
     garbage: Mutex<Vec<(u64, Garbage)>>,
+    /// Descriptors per type that a set of each layout holds, from the bindings the layout was
+    /// created with (`pipeline::create_set_layouts`): what descriptor pools size from.
+    pub(crate) layout_counts:
+        Mutex<std::collections::HashMap<vk::DescriptorSetLayout, DescriptorCounts>>,
     /// Debug names and command labels (no-ops without `VK_EXT_debug_utils`).
     pub names: DebugNames,
     pub instance: Instance,
@@ -163,6 +168,7 @@ impl Context {
             allocator: ManuallyDrop::new(Mutex::new(allocator)),
             submitted: AtomicU64::new(0),
             completed: AtomicU64::new(0),
+            layout_counts: Mutex::new(std::collections::HashMap::new()),
             garbage: Mutex::new(Vec::new()),
             names,
             instance,

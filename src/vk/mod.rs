@@ -4,6 +4,7 @@ pub mod cmd;
 pub mod commands;
 pub mod context;
 pub mod debug;
+pub mod descriptor_counts;
 pub mod descriptors;
 pub mod instance;
 pub mod memory;
@@ -18,6 +19,7 @@ pub mod upload;
 
 pub use commands::{one_shot, FrameSlots};
 pub use context::{Context, ContextOptions, DeviceInfo, SubmitSync};
+pub use descriptor_counts::DescriptorCounts;
 pub use descriptors::{DescriptorPool, SetWriter};
 pub use memory::{Buffer, Image, ImageDesc};
 pub use pipeline::{GraphicsDesc, Pipeline};

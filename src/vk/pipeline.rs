@@ -2,8 +2,9 @@
 //! declares, checked against what naga reflected from the shaders.
 
 use super::context::{Context, Garbage};
+use super::descriptor_counts::{descriptor_type, DescriptorCounts};
 use crate::error::{Error, Result, VkContext};
-use crate::shaders::{DescriptorKind, ReflectedBinding, ShaderModuleInfo};
+use crate::shaders::{ReflectedBinding, ShaderModuleInfo};
 use ash::vk;
 use std::sync::Arc;
 
@@ -14,16 +15,6 @@ pub const ALL_STAGES: vk::ShaderStageFlags = vk::ShaderStageFlags::from_raw(
         | vk::ShaderStageFlags::FRAGMENT.as_raw()
         | vk::ShaderStageFlags::COMPUTE.as_raw(),
 );
-
-pub fn descriptor_type(kind: DescriptorKind) -> vk::DescriptorType {
-    match kind {
-        DescriptorKind::UniformBuffer => vk::DescriptorType::UNIFORM_BUFFER,
-        DescriptorKind::StorageBuffer => vk::DescriptorType::STORAGE_BUFFER,
-        DescriptorKind::SampledImage => vk::DescriptorType::SAMPLED_IMAGE,
-        DescriptorKind::StorageImage => vk::DescriptorType::STORAGE_IMAGE,
-        DescriptorKind::Sampler => vk::DescriptorType::SAMPLER,
-    }
-}
 
 /// The union of the modules' reflected bindings, sorted.
 pub fn reflected_union(modules: &[&ShaderModuleInfo]) -> Vec<ReflectedBinding> {
@@ -78,7 +69,14 @@ fn create_set_layouts(
         match unsafe { ctx.device.create_descriptor_set_layout(&info, None) }
             .vk("vkCreateDescriptorSetLayout")
         {
-            Ok(l) => layouts.push(l),
+            Ok(l) => {
+                let counts = DescriptorCounts::of(declared.iter().filter(|b| b.set == set));
+                ctx.layout_counts
+                    .lock()
+                    .unwrap_or_else(|e| e.into_inner())
+                    .insert(l, counts);
+                layouts.push(l)
+            }
             Err(e) => {
                 for l in layouts {
                     ctx.defer(Garbage::DescriptorSetLayout(l));

@@ -2,6 +2,8 @@
 //! check that no validation message was reported.
 #![allow(dead_code)]
 
+pub mod rsm;
+
 use ssgi::renderer::pcf::Pcf;
 use ssgi::renderer::targets::Target;
 use ssgi::renderer::{RenderConfig, Renderer};
