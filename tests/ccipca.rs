@@ -220,7 +220,15 @@ fn static_view_converges_and_stops_flickering() {
         "mean of the 96 noisy frames: relative RMSE {:.4}",
         ours.noisy_mean_error
     );
-    assert!(ours.noisy_mean_error < 0.35, "{}", ours.noisy_mean_error);
+    // The 1 / sqrt(frames) law from this run's own one-frame error (measured 0.2238 against
+    // 0.2101 expected): 25% over it allows for the frames' correlated patterns; a biased
+    // gather's mean stops falling and fails.
+    let expected = ours.noisy_error / 96f64.sqrt();
+    assert!(
+        ours.noisy_mean_error < 1.25 * expected,
+        "mean of the noisy frames {} against {expected} for an unbiased gather",
+        ours.noisy_mean_error
+    );
     assert!(
         article.error < 0.35 * article.noisy_error,
         "{}",

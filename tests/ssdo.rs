@@ -702,8 +702,10 @@ fn half_resolution_follows_full_resolution() {
         inner[0], inner[1], edge[0], edge[1]
     );
     assert!(n_inner > 8000, "{n_inner} interior pixels");
+    // Measured 0.0058 (modulation) and 0.0042 (bounce) on lavapipe; 0.01 is the documented
+    // bound: the joint bilateral upsampling may cost a hundredth in the interior, no more.
     assert!(
-        inner[0] <= 0.025 && inner[1] <= 0.025,
+        inner[0] <= 0.01 && inner[1] <= 0.01,
         "interior RMSE {inner:?}"
     );
     assert!(edge[0] <= 0.04 && edge[1] <= 0.04, "crease RMSE {edge:?}");
