@@ -300,13 +300,15 @@ mod tests {
 
     #[test]
     fn work_counts_pixels_fixups_and_refresh_but_not_disocclusions() {
+        // Distinct powers of two: the sum says which counters were counted.
         let c = [
-            ("disoccluded_pixels", 5),
-            ("ssao_computed_pixels", 0),
-            ("indirect_fixup_pixels", 2),
-            ("ssao_refresh_evaluations", 3),
+            ("disoccluded_pixels", 1),
+            ("ssao_computed_pixels", 2),
+            ("indirect_fixup_pixels", 4),
+            ("ssao_refresh_evaluations", 8),
+            ("indirect_gather_invocations", 16),
         ];
-        assert_eq!(work(&c), 5);
-        assert_eq!(work(&c[..2]), 0);
+        assert_eq!(work(&c), 2 + 4 + 8);
+        assert_eq!(work(&c[..1]), 0);
     }
 }

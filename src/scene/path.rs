@@ -505,10 +505,11 @@ mod tests {
         assert!(first.position.abs_diff_eq(b.position, 1e-5));
     }
 
-    /// Frame i at a given frame rate is the same camera whatever the run's length: the motion
-    /// per frame is the path's speed over the frame rate.
+    /// Frame i at a given frame rate is the camera at i / fps seconds (`camera_at` takes no
+    /// run length, so a run's length cannot move it): the motion per frame is the path's speed
+    /// over the frame rate.
     #[test]
-    fn frame_i_does_not_depend_on_the_run_length() {
+    fn frame_i_is_the_camera_at_i_over_fps() {
         let b = base();
         let orbit = CameraPath::parse("orbit:12s").unwrap();
         let at = |frame| orbit.camera_at(&b, &bounds(), frame_time(frame, 60.0));
@@ -517,7 +518,12 @@ mod tests {
         let chord = 2.0 * 3.4 * (0.25f32).to_radians().sin();
         assert!((step - chord).abs() < 1e-4, "{step} vs {chord}");
         assert!(at(720).position.abs_diff_eq(b.position, 1e-3));
-        assert_eq!(at(100), at(100));
+        // Frame i is the camera at i / fps seconds, nothing else: a longer run's frame 100 is
+        // this one, and it lies 100 steps of 0.5 degrees along the orbit.
+        assert_eq!(at(100), orbit.camera_at(&b, &bounds(), 100.0 / 60.0));
+        let turned = (at(100).position - b.position).length();
+        let chord_100 = 2.0 * 3.4 * (25f32).to_radians().sin();
+        assert!((turned - chord_100).abs() < 1e-3, "{turned} vs {chord_100}");
     }
 
     #[test]
