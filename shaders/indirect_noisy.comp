@@ -93,7 +93,8 @@ void main() {
         }
     }
     if (inside) {
-        imageStore(noisy, pixel, vec4(x, 1.0));
+        // A NaN or infinite sample would make CCIPCA's image-wide sums NaN: stored as 0.
+        imageStore(noisy, pixel, vec4(finite_or_zero(x), 1.0));
 #ifdef CCIPCA
         uint p = pixel_index(pixel);
         if (ccipca.restart != 0u) {

@@ -21,4 +21,17 @@ ivec2 texel_of(vec2 x, vec2 size) {
     return ivec2(floor(min(lo, size)));
 }
 
+// The largest finite float: |x| below it is finite, and NaN compares false, so these remove
+// what `clamp` (GLSL.std.450 FClamp) passes through.
+const float FLOAT_MAX = 3.40282347e38;
+
+bool all_finite(vec3 x) {
+    return all(lessThan(abs(x), vec3(FLOAT_MAX)));
+}
+
+// x where a component is finite, 0 where it is NaN or infinite.
+vec3 finite_or_zero(vec3 x) {
+    return mix(vec3(0.0), x, lessThan(abs(x), vec3(FLOAT_MAX)));
+}
+
 #endif // COMMON_GLSL

@@ -8,6 +8,8 @@
 // Merge a fresh estimate (rgb, a = mean squared luminance of its patterns) into the history at
 // `pixel` (rgb value, a = estimates) and its second moment.
 void merge(ivec2 pixel, vec4 h, vec4 fresh, bool refresh) {
+    // A non-finite estimate (a degenerate VPL) is dropped: `clamp` below would keep a NaN.
+    if (!all_finite(fresh.rgb) || !(abs(fresh.a) < FLOAT_MAX)) return;
     vec4 m = imageLoad(moments, pixel);
     vec4 result;
     if (refresh) {
@@ -16,7 +18,7 @@ void merge(ivec2 pixel, vec4 h, vec4 fresh, bool refresh) {
     } else {
         result = accumulate3(h.rgb, h.a, fresh.rgb, m);
     }
-    // Finite and non-negative, whatever a degenerate VPL produced.
+    // Non-negative and bounded (the estimate is finite here).
     imageStore(history, pixel, vec4(clamp(result.rgb, vec3(0.0), vec3(HISTORY_MAX)), result.a));
     m.x = clamp(m.x, 0.0, HISTORY_MAX * HISTORY_MAX);
     imageStore(moments, pixel, m);

@@ -98,6 +98,8 @@ float merge_weight(float old, float n, float fresh, inout vec4 moments) {
 // Merge a fresh scalar estimate into the history value `old` that holds `n` estimates;
 // `moments` is updated in place (merge_weight). Returns (value, count).
 vec2 accumulate(float old, float n, float fresh, inout vec4 moments) {
+    // A non-finite estimate is dropped: the history and its moments stay as they were.
+    if (!(abs(fresh) < FLOAT_MAX)) return vec2(old, n);
     fresh = clamp(fresh, -HISTORY_MAX, HISTORY_MAX);
     float w = merge_weight(old, n, fresh, moments);
     return vec2(old + w * (fresh - old), n + 1.0);
@@ -108,6 +110,8 @@ vec2 accumulate(float old, float n, float fresh, inout vec4 moments) {
 // difference over luminance would be 14x larger for pure blue than for grey). Returns
 // (value, count).
 vec4 accumulate3(vec3 old, float n, vec3 fresh, inout vec4 moments) {
+    // A non-finite estimate is dropped: the history and its moments stay as they were.
+    if (!all_finite(fresh)) return vec4(old, n);
     fresh = clamp(fresh, vec3(-HISTORY_MAX), vec3(HISTORY_MAX));
     float l_fresh = dot(fresh, LUMA);
     if (history_empty(n, moments)) {

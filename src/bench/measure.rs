@@ -30,7 +30,8 @@ pub enum Buffer {
     Direct,
     /// Shadow visibility as the direct pass reads it (red channel).
     Shadow,
-    /// One-bounce indirect light (linear RGB irradiance x albedo as composited).
+    /// One-bounce indirect light: eq 9's sum, π E₁ for E₁ the bounce's irradiance (linear RGB,
+    /// before the composite's albedo / π · 1 / π; docs/REFERENCE.md).
     Indirect,
 }
 
@@ -145,7 +146,7 @@ pub struct Flicker {
     /// Of the output image (RGB as encoded, 0..1: the measure's "barely notable" threshold
     /// 2.5e-5 is on this scale).
     pub final_msd: Vec<f64>,
-    /// Of the indirect light (linear RGB irradiance), when it is rendered.
+    /// Of the indirect light (π E₁, linear RGB), when it is rendered.
     pub indirect_msd: Vec<f64>,
 }
 
