@@ -562,3 +562,79 @@ fn gated_mean_follows_a_moved_light_within_three_frames() {
     );
     common::assert_clean(&ctx);
 }
+
+/// A restart late in convergence must not freeze a mean of a few estimates (the gate's
+/// restart empties the running mean, z, but not the pattern count, a). The light moves two
+/// patterns before the rotation limit, with refresh and invalidation off so nothing else
+/// restarts the pixels. On the pixels it takes from fully lit (every pattern 1, so the gate
+/// sees the change at once) into the darker penumbra (visibility 0.1-0.5, where nearly every
+/// pattern crosses the gate, and one pattern is far from the mean), the
+/// shadow, after as many more frames as a render from scratch takes, must be as close to the
+/// many-sample reference as that render's (within 25%).
+#[test]
+fn late_restart_converges_like_a_render_from_scratch() {
+    let ctx = common::context();
+    let effect = Effect::Shadow;
+    let limit = 36;
+    let (before, mask) = render(&ctx, effect, effect.reference(), 1);
+    let mut reference = Renderer::new(&ctx, effect.scene(), effect.reference()).expect("renderer");
+    let mut light = reference.scene.light;
+    light.position += glam::Vec3::new(1.2, 0.0, 0.0);
+    reference.set_light(light);
+    let camera = reference.scene.camera;
+    reference.render_frame(&camera).expect("frame");
+    reference.finish().expect("finish");
+    let truth = common::read(&mut reference, Target::Shadow);
+    drop(reference);
+    let mut config = effect.accumulated(Accumulate::GATED, limit);
+    config.temporal.invalidate = false;
+    let run = |move_at: Option<u32>, frames: u32| {
+        let mut r = Renderer::new(&ctx, effect.scene(), config).expect("renderer");
+        if move_at.is_none() {
+            r.set_light(light);
+        }
+        for i in 0..frames {
+            if Some(i) == move_at {
+                r.set_light(light);
+            }
+            r.render_frame(&camera).expect("frame");
+        }
+        r.finish().expect("finish");
+        common::read(&mut r, Target::Shadow)
+    };
+    let scratch = run(None, limit + 4);
+    let restarted = run(Some(limit - 2), 3 * limit);
+    let (mut scratch_se, mut restart_se, mut n) = (0.0f64, 0.0f64, 0u32);
+    for y in 0..SIZE {
+        for x in 0..SIZE {
+            let t = truth.texel(x, y)[0];
+            if mask.texel(x, y)[3] == 0.0
+                || before.texel(x, y)[0] < 0.999
+                || !(0.1..0.5).contains(&t)
+            {
+                continue;
+            }
+            scratch_se += ((scratch.texel(x, y)[0] - t) as f64).powi(2);
+            restart_se += ((restarted.texel(x, y)[0] - t) as f64).powi(2);
+            n += 1;
+        }
+    }
+    let (scratch_error, restart_error) = (
+        (scratch_se / n as f64).sqrt(),
+        (restart_se / n as f64).sqrt(),
+    );
+    eprintln!(
+        "{n} pixels from lit into the penumbra: shadow RMSE against the reference from scratch \
+         {scratch_error:.5}, after a restart at pattern {} {restart_error:.5}",
+        limit - 2
+    );
+    assert!(
+        n >= 20,
+        "the move must bring lit pixels into the penumbra ({n})"
+    );
+    assert!(
+        restart_error <= 1.25 * scratch_error,
+        "a late restart froze a young mean: {restart_error} against {scratch_error}"
+    );
+    common::assert_clean(&ctx);
+}
