@@ -10,10 +10,12 @@ use std::sync::Arc;
 pub const DEPTH_FORMAT: vk::Format = vk::Format::D32_SFLOAT;
 /// World position needs fp32 (large scenes); normals and flux/radiance are fine in fp16, and
 /// so is motion (a displacement: its rounding is relative to the step, 0 stays exactly 0).
+/// Albedo is linear, so fp16 too: 8-bit UNORM steps of 1/255 are 4-20% of albedos of
+/// 0.01-0.05 (and 8-bit sRGB still 2% at 0.02); fp16 keeps 0.05% at any albedo.
 pub const GBUFFER_COLOR_FORMATS: [vk::Format; 4] = [
     vk::Format::R32G32B32A32_SFLOAT,
     vk::Format::R16G16B16A16_SFLOAT,
-    vk::Format::R8G8B8A8_UNORM,
+    vk::Format::R16G16B16A16_SFLOAT,
     vk::Format::R16G16B16A16_SFLOAT,
 ];
 pub const RSM_COLOR_FORMATS: [vk::Format; 3] = [
