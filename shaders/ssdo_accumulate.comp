@@ -5,8 +5,11 @@
 // pixel accumulates are the first (n + 1) K points of one sequence, each pattern evenly spread.
 // The modulation factor (SSAO: the unoccluded fraction) drives the merge (temporal.glsl: the
 // gated running mean, eqs 4-5, EMA or capped mean) and its running mean lives in the moments'
-// w; the bounce, darkened by each pattern's own factor, is merged into the history's rgb with
-// the same weight (history a = patterns).
+// w; the bounce, undarkened, is merged into the history's rgb with the same weight (history a =
+// patterns), and `resolve` darkens the mean bounce by the mean factor: E[bounce] E[factor], what
+// one pass with every pattern's samples computes. Darkening each pattern by its own factor
+// converged to E[bounce x factor], low by their covariance (occluded samples raise one and
+// lower the other).
 // `blocks`: over the 8x8 blocks the reprojection listed, one pattern per new or accumulating
 // pixel. `refresh`: one workgroup per pixel of the refresh tile recomputes it as the mean of
 // every pattern up to the rotation limit. `resolve`: every pixel's (bounce, factor) into the
@@ -39,7 +42,7 @@ void main() {
 #ifdef SSAO
         result = vec4(m);
 #else
-        result = vec4(texelFetch(history, pixel, 0).rgb, m);
+        result = vec4(texelFetch(history, pixel, 0).rgb * m, m);
 #endif
     }
     imageStore(ssdo_out, pixel, result);
@@ -75,15 +78,16 @@ uint sample_count(ivec2 pixel) {
     return frame.ssdo_samples;
 }
 
-// Pattern `pattern`'s estimate: (bounce darkened by the modulation factor, modulation factor);
-// SSAO: (0, unoccluded fraction). Clamped so histories stay finite.
+// Pattern `pattern`'s estimate: (bounce, modulation factor), the bounce not yet darkened by
+// the factor (`resolve` does it with both means); SSAO: (0, unoccluded fraction). Clamped so
+// histories stay finite.
 vec4 estimate(ivec2 pixel, vec3 p, vec3 n, uint pattern, uint count) {
     uint first = pattern * count;
 #ifdef SSAO
     return vec4(0.0, 0.0, 0.0, ssao_pixel(pixel, p, n, first, count));
 #else
     vec4 e = ssdo_pixel(pixel, p, n, first, count, count * frame.rotation_limit, true);
-    vec3 bounce = clamp(e.rgb * e.a, vec3(0.0), vec3(HISTORY_MAX));
+    vec3 bounce = clamp(e.rgb, vec3(0.0), vec3(HISTORY_MAX));
     return vec4(bounce, clamp(e.a, 0.0, 1.0));
 #endif
 }

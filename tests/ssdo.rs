@@ -851,11 +851,15 @@ fn cached_ssdo_converges_to_the_many_sample_result_and_then_skips() {
         let (dm, db) = ((dm / n as f64).sqrt(), (db / n as f64).sqrt());
         let rms = (rms / n as f64).sqrt();
         eprintln!(
-            "{form:?}: cached vs {} samples at once: RMSE factor {dm:.4}, bounce {db:.4}",
-            k * limit
+            "{form:?}: cached vs {} samples at once: RMSE factor {dm:.4}, bounce {db:.4} \
+             ({:.2}% of its RMS)",
+            k * limit,
+            100.0 * db / rms.max(1e-30)
         );
+        // The cache darkens the mean bounce by the mean factor, as one pass over all the
+        // samples does: within 2% (darkening each pattern by its own factor was 3.6% low).
         assert!(
-            dm <= 0.01 && db <= 0.1 * rms,
+            dm <= 0.01 && db <= 0.02 * rms,
             "{form:?}: RMSE {dm}, {db} (RMS {rms})"
         );
     }
