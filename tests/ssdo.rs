@@ -811,7 +811,10 @@ fn cached_ssdo_converges_to_the_many_sample_result_and_then_skips() {
         let still = |t: &ssgi::vk::FrameTiming| counter(t, "ssdo_computed_pixels").unwrap_or(0);
         let late = still(&timings[limit as usize + 1]);
         eprintln!("{form:?}: {late} pixels still accumulating after the rotation limit");
-        assert!(late <= 16, "{late} pixels restarted their mean by noise alone");
+        assert!(
+            late <= 16,
+            "{late} pixels restarted their mean by noise alone"
+        );
         for t in &timings[2 * limit as usize + 1..] {
             assert_eq!(
                 counter(t, "ssdo_computed_pixels"),
