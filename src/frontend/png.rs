@@ -93,6 +93,8 @@ pub fn visualize(target: Target, data: &ImageData, bounds: &Aabb) -> Vec<u8> {
                 // Scaled by the brightest channel: flux and bounce span any range.
                 Target::RsmFlux | Target::SsdoBounce => [t[0] / range, t[1] / range, t[2] / range],
                 Target::Ao | Target::Shadow => [t[0], t[0], t[0]],
+                // Linear albedo in 0..1, as stored (fp16).
+                Target::GAlbedo => [t[0], t[1], t[2]],
                 Target::SsdoModulation => [t[3], t[3], t[3]],
                 // Samples per block: 50 (the paper's most) is white.
                 Target::SsdoSamples => [t[0] / 50.0, t[0] / 50.0, t[0] / 50.0],
@@ -112,7 +114,13 @@ pub fn visualize(target: Target, data: &ImageData, bounds: &Aabb) -> Vec<u8> {
                     t[2] / (1.0 + t[2]),
                 ],
             };
-            [to_u8(rgb[0]), to_u8(rgb[1]), to_u8(rgb[2]), 255]
+            // The albedo keeps its alpha (0 over the background), as the 8-bit albedo did.
+            let alpha = if target == Target::GAlbedo {
+                to_u8(t[3])
+            } else {
+                255
+            };
+            [to_u8(rgb[0]), to_u8(rgb[1]), to_u8(rgb[2]), alpha]
         })
         .collect()
 }

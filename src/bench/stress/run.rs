@@ -10,6 +10,7 @@ use super::report::CaseResult;
 use crate::error::Result;
 use crate::frontend::progress::Progress;
 use crate::renderer::audit::AuditKind;
+use crate::renderer::config::Accumulate;
 use crate::renderer::targets::Target;
 use crate::renderer::temporal::Rng;
 use crate::renderer::{RenderConfig, Renderer};
@@ -174,9 +175,13 @@ fn resident_bytes() -> Option<u64> {
     Some(kib * 1024)
 }
 
-/// Audit every target and history and fold the figures into `result`.
+/// Audit every target and history and fold the figures into `result`. A history holds at most
+/// the rotation limit's patterns, or with the gated mean twice that: a pixel whose mean
+/// restarted takes the limit's patterns again before it counts as converged (reproject.comp's
+/// `converged`); more would be a mean that keeps restarting on a still view, or a runaway count.
 fn audit(r: &mut Renderer, result: &mut CaseResult) -> Result<()> {
-    let limit = r.config.temporal.rotation_limit as f32;
+    let gated = matches!(r.config.temporal.accumulate, Accumulate::Gated { .. });
+    let limit = r.config.temporal.rotation_limit as f32 * if gated { 2.0 } else { 1.0 };
     for a in r.audit()? {
         result.audits += 1;
         result.values_checked += a.texels as u64 * a.channels as u64;
@@ -195,7 +200,8 @@ fn audit(r: &mut Renderer, result: &mut CaseResult) -> Result<()> {
             result.max_history_count = result.max_history_count.max(a.max_abs[3]);
             if a.max_abs[3] > limit {
                 result.fail(format!(
-                    "{}: {} estimates, more than the rotation limit {limit}",
+                    "{}: {} estimates, more than {limit} (the rotation limit, twice with the \
+                     gated mean)",
                     a.name, a.max_abs[3]
                 ));
             }
