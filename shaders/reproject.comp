@@ -59,7 +59,9 @@ layout(push_constant) uniform Reproject {
                           //          below, 0 = none)
     uvec4 lane_1;
     uvec4 lane_2;
-    uvec4 reaccumulate;   // x: bit k set = lane k starts re-accumulating this frame
+    uvec4 reaccumulate;   // x: bit k set = lane k starts re-accumulating this frame; y: bit k
+                          //    set = a change (the light, a moving object) reached lane k's
+                          //    values this frame: its re-accumulation ends
 } lanes;
 
 // Beyond eq 3: a history texel must also face the pixel's way, within 60 degrees. The back of
@@ -395,7 +397,8 @@ bool in_rect(ivec2 pixel, uvec4 rect) {
 // has been magnified or displaced (at least one estimate stays: the value is not thrown
 // away). A pixel in the refresh tile (`refreshed`) is recomputed at its own point this frame,
 // as is a new one: their registration restarts.
-uint lane_state(Reprojected r, uvec4 lane, bool refreshed, bool start, texture2D history_prev,
+uint lane_state(Reprojected r, uvec4 lane, bool refreshed, bool start, bool stop,
+                texture2D history_prev,
                 texture2D moments_prev, texture2D registration_prev, out vec4 history,
                 out vec4 moments, out vec4 registration, out bool invalidated) {
     history = vec4(0.0);
@@ -447,10 +450,16 @@ uint lane_state(Reprojected r, uvec4 lane, bool refreshed, bool start, texture2D
         if (state == STATE_ACCUMULATING)
             registration.xyz = mix(registration.xyz, r.p, 1.0 / (history.a + 1.0));
         float limit = float(frame.rotation_limit);
-        bool going = still && reaccumulating(held);
-        if (going && history.a >= limit) {
+        bool marked = still && reaccumulating(held);
+        bool going = marked && !stop;
+        if (marked && stop) {
+            // A change reached the values: the fade ends and the gated mean runs as on any
+            // still view, so the gate sees the change (the fade zeroes its pending crossing
+            // every frame, and a moved light lagged by the fade's L frames).
+            registration = vec4(r.p, 1.0);
+        } else if (going && history.a >= limit) {
             registration = vec4(r.p, 1.0); // done: the mean of L fresh patterns
-        } else if (still && !refreshed && limit >= 2.0 && (going || start)) {
+        } else if (still && !refreshed && limit >= 2.0 && (going || (start && !stop))) {
             vec3 o = going ? held.xyz : history.rgb;
             registration = going ? held : vec4(o, -1.0 - history.a);
             if (!going) history.a = 0.0;
@@ -478,7 +487,8 @@ bool needs_work(uint state) {
         bool invalidated;                                                                      \
         bool refreshed = r.geometry && in_rect(pixel, lanes.refresh_rect_##k);                 \
         bool start = (lanes.reaccumulate.x >> k & 1u) != 0u;                                   \
-        uint state = lane_state(r, lanes.lane_##k, refreshed, start, history_prev_##k,         \
+        bool stop = (lanes.reaccumulate.y >> k & 1u) != 0u;                                    \
+        uint state = lane_state(r, lanes.lane_##k, refreshed, start, stop, history_prev_##k,   \
                                 moments_prev_##k, registration_prev_##k, history, moments,     \
                                 registration, invalidated);                                    \
         if (invalidated) atomicAdd(group_invalidated[k], 1u);                                  \

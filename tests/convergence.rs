@@ -638,3 +638,73 @@ fn late_restart_converges_like_a_render_from_scratch() {
     );
     common::assert_clean(&ctx);
 }
+
+/// A change ends a re-accumulation: when the camera stops the histories re-accumulate (the
+/// motion's smoothed value fades out over the rotation limit's patterns, with the gate's
+/// pending crossing zeroed every frame, as the fade changes the value by design); a light
+/// moved three frames later ends the fade, so the gate restarts the means it sees change
+/// within three frames, not after the fade's 36 (before: none of the changed pixels had
+/// followed). Pixels whose variance the pan's blending inflated (beside the old shadow's
+/// edges) do not cross the gate and follow by accumulation. `--invalidate off`: the gate's
+/// own reaction.
+#[test]
+fn reaccumulation_follows_a_moved_light_within_three_frames() {
+    let ctx = common::context();
+    let effect = Effect::Shadow;
+    let mut reference = Renderer::new(&ctx, effect.scene(), effect.reference()).expect("renderer");
+    let mut light = reference.scene.light;
+    light.position += glam::Vec3::new(0.4, 0.0, 0.0);
+    reference.set_light(light);
+    let camera = reference.scene.camera;
+    reference.render_frame(&camera).expect("frame");
+    reference.finish().expect("finish");
+    let after = common::read(&mut reference, Target::Shadow);
+    drop(reference);
+    let (before, mask) = render(&ctx, effect, effect.reference(), 1);
+    let mut config = effect.accumulated(Accumulate::GATED, 36);
+    config.temporal.invalidate = false;
+    assert!(
+        config.temporal.reaccumulate,
+        "re-accumulation is on by default"
+    );
+    let mut r = Renderer::new(&ctx, effect.scene(), config).expect("renderer");
+    // Converge while panning a little, stop (re-accumulation starts), then move the light.
+    for i in 0..40 {
+        let mut c = camera;
+        let shift = glam::Vec3::new(0.002 * (i as f32 - 40.0), 0.0, 0.0);
+        c.position += shift;
+        c.target += shift;
+        r.render_frame(&c).expect("frame");
+    }
+    for _ in 0..3 {
+        r.render_frame(&camera).expect("frame");
+    }
+    r.set_light(light);
+    for _ in 0..3 {
+        r.render_frame(&camera).expect("frame");
+    }
+    r.finish().expect("finish");
+    let now = common::read(&mut r, Target::Shadow);
+    let (mut followed, mut n) = (0usize, 0usize);
+    for y in 0..SIZE {
+        for x in 0..SIZE {
+            if mask.texel(x, y)[3] == 0.0
+                || (before.texel(x, y)[0] - after.texel(x, y)[0]).abs() <= 0.5
+            {
+                continue;
+            }
+            followed += ((now.texel(x, y)[0] - after.texel(x, y)[0]).abs() < 0.25) as usize;
+            n += 1;
+        }
+    }
+    let share = followed as f64 / n.max(1) as f64;
+    eprintln!(
+        "re-accumulating: {followed} of {n} pixels the move changed follow it 3 frames later"
+    );
+    assert!(n > 50, "the move must change the shadow ({n} pixels)");
+    assert!(
+        share > 0.5,
+        "re-accumulation lags the moved light: {share:.2} followed"
+    );
+    common::assert_clean(&ctx);
+}

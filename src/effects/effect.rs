@@ -89,6 +89,13 @@ impl FrameInfo<'_> {
             && t.rotation_limit >= 2
     }
 
+    /// Whether a change this frame reaches the values of an effect of kind `kind` (a moving
+    /// object; the light, or a re-rendered light view, for an effect lit by it): its
+    /// re-accumulation, if one is under way, ends.
+    pub fn changes_reach(&self, kind: &EffectKind) -> bool {
+        self.objects_moved || kind.lit && (self.light_changed || self.light_view)
+    }
+
     /// Whether this frame's change makes the refresh pass over every pixel once
     /// (`TemporalEffect::frame_push`), for an effect whose value depends on the light (`light`)
     /// or on the whole RSM (`rsm`): with `--invalidate off` (where nothing restarts, so the

@@ -88,6 +88,9 @@ pub struct LaneFrame {
     /// The camera came to rest: the lane's histories start re-accumulating
     /// (`TemporalConfig::reaccumulate`).
     pub reaccumulate: bool,
+    /// A change reached the lane's values this frame (the light, a moving object): a
+    /// re-accumulation under way ends, so the gated mean can see the change.
+    pub stop_reaccumulating: bool,
 }
 
 /// The frame's push constants from each lane's part.
@@ -103,11 +106,15 @@ pub fn push(lanes: &[LaneFrame]) -> ReprojectPush {
         })
     };
     let rect = |k: usize| lanes.get(k).map_or([0; 4], |l| l.refresh_rect);
-    let starts = lanes
-        .iter()
-        .enumerate()
-        .filter(|(_, l)| l.reaccumulate)
-        .fold(0u32, |mask, (k, _)| mask | 1 << k);
+    let mask = |pick: fn(&LaneFrame) -> bool| {
+        lanes
+            .iter()
+            .enumerate()
+            .filter(|(_, l)| pick(l))
+            .fold(0u32, |mask, (k, _)| mask | 1 << k)
+    };
+    let starts = mask(|l| l.reaccumulate);
+    let stops = mask(|l| l.stop_reaccumulating);
     ReprojectPush {
         refresh_rect_0: rect(0),
         refresh_rect_1: rect(1),
@@ -115,7 +122,7 @@ pub fn push(lanes: &[LaneFrame]) -> ReprojectPush {
         lane_0: lane(0),
         lane_1: lane(1),
         lane_2: lane(2),
-        reaccumulate: [starts, 0, 0, 0],
+        reaccumulate: [starts, stops, 0, 0],
     }
 }
 
@@ -221,6 +228,7 @@ mod tests {
             refresh_rect: [1, 2, 3, 4],
             moved: 3,
             reaccumulate: false,
+            stop_reaccumulating: false,
         }]);
         assert_eq!(p.lane_0, [1, 1, 4, 3]);
         assert_eq!(p.refresh_rect_0, [1, 2, 3, 4]);
@@ -231,12 +239,13 @@ mod tests {
 
     #[test]
     fn reaccumulating_lanes_are_a_bit_mask() {
-        let lane = |reaccumulate| LaneFrame {
+        let lane = |reaccumulate, stop_reaccumulating| LaneFrame {
             active: true,
             reaccumulate,
+            stop_reaccumulating,
             ..Default::default()
         };
-        let p = push(&[lane(true), lane(false), lane(true)]);
-        assert_eq!(p.reaccumulate, [0b101, 0, 0, 0]);
+        let p = push(&[lane(true, false), lane(false, true), lane(true, false)]);
+        assert_eq!(p.reaccumulate, [0b101, 0b010, 0, 0]);
     }
 }

@@ -30,6 +30,8 @@ pub struct EffectKind {
     pub fixups: bool,
     /// Which pixels a moving object takes the history from (`--invalidate`).
     pub moved: MovedReach,
+    /// Whether its values depend on the spot light (a light change reaches them).
+    pub lit: bool,
     /// Whether its histories re-accumulate when the camera stops (`--reaccumulate`): the
     /// value alone is merged with the running mean's weight. SSDO's cache also carries its
     /// factor's mean in the moments, which the re-accumulation has no room to fade out.
@@ -89,6 +91,7 @@ pub const AO: EffectKind = EffectKind {
     ],
     fixups: false,
     moved: MovedReach::AoRadius,
+    lit: false,
     reaccumulates: true,
 };
 
@@ -124,6 +127,7 @@ pub const SHADOW: EffectKind = EffectKind {
     ],
     fixups: false,
     moved: MovedReach::ShadowFootprint,
+    lit: true,
     reaccumulates: true,
 };
 
@@ -176,6 +180,7 @@ pub const INDIRECT: EffectKind = EffectKind {
     ],
     fixups: true,
     moved: MovedReach::Inside,
+    lit: true,
     reaccumulates: true,
 };
 
@@ -214,6 +219,7 @@ pub const SSDO: EffectKind = EffectKind {
     ],
     fixups: false,
     moved: MovedReach::SsdoRadius,
+    lit: true,
     reaccumulates: false,
 };
 

@@ -126,6 +126,7 @@ impl Reprojection {
                 },
                 // The shader starts only lanes whose history is valid.
                 reaccumulate: info.starts_reaccumulating(&t.kind),
+                stop_reaccumulating: info.changes_reach(&t.kind),
             };
             count += 1;
         }
