@@ -61,10 +61,6 @@ fn skipped(t: &FrameTiming) -> bool {
     t.passes.is_empty()
 }
 
-fn total(t: &FrameTiming) -> f64 {
-    t.passes.iter().filter_map(|(_, ms)| *ms).sum()
-}
-
 /// Render until `n` frames in a row were skipped (at most `MAX_FRAMES`); returns the timings.
 fn until_skipping(r: &mut Renderer, camera: &Camera, n: usize) -> Vec<FrameTiming> {
     let mut timings: Vec<FrameTiming> = Vec::new();
@@ -101,7 +97,6 @@ fn a_converged_static_view_records_nothing_and_keeps_its_image() {
     let mut r = renderer(&ctx, config(true, true));
     let camera = r.scene.camera;
     let timings = until_skipping(&mut r, &camera, 16);
-    let first = total(&timings[0]);
     let last16 = &timings[timings.len() - 16..];
     assert!(last16.iter().all(skipped));
     // Every pass of a skipped frame is reported, with its reason.
@@ -119,11 +114,7 @@ fn a_converged_static_view_records_nothing_and_keeps_its_image() {
     ] {
         assert!(reasons.contains(&(pass, reason)), "{pass}: {reasons:?}");
     }
-    let gpu: f64 = last16.iter().map(total).sum();
-    assert!(
-        gpu <= 0.02 * first,
-        "{gpu} ms against the first frame's {first} ms"
-    );
+    // (No GPU-time bound: a skipped frame records no pass, which `skipped` checks exactly.)
     // The frame before the first skipped one did work and computed nothing: it converged.
     let start = timings.iter().position(skipped).unwrap();
     assert!(
