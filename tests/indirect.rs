@@ -328,7 +328,9 @@ fn discard_mask_matches_the_cpu_rule() {
     let cam = r.scene.camera;
     let tan_half = (0.5 * cam.vfov_deg).to_radians().tan();
     let low = size.div_ceil(2) as i32;
-    let (mut agree, mut total, mut discarded) = (0, 0, 0);
+    // Recall and false positives apart: the mask marks few pixels, so agreement over every
+    // pixel would pass a GPU that flagged a tenth of them.
+    let (mut discarded, mut found, mut false_alarms) = (0u32, 0u32, 0u32);
     for y in 0..size {
         for x in 0..size {
             let p = pos.texel(x, y);
@@ -352,18 +354,23 @@ fn discard_mask_matches_the_cpu_rule() {
                     && n.dot(v3(g) - pv).abs() <= 2.0 * footprint
             });
             let gpu = mask.texel(x, y)[0] as u32 == 1;
-            agree += (gpu != accepted) as u32;
             discarded += (!accepted) as u32;
-            total += 1;
+            found += (gpu && !accepted) as u32;
+            false_alarms += (gpu && accepted) as u32;
         }
     }
-    let fraction = agree as f64 / total as f64;
-    eprintln!("discard mask agreement {fraction:.5}; {discarded} of {total} discarded on the CPU");
-    assert!(
-        discarded > 0,
-        "the Cornell box's edges must discard some pixels"
+    eprintln!(
+        "discard mask: {found} of {discarded} CPU-discarded pixels flagged, {false_alarms} flagged \
+         that the CPU accepts"
     );
-    assert!(fraction >= 0.999, "mask agrees on {fraction}");
+    assert!(
+        discarded >= 20,
+        "the Cornell box's edges must discard pixels: {discarded}"
+    );
+    // The CPU repeats the GPU's tests in another float order: a pixel on a test's boundary may
+    // go either way, a few at most.
+    assert!(found + 2 >= discarded, "recall: {found} of {discarded}");
+    assert!(false_alarms <= 2, "{false_alarms} false alarms");
     drop(r);
     common::assert_clean(&ctx);
 }
