@@ -123,6 +123,7 @@ fn a_moving_ball_uncovers_only_what_was_behind_it() {
     for id in [EffectId::Ao, EffectId::Direct, EffectId::Indirect] {
         let state = r.read_state(id).unwrap();
         let (mut agree, mut uncovered, mut ball_new, mut ball) = (0, 0, 0, 0);
+        let (mut found, mut false_alarms) = (0, 0);
         for y in 0..SIZE {
             for x in 0..SIZE {
                 let p = point(&pos, x, y);
@@ -137,6 +138,8 @@ fn a_moving_ball_uncovers_only_what_was_behind_it() {
                 let new = s == STATE_NEW;
                 agree += usize::from(new == expected);
                 uncovered += usize::from(expected);
+                found += usize::from(new && expected);
+                false_alarms += usize::from(new && !expected && !on_ball(p, now));
                 if on_ball(p, now) {
                     ball += 1;
                     ball_new += usize::from(new);
@@ -151,13 +154,24 @@ fn a_moving_ball_uncovers_only_what_was_behind_it() {
         }
         let share = agree as f64 / (SIZE * SIZE) as f64;
         eprintln!(
-            "{id:?}: {uncovered} pixels uncovered, {ball_new} of the ball's {ball} new, \
-             agreement {:.2}%",
+            "{id:?}: {found} of {uncovered} uncovered pixels new, {false_alarms} new elsewhere \
+             off the ball, {ball_new} of the ball's {ball} new, agreement {:.2}%",
             100.0 * share
         );
         assert!(uncovered >= 10, "{id:?}: the step must uncover pixels");
         assert!(ball >= 50, "{id:?}: the ball must show ({ball} pixels)");
         assert!(share >= 0.99, "{id:?}: {:.2}% agree", 100.0 * share);
+        // Recall and false alarms apart (agreement over every pixel would pass a reprojection
+        // that found a tenth of the ~50 uncovered pixels): measured 54 of 54 and none; a pixel
+        // on the ball's silhouette may go either way in the CPU's and the GPU's float order.
+        assert!(
+            found + 2 >= uncovered,
+            "{id:?}: {found} of {uncovered} uncovered pixels new"
+        );
+        assert!(
+            false_alarms <= 2,
+            "{id:?}: {false_alarms} pixels new off the ball"
+        );
         // The ball keeps its history: at most its rim (surface turning into view) is new.
         assert!(
             ball_new * 10 <= ball,
