@@ -1,15 +1,15 @@
 #version 460
 // Half-resolution RSM gather with interleaving (without, indirect_spread.comp's `gather` runs
 // over the samples indirect_classify.comp lists): over the 16x16 blocks the reprojection
-// listed, each workgroup
-// computes the block's 8x8 low-resolution pixels plus a one-pixel apron on the right and
+// listed, each workgroup computes the block's 8x8 low-resolution pixels plus a one-pixel apron on the right and
 // bottom (9x9) into the block's own slot of the low-resolution buffer, so the upsampling of
 // the block reads only values computed this frame. Low-resolution pixel i samples the G-buffer
 // at full-resolution texel 2i (the top-left of its 2x2 block), where indirect_upsample.comp's
 // weights place it. With interleaving each low-resolution pixel gathers its share of the VPLs,
-// put together from the tile's pixels where its full-resolution texel is new (interleave.glsl). Pixels of the refresh tile are recomputed at full resolution by
-// indirect_gather.comp's `refresh`; the samples they would read hold this frame's pattern like
-// every other, for their neighbours.
+// put together from the tile's pixels where its full-resolution texel is new (interleave.glsl).
+// Pixels of the refresh tile are recomputed at full resolution by indirect_spread.comp's
+// `refresh`; the samples they would read hold this frame's pattern like every other, for their
+// neighbours.
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_samplerless_texture_functions : require
 #include "frame.glsl"
@@ -29,25 +29,6 @@ layout(set = 1, binding = 7, r32ui) uniform readonly uimage2D state_in;
 
 shared uint group_computed;
 
-// A low-resolution sample is read only by the full-resolution pixels within one pixel of its
-// texel (indirect_upsample.comp's bilinear taps), so it is gathered only where one of those is
-// new or accumulating: a listed block whose pixels needing work are few (a magnified or
-// displaced region, a disocclusion's edge) does not pay for its whole 9x9 slot. With
-// interleaving every sample of the tile takes part in its neighbours' reconstruction: all
-// are gathered.
-bool sample_needed(ivec2 full) {
-    if (frame.vpl_interleave > 1u) return true;
-    for (int dy = -1; dy <= 1; ++dy) {
-        for (int dx = -1; dx <= 1; ++dx) {
-            ivec2 q = full + ivec2(dx, dy);
-            if (outside_frame(q)) continue;
-            uint state = imageLoad(state_in, q).r;
-            if (state == STATE_NEW || state == STATE_ACCUMULATING) return true;
-        }
-    }
-    return false;
-}
-
 void main() {
     if (gl_LocalInvocationIndex == 0u) group_computed = 0u;
     barrier();
@@ -63,7 +44,8 @@ void main() {
     if (all(greaterThanEqual(low, ivec2(0))) && all(lessThan(low, low_size))) {
         ivec2 full = low * 2;
         vec4 position = texelFetch(g_position, full, 0);
-        if (position.w != 0.0 && sample_needed(full)) {
+        // Every sample takes part in its neighbours' reconstruction: all are gathered.
+        if (position.w != 0.0) {
             computed = true;
             p = position.xyz;
             n = texelFetch(g_normal, full, 0).xyz;

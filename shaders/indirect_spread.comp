@@ -52,23 +52,11 @@ layout(set = 1, binding = 9, std430) buffer Partials { vec4 partials[]; };
 #define MOST_LANES SPREAD_LANES
 #endif
 
-// Pixels of the refresh tile, and pixel i of it in rows.
-uint tile_pixels() {
-    uvec4 r = effect.refresh_rect;
-    return r.z > r.x && r.w > r.y ? (r.z - r.x) * (r.w - r.y) : 0u;
-}
-
-ivec2 tile_pixel(uint i) {
-    uvec4 r = effect.refresh_rect;
-    uint width = max(r.z - r.x, 1u);
-    return ivec2(r.x + i % width, r.y + i / width);
-}
-
 #ifdef RESOLVE
 void main() {
     uint i = gl_GlobalInvocationID.x;
-    if (i >= tile_pixels()) return;
-    ivec2 pixel = tile_pixel(i);
+    if (i >= refresh_tile_pixels()) return;
+    ivec2 pixel = refresh_tile_pixel(i);
     if (outside_frame(pixel) || imageLoad(state_in, pixel).r != STATE_REFRESH) return;
     uint limit = frame.rotation_limit;
     vec4 total = vec4(0.0); // patterns' values (rgb) and squared luminances
@@ -101,7 +89,7 @@ bool list_item(uint item, out ivec2 pixel, out ivec2 texel, out uint pattern) {
     return state == STATE_NEW || state == STATE_ACCUMULATING;
 #else
     uint limit = frame.rotation_limit;
-    pixel = tile_pixel(item / limit);
+    pixel = refresh_tile_pixel(item / limit);
     texel = pixel;
     pattern = item % limit;
     return !outside_frame(pixel) && imageLoad(state_in, pixel).r == STATE_REFRESH;
@@ -121,7 +109,7 @@ void main() {
 #elif defined(FIXUP)
     uint items = counters.fixup_pixels;
 #else
-    uint items = tile_pixels() * frame.rotation_limit;
+    uint items = refresh_tile_pixels() * frame.rotation_limit;
 #endif
     if (t == 0u) {
         group_active = 0u;

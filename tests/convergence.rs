@@ -12,7 +12,7 @@ use ssgi::renderer::config::{
 use ssgi::renderer::pcf::{Pcf, PcfKernel};
 use ssgi::renderer::targets::Target;
 use ssgi::renderer::Renderer;
-use ssgi::scene::{cornell_box, Scene};
+use ssgi::scene::{cornell_box, Camera, Scene};
 use ssgi::vk::{Context, ImageData};
 use std::sync::Arc;
 
@@ -125,6 +125,22 @@ fn render(
         common::read(&mut r, effect.target()),
         common::read(&mut r, Target::GPosition),
     )
+}
+
+/// The many-sample shadow with the light moved by `offset` (and that light, and the camera).
+fn moved_light_shadow(
+    ctx: &Arc<Context>,
+    effect: Effect,
+    offset: glam::Vec3,
+) -> (ImageData, ssgi::scene::SpotLight, Camera) {
+    let mut reference = Renderer::new(ctx, effect.scene(), effect.reference()).expect("renderer");
+    let mut light = reference.scene.light;
+    light.position += offset;
+    reference.set_light(light);
+    let camera = reference.scene.camera;
+    reference.render_frame(&camera).expect("frame");
+    reference.finish().expect("finish");
+    (common::read(&mut reference, effect.target()), light, camera)
 }
 
 /// Error over geometry pixels: (RMSE, mean signed error), for radiance both relative to the
@@ -497,20 +513,8 @@ fn coloured_bounce_light_settles_as_fast_as_grey() {
 fn gated_mean_follows_a_moved_light_within_three_frames() {
     let ctx = common::context();
     let effect = Effect::Shadow;
-    let moved = |scene: &Scene| {
-        let mut light = scene.light;
-        light.position += glam::Vec3::new(0.4, 0.0, 0.0);
-        light
-    };
     // The shadow after the move, from the reference configuration.
-    let mut reference = Renderer::new(&ctx, effect.scene(), effect.reference()).expect("renderer");
-    let light = moved(&reference.scene);
-    reference.set_light(light);
-    let camera = reference.scene.camera;
-    reference.render_frame(&camera).expect("frame");
-    reference.finish().expect("finish");
-    let after = common::read(&mut reference, Target::Shadow);
-    drop(reference);
+    let (after, light, camera) = moved_light_shadow(&ctx, effect, glam::Vec3::new(0.4, 0.0, 0.0));
     let (before, mask) = render(&ctx, effect, effect.reference(), 1);
     let mut errors = Vec::new();
     for (name, mode) in [
@@ -577,15 +581,7 @@ fn late_restart_converges_like_a_render_from_scratch() {
     let effect = Effect::Shadow;
     let limit = 36;
     let (before, mask) = render(&ctx, effect, effect.reference(), 1);
-    let mut reference = Renderer::new(&ctx, effect.scene(), effect.reference()).expect("renderer");
-    let mut light = reference.scene.light;
-    light.position += glam::Vec3::new(1.2, 0.0, 0.0);
-    reference.set_light(light);
-    let camera = reference.scene.camera;
-    reference.render_frame(&camera).expect("frame");
-    reference.finish().expect("finish");
-    let truth = common::read(&mut reference, Target::Shadow);
-    drop(reference);
+    let (truth, light, camera) = moved_light_shadow(&ctx, effect, glam::Vec3::new(1.2, 0.0, 0.0));
     let mut config = effect.accumulated(Accumulate::GATED, limit);
     config.temporal.invalidate = false;
     let run = |move_at: Option<u32>, frames: u32| {
@@ -651,15 +647,7 @@ fn late_restart_converges_like_a_render_from_scratch() {
 fn reaccumulation_follows_a_moved_light_within_three_frames() {
     let ctx = common::context();
     let effect = Effect::Shadow;
-    let mut reference = Renderer::new(&ctx, effect.scene(), effect.reference()).expect("renderer");
-    let mut light = reference.scene.light;
-    light.position += glam::Vec3::new(0.4, 0.0, 0.0);
-    reference.set_light(light);
-    let camera = reference.scene.camera;
-    reference.render_frame(&camera).expect("frame");
-    reference.finish().expect("finish");
-    let after = common::read(&mut reference, Target::Shadow);
-    drop(reference);
+    let (after, light, camera) = moved_light_shadow(&ctx, effect, glam::Vec3::new(0.4, 0.0, 0.0));
     let (before, mask) = render(&ctx, effect, effect.reference(), 1);
     let mut config = effect.accumulated(Accumulate::GATED, 36);
     config.temporal.invalidate = false;

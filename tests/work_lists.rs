@@ -58,6 +58,23 @@ fn last_frame(r: &mut Renderer, frames: u64) -> FrameTiming {
     t
 }
 
+/// Eight still frames (the rotation limit of 4 converges them), then two that pan: a strip of
+/// new pixels and resampled histories beside converged ones. The last frame's counters.
+fn converge_then_pan(r: &mut Renderer) -> FrameTiming {
+    let base = r.scene.camera;
+    let frames = 10u64;
+    for i in 0..frames {
+        let mut camera: Camera = base;
+        if i + 2 >= frames {
+            let shift = Vec3::new(0.02 * (i + 3 - frames) as f32, 0.0, 0.0);
+            camera.position += shift;
+            camera.target += shift;
+        }
+        r.render_frame(&camera).unwrap();
+    }
+    last_frame(r, frames)
+}
+
 /// The classification's rule on the CPU: a low-resolution sample on geometry with a new or
 /// accumulating full-resolution pixel within one pixel of its texel.
 fn needed_samples(state: &ImageData, pos: &ImageData) -> u64 {
@@ -100,19 +117,7 @@ fn compacted_gather_lists_each_needed_sample_once() {
         ..Default::default()
     };
     let mut r = Renderer::new(&ctx, cornell_box(), config(96, ind, temporal)).unwrap();
-    let base = r.scene.camera;
-    let frames = 10u64;
-    for i in 0..frames {
-        let mut camera: Camera = base;
-        if i + 2 >= frames {
-            // The last two frames pan: a strip of new pixels and resampled histories.
-            let shift = Vec3::new(0.02 * (i + 3 - frames) as f32, 0.0, 0.0);
-            camera.position += shift;
-            camera.target += shift;
-        }
-        r.render_frame(&camera).unwrap();
-    }
-    let t = last_frame(&mut r, frames);
+    let t = converge_then_pan(&mut r);
     let state = r.read_state(EffectId::Indirect).unwrap();
     let pos = r.read(Target::GPosition).unwrap();
     let expected = needed_samples(&state, &pos);
@@ -179,18 +184,7 @@ fn pixel_lists_hold_exactly_the_working_pixels() {
         ..Default::default()
     };
     let mut r = Renderer::new(&ctx, cornell_box(), c).unwrap();
-    let base = r.scene.camera;
-    let frames = 10u64;
-    for i in 0..frames {
-        let mut camera: Camera = base;
-        if i + 2 >= frames {
-            let shift = Vec3::new(0.02 * (i + 3 - frames) as f32, 0.0, 0.0);
-            camera.position += shift;
-            camera.target += shift;
-        }
-        r.render_frame(&camera).unwrap();
-    }
-    let t = last_frame(&mut r, frames);
+    let t = converge_then_pan(&mut r);
     for (id, prefix) in [(EffectId::Ao, "ssao"), (EffectId::Direct, "shadow")] {
         let working = working_pixels(&r.read_state(id).unwrap());
         eprintln!(

@@ -29,6 +29,18 @@ ivec2 block_pixel(uint index, uvec2 local) {
     return ivec2(uvec2(packed & 0xffffu, packed >> 16) << effect.block_shift) + ivec2(local);
 }
 
+// Pixels of this frame's refresh tile (0: none), and pixel i of it, in rows.
+uint refresh_tile_pixels() {
+    uvec4 r = effect.refresh_rect;
+    return r.z > r.x && r.w > r.y ? (r.z - r.x) * (r.w - r.y) : 0u;
+}
+
+ivec2 refresh_tile_pixel(uint i) {
+    uvec4 r = effect.refresh_rect;
+    uint width = max(r.z - r.x, 1u);
+    return ivec2(r.x + i % width, r.y + i / width);
+}
+
 // Whether full-resolution pixel `pixel` lies in this frame's refresh tile.
 bool in_refresh_tile(ivec2 pixel) {
     uvec4 r = effect.refresh_rect;

@@ -16,10 +16,7 @@ shared vec4 refresh_partial[REFRESH_THREADS];
 
 // The pixel of this workgroup: the tile's pixels in rows (the dispatch has one group each).
 ivec2 refresh_pixel() {
-    uvec4 r = effect.refresh_rect;
-    uint width = max(r.z - r.x, 1u);
-    uint i = gl_WorkGroupID.x;
-    return ivec2(r.x + i % width, r.y + i / width);
+    return refresh_tile_pixel(gl_WorkGroupID.x);
 }
 
 // Sum of `mine` over the workgroup (every invocation must call it: it holds barriers).

@@ -250,9 +250,14 @@ pub struct Registration {
 /// The refresh pass's dispatch this frame, one workgroup per pixel of the refresh tile in
 /// `push`; `None` when no tile is drawn.
 pub fn refresh_dispatch(push: &EffectPush) -> Option<Dispatch> {
-    let [x0, y0, x1, y1] = push.refresh_rect;
-    let pixels = x1.saturating_sub(x0) * y1.saturating_sub(y0);
+    let pixels = refresh_pixels(push);
     (pixels > 0).then_some(Dispatch::Groups(pixels))
+}
+
+/// Pixels of the refresh tile `push` draws (0: none).
+pub fn refresh_pixels(push: &EffectPush) -> u32 {
+    let [x0, y0, x1, y1] = push.refresh_rect;
+    x1.saturating_sub(x0) * y1.saturating_sub(y0)
 }
 
 /// A render-sized RGBA32F image a pass writes and later passes sample or read back (the noisy

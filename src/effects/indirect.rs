@@ -7,7 +7,9 @@
 //! VPLs over a workgroup (indirect_spread.comp). It always goes through the reprojection:
 //! without reuse every pixel is new and every block listed, with the fixed pattern 0.
 
-use super::effect::{Effect, EffectId, FrameInfo, Recording, Registration, Setup, TermKind};
+use super::effect::{
+    refresh_pixels, Effect, EffectId, FrameInfo, Recording, Registration, Setup, TermKind,
+};
 use super::resolve::EffectResources;
 use crate::error::Result;
 use crate::passes::compute::{ComputePass, Dispatch};
@@ -412,8 +414,7 @@ impl IndirectEffect {
     /// The refresh tile's two dispatches: (pixel, pattern) estimates spread over lanes, at
     /// most MAX_GROUPS workgroups (they stride beyond), then one lane per pixel.
     fn refresh_dispatches(&self, config: &RenderConfig) -> Option<(Dispatch, Dispatch)> {
-        let [x0, y0, x1, y1] = self.push.refresh_rect;
-        let pixels = x1.saturating_sub(x0) * y1.saturating_sub(y0);
+        let pixels = refresh_pixels(&self.push);
         if pixels == 0 {
             return None;
         }

@@ -46,11 +46,6 @@ impl DescriptorPool {
         *self.allocated.lock().unwrap_or_else(|e| e.into_inner())
     }
 
-    /// Vulkan pools opened so far.
-    pub fn pools(&self) -> usize {
-        self.chunks.lock().unwrap_or_else(|e| e.into_inner()).len()
-    }
-
     /// Per Vulkan pool: its declared sizes (sets, descriptors per type) and what is left of
     /// them.
     pub fn capacities(&self) -> Vec<((u32, DescriptorCounts), (u32, DescriptorCounts))> {
