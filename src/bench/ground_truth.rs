@@ -6,9 +6,8 @@
 use super::error_metrics::{buffer_error, flip_ldr, masked_mean, BufferError};
 use super::measure::{Buffer, LastFrame};
 use crate::error::{Error, Result};
-use crate::reference::compose::{final_image, to_rgb8};
+use crate::reference::compose::{final_image, to_rgb8, Terms};
 use crate::reference::{RefBuffer, Reference};
-use crate::renderer::config::Effects;
 use crate::scene::Scene;
 use crate::vk::ImageData;
 use serde::Serialize;
@@ -91,12 +90,12 @@ pub fn mask(b: Buffer, reference: &Reference, scene: &Scene, gpu_geometry: &[boo
         .collect()
 }
 
-/// The ground-truth values of `b` for a run with `effects` (the final image composited from
-/// the reference buffers of those effects).
-pub fn truth_values(b: Buffer, reference: &Reference, scene: &Scene, effects: Effects) -> Vec<f32> {
+/// The ground-truth values of `b` for a run estimating `terms` (the final image composited
+/// from those reference buffers).
+pub fn truth_values(b: Buffer, reference: &Reference, scene: &Scene, terms: Terms) -> Vec<f32> {
     match reference_buffer(b) {
         Some(rb) => reference.estimate(rb).mean(),
-        None => final_image(reference, scene.ambient, effects),
+        None => final_image(reference, scene.ambient, terms),
     }
 }
 
@@ -115,14 +114,14 @@ fn compared(
     last: &LastFrame,
     reference: &Reference,
     scene: &Scene,
-    effects: Effects,
+    terms: Terms,
 ) -> Compared {
     let ch = channels(b);
     Compared {
         ch,
         mask: mask(b, reference, scene, &last.geometry),
         got: values(image, ch),
-        truth: truth_values(b, reference, scene, effects),
+        truth: truth_values(b, reference, scene, terms),
     }
 }
 
@@ -131,7 +130,7 @@ pub fn errors(
     last: &LastFrame,
     reference: &Reference,
     scene: &Scene,
-    effects: Effects,
+    terms: Terms,
 ) -> Result<BTreeMap<Buffer, FrameError>> {
     if last.geometry.len() != reference.primary.len() {
         return Err(Error::Config(format!(
@@ -147,7 +146,7 @@ pub fn errors(
             mask: m,
             got,
             truth,
-        } = compared(*b, image, last, reference, scene, effects);
+        } = compared(*b, image, last, reference, scene, terms);
         out.insert(
             *b,
             frame_error(*b, &got, &truth, ch, &m, (image.width, image.height))?,
@@ -270,7 +269,7 @@ pub fn write_error_maps(
     last: &LastFrame,
     reference: &Reference,
     scene: &Scene,
-    effects: Effects,
+    terms: Terms,
     dir: &std::path::Path,
     stem: &str,
 ) -> Result<Vec<std::path::PathBuf>> {
@@ -282,7 +281,7 @@ pub fn write_error_maps(
             mask: m,
             got,
             truth,
-        } = compared(*b, image, last, reference, scene, effects);
+        } = compared(*b, image, last, reference, scene, terms);
         let per_pixel = abs_error_per_pixel(&got, &truth, ch, &m)?;
         let path = dir.join(format!("{stem}-{}.png", b.name()));
         write_error_map(

@@ -9,7 +9,7 @@ use crate::error::Result;
 use crate::frontend::progress::Progress;
 use crate::frontend::sink::FrameSink;
 use crate::passes::PassId;
-use crate::renderer::config::Effects;
+use crate::renderer::config::{Effects, SsdoForm};
 use crate::renderer::targets::Target;
 use crate::renderer::{RenderConfig, Renderer};
 use crate::scene::path::frame_time;
@@ -24,7 +24,8 @@ use std::sync::Arc;
 pub enum Buffer {
     /// The tonemapped output image (RGBA8, compared as RGB in 0..1).
     Final,
-    /// AO visibility as composited (red channel).
+    /// Ambient visibility as composited (red channel): AO's, or SSDO's modulation factor
+    /// (its `ssao` form's unoccluded fraction).
     Ao,
     /// Direct light with PCF shadows (linear RGB radiance).
     Direct,
@@ -75,7 +76,7 @@ impl Buffer {
     pub fn present(self, effects: &Effects) -> bool {
         match self {
             Buffer::Final => true,
-            Buffer::Ao => effects.ao,
+            Buffer::Ao => effects.ao || effects.ssdo,
             Buffer::Direct | Buffer::Shadow => effects.direct,
             Buffer::Indirect => effects.indirect,
         }
@@ -369,13 +370,35 @@ pub fn report_config(
     })
 }
 
+/// One buffer of the frame last rendered. SSDO's modulation factor (alpha of its term) is
+/// returned in the red channel of a single-channel image, as AO visibility is stored.
+fn read_buffer(renderer: &mut Renderer, b: Buffer) -> Result<ImageData> {
+    let config = &renderer.config;
+    if b == Buffer::Ao && config.effects.ssdo && config.ssdo.form != SsdoForm::Ssao {
+        let m = renderer.read(Target::SsdoModulation)?;
+        let mut bytes = Vec::with_capacity(m.width as usize * m.height as usize * 4);
+        for y in 0..m.height {
+            for x in 0..m.width {
+                bytes.extend_from_slice(&m.texel(x, y)[3].to_le_bytes());
+            }
+        }
+        return Ok(ImageData {
+            width: m.width,
+            height: m.height,
+            format: ash::vk::Format::R32_SFLOAT,
+            bytes,
+        });
+    }
+    renderer.read(b.target())
+}
+
 /// Every buffer of the frame last rendered (the GPU must be idle: after `finish`).
 fn read_frame(renderer: &mut Renderer, camera: Camera) -> Result<LastFrame> {
     let effects = renderer.config.effects;
     let mut buffers = Vec::new();
     for b in Buffer::ALL {
         if b.present(&effects) {
-            buffers.push((b, renderer.read(b.target())?));
+            buffers.push((b, read_buffer(renderer, b)?));
         }
     }
     let position = renderer.read(Target::GPosition)?;

@@ -11,6 +11,7 @@ use super::Report;
 use crate::error::{Error, Result};
 use crate::frontend::sink::FrameSink;
 use crate::passes::PassId;
+use crate::reference::compose::Terms;
 use crate::reference::run::Session;
 use crate::reference::trace::RefBuffer;
 use crate::renderer::config::Effects;
@@ -286,7 +287,7 @@ pub fn measure_rows(
     // compared with: refine it (from the cache's samples) before scoring the rows.
     let mut truth = truth;
     let frames_last: Vec<&LastFrame> = runs.iter().map(|r| &r.2.last).collect();
-    refine_truth_for(&mut truth, &last, &frames_last, run.base.effects)?;
+    refine_truth_for(&mut truth, &last, &frames_last, Terms::of(&run.base))?;
     let mut rows = Vec::new();
     for (kind, config, measured, path, warmup) in runs {
         rows.push(summarize(
@@ -309,11 +310,11 @@ pub fn refine_truth_for(
     truth: &mut Session<'_>,
     scene: &Scene,
     frames: &[&LastFrame],
-    effects: Effects,
+    terms: Terms,
 ) -> Result<()> {
     let mut smallest: BTreeMap<Buffer, f64> = BTreeMap::new();
     for f in frames {
-        for (b, e) in ground_truth::errors(f, &truth.reference, scene, effects)? {
+        for (b, e) in ground_truth::errors(f, &truth.reference, scene, terms)? {
             if e.error.rmse > 0.0 {
                 let s = smallest.entry(b).or_insert(f64::INFINITY);
                 *s = s.min(e.error.rmse);
@@ -342,14 +343,14 @@ fn ground_truth_of<'a>(
     let cache = Some(crate::reference::store::default_dir());
     let (w, h) = (run.base.width, run.base.height);
     let mut truth = Session::start(scene, camera, w, h, settings, cache, run.progress)?;
-    let effects = run.base.effects;
-    if effects.ao {
+    let terms = Terms::of(&run.base);
+    if terms.ambient_occlusion {
         truth.ensure(RefBuffer::Ao, TABLE_TRUTH_SAMPLES)?;
     }
-    if effects.direct {
+    if terms.direct {
         truth.ensure(RefBuffer::Direct, 1)?;
     }
-    if effects.indirect {
+    if terms.indirect {
         truth.ensure(RefBuffer::Indirect, TABLE_TRUTH_SAMPLES)?;
     }
     truth.save()?;
@@ -434,7 +435,7 @@ fn summarize(
         )?;
         error.insert(buffer.name().to_string(), e);
     }
-    let truth = ground_truth::errors(&last, &truth.reference, truth.scene, config.effects)?
+    let truth = ground_truth::errors(&last, &truth.reference, truth.scene, Terms::of(&config))?
         .into_iter()
         .map(|(b, e)| (b.name().to_string(), e))
         .collect();

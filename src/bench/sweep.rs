@@ -10,6 +10,7 @@ use super::rows::{RowKind, REFERENCE_FRAMES};
 use super::sweep_keys::{describe, Label};
 use crate::error::{Error, Result};
 use crate::frontend::sink::Offscreen;
+use crate::reference::compose::Terms;
 use crate::reference::run::Session;
 use crate::renderer::RenderConfig;
 use crate::scene::{CameraPath, Scene};
@@ -57,12 +58,13 @@ pub struct SweepSpec<'a> {
     pub progress: bool,
 }
 
-/// The buffer the Pareto front and the plots use for a buffer's time axis: its effect's pass
-/// group (the whole frame for the final image).
+/// The pass groups the Pareto front and the plots use for a buffer's time axis: its effect's
+/// (the whole frame for the final image). Ambient visibility comes from AO or from SSDO, which
+/// are exclusive: a row ran one of the two groups.
 pub fn time_group(b: Buffer) -> &'static [&'static str] {
     match b {
         Buffer::Final => &["total"],
-        Buffer::Ao => &["ao"],
+        Buffer::Ao => &["ao", "ssdo"],
         Buffer::Shadow => &["shadow"],
         Buffer::Direct => &["shadow", "direct"],
         Buffer::Indirect => &["indirect"],
@@ -71,10 +73,16 @@ pub fn time_group(b: Buffer) -> &'static [&'static str] {
 
 /// Milliseconds of `b`'s time axis in `row` (None if a group never ran).
 pub fn time_of(row: &SweepRow, b: Buffer) -> Option<f64> {
-    time_group(b)
-        .iter()
-        .map(|g| row.ms.get(*g).copied().flatten())
-        .sum()
+    let ms = |g: &&str| row.ms.get(*g).copied().flatten();
+    if b == Buffer::Ao {
+        return time_group(b).iter().find_map(ms);
+    }
+    time_group(b).iter().map(ms).sum()
+}
+
+/// The time axis's name: the groups summed (`shadow + direct`), or either one for AO.
+pub fn time_label(b: Buffer) -> String {
+    time_group(b).join(if b == Buffer::Ao { " or " } else { " + " })
 }
 
 /// The error a buffer's front is drawn over: FLIP for the final image, RMSE otherwise.
@@ -198,7 +206,7 @@ pub fn run(
 fn score(rows: &mut [SweepRow], scene: &Scene, truth: &Session<'_>) -> Result<()> {
     for row in rows {
         let Some(last) = &row.last else { continue };
-        row.truth = ground_truth::errors(last, &truth.reference, scene, row.config.effects)?
+        row.truth = ground_truth::errors(last, &truth.reference, scene, Terms::of(&row.config))?
             .into_iter()
             .map(|(b, e)| (b.name().to_string(), e))
             .collect();

@@ -7,7 +7,7 @@ use super::measure::Buffer;
 use super::output::write_text;
 use super::pareto::front_polyline;
 use super::scatter::{write_scatter_plot, ScatterPlot, ScatterSeries};
-use super::sweep::{error_of, points, time_group, time_of, SweepRow};
+use super::sweep::{error_of, points, time_label, time_of, SweepRow};
 use crate::error::Result;
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
@@ -169,7 +169,7 @@ pub fn markdown(
         s += &format!(
             "\n## {} (time: {})\n\n| | configuration | ms | {metric} vs truth | rel. MSE | PSNR | RMSE vs converged |{flip_head}\n|---|---|---|---|---|---|---|{flip_rule}\n",
             b.name(),
-            time_group(b).join(" + ")
+            time_label(b)
         );
         let mut order: Vec<&SweepRow> = rows.iter().collect();
         order.sort_by(|a, c| {
@@ -258,7 +258,7 @@ pub fn plots(dir: &Path, header: &SweepHeader, rows: &[SweepRow]) -> Result<Vec<
             header.size[0],
             header.size[1]
         );
-        let x_label = format!("GPU ms ({})", time_group(b).join(" + "));
+        let x_label = format!("GPU ms ({})", time_label(b));
         let y_label = if b == Buffer::Final {
             "FLIP vs ground truth"
         } else {

@@ -1,10 +1,46 @@
 //! The reference's final image: the renderer's composite (shaders/composite.comp) applied to
 //! the reference buffers: ambient × albedo × AO visibility + direct radiance + albedo/π ·
-//! (π·E₁)/π, then Reinhard c/(1 + c) and the sRGB encoding, for the effects a run enabled.
+//! (π·E₁)/π, then Reinhard c/(1 + c) and the sRGB encoding, for the terms a run estimates.
 
 use super::trace::Reference;
-use crate::renderer::config::Effects;
+use crate::renderer::config::{Effects, SsdoForm};
+use crate::renderer::RenderConfig;
 use glam::Vec3;
+
+/// The reference buffers a configuration's final image estimates. SSDO estimates the
+/// occlusion of the ambient light (the `ao` buffer, as `--ao` does) and, in its forms with a
+/// bounce, the near-field part of the one-bounce indirect light (the `indirect` buffer: the
+/// truth has the whole bounce, so what SSDO's radius leaves out counts as its error).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Terms {
+    pub ambient_occlusion: bool,
+    pub direct: bool,
+    pub indirect: bool,
+}
+
+impl Terms {
+    /// Every term (the `ssgi reference` command's final image).
+    pub const ALL: Terms = Terms {
+        ambient_occlusion: true,
+        direct: true,
+        indirect: true,
+    };
+
+    /// What `effects` estimate, SSDO in `form`.
+    pub fn estimated(effects: Effects, form: SsdoForm) -> Terms {
+        let ssdo_bounce = effects.ssdo && form != SsdoForm::Ssao;
+        Terms {
+            ambient_occlusion: effects.ao || effects.ssdo,
+            direct: effects.direct,
+            indirect: effects.indirect || ssdo_bounce,
+        }
+    }
+
+    /// What a render configuration estimates.
+    pub fn of(config: &RenderConfig) -> Terms {
+        Terms::estimated(config.effects, config.ssdo.form)
+    }
+}
 
 fn srgb_encode(c: f32) -> f32 {
     if c <= 0.003_130_8 {
@@ -15,19 +51,19 @@ fn srgb_encode(c: f32) -> f32 {
 }
 
 /// Tonemapped, sRGB-encoded RGB in [0, 1], three values per pixel; background black.
-pub fn final_image(r: &Reference, ambient: Vec3, effects: Effects) -> Vec<f32> {
+pub fn final_image(r: &Reference, ambient: Vec3, terms: Terms) -> Vec<f32> {
     let (ao, direct, indirect) = (r.ao.mean(), r.direct.mean(), r.indirect.mean());
     let rgb = |v: &[f32], i: usize| Vec3::new(v[3 * i], v[3 * i + 1], v[3 * i + 2]);
     let mut out = vec![0.0f32; 3 * r.primary.len()];
     for (i, p) in r.primary.iter().enumerate() {
         let Some(p) = p else { continue };
         let albedo = p.surface.albedo;
-        let visibility = if effects.ao { ao[i] } else { 1.0 };
+        let visibility = if terms.ambient_occlusion { ao[i] } else { 1.0 };
         let mut c = ambient * albedo * visibility;
-        if effects.direct {
+        if terms.direct {
             c += rgb(&direct, i);
         }
-        if effects.indirect {
+        if terms.indirect {
             c += albedo / std::f32::consts::PI * rgb(&indirect, i) / std::f32::consts::PI;
         }
         if !c.is_finite() {
@@ -47,4 +83,30 @@ pub fn to_rgb8(values: &[f32]) -> Vec<u8> {
         .iter()
         .map(|v| (v.clamp(0.0, 1.0) * 255.0).round() as u8)
         .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn ssdo_estimates_occlusion_and_its_forms_with_a_bounce_the_indirect_light() {
+        let direct_ssdo = Effects::parse("direct,ssdo").unwrap();
+        let ssao = Terms::estimated(direct_ssdo, SsdoForm::Ssao);
+        assert_eq!(
+            ssao,
+            Terms::estimated(Effects::parse("direct,ao").unwrap(), ssao_any())
+        );
+        assert!(ssao.ambient_occlusion && ssao.direct && !ssao.indirect);
+        for form in [SsdoForm::OneStep, SsdoForm::TwoStep] {
+            assert_eq!(Terms::estimated(direct_ssdo, form), Terms::ALL);
+        }
+        let ao_only = Terms::estimated(Effects::parse("ao").unwrap(), SsdoForm::OneStep);
+        assert!(ao_only.ambient_occlusion && !ao_only.direct && !ao_only.indirect);
+    }
+
+    /// The SSDO form of a run without SSDO does not matter.
+    fn ssao_any() -> SsdoForm {
+        SsdoForm::OneStep
+    }
 }

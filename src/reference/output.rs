@@ -126,8 +126,8 @@ pub fn write_all(session: &super::run::Session<'_>, out: &Path) -> Result<serde_
             }),
         );
     }
-    let effects = crate::renderer::config::Effects::ALL;
-    let final_rgb = super::compose::final_image(r, session.scene.ambient, effects);
+    let final_rgb =
+        super::compose::final_image(r, session.scene.ambient, super::compose::Terms::ALL);
     write_exr(&out.join("final.exr"), &final_rgb, 3, w, h)?;
     write_final_png(&out.join("final.png"), &final_rgb, w, h)?;
     let json = serde_json::json!({
