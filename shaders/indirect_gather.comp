@@ -43,6 +43,7 @@ void main() {
             p = position.xyz;
             n = texelFetch(g_normal, pixel, 0).xyz;
             fresh = indirect_share(p, n, pixel);
+            if (planted_nan(pixel)) fresh = vec4(quiet_nan());
         }
     }
     fresh = interleave_reconstruct(gl_LocalInvocationID.xy, work, is_new, p, n, pixel_footprint(p, 1.0), fresh);

@@ -51,6 +51,7 @@ void main() {
             n = texelFetch(g_normal, full, 0).xyz;
             is_new = imageLoad(state_in, full).r == STATE_NEW;
             value = indirect_share(p, n, low);
+            if (planted_nan(full)) value = vec4(quiet_nan());
             atomicAdd(group_computed, 1u);
         }
     }

@@ -92,9 +92,12 @@ void main() {
                      : rsm_gather_sampled(g.xyz, n, pixel_frame_pattern(pixel, frame.frame_index), 0u, count, 0.0);
         }
     }
+    if (planted_nan(pixel)) x = vec3(quiet_nan());
+    // A NaN or infinite sample would make CCIPCA's image-wide sums NaN: it counts as 0, in
+    // the stored sample and in this frame's residual and sums alike.
+    x = finite_or_zero(x);
     if (inside) {
-        // A NaN or infinite sample would make CCIPCA's image-wide sums NaN: stored as 0.
-        imageStore(noisy, pixel, vec4(finite_or_zero(x), 1.0));
+        imageStore(noisy, pixel, vec4(x, 1.0));
 #ifdef CCIPCA
         uint p = pixel_index(pixel);
         if (ccipca.restart != 0u) {

@@ -132,6 +132,7 @@ void main() {
             vec4 position = texelFetch(g_position, texel, 0);
             live = position.w != 0.0;
             if (live) x = indirect_part(position.xyz, texelFetch(g_normal, texel, 0).xyz, pattern, pixel, lane, lanes);
+            if (live && planted_nan(texel)) x = vec3(quiet_nan());
         }
         if (live && share > 0u) {
             evaluations += share;

@@ -66,7 +66,7 @@ layout(set = 0, binding = 0, std430) readonly buffer Frame {
     uint ssdo_scale;           // SSDO's resolution divisor: its texel t samples pixel t * scale
     uint direct_enabled;       // 1 when the direct effect runs (SSDO's senders add its light)
     uint camera_static;        // 1 when prev_view_proj equals view_proj exactly (CPU test)
-    uint indirect_ramp;        // test input: indirect passes output world position (0/1)
+    uint indirect_input;       // test input: 0 the gather, 1 world position (IndirectInput::Ramp), 2 + i NaN at pixel index i (Renderer::plant_nan)
     vec3 prev_camera_pos;      // last frame's eye: the history's footprint on each surface
     uint history_resample;     // moving camera: 0 best-registered tap, 1 bilinear blend
     float aa_sigma_z;          // SRAA eq 1: scale on the relative eye-distance difference
@@ -102,6 +102,19 @@ float light_linear_depth(float ndc_depth) {
 // values, so one comparison covers both sides).
 bool outside_frame(ivec2 pixel) {
     return any(greaterThanEqual(uvec2(pixel), frame.size));
+}
+
+// Test hook (Renderer::plant_nan): whether the indirect estimates of `pixel` are NaN this
+// frame, to show the guards keep a NaN from spreading.
+bool planted_nan(ivec2 pixel) {
+    return frame.indirect_input >= 2u && !outside_frame(pixel) &&
+           uint(pixel.y) * frame.size.x + uint(pixel.x) == frame.indirect_input - 2u;
+}
+
+// A quiet NaN: exponent all ones, quiet bit set. Built from a uniform so it is no constant
+// (naga's validation refuses NaN constants); any mantissa bits below keep it a NaN.
+float quiet_nan() {
+    return uintBitsToFloat(0x7fc00000u | (frame.indirect_input & 0x3fffffu));
 }
 
 #endif // FRAME_GLSL

@@ -19,7 +19,7 @@ layout(set = 1, binding = 4) uniform texture2D rsm_flux;
 // of the VPLs (rsm_gather; interleave 1: every VPL), or with the test input
 // (IndirectInput::Ramp) p itself, a linear function with a known value at every pixel.
 vec4 indirect_pattern(vec3 p, vec3 n, uint pattern, ivec2 pixel, uint interleave) {
-    vec3 x = frame.indirect_ramp != 0u ? p : rsm_gather(p, n, pattern, pixel, interleave);
+    vec3 x = frame.indirect_input == 1u ? p : rsm_gather(p, n, pattern, pixel, interleave);
     float l = dot(x, LUMA);
     return vec4(x, l * l);
 }
@@ -38,7 +38,7 @@ vec4 indirect_share(vec3 p, vec3 n, ivec2 pixel) {
 // One lane's part of pattern `pattern`'s every-VPL estimate (rgb only): the parts of lanes
 // 0..lanes-1 sum to indirect_pattern(p, n, pattern, pixel, 1u).rgb.
 vec3 indirect_part(vec3 p, vec3 n, uint pattern, ivec2 pixel, uint lane, uint lanes) {
-    if (frame.indirect_ramp != 0u) return lane == 0u ? p : vec3(0.0);
+    if (frame.indirect_input == 1u) return lane == 0u ? p : vec3(0.0);
     return rsm_gather_part(p, n, pattern, pixel, lane, lanes);
 }
 

@@ -31,6 +31,8 @@ pub struct FrameInputs<'a> {
     pub scene_radius: f32,
     /// What moved since last frame (`motion::Moved`), if anything did.
     pub moved: Option<super::motion::Moved>,
+    /// Test hook (`Renderer::plant_nan`): this pixel's indirect estimates are NaN this frame.
+    pub planted_nan: Option<[u32; 2]>,
 }
 
 /// The per-frame uniform block (`Frame` in shaders/include/frame.glsl), filled member by member.
@@ -117,7 +119,12 @@ pub fn frame_block(config: &RenderConfig, f: &FrameInputs<'_>) -> FrameBlock {
         // Exact equality: an unmoved camera reuses each history texel as is, decided here
         // rather than by a pixel threshold on eq 1, whose fp32 error grows with coordinates.
         camera_static: (view_proj == f.prev_view_proj) as u32,
-        indirect_ramp: (ind.input == IndirectInput::Ramp) as u32,
+        indirect_input: match (f.planted_nan, ind.input) {
+            // Pixel indices stay below 2^28 (MAX_SIZE^2); 2 + index fits a u32.
+            (Some([x, y]), _) => 2 + y * config.width + x,
+            (None, IndirectInput::Ramp) => 1,
+            (None, IndirectInput::Gather) => 0,
+        },
         moved_light_rect: f.moved.map_or([0.0; 4], |m| m.light_rect),
         moved_screen_rect: f.moved.map_or([0.0; 4], |m| m.screen_rect),
         moved_min: f.moved.map_or([0.0; 3], |m| m.bounds.min.to_array()),
@@ -153,6 +160,7 @@ mod tests {
                     frame: 1,
                     scene_radius: 1.0,
                     moved: None,
+                    planted_nan: None,
                 },
             )
         };

@@ -110,6 +110,8 @@ pub struct Renderer {
     /// Objects each slot's last frame moved (its timing's `moved_objects`).
     moved: [usize; FRAMES_IN_FLIGHT],
     pool: DescriptorPool,
+    /// Test hook: the pixel whose indirect estimates the next frame makes NaN (`plant_nan`).
+    planted_nan: Option<[u32; 2]>,
 }
 
 impl Renderer {
@@ -188,6 +190,7 @@ impl Renderer {
             frame_index: 0,
             rsm_light: None,
             history: None,
+            planted_nan: None,
             last_frame_reused: false,
             camera_was_moving: false,
             audit: None,
@@ -566,6 +569,7 @@ impl Renderer {
                 // Everywhere a moving object goes counts: the radius stays put.
                 scene_radius: self.scene.bounds().radius(),
                 moved,
+                planted_nan: self.planted_nan.take(),
             },
         );
         self.frames[slot].uniforms.write(&block.to_bytes())?;
@@ -657,6 +661,13 @@ impl Renderer {
     }
 
     /// Copy a target of the last rendered frame to the host (waits for the GPU).
+    /// Test hook: the next recorded frame computes NaN for every indirect estimate of `pixel`
+    /// (the noisy gather's sample and the cached gather's pattern) before the guards that keep
+    /// NaN out of histories, bases and image-wide sums. No effect outside the image.
+    pub fn plant_nan(&mut self, pixel: [u32; 2]) {
+        self.planted_nan = Some(pixel);
+    }
+
     pub fn read(&mut self, target: Target) -> Result<ImageData> {
         let parity = self.last_parity();
         let image = resolve_target(&self.targets, &self.effects, &self.config, target, parity);
