@@ -6,11 +6,16 @@
 // every later projection. Weights as the joint bilateral baselines' (shaders/indirect_jbf.comp):
 // Gaussian in screen distance (sigma = radius / 2), normal agreement ^16, tangent-plane
 // distance in pixel footprints (sigma 2). Basis 0's sample counts are the pixel's own.
+// Filtering each basis on its own tilts them towards each other (all lean to the smooth
+// image); with --ccipca-orthogonalize always the pass also stores the filtered bases' Gram
+// matrix partial sums, from which the orthogonalization (Algorithm 2, as after a warp) makes
+// them orthogonal again.
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_samplerless_texture_functions : require
 #include "frame.glsl"
 #define CCIPCA_BASES
 #define CCIPCA_BASES_PREV
+#define CCIPCA_PARTIALS
 #include "ccipca.glsl"
 
 layout(local_size_x = 16, local_size_y = 16) in;
@@ -21,15 +26,11 @@ layout(set = 1, binding = 1) uniform texture2D g_normal;
 const float NORMAL_POWER = 16.0;
 const float PLANE_SIGMA = 2.0; // pixel footprints
 
-void main() {
-    ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
-    if (outside_frame(pixel)) return;
-    uint p = pixel_index(pixel);
+// The filtered bases of one pixel (background pixels keep theirs).
+void filtered(ivec2 pixel, uint p, out vec4 v[MAX_BASES]) {
+    for (uint i = 0u; i < BASES; ++i) v[i] = bases_prev[basis_index(i, p)];
     vec4 g = texelFetch(g_position, pixel, 0);
-    if (g.w == 0.0) {
-        for (uint i = 0u; i < BASES; ++i) bases[basis_index(i, p)] = bases_prev[basis_index(i, p)];
-        return;
-    }
+    if (g.w == 0.0) return;
     vec3 n = texelFetch(g_normal, pixel, 0).xyz;
     float footprint = 2.0 * distance(g.xyz, frame.camera_pos) * frame.tan_half_fov / float(frame.size.y);
     float inv_plane = 1.0 / max(PLANE_SIGMA * footprint, 1e-30);
@@ -55,8 +56,26 @@ void main() {
     }
     // The centre weighs 1.
     float inv = 1.0 / max(weights, 1.0);
-    for (uint i = 0u; i < BASES; ++i) {
-        float a = i == 0u ? bases_prev[p].a : 0.0;
-        bases[basis_index(i, p)] = vec4(sum[i] * inv, a);
+    for (uint i = 0u; i < BASES; ++i) v[i] = vec4(sum[i] * inv, i == 0u ? v[0].a : 0.0);
+}
+
+void main() {
+    ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
+    float gram[4u * SUM_VEC4S];
+    for (uint m = 0u; m < 4u * SUM_VEC4S; ++m) gram[m] = 0.0;
+    if (!outside_frame(pixel)) {
+        uint p = pixel_index(pixel);
+        vec4 v[MAX_BASES];
+        filtered(pixel, p, v);
+        for (uint j = 0u; j < BASES; ++j) {
+            bases[basis_index(j, p)] = v[j];
+            for (uint i = 0u; i <= j; ++i) gram[gram_index(i, j)] = dot(v[i].rgb, v[j].rgb);
+        }
     }
+    // Only for --ccipca-orthogonalize always (sum_vec4s > 0). Uniform over the dispatch, and
+    // every invocation reaches the group's sum (it holds barriers).
+    if (ccipca.sum_vec4s == 0u) return;
+    vec4 s[SUM_VEC4S];
+    for (uint m = 0u; m < SUM_VEC4S; ++m) s[m] = vec4(gram[4u * m], gram[4u * m + 1u], gram[4u * m + 2u], gram[4u * m + 3u]);
+    store_partials(s, gram_vec4s(BASES));
 }

@@ -3,9 +3,9 @@
 
 use crate::bench::warmup::Warmup;
 use crate::renderer::config::{
-    AaConfig, AaMode, Accumulate, AdaptiveSamples, AoConfig, AoEstimator, CcipcaProject,
-    CcipcaWeighting, Effects, Epsilon, HistoryResample, IndirectConfig, IndirectFilter, Refresh,
-    SsdoConfig, SsdoForm, TemporalConfig,
+    AaConfig, AaMode, Accumulate, AdaptiveSamples, AoConfig, AoEstimator, CcipcaOrthogonalize,
+    CcipcaProject, CcipcaWeighting, Effects, Epsilon, HistoryResample, IndirectConfig,
+    IndirectFilter, Refresh, SsdoConfig, SsdoForm, TemporalConfig,
 };
 use crate::renderer::frame::Pcf;
 use crate::renderer::{RenderConfig, MAX_SIZE};
@@ -188,6 +188,10 @@ pub struct SceneArgs {
     /// smooths every basis after the updates (0 = off).
     #[arg(long, default_value_t = IndirectConfig::default().basis_filter, value_parser = clap::value_parser!(u32).range(0..=IndirectConfig::MAX_BASIS_FILTER as i64))]
     pub ccipca_basis_filter: u32,
+    /// CCIPCA: orthogonalize the bases after a warp only (the article), or `always`, after
+    /// every basis filtering too (the bases stay orthogonal on a still camera).
+    #[arg(long, value_enum, default_value_t = CcipcaOrthogonalize::Warp)]
+    pub ccipca_orthogonalize: CcipcaOrthogonalize,
     /// CCIPCA adaptive sampling: VPLs gathered by a pixel new to the view after a camera move
     /// (0 = as many as any other pixel, --vpls; at most 16384).
     #[arg(long, default_value_t = 0, value_parser = clap::value_parser!(u32).range(0..=16384))]
@@ -406,6 +410,7 @@ impl SceneArgs {
                 bases: self.bases,
                 weighting: self.ccipca_weighting,
                 basis_filter: self.ccipca_basis_filter,
+                orthogonalize: self.ccipca_orthogonalize,
                 project: self.ccipca_project,
                 new_pixel_vpls: self.ccipca_new_pixel_vpls,
                 max_age: self.ccipca_max_age,

@@ -17,7 +17,8 @@ use crate::passes::decl::{Bind, Slot, Use};
 use crate::passes::{PassId, PassLayout};
 use crate::reference::ccipca::AMNESIC;
 use crate::renderer::config::{
-    CcipcaProject, CcipcaStages, CcipcaWeighting, IndirectConfig, IndirectFilter, RenderConfig,
+    CcipcaOrthogonalize, CcipcaProject, CcipcaStages, CcipcaWeighting, IndirectConfig,
+    IndirectFilter, RenderConfig,
 };
 use crate::renderer::effect::TemporalEffect;
 use crate::renderer::targets::{Target, Targets};
@@ -99,6 +100,7 @@ const BASIS_FILTER: &[Bind] = &[
     Bind::new(0, Slot::GPosition, Use::Sampled),
     Bind::new(1, Slot::GNormal, Use::Sampled),
     Bind::new(6, BASES, Use::BufferWrite),
+    Bind::new(8, PARTIALS, Use::BufferWrite),
     Bind::new(11, BASES_PREV, Use::BufferRead),
 ];
 
@@ -509,10 +511,23 @@ impl Effect for CcipcaEffect {
                 own_buffers: &buffers,
                 ..res
             };
+            // Filtered bases lean towards each other: with `always`, orthogonalize them from
+            // the Gram matrix the filter summed (sum_vec4s 0: it sums nothing), as after a warp.
+            let always = info.config.indirect.orthogonalize == CcipcaOrthogonalize::Always;
+            let gram = sums(0, if always { gram_vec4s(bases) } else { 0 });
+            let filter = &self.passes[other];
             r.timed(PassId::CcipcaBasisFilter, |rec, tr| {
-                self.passes[other]
+                filter
                     .basis_filter
-                    .record(rec, tr, info.frame, &res, &push(0), pixels)
+                    .record(rec, tr, info.frame, &res, &gram, pixels);
+                if always {
+                    filter
+                        .gram
+                        .record(rec, tr, info.frame, &res, &gram, Dispatch::Groups(1));
+                    filter
+                        .orthogonalize
+                        .record(rec, tr, info.frame, &res, &gram, pixels);
+                }
             });
         }
     }

@@ -233,6 +233,8 @@ pub struct IndirectConfig {
     /// CCIPCA: radius [px] of the joint bilateral filter applied to every basis after the
     /// updates (the article's basis filtering); 0 = off.
     pub basis_filter: u32,
+    /// CCIPCA: orthogonalize after warps only, or after basis filtering too.
+    pub orthogonalize: CcipcaOrthogonalize,
     /// CCIPCA's adaptive sampling: VPLs gathered by a pixel new to the view after a camera
     /// move (0 = `vpls`, as any other pixel).
     pub new_pixel_vpls: u32,
@@ -293,6 +295,19 @@ pub enum CcipcaProject {
     After,
 }
 
+/// When CCIPCA orthogonalizes its bases (the article's Algorithm 2).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, clap::ValueEnum)]
+#[serde(rename_all = "lowercase")]
+pub enum CcipcaOrthogonalize {
+    /// After a warp only (the article): on a still camera basis filtering tilts the bases
+    /// towards each other until they are nearly one (|cos| 0.99 after 25 frames), so the
+    /// projection acts as on the first basis alone.
+    #[default]
+    Warp,
+    /// Also after every basis filtering: the bases stay orthogonal, `--bases` of them.
+    Always,
+}
+
 /// The CCIPCA passes a frame records.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum CcipcaStages {
@@ -344,6 +359,7 @@ impl Default for IndirectConfig {
             weighting: CcipcaWeighting::PerPixel,
             project: CcipcaProject::Before,
             basis_filter: 2,
+            orthogonalize: CcipcaOrthogonalize::Warp,
             new_pixel_vpls: 0,
             max_age: 256,
             ccipca_stages: CcipcaStages::All,
