@@ -1,119 +1,70 @@
-//! Golden-image regression: 64x64 renders of the Cornell box and the bunny in a box for every
-//! combination of effects, with reuse on and off, against PNGs in `tests/golden/`.
+//! Golden-image regression: 64x64 renders against PNGs in `tests/golden/`, one per case of
+//! `common::golden::cases()`:
+//! - every combination of direct light, AO and indirect light, with reuse on and off, on the
+//!   Cornell box and the bunny in a box, along four frames of a slow orbit (so reprojection,
+//!   disocclusion and accumulation all take part);
+//! - on the Cornell box, a still view converged (the rotation limit's patterns and four frames
+//!   more): AO alone, indirect light alone, the three with direct light; SSDO's SSAO form
+//!   alone and one-step SSDO with direct light; indirect light alone filtered by CCIPCA and by
+//!   the 11x11 and 17x17 joint bilateral filters, and gathered interleaved in 2x2 blocks; SRAA
+//!   and shadow-aware SRAA on every effect;
+//! - two-step SSDO with direct light, without reuse, along the orbit; and a converged view of
+//!   every effect that then moves three orbit steps, its histories resampled bilinearly and
+//!   from the nearest point.
 //!
 //! The goldens pin the renderer's behaviour across refactors; a change that is meant to move
 //! pixels re-renders them in its own commit and says why (the last: the G-buffer's albedo in
-//! fp16 instead of 8-bit UNORM, 1-2 codes on about a quarter of the pixels).
-//! Each run renders four frames along a slow orbit (so reprojection, disocclusion and
-//! accumulation all take part) and compares the final RGBA8 output.
+//! fp16 instead of 8-bit UNORM, 1-2 codes on about a quarter of the pixels; the converged,
+//! SSDO, filter, antialiasing and resampling cases were added later without re-rendering the
+//! combinations).
 //!
 //! Tolerance: lavapipe is deterministic for a given shader binary, so the same code reproduces
 //! every byte. A refactor may legitimately reorder floating-point operations (another shader
 //! permutation mechanism, another evaluation order), which moves a channel by a code or two
-//! after tonemapping. So each channel may differ by at most `common::MAX_CHANNEL_DIFF` codes, and
-//! at most `common::MAX_CHANGED_FRACTION` of the pixels may differ at all; anything larger is a change
-//! in behaviour, and the failure message names the image, the worst pixel and both values.
+//! after tonemapping. So each channel may differ by at most `common::MAX_CHANNEL_DIFF` codes,
+//! and at most `common::MAX_CHANGED_FRACTION` of the pixels may differ at all; anything larger
+//! is a change in behaviour, and the failure message names the image, the worst pixel and both
+//! values.
 //!
-//! Re-bless (only for an intended change of the image, stated in the commit):
-//! `SSGI_BLESS_GOLDEN=1 cargo test --test golden`.
+//! Re-bless (only for an intended change of the image, stated in the commit), on lavapipe:
+//! `cargo run --example bless_goldens` (all cases) or `cargo run --example bless_goldens --
+//! NAME...` (the cases whose names contain one of the NAMEs). The test never writes an image:
+//! it fails when `SSGI_BLESS_GOLDEN` is set, naming that command.
 
 mod common;
 
-use ssgi::renderer::config::Effects;
-use ssgi::renderer::pcf::Pcf;
-use ssgi::renderer::targets::Target;
-use ssgi::renderer::{RenderConfig, Renderer};
-use ssgi::scene::{load_scene, CameraPath, Orbit};
-use std::path::{Path, PathBuf};
+use common::golden::{self, Group, BLESS_COMMAND, BLESS_VARIABLE};
 
-const SIZE: u32 = 64;
-const FRAMES: u32 = 4;
-/// The orbit's frame count: 1/240 of a turn (1.5 degrees) per frame.
-const ORBIT_FRAMES: u32 = 240;
-
-fn golden_dir() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/golden")
-}
-
-/// Every non-empty combination of the three effects, named like `--effects`.
-fn combinations() -> Vec<(String, Effects)> {
-    let mut out = Vec::new();
-    for bits in 1u32..8 {
-        let e = Effects {
-            direct: bits & 1 != 0,
-            ao: bits & 2 != 0,
-            indirect: bits & 4 != 0,
-            ssdo: false,
-        };
-        let names: Vec<&str> = [("direct", e.direct), ("ao", e.ao), ("indirect", e.indirect)]
-            .into_iter()
-            .filter_map(|(n, on)| on.then_some(n))
-            .collect();
-        out.push((names.join("+"), e));
-    }
-    out
-}
-
-fn render(scene_spec: &str, effects: Effects, reuse: bool) -> Vec<u8> {
-    let ctx = common::context();
-    let scene = load_scene(scene_spec, None).unwrap_or_else(|e| {
-        panic!(
-            "golden scene {scene_spec:?} is missing: {e} (set SSGI_ASSETS to the shared \
-             scenes directory, as tools/test does)"
-        )
-    });
-    let mut config = RenderConfig {
-        width: SIZE,
-        height: SIZE,
-        rsm_size: 128,
-        effects,
-        // The thesis's pairing: the accumulated 9-sample disc with reuse, the 7x7 grid without.
-        pcf: if reuse { Pcf::NINE } else { Pcf::DEFAULT },
-        ..Default::default()
-    };
-    config.temporal.reuse = reuse;
-    let mut r = Renderer::new(&ctx, scene, config).expect("renderer");
-    let base = r.scene.camera;
-    // The goldens pin the renderer, not the scenes' orbits: a turn around the mesh from the
-    // base camera, as `orbit` was when they were rendered.
-    let around = Orbit::around(r.scene.mesh.bounds.center());
-    for f in 0..FRAMES {
-        // One turn per ORBIT_FRAMES seconds at 1 fps: frame f is f / ORBIT_FRAMES of a turn.
-        let orbit = CameraPath::Orbit {
-            seconds: ORBIT_FRAMES as f32,
-        };
-        let camera = orbit.camera_at(&base, &around, f as f32);
-        r.render_frame(&camera).expect("frame");
-    }
-    r.finish().expect("finish");
-    let out = r.read(Target::Output).expect("read output");
-    common::assert_clean(&ctx);
-    out.rgba8().expect("RGBA8 output")
-}
-
-fn check(scene_spec: &str, file_stem: &str) {
-    let bless = std::env::var_os("SSGI_BLESS_GOLDEN").is_some();
+/// Render every case of `group` and compare it with its golden image.
+fn check(group: Group) {
+    assert!(
+        std::env::var_os(BLESS_VARIABLE).is_none(),
+        "{BLESS_VARIABLE} is set, but the test never writes its own expectation: unset it and \
+         bless with `{BLESS_COMMAND}` (on lavapipe; see tests/golden.rs)"
+    );
     let mut failures = Vec::new();
-    for (name, effects) in combinations() {
-        for reuse in [true, false] {
-            let file = golden_dir().join(format!(
-                "{file_stem}-{name}-{}.png",
-                if reuse { "reuse" } else { "noreuse" }
-            ));
-            let got = render(scene_spec, effects, reuse);
-            if bless {
-                std::fs::create_dir_all(golden_dir()).unwrap();
-                image::save_buffer(&file, &got, SIZE, SIZE, image::ExtendedColorType::Rgba8)
-                    .unwrap();
+    for case in golden::cases().iter().filter(|c| c.group == group) {
+        let file = case.path();
+        let want = match image::open(&file) {
+            Ok(img) => img.to_rgba8(),
+            Err(e) => {
+                failures.push(format!(
+                    "{}: golden image missing ({e}); render it with `{BLESS_COMMAND} -- {}`",
+                    file.display(),
+                    case.name
+                ));
                 continue;
             }
-            let want = image::open(&file)
-                .unwrap_or_else(|e| panic!("golden image {} missing: {e}", file.display()))
-                .to_rgba8();
-            assert_eq!(want.dimensions(), (SIZE, SIZE), "{}", file.display());
-            if let Some(msg) = common::golden_compare(&got, want.as_raw(), SIZE) {
-                failures.push(format!("{}: {msg}", file.display()));
-            }
+        };
+        assert_eq!(
+            want.dimensions(),
+            (golden::SIZE, golden::SIZE),
+            "{}",
+            file.display()
+        );
+        let got = golden::render(case);
+        if let Some(msg) = common::golden_compare(&got, want.as_raw(), golden::SIZE) {
+            failures.push(format!("{}: {msg}", file.display()));
         }
     }
     assert!(
@@ -125,20 +76,89 @@ fn check(scene_spec: &str, file_stem: &str) {
 
 #[test]
 fn golden_cornell_box() {
-    check("cornell-box", "cornell");
+    check(Group::Cornell);
 }
 
 #[test]
 fn golden_bunny_in_box() {
-    check("box:bunny", "bunny");
+    check(Group::Bunny);
+}
+
+#[test]
+fn golden_converged_effects() {
+    check(Group::Converged);
+}
+
+#[test]
+fn golden_filters_and_resampling() {
+    check(Group::Filters);
+}
+
+/// Every image in `tests/golden/` is some case's and no two cases share a name: an image left
+/// behind by a renamed case would otherwise go unchecked.
+#[test]
+fn every_golden_image_has_a_case() {
+    let cases = golden::cases();
+    let mut names: Vec<&str> = cases.iter().map(|c| c.name.as_str()).collect();
+    names.sort_unstable();
+    let before = names.len();
+    names.dedup();
+    assert_eq!(names.len(), before, "two cases share a name");
+    for entry in std::fs::read_dir(golden::golden_dir()).expect("tests/golden") {
+        let path = entry.expect("directory entry").path();
+        let stem = path.file_stem().and_then(|s| s.to_str()).unwrap_or("");
+        assert!(
+            path.extension().is_some_and(|e| e == "png") && names.binary_search(&stem).is_ok(),
+            "{} is no golden case's image",
+            path.display()
+        );
+    }
+}
+
+/// A frame of 64x64 RGBA8 pixels, all 10.
+fn flat() -> Vec<u8> {
+    vec![10u8; 4 * 64 * 64]
+}
+
+/// Add `by` to the green channel of the first `count` pixels.
+fn shift_pixels(image: &mut [u8], count: usize, by: u8) {
+    for px in image.chunks_mut(4).take(count) {
+        px[1] += by;
+    }
 }
 
 #[test]
 fn comparison_catches_a_changed_pixel() {
-    let a = vec![10u8; 4 * 64 * 64];
+    let a = flat();
     let mut b = a.clone();
     assert!(common::golden_compare(&a, &b, 64).is_none());
     b[4 * 100 + 1] = 10 + common::MAX_CHANNEL_DIFF + 1;
     let msg = common::golden_compare(&b, &a, 64).expect("a 4-code difference fails");
     assert!(msg.contains("(36, 1)"), "{msg}");
+}
+
+/// The per-channel limit and the changed-pixel limit each fail on their own, and images within
+/// both pass.
+#[test]
+fn comparison_holds_both_limits() {
+    let want = flat();
+    let pixels = 64 * 64;
+    // The most pixels that may differ: 81 of 4096 (1.98%).
+    let allowed = (common::MAX_CHANGED_FRACTION * pixels as f64).floor() as usize;
+    let mut within = want.clone();
+    shift_pixels(&mut within, allowed, common::MAX_CHANNEL_DIFF);
+    assert_eq!(common::golden_compare(&within, &want, 64), None);
+
+    let mut one_too_deep = want.clone();
+    shift_pixels(&mut one_too_deep, 1, common::MAX_CHANNEL_DIFF + 1);
+    let msg = common::golden_compare(&one_too_deep, &want, 64).expect("a channel past the limit");
+    assert!(msg.contains("1 pixels differ"), "{msg}");
+
+    let mut one_too_many = want.clone();
+    shift_pixels(&mut one_too_many, allowed + 1, 1);
+    let msg = common::golden_compare(&one_too_many, &want, 64).expect("too many pixels");
+    assert!(
+        msg.contains(&format!("{} pixels differ", allowed + 1)) && msg.contains("worst 1 codes"),
+        "{msg}"
+    );
 }

@@ -2,6 +2,7 @@
 //! check that no validation message was reported.
 #![allow(dead_code)]
 
+pub mod golden;
 pub mod rsm;
 
 use ssgi::renderer::pcf::Pcf;
