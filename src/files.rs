@@ -5,6 +5,13 @@
 use crate::error::{Error, Result};
 use std::path::{Path, PathBuf};
 
+/// Test hook (tests/interrupt.rs), never set in normal use: when this environment variable is
+/// set to a non-empty string that the destination's path contains, [`write_atomic`] prints
+/// `paused before renaming <tmp> to <dest>` on stderr once the temporary file is whole and
+/// then blocks until the process is killed, so a test can SIGKILL it at the moment a plain
+/// write would have left a truncated file.
+pub const PAUSE_BEFORE_RENAME: &str = "SSGI_TEST_PAUSE_BEFORE_RENAME";
+
 /// Write `bytes` to `path` atomically, creating its directory.
 pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<()> {
     let io = |path: &Path| {
@@ -16,6 +23,7 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<()> {
     }
     let tmp = temporary(path);
     std::fs::write(&tmp, bytes).map_err(io(&tmp))?;
+    pause_before_rename(&tmp, path);
     std::fs::rename(&tmp, path).map_err(|e| {
         let _ = std::fs::remove_file(&tmp);
         io(path)(e)
@@ -32,13 +40,39 @@ fn temporary(path: &Path) -> PathBuf {
     path.with_file_name(format!(".{name}.tmp-{}", std::process::id()))
 }
 
+/// The [`PAUSE_BEFORE_RENAME`] test hook; unset, it costs one environment lookup per file.
+fn pause_before_rename(tmp: &Path, dest: &Path) {
+    let Some(needle) = std::env::var_os(PAUSE_BEFORE_RENAME).filter(|v| !v.is_empty()) else {
+        return;
+    };
+    if !dest.to_string_lossy().contains(&*needle.to_string_lossy()) {
+        return;
+    }
+    eprintln!(
+        "paused before renaming {} to {}",
+        tmp.display(),
+        dest.display()
+    );
+    // Parked until killed (park may wake spuriously, hence the loop).
+    loop {
+        std::thread::park();
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+    use std::io::Read;
+
+    fn scratch(name: &str) -> PathBuf {
+        let dir = std::env::temp_dir().join(format!("ssgi-files-{}-{name}", std::process::id()));
+        std::fs::remove_dir_all(&dir).ok();
+        dir
+    }
 
     #[test]
     fn replaces_the_file_and_leaves_no_temporary() {
-        let dir = std::env::temp_dir().join(format!("ssgi-files-{}", std::process::id()));
+        let dir = scratch("replace");
         let path = dir.join("sub/report.json");
         write_atomic(&path, b"old").unwrap();
         write_atomic(&path, b"new").unwrap();
@@ -53,6 +87,26 @@ mod tests {
             .unwrap_err()
             .to_string();
         assert!(err.contains("sub"), "{err}");
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+
+    /// The new bytes go to a new file: the previous one is never truncated or rewritten in
+    /// place (as `fs::write` would), so a reader that opened it, like a process killed
+    /// mid-write, sees it whole.
+    #[test]
+    fn the_previous_file_is_never_rewritten_in_place() {
+        let dir = scratch("in-place");
+        let path = dir.join("report.json");
+        write_atomic(&path, b"{\"previous\": true}").unwrap();
+        let mut opened = std::fs::File::open(&path).unwrap();
+        write_atomic(&path, b"{}").unwrap();
+        let mut held = String::new();
+        opened.read_to_string(&mut held).unwrap();
+        assert_eq!(
+            held, "{\"previous\": true}",
+            "the previous file was rewritten in place"
+        );
+        assert_eq!(std::fs::read(&path).unwrap(), b"{}");
         std::fs::remove_dir_all(&dir).unwrap();
     }
 }

@@ -1,6 +1,6 @@
 //! Progress of long runs on stderr: a bar on a terminal that stays hidden for runs shorter
-//! than a second, and a plain line every 30 seconds otherwise (a log, CI, `nohup`), where a
-//! redrawn bar would be invisible or garbage.
+//! than a second, and otherwise (a log, CI, `nohup`), where a redrawn bar would be invisible
+//! or garbage, a plain line after the first frame (the run is rendering) and every 30 seconds.
 
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use std::io::IsTerminal;
@@ -55,7 +55,7 @@ impl Progress {
                 self.bar.set_draw_target(ProgressDrawTarget::stderr());
                 self.shown = true;
             }
-        } else if self.last_line.elapsed() >= LINE_EVERY {
+        } else if self.done == 1 || self.last_line.elapsed() >= LINE_EVERY {
             self.last_line = Instant::now();
             let secs = self.start.elapsed().as_secs_f64();
             let per_frame = secs / self.done as f64;
