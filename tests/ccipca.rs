@@ -592,6 +592,49 @@ fn output_flicker(
     sum / (measured - 1) as f64
 }
 
+/// The benchmark's flicker measure (`bench --flicker`, `FlickerProbe`) against the mean
+/// squared difference this test computes from the frames it reads back itself (RGBA8 output,
+/// RGB in 0..1, every pixel): equal to f32 rounding on each of 5 consecutive pairs of CCIPCA frames
+/// (which differ: 4 new VPLs per pixel each frame).
+#[test]
+fn flicker_probe_measures_the_read_back_frames() {
+    let ctx = common::context();
+    let mut c = config(32, 4, 3);
+    c.effects.direct = true;
+    let mut r = Renderer::new(&ctx, cornell_box(), c).unwrap();
+    let camera = r.scene.camera;
+    let mut probe = ssgi::bench::measure::FlickerProbe::default();
+    let mut frames: Vec<Vec<u8>> = Vec::new();
+    for _ in 0..6 {
+        r.render_frame(&camera).unwrap();
+        frames.push(common::read(&mut r, Target::Output).rgba8().unwrap());
+        probe.after_frame(&mut r).unwrap();
+    }
+    r.finish().unwrap();
+    let ours: Vec<f64> = frames
+        .windows(2)
+        .map(|w| {
+            let (mut sum, mut n) = (0.0f64, 0usize);
+            for (a, b) in w[1].chunks_exact(4).zip(w[0].chunks_exact(4)) {
+                for c in 0..3 {
+                    sum += ((a[c] as f64 - b[c] as f64) / 255.0).powi(2);
+                    n += 1;
+                }
+            }
+            sum / n as f64
+        })
+        .collect();
+    let probed = probe.into_flicker().final_msd;
+    eprintln!("consecutive-frame MSD: read back {ours:?}, probe {probed:?}");
+    assert_eq!(probed.len(), ours.len());
+    for (p, o) in probed.iter().zip(&ours) {
+        assert!(*o > 0.0, "CCIPCA frames should differ");
+        // The probe decodes the bytes through f32 (measured 4e-8 relative apart).
+        assert!((p - o).abs() <= 1e-6 * o, "probe {p} against {o}");
+    }
+    common::assert_clean(&ctx);
+}
+
 /// The article's flicker claim on a static 128x128 view with 4 VPLs per pixel: CCIPCA's
 /// consecutive-frame difference is below the "barely notable" 2.5e-5 while the 11x11 joint
 /// bilateral filter's is above it (both printed; `ssgi table chang-flicker` has the errors).
