@@ -9,6 +9,10 @@
 //            each with every VPL of this frame's pattern, merged into the history.
 // `refresh`: every (pixel, pattern) pair of the refresh tile, one estimate each, into
 //            `partials` (pixel-major: pixel i's patterns at i * rotation_limit ...).
+//            At half resolution (`refresh_lowres`): every (low-resolution sample, pattern)
+//            pair of the samples the tile's pixels are upsampled from (refresh_samples), each
+//            gathered as `gather` gathers it, so the resolve can hold the estimator the
+//            accumulation converges to there, at about a third of the tile's pixel count.
 // `resolve`: per refresh-tile pixel, the mean of its patterns blended into the history along
 //            the tile's feather ramp; it runs after `refresh`, and the other passes leave
 //            refresh pixels alone.
@@ -18,7 +22,9 @@
 // @permutation gather: GATHER
 // @permutation fixup: FIXUP
 // @permutation refresh: REFRESH
+// @permutation refresh_lowres: REFRESH LOWRES
 // @permutation resolve: RESOLVE
+// @permutation resolve_lowres: RESOLVE LOWRES
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_samplerless_texture_functions : require
 #include "frame.glsl"
@@ -46,13 +52,70 @@ layout(set = 1, binding = 9, std430) buffer Partials { vec4 partials[]; };
 #include "indirect_merge.glsl"
 #endif
 
+#ifdef LOWRES
+// The low-resolution samples the refresh tile's pixels are upsampled from (a pixel reads the
+// sample at pixel / 2 and, when odd, the next): `origin` and `count` per axis, clipped to the
+// low-resolution image. Also temporal.rs `tile_evaluations`.
+void refresh_samples(out ivec2 origin, out ivec2 count) {
+    uvec4 r = effect.refresh_rect;
+    ivec2 low_size = ivec2((frame.size + 1u) / 2u);
+    origin = ivec2(r.xy) >> 1;
+    ivec2 last = min((ivec2(max(r.zw, uvec2(1u))) - 1) / 2 + 1, low_size - 1);
+    count = r.z > r.x && r.w > r.y ? max(last - origin + 1, ivec2(0)) : ivec2(0);
+}
+#endif
+
 #ifdef GATHER
 #define MOST_LANES frame.vpl_lanes
 #else
 #define MOST_LANES SPREAD_LANES
 #endif
 
-#ifdef RESOLVE
+#if defined(RESOLVE) && defined(LOWRES)
+// Sample `low`'s mean over every pattern (rgb, and the mean squared luminance).
+vec4 sample_mean(ivec2 low, ivec2 origin, ivec2 count) {
+    uint limit = frame.rotation_limit;
+    ivec2 s = low - origin;
+    uint first = uint(s.y * count.x + s.x) * limit;
+    vec4 total = vec4(0.0);
+    for (uint j = 0u; j < limit; ++j) total += partials[first + j];
+    return total / float(limit);
+}
+
+// Per refresh-tile pixel: the upsampling (indirect_upsample.comp's weights and surface tests)
+// of its samples' means, which is the mean of the upsampled patterns the accumulation holds
+// (the weights depend on geometry only), blended into the history. A pixel the upsampling
+// discards keeps its history this frame: the fix-up's full-resolution gather accumulates it.
+void main() {
+    uint i = gl_GlobalInvocationID.x;
+    if (i >= refresh_tile_pixels()) return;
+    ivec2 pixel = refresh_tile_pixel(i);
+    if (outside_frame(pixel) || imageLoad(state_in, pixel).r != STATE_REFRESH) return;
+    ivec2 origin, count;
+    refresh_samples(origin, count);
+    vec3 p = texelFetch(g_position, pixel, 0).xyz;
+    vec3 n = texelFetch(g_normal, pixel, 0).xyz;
+    float footprint = pixel_footprint(p, 1.0);
+    ivec2 base = pixel >> 1;
+    vec2 w = vec2(pixel & 1) * 0.5;
+    vec4 sum = vec4(0.0);
+    float weight_sum = 0.0;
+    for (int k = 0; k < 4; ++k) {
+        ivec2 o = ivec2(k & 1, k >> 1);
+        ivec2 low = base + o;
+        float weight = (o.x == 1 ? w.x : 1.0 - w.x) * (o.y == 1 ? w.y : 1.0 - w.y);
+        if (weight == 0.0 || any(greaterThanEqual(low - origin, count))) continue;
+        vec4 g = texelFetch(g_position, low * 2, 0);
+        if (g.w == 0.0) continue;
+        if (!same_surface(p, n, g.xyz, texelFetch(g_normal, low * 2, 0).xyz, footprint)) continue;
+        sum += weight * sample_mean(low, origin, count);
+        weight_sum += weight;
+    }
+    if (weight_sum <= 0.0) return;
+    merge(pixel, imageLoad(history, pixel), sum / weight_sum, true);
+    atomicAdd(counters.computed_pixels, 1u);
+}
+#elif defined(RESOLVE)
 void main() {
     uint i = gl_GlobalInvocationID.x;
     if (i >= refresh_tile_pixels()) return;
@@ -69,7 +132,7 @@ void main() {
 shared vec4 part[SPREAD_LANES];
 shared uint group_active;
 shared uint group_serial;
-shared uint group_estimates; // the gather's samples computed
+shared uint group_estimates; // estimates computed (the gather's samples, the refresh's pairs)
 
 // The list's `item`-th estimate: its pixel (for the gather the low-resolution one), the
 // full-resolution texel its surface is read at, its pattern, and whether it is computed.
@@ -87,6 +150,15 @@ bool list_item(uint item, out ivec2 pixel, out ivec2 texel, out uint pattern) {
     pattern = effect.pattern;
     uint state = imageLoad(state_in, pixel).r;
     return state == STATE_NEW || state == STATE_ACCUMULATING;
+#elif defined(LOWRES)
+    uint limit = frame.rotation_limit;
+    ivec2 origin, count;
+    refresh_samples(origin, count);
+    uint s = item / limit;
+    pixel = origin + ivec2(int(s) % count.x, int(s) / count.x);
+    texel = pixel * 2; // as the gather: the sample's G-buffer texel, rotated by its own pixel
+    pattern = item % limit;
+    return true; // background samples are skipped by the caller's geometry test
 #else
     uint limit = frame.rotation_limit;
     pixel = refresh_tile_pixel(item / limit);
@@ -108,6 +180,10 @@ void main() {
     uint items = counters.lowres_samples;
 #elif defined(FIXUP)
     uint items = counters.fixup_pixels;
+#elif defined(LOWRES)
+    ivec2 origin, count;
+    refresh_samples(origin, count);
+    uint items = uint(count.x * count.y) * frame.rotation_limit;
 #else
     uint items = refresh_tile_pixels() * frame.rotation_limit;
 #endif
@@ -158,6 +234,7 @@ void main() {
             merge(pixel, imageLoad(history, pixel), vec4(e, l * l), false);
 #else
             partials[item] = vec4(e, l * l);
+            atomicAdd(group_estimates, 1u);
 #endif
         }
         barrier();
@@ -176,6 +253,11 @@ void main() {
 #elif defined(FIXUP)
     COUNT_WORK(fixup, rounds * SPREAD_LANES, group_active, group_serial)
 #else
+#ifdef LOWRES
+    // At full resolution the resolve counts its pixels' patterns; here the samples' are the
+    // evaluations.
+    if (group_estimates > 0u) atomicAdd(counters.refresh_evaluations, group_estimates);
+#endif
     COUNT_WORK(refresh, rounds * SPREAD_LANES, group_active, group_serial)
 #endif
 }

@@ -19,7 +19,7 @@ use crate::renderer::config::{IndirectFilter, RenderConfig};
 use crate::renderer::counters::{FIXUP_DISPATCH_OFFSET, LOWRES_DISPATCH_OFFSET};
 use crate::renderer::effect::{self, TemporalEffect};
 use crate::renderer::targets::{Target, Targets, STATE_FORMAT};
-use crate::renderer::temporal::Sampling;
+use crate::renderer::temporal::{tile_evaluations, Sampling};
 use crate::shaders::{self, EffectPush};
 use crate::vk::cmd::Recorder;
 use crate::vk::{Access, Buffer, Context, Image, ImageDesc, Tracker};
@@ -172,7 +172,17 @@ fn layouts() -> Vec<PassLayout> {
         ),
         ComputePass::layout(
             PassId::IndirectRefresh,
+            &shaders::INDIRECT_SPREAD_COMP_REFRESH_LOWRES,
+            REFRESH,
+        ),
+        ComputePass::layout(
+            PassId::IndirectRefresh,
             &shaders::INDIRECT_SPREAD_COMP_RESOLVE,
+            REFRESH,
+        ),
+        ComputePass::layout(
+            PassId::IndirectRefresh,
+            &shaders::INDIRECT_SPREAD_COMP_RESOLVE_LOWRES,
             REFRESH,
         ),
     ]
@@ -216,8 +226,9 @@ struct Sized {
 
 pub struct IndirectEffect {
     gather: Gather,
-    /// The refresh tile at full resolution: every (pixel, pattern) spread over lanes, then
-    /// each pixel's patterns resolved into the history.
+    /// The refresh tile: every (pixel, pattern) spread over lanes (at half resolution every
+    /// (low-resolution sample, pattern) its pixels are upsampled from), then each pixel's
+    /// patterns resolved into the history.
     refresh: ComputePass,
     resolve: ComputePass,
     sized: Sized,
@@ -279,14 +290,24 @@ impl IndirectEffect {
                 GATHER,
             )?)
         };
+        // At half resolution the refresh computes the estimator the accumulation converges
+        // to there: its low-resolution samples' patterns, upsampled by the resolve.
         let refresh = pass(
             PassId::IndirectRefresh,
-            &shaders::INDIRECT_SPREAD_COMP_REFRESH,
+            if s.config.indirect.half_res {
+                &shaders::INDIRECT_SPREAD_COMP_REFRESH_LOWRES
+            } else {
+                &shaders::INDIRECT_SPREAD_COMP_REFRESH
+            },
             REFRESH,
         )?;
         let resolve = pass(
             PassId::IndirectRefresh,
-            &shaders::INDIRECT_SPREAD_COMP_RESOLVE,
+            if s.config.indirect.half_res {
+                &shaders::INDIRECT_SPREAD_COMP_RESOLVE_LOWRES
+            } else {
+                &shaders::INDIRECT_SPREAD_COMP_RESOLVE
+            },
             REFRESH,
         )?;
         Ok(Self {
@@ -317,7 +338,7 @@ impl IndirectEffect {
                 },
             )
         };
-        let tile = temporal.schedule.tile() as u64;
+        let tile = temporal.schedule.tile();
         Ok(Sized {
             lowres_image: low(
                 "indirect.lowres_image",
@@ -332,11 +353,11 @@ impl IndirectEffect {
                 MemoryLocation::GpuOnly,
             )?,
             claims_cleared: Cell::new(false),
-            // One vec4 per tile pixel and pattern.
+            // One vec4 per tile evaluation (pixel or low-resolution sample) and pattern.
             partials: Buffer::new(
                 ctx,
                 "indirect.partials",
-                (tile * tile * c.temporal.rotation_limit as u64 * 16).max(16),
+                (tile_evaluations(tile, sampling) * c.temporal.rotation_limit as u64 * 16).max(16),
                 vk::BufferUsageFlags::STORAGE_BUFFER,
                 MemoryLocation::GpuOnly,
             )?,
@@ -419,7 +440,16 @@ impl IndirectEffect {
             return None;
         }
         let per_group = SPREAD_LANES / lanes_per_estimate(config);
-        let estimates = pixels as u64 * config.temporal.rotation_limit as u64;
+        let [x0, y0, x1, y1] = self.push.refresh_rect;
+        let side = (x1 - x0).max(y1 - y0);
+        let evaluations = if config.indirect.half_res {
+            // The tile's low-resolution samples (a bound: refresh_samples clips at the edge).
+            tile_evaluations(side, Sampling::HalfRes)
+                .min((config.width.div_ceil(2) * config.height.div_ceil(2)) as u64)
+        } else {
+            pixels as u64
+        };
+        let estimates = evaluations * config.temporal.rotation_limit as u64;
         let groups = estimates.div_ceil(per_group as u64).min(MAX_GROUPS as u64) as u32;
         Some((
             Dispatch::Groups(groups),

@@ -191,10 +191,18 @@ impl Sampling {
     }
 }
 
-/// Evaluations per pattern of a refresh tile of side `s`: every pixel of it, at full resolution
-/// whatever the effect's sampling (half-resolution effects refresh at full resolution).
-pub fn tile_evaluations(s: u32) -> u64 {
-    s as u64 * s as u64
+/// Evaluations per pattern of a refresh tile of side `s`: every pixel of it at full
+/// resolution; at half resolution (a bound) the low-resolution samples it is upsampled from.
+pub fn tile_evaluations(s: u32, sampling: Sampling) -> u64 {
+    let side = match sampling {
+        Sampling::FullRes => s as u64,
+        // The low-resolution samples its pixels are upsampled from: pixel x reads samples
+        // x / 2 and (odd x) x / 2 + 1, so at most s / 2 + 2 per axis (indirect_spread.comp's
+        // refresh_samples).
+        Sampling::HalfRes if s == 0 => 0,
+        Sampling::HalfRes => s as u64 / 2 + 2,
+    };
+    side * side
 }
 
 /// The largest refresh tile side, at most `max_tile`, whose refresh (every one of `limit`
@@ -208,7 +216,7 @@ pub fn budget_tile(
     budget: f32,
 ) -> u32 {
     let allowed = budget as f64 * sampling.frame_evaluations(width, height) as f64;
-    let fits = |s: u32| (tile_evaluations(s) * limit as u64) as f64 <= allowed;
+    let fits = |s: u32| (tile_evaluations(s, sampling) * limit as u64) as f64 <= allowed;
     (1..=max_tile).take_while(|&s| fits(s)).last().unwrap_or(0)
 }
 
@@ -309,13 +317,13 @@ mod tests {
                 for budget in [0.01, 0.05, 0.2] {
                     for sampling in [Sampling::FullRes, Sampling::HalfRes] {
                         let s = budget_tile(64, sampling, (size, size), limit, budget);
-                        let cost = tile_evaluations(s) * limit as u64;
+                        let cost = tile_evaluations(s, sampling) * limit as u64;
                         let allowed = budget as f64 * sampling.frame_evaluations(size, size) as f64;
                         assert!(
                             cost as f64 <= allowed,
                             "{size} {limit} {budget} {sampling:?}"
                         );
-                        let bigger = tile_evaluations(s + 1) * limit as u64;
+                        let bigger = tile_evaluations(s + 1, sampling) * limit as u64;
                         assert!(s == 64 || bigger as f64 > allowed);
                     }
                 }
