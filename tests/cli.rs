@@ -328,10 +328,10 @@ fn zero_frames_is_refused_everywhere() {
     }
 }
 
-/// `bench --compare-reuse --json` writes the README's compare-reuse format (both runs in the
+/// `bench --compare-reuse --json` writes docs/formats.md's compare-reuse format (both runs in the
 /// bench format, the groups' ratios).
 #[test]
-fn compare_reuse_json_follows_the_readme() {
+fn compare_reuse_json_follows_its_documented_format() {
     let json = tmp("compare-reuse.json");
     let out = ssgi()
         .args([
@@ -359,7 +359,7 @@ fn compare_reuse_json_follows_the_readme() {
         serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
     schema::assert_follows("compare-reuse", &report);
     assert_eq!(report["runs"].as_array().map(Vec::len), Some(2));
-    // The check can fail: a report without a documented key departs from the README.
+    // The check can fail: a report without a documented key departs from docs/formats.md.
     let mut broken = report.clone();
     broken["runs"][1]["total"]
         .as_object_mut()

@@ -177,7 +177,7 @@ fn error(effect: Effect, a: &ImageData, b: &ImageData, mask: &ImageData) -> (f64
 
 /// AO and shadow RMSE at most 0.005, indirect light relative RMSE at most 1%, with the default
 /// mode; the thesis's confidence mode is measured on the same view and its bias printed (it
-/// is documented in the README).
+/// is documented in docs/techniques.md).
 #[test]
 fn static_views_converge_to_independent_references() {
     let ctx = common::context();

@@ -195,22 +195,22 @@ fn table_paths_stay_inside_their_scenes() {
     );
 }
 
-/// The README's keyframe example, on the Cornell box it is written for, sees only the inside
-/// of the box.
+/// The keyframe example of docs/scenes.md, on the Cornell box it is written for, sees only the
+/// inside of the box.
 #[test]
-fn readme_keyframe_example_stays_inside_the_box() {
-    let readme =
-        std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/README.md")).unwrap();
-    let section = readme
-        .split("### Keyframe files")
+fn documented_keyframe_example_stays_inside_the_box() {
+    let doc =
+        std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/docs/scenes.md")).unwrap();
+    let section = doc
+        .split("## Keyframe files")
         .nth(1)
-        .expect("README has a Keyframe files section");
+        .expect("docs/scenes.md has a Keyframe files section");
     let json = section
         .split("```json")
         .nth(1)
         .and_then(|b| b.split("```").next())
         .expect("a json block in the Keyframe files section");
-    let file = std::env::temp_dir().join(format!("ssgi-readme-keys-{}.json", std::process::id()));
+    let file = std::env::temp_dir().join(format!("ssgi-doc-keys-{}.json", std::process::id()));
     std::fs::write(&file, json).unwrap();
     let path = CameraPath::parse(file.to_str().unwrap()).unwrap();
     let ctx = common::context();

@@ -170,7 +170,8 @@ fn sampled_gather_with_reuse_converges_to_the_full_gather() {
     );
 
     // After convergence nothing is recomputed and the RSM is not re-rendered: the camera and
-    // light stood still, so no refresh tile is drawn (README "Refresh only where it serves").
+    // light stood still, so no refresh tile is drawn (docs/techniques.md, "Refresh only where
+    // it serves").
     for t in &timings[timings.len() - 3..] {
         let get = |name: &str| {
             t.counters

@@ -201,7 +201,7 @@ fn moved_box(a: Vec3, b: Vec3) -> (Vec3, Vec3) {
     )
 }
 
-/// AO's reach as README's `--invalidate` states it, evaluated on the CPU: pixel (x, y) with
+/// AO's reach as docs/cli.md's `--invalidate` states it, evaluated on the CPU: pixel (x, y) with
 /// surface point p is in the box, or within the AO radius projected at (depth - radius)
 /// (floored at a tenth of the depth), plus the coarsest position level's block and a pixel,
 /// of the box's screen footprint.

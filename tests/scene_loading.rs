@@ -476,7 +476,7 @@ fn conference_loads() {
     assert_eq!(m.stats.triangles, 331_179);
 }
 
-/// The loader drops exactly the triangles the README's rule names, counted here from tobj's
+/// The loader drops exactly the triangles docs/scenes.md's rule names, counted here from tobj's
 /// own triangulation: zero area in f64 (53,627 in conference), or a height under f32 epsilon
 /// times the longest edge.
 #[test]

@@ -132,7 +132,8 @@ fn nine_sample_pcf_with_reuse_converges_to_the_1024_sample_kernel() {
     );
 
     // After convergence nothing is recomputed: the camera stood still, so no refresh tile is
-    // drawn (README "Refresh only where it serves"), and every pixel has its 36 patterns.
+    // drawn (docs/techniques.md, "Refresh only where it serves"), and every pixel has its 36
+    // patterns.
     for t in &timings[frames as usize - 3..] {
         let c = t
             .counters

@@ -248,7 +248,7 @@ fn assert_ran<'a>(t: &'a FrameTiming, passes: &[&str]) -> Vec<&'a str> {
 /// Each time the passes are those the dependency table predicts and the image is that of a
 /// renderer that never skips, bit for bit, until everything converges once more, and then a
 /// render from scratch of the new state (after the camera move thanks to the re-accumulation
-/// when it stops: README "Refresh only where it serves").
+/// when it stops: docs/techniques.md, "Refresh only where it serves").
 #[test]
 fn a_change_renders_again() {
     let ctx = common::context();

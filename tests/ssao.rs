@@ -455,12 +455,12 @@ fn shared_reprojection_matches_each_effect_alone() {
     common::assert_clean(&ctx);
 }
 
-/// The refresh runs only while it serves (README "Refresh only where it serves"). A converged
-/// static view computes nothing, whatever the refresh mode (GPU counters); while the camera
-/// steps by 0.1 mm per frame each refresh mode computes more pixels than refresh off on the
-/// same frames (which see only what the steps disoccluded), at most one 64x64 tile more, and
-/// spends refresh evaluations; once the camera holds, no tile runs (nothing is reprojected,
-/// so nothing drifts).
+/// The refresh runs only while it serves (docs/techniques.md, "Refresh only where it
+/// serves"). A converged static view computes nothing, whatever the refresh mode (GPU
+/// counters); while the camera steps by 0.1 mm per frame each refresh mode computes more
+/// pixels than refresh off on the same frames (which see only what the steps disoccluded), at
+/// most one 64x64 tile more, and spends refresh evaluations; once the camera holds, no tile
+/// runs (nothing is reprojected, so nothing drifts).
 #[test]
 fn refresh_runs_only_while_the_camera_moves() {
     let ctx = common::context();

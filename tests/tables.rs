@@ -411,7 +411,7 @@ fn missing_scene_files_name_the_file_and_the_fix() {
 }
 
 /// `ssgi --validation table ARGS --out OUT` for a table with its own report format: it
-/// succeeds without validation messages and writes report.json in the README's `schema`.
+/// succeeds without validation messages and writes report.json in docs/formats.md's `schema`.
 fn own_format_table(args: &[&str], out: &Path, schema: &str) -> Value {
     let output = Command::new(env!("CARGO_BIN_EXE_ssgi"))
         .arg("--validation")

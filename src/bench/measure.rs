@@ -340,7 +340,7 @@ pub struct RunLength {
     pub warmup: warmup::Outcome,
 }
 
-/// A report's `config` object (README: the bench format), the same for bench, tables and
+/// A report's `config` object (docs/formats.md: the bench format), the same for bench, tables and
 /// sweeps: the scene and path, the run's length, the render configuration and the device.
 pub fn report_config(
     ctx: &Context,

@@ -8,7 +8,7 @@
 //! The filter runs in the article's form: projection after the updates, no basis filtering.
 //! Writes report.json, report.md and chang-1.csv.
 //!
-//! JSON, version 1 (later versions only add fields): see README, "CCIPCA table".
+//! JSON, version 1 (later versions only add fields): see docs/formats.md, "chang-1".
 
 use super::measure::{measure, RunSpec};
 use super::table_run::{fixed, pass_ms, warmup_frames, write_reports, TableRun};

@@ -7,7 +7,7 @@
 //! RSM texel). Writes report.json, report.md, chang-flicker.csv and, per motion, PNG plots of
 //! flicker and error against VPLs per pixel.
 //!
-//! JSON, version 1 (later versions only add fields): see README, "Flicker table".
+//! JSON, version 1 (later versions only add fields): see docs/formats.md, "chang-flicker".
 
 use super::measure::{held_at, last_camera, measure, Flicker, RunSpec};
 use super::metrics::{image_error, Channels};

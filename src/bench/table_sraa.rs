@@ -5,7 +5,7 @@
 //! ours, the speed-up over supersampling, and the error against it over all pixels and over
 //! edge pixels. Writes report.json, report.md, sraa.csv and every row's last frame as PNG.
 //!
-//! JSON, version 1 (later versions only add fields): see README, "SRAA table".
+//! JSON, version 1 (later versions only add fields): see docs/formats.md, "sraa".
 
 use super::aa_edges::{edge_mask, rmse};
 use super::measure::{held_at, measure, Buffer, Measured, RunSpec};

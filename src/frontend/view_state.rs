@@ -6,7 +6,7 @@ use crate::renderer::frame::Pcf;
 use crate::renderer::targets::Target;
 use crate::renderer::RenderConfig;
 
-/// The viewer's keys, printed by `H` and documented in the README.
+/// The viewer's keys, printed by `H` and documented in docs/cli.md.
 pub const HELP: &str = "\
 ssgi view keys:
   mouse drag (left button held)  look around

@@ -322,7 +322,7 @@ impl TemporalEffect {
 
     /// This frame's push constants; `pattern` is the frame's pattern index. A refresh tile is
     /// drawn only while the history is reused (`reusing`) and tiled refresh is on, and only
-    /// where it serves (the refresh rule, README "Refresh only where it serves"):
+    /// where it serves (the refresh rule, docs/techniques.md, "Refresh only where it serves"):
     /// - on every frame the camera moved (`camera_moved`): each reprojection resamples the
     ///   history, and the tiles bound how long a value drifts (Nehab et al. 2007). With the
     ///   camera still the reprojection is the identity, nothing drifts, and the tiles stop;

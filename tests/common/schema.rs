@@ -1,7 +1,7 @@
-//! The README's JSON report formats, checked against reports the program wrote.
+//! The JSON report formats of docs/formats.md, checked against reports the program wrote.
 //!
-//! A format is a ```text block right after a `<!-- schema: NAME -->` line of README.md, in
-//! the README's notation: `{ "key", "key": value, ... }` (an object: every key listed must be
+//! A format is a ```text block right after a `<!-- schema: NAME -->` line of docs/formats.md,
+//! in its notation: `{ "key", "key": value, ... }` (an object: every key listed must be
 //! there, and no other unless the object has `...` or a `"<name>": value` entry, which every
 //! other key's value must then follow; a key ending in `?` may be absent), `[ value ]` (an
 //! array whose elements each follow `value`), `<NAME report>` (another format by name), a
@@ -23,10 +23,10 @@ pub enum Schema {
     Any,
 }
 
-/// Every format of README.md by name.
-pub fn readme_schemas() -> BTreeMap<String, Schema> {
-    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/README.md");
-    let text = std::fs::read_to_string(path).expect("README.md");
+/// Every format of docs/formats.md by name.
+pub fn documented_schemas() -> BTreeMap<String, Schema> {
+    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/docs/formats.md");
+    let text = std::fs::read_to_string(path).expect("docs/formats.md");
     let mut out = BTreeMap::new();
     let mut lines = text.lines();
     while let Some(line) = lines.next() {
@@ -41,7 +41,7 @@ pub fn readme_schemas() -> BTreeMap<String, Schema> {
         assert_eq!(
             lines.next().map(str::trim),
             Some("```text"),
-            "README schema {name}: a ```text block must follow its marker"
+            "docs/formats.md schema {name}: a ```text block must follow its marker"
         );
         let body: Vec<&str> = lines.by_ref().take_while(|l| l.trim() != "```").collect();
         let body: String = body
@@ -57,7 +57,7 @@ pub fn readme_schemas() -> BTreeMap<String, Schema> {
         p.skip_ws();
         assert!(
             p.at == p.chars.len(),
-            "README schema {name}: unexpected text at {}",
+            "docs/formats.md schema {name}: unexpected text at {}",
             p.rest()
         );
         out.insert(name, schema);
@@ -191,23 +191,23 @@ impl Parser {
     }
 }
 
-/// Where `value` departs from the README's format `name` (empty: it follows it).
+/// Where `value` departs from docs/formats.md's format `name` (empty: it follows it).
 pub fn check(name: &str, value: &Value) -> Vec<String> {
-    let all = readme_schemas();
+    let all = documented_schemas();
     let schema = all
         .get(name)
-        .unwrap_or_else(|| panic!("README.md has no <!-- schema: {name} --> block"));
+        .unwrap_or_else(|| panic!("docs/formats.md has no <!-- schema: {name} --> block"));
     let mut errors = Vec::new();
     walk(&all, schema, value, name, &mut errors);
     errors
 }
 
-/// Panics, listing every difference, unless `value` follows the README's format `name`.
+/// Panics, listing every difference, unless `value` follows docs/formats.md's format `name`.
 pub fn assert_follows(name: &str, value: &Value) {
     let errors = check(name, value);
     assert!(
         errors.is_empty(),
-        "the report departs from README.md's {name} format:\n{}",
+        "the report departs from docs/formats.md's {name} format:\n{}",
         errors.join("\n")
     );
 }
@@ -227,13 +227,13 @@ fn walk(
                 _ => want == value,
             };
             if !same {
-                errors.push(format!("{at}: {value} where the README says {want}"));
+                errors.push(format!("{at}: {value} where docs/formats.md says {want}"));
             }
         }
         Schema::Ref(name) => {
             let s = all
                 .get(name)
-                .unwrap_or_else(|| panic!("README.md has no <!-- schema: {name} --> block"));
+                .unwrap_or_else(|| panic!("docs/formats.md has no <!-- schema: {name} --> block"));
             walk(all, s, value, at, errors);
         }
         Schema::Array(item) => match value.as_array() {
