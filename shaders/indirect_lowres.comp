@@ -7,9 +7,9 @@
 // at full-resolution texel 2i (the top-left of its 2x2 block), where indirect_upsample.comp's
 // weights place it. With interleaving each low-resolution pixel gathers its share of the VPLs,
 // put together from the tile's pixels where its full-resolution texel is new (interleave.glsl).
-// Pixels of the refresh tile are recomputed at full resolution by indirect_spread.comp's
-// `refresh`; the samples they would read hold this frame's pattern like every other, for their
-// neighbours.
+// Pixels of the refresh tile are recomputed by indirect_spread.comp's `refresh_lowres` from
+// every pattern of their samples; the samples here hold this frame's pattern like every other,
+// for their neighbours.
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_samplerless_texture_functions : require
 #include "frame.glsl"

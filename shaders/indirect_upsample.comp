@@ -37,7 +37,7 @@ void main() {
     ivec2 pixel = block * 16 + ivec2(gl_LocalInvocationID.xy);
     if (outside_frame(pixel)) return;
     uint state = imageLoad(state_in, pixel).r;
-    if (state == STATE_REFRESH) { // recomputed at full resolution (indirect_gather's refresh)
+    if (state == STATE_REFRESH) { // recomputed by indirect_spread.comp's refresh
         imageStore(discard_mask, pixel, uvec4(0u));
         return;
     }

@@ -3,8 +3,10 @@
 //! pixels needing work read (over the listed blocks with interleaving), geometry-aware
 //! upsampling with a discard mask, and a full-resolution fix-up over the compacted list of
 //! discarded pixels, all merged into the indirect history. Without half resolution, one
-//! full-resolution gather per block. The fix-up and the refresh tile spread each pixel's
-//! VPLs over a workgroup (indirect_spread.comp). It always goes through the reprojection:
+//! full-resolution gather per block. The fix-up and the refresh tile spread each estimate's
+//! VPLs over a workgroup (indirect_spread.comp); at half resolution the refresh gathers the
+//! tile's low-resolution samples and upsamples their pattern means, the estimator the
+//! accumulation converges to. It always goes through the reprojection:
 //! without reuse every pixel is new and every block listed, with the fixed pattern 0.
 
 use super::effect::{

@@ -32,7 +32,8 @@ pub enum PassId {
     IndirectUpsample,
     /// Full-resolution gather of the pixels the upsampling discarded.
     IndirectFixup,
-    /// Indirect light's refresh tile at full resolution, every pattern, spread over threads.
+    /// Indirect light's refresh tile, every pattern (at half resolution of the samples its
+    /// pixels are upsampled from), spread over threads.
     IndirectRefresh,
     /// CCIPCA's input: a new noisy full-resolution gather each frame (--vpls per pixel).
     IndirectNoisy,
