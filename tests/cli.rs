@@ -34,6 +34,17 @@ fn converged_warmup_measures_the_steady_state() {
     let report: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
     schema::assert_follows("bench", &report);
+    // The format check itself: a documented array or object may not be null unless the format
+    // says `| null` (it accepted null everywhere once).
+    for key in ["frames", "config"] {
+        let mut nulled = report.clone();
+        nulled[key] = serde_json::Value::Null;
+        let errors = schema::check("bench", &nulled);
+        assert!(
+            errors.iter().any(|e| e.contains(key)),
+            "null {key} passed: {errors:?}"
+        );
+    }
     let warmup = &report["config"]["warmup"];
     assert_eq!(warmup["mode"], "converged");
     assert_eq!(warmup["settled"], true);

@@ -5,7 +5,9 @@
 //! there, and no other unless the object has `...` or a `"<name>": value` entry, which every
 //! other key's value must then follow; a key ending in `?` may be absent), `[ value ]` (an
 //! array whose elements each follow `value`), `<NAME report>` (another format by name), a
-//! number or a "string" (that exact value), or a word (any value). `//` starts a comment.
+//! number or a "string" (that exact value), or a word (any value, null included). An object,
+//! array or report followed by `| null` may also be null; without it null is an error.
+//! `//` starts a comment.
 
 use serde_json::Value;
 use std::collections::BTreeMap;
@@ -19,6 +21,8 @@ pub enum Schema {
     },
     Array(Box<Schema>),
     Ref(String),
+    /// `value | null`: that value, or null (an object, array or report may be null only so).
+    Nullable(Box<Schema>),
     Exact(Value),
     Any,
 }
@@ -109,7 +113,19 @@ impl Parser {
         s
     }
 
+    /// A value, and ` | null` after an object, array or report where the format allows null.
     fn value(&mut self) -> Schema {
+        let s = self.plain_value();
+        self.skip_ws();
+        let rest: String = self.chars[self.at..].iter().take(6).collect();
+        if rest == "| null" {
+            self.at += 6;
+            return Schema::Nullable(Box::new(s));
+        }
+        s
+    }
+
+    fn plain_value(&mut self) -> Schema {
         match self.peek() {
             Some('{') => self.object(),
             Some('[') => {
@@ -236,14 +252,15 @@ fn walk(
                 .unwrap_or_else(|| panic!("docs/formats.md has no <!-- schema: {name} --> block"));
             walk(all, s, value, at, errors);
         }
+        Schema::Nullable(_) if value.is_null() => {}
+        Schema::Nullable(s) => walk(all, s, value, at, errors),
         Schema::Array(item) => match value.as_array() {
             Some(items) => {
                 for (i, v) in items.iter().enumerate() {
                     walk(all, item, v, &format!("{at}[{i}]"), errors);
                 }
             }
-            None if value.is_null() => {}
-            None => errors.push(format!("{at}: not an array")),
+            None => errors.push(format!("{at}: not an array ({value})")),
         },
         Schema::Object {
             keys,
@@ -251,9 +268,7 @@ fn walk(
             open,
         } => {
             let Some(map) = value.as_object() else {
-                if !value.is_null() {
-                    errors.push(format!("{at}: not an object"));
-                }
+                errors.push(format!("{at}: not an object ({value})"));
                 return;
             };
             for (key, optional, s) in keys {
