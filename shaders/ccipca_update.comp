@@ -44,6 +44,7 @@ void main() {
             pixel_sums(u, bases[basis_index(i + 1u, p)].rgb, ccipca_step(r.a, i + 1u), s);
         } else {
             vec3 x = texelFetch(noisy, pixel, 0).rgb;
+            // Clamped as in ccipca_reconstruct.comp (which measures what the clamp costs).
             imageStore(filtered, pixel, vec4(max(x - u, vec3(0.0)), 1.0));
             residual[p] = vec4(x, r.a);
             pixel_sums(x, bases[p].rgb, ccipca_step(r.a, 0u), s);
