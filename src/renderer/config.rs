@@ -381,6 +381,17 @@ pub enum AoEstimator {
     Szentandrasi,
 }
 
+impl AoEstimator {
+    /// The `Frame` block's `ao_estimator`.
+    pub fn code(self) -> u32 {
+        match self {
+            AoEstimator::Thesis => 0,
+            AoEstimator::Crytek => 1,
+            AoEstimator::Szentandrasi => 2,
+        }
+    }
+}
+
 /// Nehab et al.'s tiled refresh: one tile per frame recomputed from scratch (the mean of every
 /// pattern), and how the recomputed tile meets its neighbours.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, clap::ValueEnum)]
@@ -465,6 +476,14 @@ impl Epsilon {
     /// Two texel spacings: the nearest previous texel is at most ~0.71 spacings away for a
     /// surface that was visible, so 2 leaves margin for interpolation and fp16 noise.
     pub const DEFAULT: Epsilon = Epsilon::Relative { scale: 2.0 };
+
+    /// The `Frame` block's `epsilon` and `epsilon_absolute` (1: world-space).
+    pub fn shader_params(self) -> (f32, u32) {
+        match self {
+            Epsilon::Relative { scale } => (scale, 0),
+            Epsilon::Absolute { epsilon } => (epsilon, 1),
+        }
+    }
 }
 
 /// How a moving camera reads a history between texels (reproject.comp).

@@ -1,7 +1,7 @@
 //! Per-frame constants: the `Frame` block (shaders/include/frame.glsl) filled member by
 //! member through the struct build.rs generates from it.
 
-use super::config::{AoEstimator, Epsilon, IndirectConfig, IndirectInput, RenderConfig};
+use super::config::{IndirectConfig, IndirectInput, RenderConfig};
 use crate::scene::{Camera, SpotLight};
 pub use crate::shaders::FrameBlock;
 // Old path of the PCF types, until every user imports them from `renderer::pcf`.
@@ -41,12 +41,8 @@ pub fn frame_block(config: &RenderConfig, f: &FrameInputs<'_>) -> FrameBlock {
     let light = f.light;
     let t = &config.temporal;
     let ao = &config.ao;
-    let pcf = config.pcf;
-    let (pcf_kernel, pcf_count) = pcf.shader_params();
-    let (epsilon, epsilon_absolute) = match t.epsilon {
-        Epsilon::Relative { scale } => (scale, 0),
-        Epsilon::Absolute { epsilon } => (epsilon, 1),
-    };
+    let (pcf_kernel, pcf_count) = config.pcf.shader_params();
+    let (epsilon, epsilon_absolute) = t.epsilon.shader_params();
     let (ao_directions, ao_steps) = ao.directions_steps();
     let ind = &config.indirect;
     let view_proj = f.camera.view_proj(aspect);
@@ -75,18 +71,14 @@ pub fn frame_block(config: &RenderConfig, f: &FrameInputs<'_>) -> FrameBlock {
         rotation_limit: t.rotation_limit,
         light_tan_half_fov: (0.5 * light.frustum_fov_deg()).to_radians().tan(),
         shadow_map_size: config.rsm_size as f32,
-        pcf_radius: pcf.radius_texels,
+        pcf_radius: config.pcf.radius_texels,
         pcf_kernel,
         pcf_count,
         accumulate_mode: t.accumulate.code(),
         accumulate_param: t.accumulate.parameter(),
         epsilon,
         epsilon_absolute,
-        pattern_base: if ao.patterns > 1 {
-            REFERENCE_PATTERN_BASE
-        } else {
-            0
-        },
+        pattern_base: pattern_base(ao.patterns),
         // The radius is relative to the scene's bounding radius (scale-free AO).
         ao_radius: ao.radius * f.scene_radius.max(f32::MIN_POSITIVE),
         ao_atten_a: ao.attenuation[0],
@@ -97,11 +89,7 @@ pub fn frame_block(config: &RenderConfig, f: &FrameInputs<'_>) -> FrameBlock {
         ao_samples: ao.samples,
         ao_patterns: ao.patterns,
         ao_position_mips: ao.position_mips,
-        ao_estimator: match ao.estimator {
-            AoEstimator::Thesis => 0,
-            AoEstimator::Crytek => 1,
-            AoEstimator::Szentandrasi => 2,
-        },
+        ao_estimator: ao.estimator.code(),
         vpl_count: ind.vpls,
         vpl_visibility: ind.visibility as u32,
         vpl_march_near_px: IndirectConfig::MARCH_NEAR_PX,
@@ -119,17 +107,31 @@ pub fn frame_block(config: &RenderConfig, f: &FrameInputs<'_>) -> FrameBlock {
         // Exact equality: an unmoved camera reuses each history texel as is, decided here
         // rather than by a pixel threshold on eq 1, whose fp32 error grows with coordinates.
         camera_static: (view_proj == f.prev_view_proj) as u32,
-        indirect_input: match (f.planted_nan, ind.input) {
-            // Pixel indices stay below 2^28 (MAX_SIZE^2); 2 + index fits a u32.
-            (Some([x, y]), _) => 2 + y * config.width + x,
-            (None, IndirectInput::Ramp) => 1,
-            (None, IndirectInput::Gather) => 0,
-        },
+        indirect_input: indirect_input(f.planted_nan, ind.input, config.width),
         moved_light_rect: f.moved.map_or([0.0; 4], |m| m.light_rect),
         moved_screen_rect: f.moved.map_or([0.0; 4], |m| m.screen_rect),
         moved_min: f.moved.map_or([0.0; 3], |m| m.bounds.min.to_array()),
         moved_count: f.moved.map_or(0, |m| m.count),
         moved_max: f.moved.map_or([0.0; 3], |m| m.bounds.max.to_array()),
+    }
+}
+
+/// Where multi-pattern evaluations start: references draw from `REFERENCE_PATTERN_BASE`.
+fn pattern_base(patterns: u32) -> u32 {
+    if patterns > 1 {
+        REFERENCE_PATTERN_BASE
+    } else {
+        0
+    }
+}
+
+/// What the indirect light gathers from: the RSM, a test ramp, or NaN at a planted pixel.
+fn indirect_input(planted_nan: Option<[u32; 2]>, input: IndirectInput, width: u32) -> u32 {
+    match (planted_nan, input) {
+        // Pixel indices stay below 2^28 (MAX_SIZE^2); 2 + index fits a u32.
+        (Some([x, y]), _) => 2 + y * width + x,
+        (None, IndirectInput::Ramp) => 1,
+        (None, IndirectInput::Gather) => 0,
     }
 }
 

@@ -1,5 +1,5 @@
 //! The frame as a list of steps over the registered effects (DESIGN.md's "One frame"), frames
-//! in flight, the shared targets, and the skip decisions:
+//! in flight and the shared targets; each frame records what its plan (`frame_plan.rs`) runs:
 //!
 //! light view (only when the light changed) → G-buffer → reprojection of every temporal effect
 //! → each effect's passes (shadow + direct, SSAO [+ blur], indirect light) → composite.
@@ -11,6 +11,7 @@ pub mod counters;
 pub mod dependencies;
 pub mod effect;
 pub mod frame;
+pub mod frame_plan;
 mod motion;
 pub mod pcf;
 pub mod reprojection;
@@ -39,12 +40,13 @@ use crate::vk::{
 use ash::vk;
 pub use config::{RenderConfig, FRAMES_IN_FLIGHT, MAX_SIZE};
 use frame::{frame_block, FrameBlock, FrameInputs};
+use frame_plan::{FramePlan, FrameState, Past, Step};
 use glam::Mat4;
 use gpu_allocator::MemoryLocation;
-use motion::{light_sees_motion, Motion};
+use motion::Motion;
 use reprojection::Reprojection;
 use scene_gpu::SceneGpu;
-use skip::{Inputs, Plan, SkipTracker};
+use skip::{EffectState, Inputs, Plan, SkipTracker};
 use std::sync::Arc;
 use targets::{Target, Targets};
 
@@ -72,13 +74,7 @@ pub struct Renderer {
     /// `reset_history` (the viewer rebuilds the renderer for those).
     pub config: RenderConfig,
     pub scene: Scene,
-    light_view: LightViewPass,
-    gbuffer: GBufferPass,
-    composite: CompositePass,
-    /// `--aa sraa|sraa-shadow`: subpixel geometry and reconstruction.
-    sraa: Option<SraaPass>,
-    /// `--aa ssaa16`: the 4x4 box filter into the output.
-    ssaa: Option<SsaaPass>,
+    passes: FramePasses,
     effects: Vec<Box<dyn Effect>>,
     scene_gpu: SceneGpu,
     targets: Targets,
@@ -87,17 +83,12 @@ pub struct Renderer {
     timer: GpuTimer,
     tracker: Tracker,
     frame_index: u64,
-    /// The light the RSM currently holds; `None` forces a re-render.
-    rsm_light: Option<SpotLight>,
-    /// Last frame's camera view-projection (eq 1) and eye (the history's pixel footprints on
-    /// each surface), when the histories hold last frame's data.
-    history: Option<(Mat4, glam::Vec3)>,
+    /// What planning remembers of the recorded frames: last frame's camera, whether it
+    /// moved, the light the RSM holds.
+    past: Past,
     /// The last frame read last frame's G-buffer (its history was valid): until then the
     /// G-buffer's other half holds nothing of this size and view (`audit` leaves it out).
     last_frame_reused: bool,
-    /// Last frame reused the histories and its camera had moved: if this one's has not, the
-    /// histories start re-accumulating (`TemporalConfig::reaccumulate`).
-    camera_was_moving: bool,
     /// The numerical audit's pipeline, built on the first `audit`.
     audit: Option<crate::vk::Pipeline>,
     /// The last pass recorded into each slot's command buffer (device-loss reports).
@@ -176,11 +167,13 @@ impl Renderer {
             targets,
             config,
             scene,
-            light_view,
-            gbuffer: GBufferPass::new(ctx, textured)?,
-            composite,
-            sraa,
-            ssaa,
+            passes: FramePasses {
+                light_view,
+                gbuffer: GBufferPass::new(ctx, textured)?,
+                composite,
+                sraa,
+                ssaa,
+            },
             effects,
             scene_gpu,
             frames,
@@ -188,11 +181,9 @@ impl Renderer {
             timer: GpuTimer::new(ctx, FRAMES_IN_FLIGHT, PassId::ALL.len() as u32 + 2)?,
             tracker,
             frame_index: 0,
-            rsm_light: None,
-            history: None,
+            past: Past::default(),
             planted_nan: None,
             last_frame_reused: false,
-            camera_was_moving: false,
             audit: None,
             last_pass: [None; FRAMES_IN_FLIGHT],
             reprojection,
@@ -213,13 +204,14 @@ impl Renderer {
         self.reprojection
             .bind(&self.ctx, &self.targets, &self.effects)?;
         let shared = SharedTargets(&self.targets);
-        if let Some(sraa) = &self.sraa {
+        if let Some(sraa) = &self.passes.sraa {
             sraa.bind(&self.ctx, &shared)?;
         }
-        if let Some(ssaa) = &self.ssaa {
+        if let Some(ssaa) = &self.passes.ssaa {
             ssaa.bind(&self.ctx, &shared)?;
         }
-        self.composite
+        self.passes
+            .composite
             .bind(&self.ctx, &terms(&shared, &self.effects))
     }
 
@@ -286,7 +278,7 @@ impl Renderer {
 
     /// Forget every history (camera cut): the next frame recomputes all pixels.
     pub fn reset_history(&mut self) {
-        self.history = None;
+        self.past.history = None;
         self.skips.forget();
         self.motion.forget();
     }
@@ -309,44 +301,31 @@ impl Renderer {
             light: self.scene.light,
             ambient: self.scene.ambient,
             config: self.config,
-            poses: self.motion.revision(self.history.is_some()),
+            poses: self.motion.revision(self.past.history.is_some()),
         }
     }
 
-    /// A frame with nothing to record (`skip.rs`): every pass is reported skipped with its
-    /// reason, the frontend's hook still runs (a window presents the unchanged output), and
-    /// the submission keeps the slot's fence in step.
-    fn skip_frame(
-        &mut self,
-        plan: Plan,
-        mut hook: Option<FrameHook<'_>>,
-    ) -> Result<Option<FrameTiming>> {
-        let slot = self.next_slot();
-        let cmd = self.begin_slot(slot)?;
-        let previous = self.collect(slot);
-        self.moved[slot] = 0;
-        self.timer
-            .skip(slot, PassId::LightView.name(), SkipReason::Unchanged);
-        self.skips
-            .report(&mut self.timer, slot, plan, &self.config, &self.effects);
-        self.skips.recorded(slot, plan);
-        let mut r = Recording {
-            rec: Recorder::new(&self.ctx, cmd),
-            tracker: &mut self.tracker,
-            timer: &mut self.timer,
-            slot,
-            last_pass: None,
+    /// This frame's plan (`frame_plan.rs`), from its poses and each effect's state.
+    fn plan(&mut self, camera: &Camera) -> FramePlan {
+        let inputs = self.frame_inputs(camera);
+        // Also on a frame the plan skips whole: it does so only when nothing moved, so the
+        // poses are those of the last frame drawn.
+        let poses = &mut self.scene_gpu.poses;
+        self.motion.write_poses(self.past.history.is_some(), poses);
+        // Fixed-size: nothing is allocated per frame.
+        let mut states = [EffectState::default(); effects::REGISTRY.len()];
+        for (s, e) in states.iter_mut().zip(&self.effects) {
+            *s = EffectState::of(&self.config, e.as_ref());
+        }
+        let state = FrameState {
+            frame_index: self.frame_index,
+            inputs,
+            past: self.past,
+            effects: &states[..self.effects.len()],
+            objects: &self.scene.objects,
+            poses: &self.scene_gpu.poses,
         };
-        let parity = (self.frame_index % 2) as usize;
-        let (t, effects, config) = (&self.targets, &self.effects, &self.config);
-        let source = |target| resolve_target(t, effects, config, target, parity);
-        let hook_sync = record_hook(&mut r, &mut hook, source, &t.output);
-        self.last_pass[slot] = None;
-        self.slots
-            .submit_with(slot, &hook_sync)
-            .map_err(|e| e.lost_after(None))?;
-        self.frame_index += 1;
-        Ok(previous)
+        frame_plan::plan(&mut self.skips, &state)
     }
 
     /// Record and submit one frame seen from `camera`. Returns the GPU timing of the frame that
@@ -357,7 +336,7 @@ impl Renderer {
 
     /// As `render_frame`, with a hook that records after the composite (the window frontend
     /// copies the output into the swapchain image there) and the submission's semaphores.
-    /// The steps of DESIGN.md's "One frame".
+    /// The steps of DESIGN.md's "One frame", as the frame's plan has them.
     pub fn render_frame_with(
         &mut self,
         camera: &Camera,
@@ -365,68 +344,84 @@ impl Renderer {
     ) -> Result<Option<FrameTiming>> {
         // Ctrl-C: stop between frames, never inside a recording.
         crate::interrupt::check()?;
-        let inputs = self.frame_inputs(camera);
-        let plan = self.skips.plan(
-            self.frame_index,
-            inputs,
-            self.history.is_some(),
-            &self.effects,
-        );
-        if plan.frame {
-            return self.skip_frame(plan, hook);
-        }
+        // Planned before this slot's last counters are read back: they count from the next
+        // frame's plan on.
+        let plan = self.plan(camera);
         let slot = self.next_slot();
         let cmd = self.begin_slot(slot)?;
         let previous = self.collect(slot);
-        // 1. Scene update: constants, change flags, each effect's refresh tile and pattern.
-        let view_proj = inputs.view_proj;
-        let moved = self
-            .motion
-            .write_poses(self.history.is_some(), &mut self.scene_gpu.poses);
-        self.moved[slot] = moved;
-        let rendered = self.config.rendered();
-        let what_moved = motion::moved(
-            &self.scene.objects,
-            &self.scene_gpu.poses,
-            &motion::Views {
-                light: self.scene.light,
-                map_size: self.config.rsm_size,
-                camera: view_proj,
-                size: (rendered.width, rendered.height),
-            },
-        );
-        self.write_uniforms(slot, camera, view_proj, what_moved)?;
-        let light_changed = self.rsm_light != Some(self.scene.light);
-        // The light view also shows what moved where the light sees it.
-        let light_view = light_changed
-            || light_sees_motion(
-                &self.scene.light,
-                &self.scene.objects,
-                &self.scene_gpu.poses,
-            );
-        let camera_moved = self.history.map(|(m, _)| m) != Some(view_proj);
-        let camera_stopped = self.camera_was_moving && !camera_moved && self.history.is_some();
-        if camera_stopped {
-            self.skips.restart(self.frame_index);
-        }
-        self.camera_was_moving = camera_moved && self.history.is_some();
-        let info = FrameInfo {
-            config: &rendered,
-            targets: &self.targets,
-            frame: FrameSet {
-                set: self.frames[slot].set,
-                parity: (self.frame_index % 2) as usize,
-            },
-            frame_index: self.frame_index,
-            history_valid: self.history.is_some(),
-            camera_moved,
-            camera_stopped,
-            light_changed,
-            light_view,
-            objects_moved: moved > 0,
+        self.moved[slot] = plan.moved_objects;
+        let (last_pass, hook_sync) = if plan.skip.frame {
+            self.record_skipped(cmd, slot, &plan, &mut hook)
+        } else {
+            // 1. Scene update: the constants (`record` prepares each effect's refresh tile and
+            // pattern).
+            self.write_uniforms(slot, camera, plan.inputs.view_proj, plan.moved)?;
+            self.record(cmd, slot, &plan, &mut hook)
         };
+        self.last_pass[slot] = last_pass;
+        self.slots
+            .submit_with(slot, &hook_sync)
+            .map_err(|e| e.lost_after(last_pass.map(PassId::name)))?;
+        if !plan.skip.frame {
+            self.motion.drawn(plan.moved_objects);
+            self.last_frame_reused = self.past.history.is_some();
+            self.past.recorded(&plan);
+        }
+        self.frame_index += 1;
+        Ok(previous)
+    }
+
+    /// A frame with nothing to record (`skip.rs`): every pass is reported skipped with its
+    /// reason, the frontend's hook still runs (a window presents the unchanged output), and
+    /// the submission keeps the slot's fence in step.
+    fn record_skipped(
+        &mut self,
+        cmd: vk::CommandBuffer,
+        slot: usize,
+        plan: &FramePlan,
+        hook: &mut Option<FrameHook<'_>>,
+    ) -> (Option<PassId>, SubmitSync) {
+        self.timer
+            .skip(slot, PassId::LightView.name(), SkipReason::Unchanged);
+        self.skips.report(
+            &mut self.timer,
+            slot,
+            plan.skip,
+            &self.config,
+            &self.effects,
+        );
+        self.skips.recorded(slot, plan.skip);
+        let mut r = Recording {
+            rec: Recorder::new(&self.ctx, cmd),
+            tracker: &mut self.tracker,
+            timer: &mut self.timer,
+            slot,
+            last_pass: None,
+        };
+        let parity = (self.frame_index % 2) as usize;
+        let (t, effects, config) = (&self.targets, &self.effects, &self.config);
+        let source = |target| resolve_target(t, effects, config, target, parity);
+        (None, record_hook(&mut r, hook, source, &t.output))
+    }
+
+    /// Record the steps `plan` runs, the frontend's hook and the counters' copies into `cmd`,
+    /// and report the steps it leaves out. Returns the last pass and the hook's semaphores.
+    fn record(
+        &mut self,
+        cmd: vk::CommandBuffer,
+        slot: usize,
+        plan: &FramePlan,
+        hook: &mut Option<FrameHook<'_>>,
+    ) -> (Option<PassId>, SubmitSync) {
+        let rendered = self.config.rendered();
+        let frame = FrameSet {
+            set: self.frames[slot].set,
+            parity: (self.frame_index % 2) as usize,
+        };
+        let info = plan.info(&rendered, &self.targets, frame);
         for (i, e) in self.effects.iter_mut().enumerate() {
-            if !plan.effect(i) {
+            if plan.runs(Step::Effect(i)) {
                 e.prepare(&info);
             }
         }
@@ -437,77 +432,33 @@ impl Renderer {
             slot,
             last_pass: None,
         };
-        let (frame, t, scene) = (info.frame, &self.targets, &self.scene_gpu);
-        let shared = SharedTargets(t);
-        // 2. Light view, only when the light changed or moved geometry in its frustum.
-        if light_view {
-            r.timed(PassId::LightView, |rec, tr| {
-                self.light_view.record(rec, tr, frame, scene, &shared)
-            });
-        } else {
-            r.timer
-                .skip(slot, PassId::LightView.name(), SkipReason::Unchanged);
-        }
-        // 3. G-buffer, unless the camera stood still for two frames (both halves hold it).
-        if !plan.gbuffer {
-            r.timed(PassId::GBuffer, |rec, tr| {
-                self.gbuffer.record(rec, tr, frame, scene, &shared)
-            });
-        }
+        // 2-3. Light view and G-buffer.
+        let scene = &self.scene_gpu;
+        self.passes.record_views(&mut r, &info, scene, plan);
         // 4. One reprojection, a lane per temporal effect that reuses its history this frame.
         self.reprojection
-            .record(&self.effects, &info, &mut r, plan.effects);
+            .record(&self.effects, &info, &mut r, plan.skip.effects);
         // 5. Effects, in registry order, but those whose inputs did not change and which have
         // converged.
         for (i, e) in self.effects.iter().enumerate() {
-            if !plan.effect(i) {
+            if plan.runs(Step::Effect(i)) {
                 e.record(&info, &mut r);
             }
         }
-        // 6-7. Composite + tonemap.
+        // 6-7. Composite + tonemap, and the antialiasing into the output.
+        let (t, config) = (&self.targets, &self.config);
+        let shared = SharedTargets(t);
         let terms = terms(&shared, &self.effects);
-        r.timed(PassId::Composite, |rec, tr| {
-            self.composite
-                .record(rec, tr, frame, &terms, t.width, t.height)
-        });
-        // 6b. Antialiasing of the composite's display-linear image into the output.
-        if let Some(sraa) = &self.sraa {
-            // The subpixel geometry, as the G-buffer, only while the camera or objects move.
-            if !plan.gbuffer {
-                r.timed(PassId::SraaGeometry, |rec, tr| {
-                    sraa.record_geometry(rec, tr, frame, scene, &shared)
-                });
-            }
-            r.timed(PassId::Sraa, |rec, tr| {
-                sraa.record_reconstruct(rec, tr, frame, &shared, (t.width, t.height))
-            });
-        }
-        if let Some(ssaa) = &self.ssaa {
-            let out = (t.output.desc.width, t.output.desc.height);
-            r.timed(PassId::SsaaDownsample, |rec, tr| {
-                ssaa.record(rec, tr, frame, &shared, out)
-            });
-        }
-        let config = &self.config;
+        self.passes
+            .record_output(&mut r, &info, scene, &terms, plan);
         let source = |target| resolve_target(t, &self.effects, config, target, frame.parity);
-        let hook_sync = record_hook(&mut r, &mut hook, source, &t.output);
+        let hook_sync = record_hook(&mut r, hook, source, &t.output);
         let last_pass = r.last_pass;
         self.skips
-            .report(r.timer, slot, plan, &self.config, &self.effects);
-        self.skips.recorded(slot, plan);
-        self.copy_counters(cmd, slot, plan);
-        self.last_pass[slot] = last_pass;
-        self.slots
-            .submit_with(slot, &hook_sync)
-            .map_err(|e| e.lost_after(last_pass.map(PassId::name)))?;
-        if light_changed {
-            self.rsm_light = Some(self.scene.light);
-        }
-        self.motion.drawn(moved);
-        self.last_frame_reused = self.history.is_some();
-        self.history = Some((view_proj, camera.position));
-        self.frame_index += 1;
-        Ok(previous)
+            .report(r.timer, slot, plan.skip, &self.config, &self.effects);
+        self.skips.recorded(slot, plan.skip);
+        self.copy_counters(cmd, slot, plan.skip);
+        (last_pass, hook_sync)
     }
 
     /// Wait for `slot`'s previous frame and begin recording its command buffer. A device loss
@@ -561,8 +512,8 @@ impl Renderer {
             &self.config.rendered(),
             &FrameInputs {
                 camera,
-                prev_view_proj: self.history.map_or(view_proj, |(m, _)| m),
-                prev_camera_pos: self.history.map_or(camera.position, |(_, eye)| eye),
+                prev_view_proj: self.past.history.map_or(view_proj, |(m, _)| m),
+                prev_camera_pos: self.past.history.map_or(camera.position, |(_, eye)| eye),
                 light: &self.scene.light,
                 ambient: self.scene.ambient,
                 frame: self.frame_index,
@@ -631,8 +582,8 @@ impl Renderer {
         self.config = config;
         self.bind()?;
         // The RSM targets were recreated with the rest: render the light view again.
-        self.rsm_light = None;
-        self.history = None;
+        self.past.rsm_light = None;
+        self.past.history = None;
         self.skips.forget();
         Ok(pending)
     }
@@ -735,6 +686,78 @@ fn record_hook<'a>(
     (h.record)(&r.rec, r.tracker, source(h.source).unwrap_or(output));
     r.rec.end_label();
     h.sync.clone()
+}
+
+/// The frame's passes besides the effects': before them the light view and the G-buffer,
+/// after them the composite and the antialiasing.
+struct FramePasses {
+    light_view: LightViewPass,
+    gbuffer: GBufferPass,
+    composite: CompositePass,
+    /// `--aa sraa|sraa-shadow`: subpixel geometry and reconstruction.
+    sraa: Option<SraaPass>,
+    /// `--aa ssaa16`: the 4x4 box filter into the output.
+    ssaa: Option<SsaaPass>,
+}
+
+impl FramePasses {
+    /// The light view, only when the light changed or moved geometry in its frustum; the
+    /// G-buffer, unless the camera and objects stood still for two frames (both halves hold it).
+    fn record_views(
+        &self,
+        r: &mut Recording<'_>,
+        info: &FrameInfo<'_>,
+        scene: &SceneGpu,
+        plan: &FramePlan,
+    ) {
+        let (frame, shared) = (info.frame, SharedTargets(info.targets));
+        match plan.skipped(Step::LightView) {
+            None => r.timed(PassId::LightView, |rec, tr| {
+                self.light_view.record(rec, tr, frame, scene, &shared)
+            }),
+            Some(reason) => r.timer.skip(r.slot, PassId::LightView.name(), reason),
+        }
+        if plan.runs(Step::GBuffer) {
+            r.timed(PassId::GBuffer, |rec, tr| {
+                self.gbuffer.record(rec, tr, frame, scene, &shared)
+            });
+        }
+    }
+
+    /// The composite and tonemap, then the antialiasing of its display-linear image into the
+    /// output.
+    fn record_output(
+        &self,
+        r: &mut Recording<'_>,
+        info: &FrameInfo<'_>,
+        scene: &SceneGpu,
+        terms: &Terms<'_>,
+        plan: &FramePlan,
+    ) {
+        let (frame, t) = (info.frame, info.targets);
+        let shared = SharedTargets(t);
+        r.timed(PassId::Composite, |rec, tr| {
+            self.composite
+                .record(rec, tr, frame, terms, t.width, t.height)
+        });
+        if let Some(sraa) = &self.sraa {
+            // The subpixel geometry, as the G-buffer, only while the camera or objects move.
+            if plan.runs(Step::GBuffer) {
+                r.timed(PassId::SraaGeometry, |rec, tr| {
+                    sraa.record_geometry(rec, tr, frame, scene, &shared)
+                });
+            }
+            r.timed(PassId::Sraa, |rec, tr| {
+                sraa.record_reconstruct(rec, tr, frame, &shared, (t.width, t.height))
+            });
+        }
+        if let Some(ssaa) = &self.ssaa {
+            let out = (t.output.desc.width, t.output.desc.height);
+            r.timed(PassId::SsaaDownsample, |rec, tr| {
+                ssaa.record(rec, tr, frame, &shared, out)
+            });
+        }
+    }
 }
 
 /// The shared targets as a resolver (the composite's G-buffer and output).

@@ -23,7 +23,7 @@ use crate::vk::{GpuTimer, SkipReason};
 use glam::{Mat4, Vec3};
 
 /// Everything a frame's passes read besides each other's outputs and the histories.
-#[derive(Clone, Copy, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Inputs {
     pub view_proj: Mat4,
     pub eye: Vec3,
@@ -93,6 +93,30 @@ pub struct Plan {
     pub gbuffer: bool,
     /// Bit i: effect i (registry order of the renderer's effects).
     pub effects: u64,
+    /// Bit i: effect i has converged (skipped as soon as its inputs hold for two frames).
+    pub converged: u64,
+}
+
+/// What the tracker asks of an effect before its frame, so that planning needs no device.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct EffectState {
+    /// Its output still changes with unchanged inputs (`Effect::settling`).
+    pub settling: bool,
+    /// It accumulates into a reused history (`accumulates`): converged only once its
+    /// counters read back idle.
+    pub accumulates: bool,
+    /// Refresh tiles are still due (`TemporalEffect::refresh_left`).
+    pub refresh_pending: bool,
+}
+
+impl EffectState {
+    pub fn of(config: &RenderConfig, e: &dyn Effect) -> Self {
+        Self {
+            settling: e.settling(config),
+            accumulates: accumulates(config, e),
+            refresh_pending: e.temporal().is_some_and(|t| t.refresh_left > 0),
+        }
+    }
 }
 
 impl Plan {
@@ -155,14 +179,14 @@ impl SkipTracker {
         }
     }
 
-    /// Decide frame `n` (its inputs `inputs`, the histories valid or not) and record its
-    /// inputs.
+    /// Decide frame `n` (its inputs `inputs`, the histories valid or not, each effect's
+    /// state) and record its inputs.
     pub fn plan(
         &mut self,
         n: u64,
         inputs: Inputs,
         history_valid: bool,
-        effects: &[Box<dyn Effect>],
+        effects: &[EffectState],
     ) -> Plan {
         let on = inputs.config.skip_unchanged && history_valid;
         if self.frame.is_some_and(|f| f.key.config != inputs.config) {
@@ -179,16 +203,16 @@ impl SkipTracker {
             gbuffer: on && camera_steady,
             ..Plan::default()
         };
-        let config = &inputs.config;
         for (i, (e, track)) in effects.iter().zip(&mut self.tracks).enumerate() {
             let key = EffectInputs::new(&inputs, track.reads);
             let (unchanged, since) = steady(&mut track.inputs, key, n);
-            let converged = !e.settling(config)
-                && (!accumulates(config, e.as_ref())
+            let converged = !e.settling
+                && (!e.accumulates
                     || (track
                         .idle
                         .is_some_and(|f| f >= since.max(track.restarted) && n >= f + 2)
-                        && e.temporal().is_some_and(|t| t.refresh_left == 0)));
+                        && !e.refresh_pending));
+            plan.converged |= u64::from(converged) << i;
             if on && unchanged && converged {
                 plan.effects |= 1 << i;
             }
