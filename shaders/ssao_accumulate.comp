@@ -3,8 +3,8 @@
 // reprojection listed; evaluates one rotated pattern per pixel that is new or accumulating and
 // merges it into the history (temporal.glsl: the gated running mean, eqs 4-5, EMA or capped
 // mean). Converged pixels are left alone. `refresh`: one workgroup per pixel of the refresh
-// tile (refresh.glsl) recomputes it from scratch as the mean of every pattern up to the
-// rotation limit, the estimator accumulation converges to, blended in along the tile's feather
+// tile (refresh.glsl, each lane a range of one pattern's taps) recomputes it from scratch as
+// the mean of every pattern up to the rotation limit, the estimator accumulation converges to, blended in along the tile's feather
 // ramp (refresh_weight); it runs after `blocks`, which leaves refresh pixels alone.
 // @permutation blocks: BLOCKS
 // @permutation refresh: REFRESH
@@ -33,21 +33,64 @@ layout(set = 1, binding = 6, rgba32f) uniform image2D moments;
 #include "refresh.glsl"
 layout(local_size_x = REFRESH_THREADS) in;
 
+// One pattern's taps split into `slices` consecutive ranges, one lane each: 36 patterns on 64
+// lanes left 28 idle; 36 x 16 ranges of 2 taps fill 9 rounds of 64.
+shared float slice_sum[REFRESH_THREADS];
+
+// Ranges per pattern: the power of two (at most the taps, and a divisor of the workgroup)
+// that keeps the most lane-rounds busy; the fewest such ranges (fewer partial sums).
+uint slices_per_pattern(uint limit, uint taps) {
+    uint best = 1u;
+    uint best_busy = 0u; // busy lane-rounds per 1024 launched
+    for (uint s = 1u; s <= REFRESH_THREADS && s <= taps; s *= 2u) {
+        uint units = limit * s;
+        uint rounds = (units + REFRESH_THREADS - 1u) / REFRESH_THREADS;
+        uint busy = units * 1024u / (rounds * REFRESH_THREADS);
+        if (busy > best_busy) {
+            best = s;
+            best_busy = busy;
+        }
+    }
+    return best;
+}
+
 void main() {
     ivec2 pixel = refresh_pixel();
     uint limit = frame.rotation_limit;
+    uint taps = ao_taps();
+    // One pixel per workgroup: uniform, so the barriers below are in uniform control flow.
     bool refreshed = !outside_frame(pixel) && imageLoad(state_in, pixel).r == STATE_REFRESH;
-    vec4 mine = vec4(0.0); // (sum, 0, 0, sum of squares) of this invocation's patterns
+    uint slices = slices_per_pattern(limit, taps);
+    uint units = limit * slices;
+    uint rounds = (units + REFRESH_THREADS - 1u) / REFRESH_THREADS;
+    uint t = gl_LocalInvocationIndex;
+    vec3 p = vec3(0.0);
+    vec3 n = vec3(0.0);
     if (refreshed) {
-        vec3 p = texelFetch(g_position, pixel, 0).xyz;
-        vec3 n = texelFetch(g_normal, pixel, 0).xyz;
-        for (uint j = gl_LocalInvocationIndex; j < limit; j += REFRESH_THREADS) {
-            float x = 1.0 - ao_estimate(pixel, p, n, float(j), 1u);
+        p = texelFetch(g_position, pixel, 0).xyz;
+        n = texelFetch(g_normal, pixel, 0).xyz;
+    }
+    vec4 mine = vec4(0.0); // (sum, 0, 0, sum of squares) of the patterns this lane closes
+    for (uint r = 0u; r < rounds; ++r) {
+        uint u = r * REFRESH_THREADS + t;
+        uint pattern = u / slices;
+        uint slice = u % slices;
+        bool live = refreshed && pattern < limit;
+        float part = 0.0;
+        if (live) part = ao_taps_sum(pixel, p, n, pattern, slice * taps / slices, (slice + 1u) * taps / slices);
+        slice_sum[t] = part;
+        barrier();
+        // REFRESH_THREADS is a multiple of `slices`: a pattern's ranges sit in one round.
+        if (live && slice == 0u) {
+            float occluded = 0.0;
+            for (uint k = 0u; k < slices; ++k) occluded += slice_sum[t + k];
+            float x = 1.0 - occluded / float(taps);
             mine += vec4(x, 0.0, 0.0, x * x);
         }
+        barrier();
     }
     vec4 total = refresh_sum(mine);
-    if (gl_LocalInvocationIndex != 0u || !refreshed) return;
+    if (t != 0u || !refreshed) return;
     vec4 h = imageLoad(history, pixel);
     vec4 m = imageLoad(moments, pixel);
     float w = refresh_blend(refresh_weight(pixel), h.a, total.a / float(limit), m);
@@ -56,7 +99,7 @@ void main() {
     imageStore(moments, pixel, m);
     atomicAdd(counters.computed_pixels, 1u);
     atomicAdd(counters.refresh_evaluations, limit);
-    refresh_count_work(limit, ao_taps());
+    COUNT_WORK(refresh, rounds * REFRESH_THREADS, units, rounds * ((taps + slices - 1u) / slices))
 }
 #else
 layout(local_size_x = 8, local_size_y = 8) in;

@@ -81,6 +81,9 @@ fn refresh_evaluations_stay_within_the_budget() {
                     "{size}x{size} {name}: frame {frame} spent {n} refresh evaluations, budget {allowed}"
                 );
             }
+            if name == "ssao" {
+                ssao_refresh_fills_its_lanes(&timings);
+            }
             // A tile of one pixel costs 36 evaluations (4 samples x 36 at half resolution, a
             // bound): does one fit?
             let fits = tile_evaluations(1, sampling) * 36 <= allowed as u64;
@@ -89,6 +92,37 @@ fn refresh_evaluations_stay_within_the_budget() {
         drop(r);
     }
     common::assert_clean(&ctx);
+}
+
+/// The AO refresh's lanes, as the CPU counts them: each refreshed pixel's 36 patterns of 32
+/// taps split into 16 ranges of 2 taps, 576 ranges filling 9 rounds of its 64-lane workgroup
+/// (one lane per pattern left 28 of 64 idle: lane efficiency 0.56, 32 taps in a row).
+fn ssao_refresh_fills_its_lanes(timings: &[FrameTiming]) {
+    let mut frames = 0;
+    for t in timings {
+        let evaluations = counter(t, "ssao_refresh_evaluations").unwrap_or(0);
+        if evaluations == 0 {
+            continue;
+        }
+        frames += 1;
+        let pixels = evaluations / 36;
+        assert_eq!(pixels * 36, evaluations, "frame {}", t.frame);
+        for key in ["invocations", "active_invocations"] {
+            assert_eq!(
+                counter(t, &format!("ssao_refresh_{key}")),
+                Some(576 * pixels),
+                "frame {} {key}",
+                t.frame
+            );
+        }
+        assert_eq!(
+            counter(t, "ssao_refresh_serial_evaluations"),
+            Some(9 * 2),
+            "frame {}",
+            t.frame
+        );
+    }
+    assert!(frames > 0, "no AO tile ran");
 }
 
 /// On a converged view the refresh runs after a change nothing restarts: with `--invalidate

@@ -43,7 +43,10 @@ vec2 rotate2(vec2 v, vec2 cs) {
 
 // Lin 2013 eq 6-8: directions x log-spaced screen-space steps; each sample q contributes
 // max(n . (q - p)/|q - p|, 0) / D(d) with D(d) = 1 + a d + b d^2, d in units of the radius.
-float ao_thesis(ivec2 pixel, vec3 p, vec3 n, uint pattern) {
+// The sum of taps [first, end) of the pattern (tap k: direction k / steps, step k % steps);
+// over every tap, divided by their count, the estimate. Spread passes split a pattern's taps
+// over lanes with it.
+float ao_thesis_taps(ivec2 pixel, vec3 p, vec3 n, uint pattern, uint first, uint end) {
     uint dirs = frame.ao_directions;
     uint steps = frame.ao_steps;
     float radius = frame.ao_radius;
@@ -72,10 +75,15 @@ float ao_thesis(ivec2 pixel, vec3 p, vec3 n, uint pattern) {
     // per pixel instead of one per direction (the rounding this accumulates over even 1024
     // directions is below 1e-4 of a radian).
     vec2 turn = vec2(cos(TWO_PI / float(dirs)), sin(TWO_PI / float(dirs)));
-    vec2 dir = rot;
+    uint d0 = first / steps;
+    // A range from direction 0 turns as the whole pattern does (the same sums bit for bit).
+    vec2 dir = d0 == 0u ? rot : rotate2(rot, vec2(cos(TWO_PI * float(d0) / float(dirs)),
+                                                  sin(TWO_PI * float(d0) / float(dirs))));
     float sum = 0.0;
-    for (uint d = 0u; d < dirs; ++d, dir = rotate2(dir, turn)) {
+    for (uint d = d0; d * steps < end; ++d, dir = rotate2(dir, turn)) {
         for (uint i = 0u; i < steps; ++i) {
+            uint k = d * steps + i;
+            if (k < first || k >= end) continue;
             float s = step_px[i];
             ivec2 q_pixel = ivec2(floor(center + dir * s));
             if (outside_frame(q_pixel))
@@ -93,14 +101,20 @@ float ao_thesis(ivec2 pixel, vec3 p, vec3 n, uint pattern) {
             sum += max(dot(n, v), 0.0) / (len * (1.0 + frame.ao_atten_a * x + frame.ao_atten_b * x * x));
         }
     }
-    return sum / float(dirs * steps);
+    return sum;
+}
+
+float ao_thesis(ivec2 pixel, vec3 p, vec3 n, uint pattern) {
+    uint taps = frame.ao_directions * frame.ao_steps;
+    return ao_thesis_taps(pixel, p, n, pattern, 0u, taps) / float(taps);
 }
 
 // Mittring 2007: points in a sphere of the world radius around p; a point is occluded when
 // the visible surface at its screen position is in front of it (within the radius). The
 // points of patterns 0, 1, ... fill the ball uniformly (patterns.glsl), so the radius is not
 // scaled per pattern: their radii already vary continuously.
-float ao_crytek(ivec2 pixel, vec3 p, uint pattern) {
+// Occluded points among points [first, end) of the pattern.
+float ao_crytek_taps(ivec2 pixel, vec3 p, uint pattern, uint first, uint end) {
     uint count = frame.ao_samples;
     float radius = frame.ao_radius;
     vec3 view_dir = safe_normalize(p - frame.camera_pos, vec3(0.0, 0.0, -1.0));
@@ -108,7 +122,7 @@ float ao_crytek(ivec2 pixel, vec3 p, uint pattern) {
     vec3 b = cross(view_dir, t);
     vec2 rot = pixel_rotation(pixel);
     float occluded = 0.0;
-    for (uint k = 0u; k < count; ++k) {
+    for (uint k = first; k < end; ++k) {
         vec3 o = crytek_offset(k, count, pattern);
         vec2 xy = rotate2(o.xy, rot);
         vec3 s = p + radius * (xy.x * t + xy.y * b + o.z * view_dir);
@@ -128,22 +142,31 @@ float ao_crytek(ivec2 pixel, vec3 p, uint pattern) {
         // radii behind it, and a tighter check would wrongly light flat ground.
         if (gap > 1e-4 * clip.w && gap < 4.0 * radius) occluded += 1.0;
     }
-    return occluded / float(count);
+    return occluded;
+}
+
+float ao_crytek(ivec2 pixel, vec3 p, uint pattern) {
+    return ao_crytek_taps(pixel, p, pattern, 0u, frame.ao_samples) / float(frame.ao_samples);
 }
 
 // Szentandrasi section 3.1: K points p + r omega in the hemisphere around the normal (Halton
 // directions, bases 2 and 5, and random steps r in [0, r_max)), back-projected; the occlusion
 // is the fraction that lie behind the visible surface (hemisphere.glsl). Pattern j takes
 // Halton indices j K .. j K + K - 1, so accumulated patterns continue one sequence.
-float ao_szentandrasi(ivec2 pixel, vec3 p, vec3 n, uint pattern) {
+float ao_szentandrasi_taps(ivec2 pixel, vec3 p, vec3 n, uint pattern, uint first, uint end) {
     uint count = frame.ao_samples;
     float r_max = frame.ao_radius;
     float occluded = 0.0;
-    for (uint k = 0u; k < count; ++k) {
+    for (uint k = first; k < end; ++k) {
         vec4 w = hemisphere_sample(pattern * count + k, pixel, n, r_max);
         if (hemisphere_tap(p + w.w * w.xyz, r_max).occluded) occluded += 1.0;
     }
-    return occluded / float(max(count, 1u));
+    return occluded;
+}
+
+float ao_szentandrasi(ivec2 pixel, vec3 p, vec3 n, uint pattern) {
+    uint count = frame.ao_samples;
+    return ao_szentandrasi_taps(pixel, p, n, pattern, 0u, count) / float(max(count, 1u));
 }
 
 // Occlusion averaged over `patterns` consecutive patterns starting at `first` (a whole number:
@@ -151,6 +174,14 @@ float ao_szentandrasi(ivec2 pixel, vec3 p, vec3 n, uint pattern) {
 // Taps one pattern of the configured estimator reads (the work counters' evaluations).
 uint ao_taps() {
     return frame.ao_estimator == 0u ? frame.ao_directions * frame.ao_steps : frame.ao_samples;
+}
+
+// The sum of taps [first, end) of pattern `pattern` of the configured estimator: over every
+// tap (ao_taps()), divided by their count, that pattern's occlusion.
+float ao_taps_sum(ivec2 pixel, vec3 p, vec3 n, uint pattern, uint first, uint end) {
+    if (frame.ao_estimator == 1u) return ao_crytek_taps(pixel, p, pattern, first, end);
+    if (frame.ao_estimator == 2u) return ao_szentandrasi_taps(pixel, p, n, pattern, first, end);
+    return ao_thesis_taps(pixel, p, n, pattern, first, end);
 }
 
 float ao_estimate(ivec2 pixel, vec3 p, vec3 n, float first, uint patterns) {
