@@ -340,6 +340,53 @@ impl CcipcaEffect {
             &s.bases[1 - current],
         ]
     }
+
+    /// The push constants with `basis` and `sum_vec4s` vec4 of sums.
+    fn push_bytes(&self, basis: u32, sum_vec4s: u32) -> [u8; CcipcaPush::SIZE] {
+        CcipcaPush {
+            basis,
+            sum_vec4s,
+            ..self.push
+        }
+        .to_bytes()
+    }
+
+    /// The bases filtered into the other buffer, which the next frame starts from. Filtered
+    /// bases lean towards each other: with `always`, they are orthogonalized from the Gram
+    /// matrix the filter summed (sum_vec4s 0: it sums nothing), as after a warp.
+    fn record_basis_filter(
+        &self,
+        info: &FrameInfo<'_>,
+        r: &mut Recording<'_>,
+        own: &[[&Image; 2]; 2],
+    ) {
+        let other = 1 - self.work;
+        let buffers = self.buffers(other);
+        let res = EffectResources {
+            targets: info.targets,
+            temporal: None,
+            own,
+            own_buffers: &buffers,
+        };
+        let pixels = every_pixel(info);
+        let always = info.config.indirect.orthogonalize == CcipcaOrthogonalize::Always;
+        let bases = info.config.indirect.bases;
+        let gram = self.push_bytes(0, if always { gram_vec4s(bases) } else { 0 });
+        let filter = &self.passes[other];
+        r.timed(PassId::CcipcaBasisFilter, |rec, tr| {
+            filter
+                .basis_filter
+                .record(rec, tr, info.frame, &res, &gram, pixels);
+            if always {
+                filter
+                    .gram
+                    .record(rec, tr, info.frame, &res, &gram, Dispatch::Groups(1));
+                filter
+                    .orthogonalize
+                    .record(rec, tr, info.frame, &res, &gram, pixels);
+            }
+        });
+    }
 }
 
 impl Effect for CcipcaEffect {
@@ -444,14 +491,7 @@ impl Effect for CcipcaEffect {
         };
         let passes = &self.passes[self.work];
         let pixels = every_pixel(info);
-        let sums = |basis, sum_vec4s| {
-            CcipcaPush {
-                basis,
-                sum_vec4s,
-                ..self.push
-            }
-            .to_bytes()
-        };
+        let sums = |basis, sum_vec4s| self.push_bytes(basis, sum_vec4s);
         let push = |basis| sums(basis, UPDATE_SUM_VEC4S);
         if self.warp {
             // Warp (storing the Gram matrix's partial sums), add them up, orthogonalize.
@@ -504,31 +544,7 @@ impl Effect for CcipcaEffect {
             });
         }
         if filters_bases(info.config) {
-            // Into the other buffer, which the next frame starts from.
-            let other = 1 - self.work;
-            let buffers = self.buffers(other);
-            let res = EffectResources {
-                own_buffers: &buffers,
-                ..res
-            };
-            // Filtered bases lean towards each other: with `always`, orthogonalize them from
-            // the Gram matrix the filter summed (sum_vec4s 0: it sums nothing), as after a warp.
-            let always = info.config.indirect.orthogonalize == CcipcaOrthogonalize::Always;
-            let gram = sums(0, if always { gram_vec4s(bases) } else { 0 });
-            let filter = &self.passes[other];
-            r.timed(PassId::CcipcaBasisFilter, |rec, tr| {
-                filter
-                    .basis_filter
-                    .record(rec, tr, info.frame, &res, &gram, pixels);
-                if always {
-                    filter
-                        .gram
-                        .record(rec, tr, info.frame, &res, &gram, Dispatch::Groups(1));
-                    filter
-                        .orthogonalize
-                        .record(rec, tr, info.frame, &res, &gram, pixels);
-                }
-            });
+            self.record_basis_filter(info, r, &own);
         }
     }
 
