@@ -17,6 +17,7 @@ pub const GENERATED: &[(&str, &str)] = &[
     ("Probe", "ProbePush"),
     ("Reproject", "ReprojectPush"),
     ("ImageStats", "ImageStatsPush"),
+    ("GBufferResolve", "GBufferResolvePush"),
 ];
 
 #[derive(Clone, Debug, PartialEq)]

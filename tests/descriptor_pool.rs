@@ -7,7 +7,7 @@
 mod common;
 
 use ssgi::renderer::antialias::AaMode;
-use ssgi::renderer::config::{Effects, IndirectFilter, RenderConfig};
+use ssgi::renderer::config::{Effects, GBufferMode, IndirectFilter, RenderConfig};
 use ssgi::renderer::Renderer;
 use ssgi::scene::cornell_box;
 use ssgi::vk::DescriptorCounts;
@@ -79,6 +79,10 @@ fn configs() -> Vec<(&'static str, RenderConfig)> {
             }),
         ),
         ("ssaa16", with(&|c| c.aa.mode = AaMode::Ssaa16)),
+        (
+            "visibility gbuffer",
+            with(&|c| c.gbuffer = GBufferMode::Visibility),
+        ),
     ]
 }
 

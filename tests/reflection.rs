@@ -64,8 +64,8 @@ fn compute_modules_have_workgroups_and_graphics_do_not() {
 mod block_layout;
 
 use ssgi::shaders::{
-    BlockMember, CcipcaPush, CountersHeader, EffectPush, FrameBlock, ImageStatsPush, MaterialPush,
-    ProbePush, ReprojectPush, PROBES,
+    BlockMember, CcipcaPush, CountersHeader, EffectPush, FrameBlock, GBufferResolvePush,
+    ImageStatsPush, MaterialPush, ProbePush, ReprojectPush, PROBES,
 };
 
 /// The generated struct of a GLSL block: its members and size.
@@ -79,6 +79,7 @@ fn generated(name: &str) -> (&'static [BlockMember], usize) {
         "Probe" => (ProbePush::MEMBERS, ProbePush::SIZE),
         "Reproject" => (ReprojectPush::MEMBERS, ReprojectPush::SIZE),
         "ImageStats" => (ImageStatsPush::MEMBERS, ImageStatsPush::SIZE),
+        "GBufferResolve" => (GBufferResolvePush::MEMBERS, GBufferResolvePush::SIZE),
         other => panic!("block {other} has no generated struct"),
     }
 }

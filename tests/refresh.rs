@@ -25,6 +25,7 @@ fn config(size: u32) -> RenderConfig {
         ssdo: Default::default(),
         temporal: TemporalConfig::default(),
         aa: Default::default(),
+        gbuffer: Default::default(),
         skip_unchanged: true,
     }
 }

@@ -35,6 +35,7 @@ fn config(size: u32, temporal: TemporalConfig, ao: AoConfig) -> RenderConfig {
         aa: Default::default(),
         // Every frame reads the cache's counters: a converged frame must run, not be skipped
         // (tests/skip.rs covers skipping).
+        gbuffer: Default::default(),
         skip_unchanged: false,
     }
 }

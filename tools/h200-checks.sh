@@ -6,17 +6,25 @@
 S512=${S512:-512x512}
 S1080=${S1080:-1920x1080}
 # `step` runs its command under `timeout`, which takes programs, not shell functions.
-# Most important first: thesis-4.1 again at HEAD (the last run's first row ran at a low clock),
-# then the refresh tiles' cost since the half-resolution refresh gathers samples (15x15 indirect
-# tiles by the default budget at 512x512; whole 16x16 tiles with --refresh-budget 1).
-step t41 120 $SSGI table thesis-4.1 --size $S512 --out $R/thesis-4.1
+# Most important first: the visibility-buffer G-buffer against the raster one (the G-buffer was
+# 58-66% of the reuse frame on the H200 and its time followed the bytes written per pixel), on
+# the orbit and Sponza at 1080p, each mode in its own process beside its reuse comparison; then
+# thesis-4.1 again at HEAD (the last run's first row ran at a low clock) and the walkthroughs;
+# then the refresh tiles' cost with whole 16x16 tiles (--refresh-budget 1) and validation.
 step orbit512 30 $SSGI bench --scene cornell-box --size $S512 --path orbit \
   --warmup converged --frames 240 --compare-reuse --json $R/orbit512.json
-step orbit512-budget1 30 $SSGI bench --scene cornell-box --size $S512 --path orbit \
-  --warmup converged --frames 240 --refresh-budget 1 --json $R/orbit512-budget1.json
+step orbit512-vis 30 $SSGI bench --scene cornell-box --size $S512 --path orbit \
+  --warmup converged --frames 240 --compare-reuse --gbuffer visibility --json $R/orbit512-vis.json
 step sponza1080 40 $SSGI bench --scene scenes/sponza.toml --size $S1080 --warmup converged \
   --frames 240 --compare-reuse --json $R/sponza1080.json
+step sponza1080-vis 40 $SSGI bench --scene scenes/sponza.toml --size $S1080 --warmup converged \
+  --frames 240 --compare-reuse --gbuffer visibility --json $R/sponza1080-vis.json
+step val-vis 40 $SSGI --validation bench --scene box:bunny --path paths/box.json \
+  --gbuffer visibility --frames 40 --warmup 5
+step t41 120 $SSGI table thesis-4.1 --size $S512 --out $R/thesis-4.1
 step walk 150 $SSGI table thesis-walkthroughs --size $S512 --out $R/walkthroughs
+step orbit512-budget1 30 $SSGI bench --scene cornell-box --size $S512 --path orbit \
+  --warmup converged --frames 240 --refresh-budget 1 --json $R/orbit512-budget1.json
 step val-ccipca 40 $SSGI --validation bench --scene cornell-box --path orbit \
   --indirect-filter ccipca --ccipca-orthogonalize always --aa sraa-shadow --frames 20 --warmup 5
 step val-all 40 $SSGI --validation bench --scene scenes/sponza.toml --size $S512 --frames 30 --warmup 5

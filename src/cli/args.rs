@@ -4,7 +4,7 @@
 use crate::bench::warmup::Warmup;
 use crate::renderer::config::{
     AaConfig, AaMode, Accumulate, AdaptiveSamples, AoConfig, AoEstimator, CcipcaOrthogonalize,
-    CcipcaProject, CcipcaWeighting, Effects, Epsilon, HistoryResample, IndirectConfig,
+    CcipcaProject, CcipcaWeighting, Effects, Epsilon, GBufferMode, HistoryResample, IndirectConfig,
     IndirectFilter, Refresh, SsdoConfig, SsdoForm, TemporalConfig,
 };
 use crate::renderer::frame::Pcf;
@@ -236,6 +236,11 @@ pub struct SceneArgs {
     /// at 4x width and height, box-filter 4x4: the reference).
     #[arg(long, value_enum, default_value_t = AaMode::None)]
     pub aa: AaMode,
+    /// How the G-buffer is made: `raster` (one raster pass writes every target) or
+    /// `visibility` (the raster pass writes each pixel's triangle, a compute pass rebuilds the
+    /// targets: for GPUs whose raster output is narrow; the same image within float rounding).
+    #[arg(long, value_enum, default_value_t = GBufferMode::Raster)]
+    pub gbuffer: GBufferMode,
     /// Record nothing for a frame whose camera, light and configuration are those of the last
     /// two frames once every temporal effect has converged (its output is the last one).
     #[arg(long, default_value = "on", value_parser = parse_on_off, action = clap::ArgAction::Set)]
@@ -457,6 +462,7 @@ impl SceneArgs {
                 sigma_n: self.sraa_sigma_n,
                 sigma_shadow: self.sraa_sigma_shadow,
             },
+            gbuffer: self.gbuffer,
             skip_unchanged: self.skip_unchanged,
         }
     }

@@ -38,6 +38,7 @@ pub fn shared(t: &Targets, slot: Slot, parity: usize) -> Option<&Image> {
         Slot::SubPosition(i) => return subpixels(t)?.position.get(i as usize),
         Slot::SubNormal(i) => return subpixels(t)?.normal.get(i as usize),
         Slot::SubDepth => return subpixels(t).map(|s| &s.depth),
+        Slot::GVisibility => return t.gbuffer.visibility.as_ref(),
         _ => return None,
     };
     t.get(target, parity)

@@ -36,6 +36,16 @@ pub enum Slot {
     /// The light view's depth: the shadow map.
     RsmDepth,
     GDepth,
+    /// `--gbuffer visibility`: each pixel's triangle (0 background, else 1 + its index).
+    GVisibility,
+    /// The scene's vertex buffer (8 floats a vertex), read as storage.
+    SceneVertices,
+    /// The scene's index buffer, read as storage.
+    SceneIndices,
+    /// The draw of each triangle of the index buffer.
+    SceneTriangleDraws,
+    /// Per draw and frame slot: its colour and this frame's and last frame's pose.
+    SceneDraws,
     /// The final RGBA8 image: the composite's, or the antialiasing pass's.
     Output,
     /// With antialiasing: the composite's display-linear colour (fp16), before filtering.

@@ -25,6 +25,7 @@ const TARGETS: &[Bind] = &[
 
 const MODULES: RasterModules = RasterModules {
     vertex: &shaders::MESH_VERT_LIGHT,
+    textured_vertex: &shaders::MESH_VERT_LIGHT,
     flat: &shaders::RSM_FRAG_FLAT,
     textured: &shaders::RSM_FRAG_TEXTURED,
 };

@@ -6,8 +6,10 @@
 pub enum PassId {
     /// Reflective shadow map + shadow depth from the spot light (only when light/geometry change).
     LightView,
-    /// Camera G-buffer MRT.
+    /// Camera G-buffer MRT (with `--gbuffer visibility`: each pixel's triangle).
     GBuffer,
+    /// `--gbuffer visibility`: the G-buffer rebuilt from each pixel's triangle.
+    GBufferResolve,
     /// Reverse reprojection: disocclusion test, history resampling, work list.
     Reproject,
     /// PCF shadow visibility (every frame, or accumulated with the cache).
@@ -105,9 +107,10 @@ impl Change {
 }
 
 impl PassId {
-    pub const ALL: [PassId; 32] = [
+    pub const ALL: [PassId; 33] = [
         PassId::LightView,
         PassId::GBuffer,
+        PassId::GBufferResolve,
         PassId::Reproject,
         PassId::Shadow,
         PassId::ShadowRefresh,
@@ -154,7 +157,7 @@ impl PassId {
         use Change::*;
         match self {
             PassId::LightView => &[Light, Object],
-            PassId::GBuffer | PassId::SraaGeometry => &[Camera, Object],
+            PassId::GBuffer | PassId::GBufferResolve | PassId::SraaGeometry => &[Camera, Object],
             // Moving objects' reach; the shadow lane's footprint on the shadow map.
             PassId::Reproject => &[Camera, Light, Object, Config],
             PassId::Shadow
@@ -191,6 +194,7 @@ impl PassId {
         match self {
             PassId::LightView => "light_view",
             PassId::GBuffer => "gbuffer",
+            PassId::GBufferResolve => "gbuffer_resolve",
             PassId::Shadow => "shadow",
             PassId::ShadowRefresh => "shadow_refresh",
             PassId::Direct => "direct",

@@ -5,7 +5,7 @@ use super::compute::FrameSet;
 use super::decl::{self, Bind, Resolve};
 use super::pass_id::PassId;
 use crate::error::Result;
-use crate::renderer::scene_gpu::SceneGpu;
+use crate::renderer::scene_gpu::{Draw, SceneGpu};
 use crate::shaders::{DescriptorKind, ReflectedBinding, ShaderModuleInfo};
 use crate::vk::cmd::Recorder;
 use crate::vk::Tracker;
@@ -77,10 +77,15 @@ pub fn begin_attachments(
 pub struct MaterialPipelines {
     pub flat: Pipeline,
     pub textured: Option<Pipeline>,
+    /// Each draw's firstInstance is its first triangle in the index buffer (the visibility
+    /// buffer numbers triangles from it: mesh.vert's VISIBILITY).
+    pub first_triangle_instance: bool,
 }
 
 pub struct RasterModules {
     pub vertex: &'static ShaderModuleInfo,
+    /// The textured materials' vertex stage (the flat one's, unless it must hand on more).
+    pub textured_vertex: &'static ShaderModuleInfo,
     pub flat: &'static ShaderModuleInfo,
     pub textured: &'static ShaderModuleInfo,
 }
@@ -94,8 +99,8 @@ impl MaterialPipelines {
         depth_format: vk::Format,
         textured: bool,
     ) -> Result<Self> {
-        let desc = |fragment| GraphicsDesc {
-            vertex: modules.vertex,
+        let desc = |(vertex, fragment)| GraphicsDesc {
+            vertex,
             fragment,
             vertex_bindings: &VERTEX_BINDINGS,
             vertex_attributes: &VERTEX_ATTRIBUTES,
@@ -103,18 +108,27 @@ impl MaterialPipelines {
             depth_format,
         };
         let name = pass.name();
-        let flat = Pipeline::graphics(ctx, name, &desc(modules.flat), FLAT_BINDINGS)?;
+        let flat = Pipeline::graphics(
+            ctx,
+            name,
+            &desc((modules.vertex, modules.flat)),
+            FLAT_BINDINGS,
+        )?;
         let textured = if textured {
             Some(Pipeline::graphics(
                 ctx,
                 name,
-                &desc(modules.textured),
+                &desc((modules.textured_vertex, modules.textured)),
                 TEXTURED_BINDINGS,
             )?)
         } else {
             None
         };
-        Ok(Self { flat, textured })
+        Ok(Self {
+            flat,
+            textured,
+            first_triangle_instance: false,
+        })
     }
 
     /// Clear and render into the attachments `targets` declares: barriers from the
@@ -141,7 +155,7 @@ impl MaterialPipelines {
             let material = &scene.materials[draw.material];
             if material.texture_set.is_none() {
                 rec.push(&self.flat, &material.push_bytes(&scene.pose(draw)));
-                rec.draw_indexed(draw.first_index, draw.index_count);
+                self.draw_range(rec, draw);
             }
         }
         if let Some(textured) = &self.textured {
@@ -151,9 +165,18 @@ impl MaterialPipelines {
                 if let Some(set) = material.texture_set {
                     rec.bind_sets(textured, 1, &[set]);
                     rec.push(textured, &material.push_bytes(&scene.pose(draw)));
-                    rec.draw_indexed(draw.first_index, draw.index_count);
+                    self.draw_range(rec, draw);
                 }
             }
+        }
+    }
+
+    fn draw_range(&self, rec: &Recorder<'_>, draw: &Draw) {
+        match self.first_triangle_instance {
+            true => {
+                rec.draw_indexed_instance(draw.first_index, draw.index_count, draw.first_index / 3)
+            }
+            false => rec.draw_indexed(draw.first_index, draw.index_count),
         }
     }
 }

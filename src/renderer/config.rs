@@ -295,6 +295,19 @@ pub enum CcipcaProject {
     After,
 }
 
+/// How the G-buffer is made (`--gbuffer`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, clap::ValueEnum)]
+#[serde(rename_all = "lowercase")]
+pub enum GBufferMode {
+    /// One raster pass writes every G-buffer target (40 bytes per pixel).
+    #[default]
+    Raster,
+    /// The raster pass writes each pixel's triangle (4 bytes; albedo too in a scene with
+    /// textures) and a compute pass rebuilds the targets from the triangles' vertices: for
+    /// GPUs whose raster output is narrow (needs gl_PrimitiveID: the geometryShader feature).
+    Visibility,
+}
+
 /// When CCIPCA orthogonalizes its bases (the article's Algorithm 2).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, clap::ValueEnum)]
 #[serde(rename_all = "lowercase")]
@@ -619,6 +632,7 @@ pub struct RenderConfig {
     pub ssdo: SsdoConfig,
     pub temporal: TemporalConfig,
     pub aa: AaConfig,
+    pub gbuffer: GBufferMode,
     /// Record nothing for a frame whose inputs (camera, light, configuration) are those of
     /// the last two and whose temporal effects have converged: its output is the last one.
     pub skip_unchanged: bool,
@@ -637,6 +651,7 @@ impl Default for RenderConfig {
             ssdo: SsdoConfig::default(),
             temporal: TemporalConfig::default(),
             aa: AaConfig::default(),
+            gbuffer: GBufferMode::Raster,
             skip_unchanged: true,
         }
     }

@@ -220,6 +220,9 @@ pub fn triggers(config: &RenderConfig, effects: &[Box<dyn Effect>]) -> Vec<Trigg
         effect,
     };
     let mut rows = vec![row(PassId::LightView, None), row(PassId::GBuffer, None)];
+    if config.gbuffer == crate::renderer::config::GBufferMode::Visibility {
+        rows.push(row(PassId::GBufferResolve, None));
+    }
     for e in effects {
         for &pass in e.passes() {
             rows.push(row(pass, Some((e.id(), accumulates(config, e.as_ref())))));

@@ -108,6 +108,13 @@ pub struct Renderer {
 impl Renderer {
     pub fn new(ctx: &Arc<Context>, scene: Scene, config: RenderConfig) -> Result<Self> {
         config.validate()?;
+        if config.gbuffer == config::GBufferMode::Visibility && !ctx.info.geometry_shader {
+            return Err(Error::Config(format!(
+                "--gbuffer visibility reads gl_PrimitiveID, which needs the geometryShader \
+                 feature; {} does not have it (use --gbuffer raster)",
+                ctx.info.name
+            )));
+        }
         let rendered = config.rendered();
         let textured =
             scene.mesh.has_textures() || scene.objects.iter().any(|o| o.mesh.has_textures());
@@ -121,6 +128,7 @@ impl Renderer {
             &scene.mesh,
             &scene.objects,
             light_view.material_layout(),
+            config.gbuffer == config::GBufferMode::Visibility,
         )?;
         let effects = effects::create(&mut Setup {
             ctx,
@@ -131,7 +139,14 @@ impl Renderer {
         let reprojection = Reprojection::new(ctx, &pool, &effects)?;
         let reads = dependencies::of(&effects).effects;
         let aa = config.aa.mode;
-        let targets = Targets::new(ctx, rendered.width, rendered.height, config.rsm_size, aa)?;
+        let targets = Targets::new(
+            ctx,
+            rendered.width,
+            rendered.height,
+            config.rsm_size,
+            aa,
+            config.gbuffer,
+        )?;
         let kinds: Vec<u32> = effects
             .iter()
             .map(|e| e.term(&targets, 0).0 as u32)
@@ -169,7 +184,12 @@ impl Renderer {
             scene,
             passes: FramePasses {
                 light_view,
-                gbuffer: GBufferPass::new(ctx, textured)?,
+                gbuffer: GBufferPass::new(
+                    ctx,
+                    &pool,
+                    textured,
+                    config.gbuffer == config::GBufferMode::Visibility,
+                )?,
                 composite,
                 sraa,
                 ssaa,
@@ -204,6 +224,13 @@ impl Renderer {
         self.reprojection
             .bind(&self.ctx, &self.targets, &self.effects)?;
         let shared = SharedTargets(&self.targets);
+        self.passes.gbuffer.bind(
+            &self.ctx,
+            &GBufferResources {
+                targets: &self.targets,
+                scene: &self.scene_gpu,
+            },
+        )?;
         if let Some(sraa) = &self.passes.sraa {
             sraa.bind(&self.ctx, &shared)?;
         }
@@ -524,7 +551,7 @@ impl Renderer {
             },
         );
         self.frames[slot].uniforms.write(&block.to_bytes())?;
-        Ok(())
+        self.scene_gpu.write_draw_table(slot)
     }
 
     /// Copy this frame's counters (of the effects it ran) for reading when `slot` comes round
@@ -575,6 +602,7 @@ impl Renderer {
             rendered.height,
             config.rsm_size,
             config.aa.mode,
+            config.gbuffer,
         )?;
         for e in &mut self.effects {
             e.resize(&self.ctx, &rendered)?;
@@ -721,6 +749,20 @@ impl FramePasses {
             r.timed(PassId::GBuffer, |rec, tr| {
                 self.gbuffer.record(rec, tr, frame, scene, &shared)
             });
+            if self.gbuffer.resolves() {
+                let res = GBufferResources {
+                    targets: info.targets,
+                    scene,
+                };
+                let (base, size) = (
+                    scene.draw_table_base(r.slot),
+                    (info.targets.width, info.targets.height),
+                );
+                r.timed(PassId::GBufferResolve, |rec, tr| {
+                    self.gbuffer
+                        .record_resolve(rec, tr, frame, &res, base, size)
+                });
+            }
         }
     }
 
@@ -756,6 +798,29 @@ impl FramePasses {
             r.timed(PassId::SsaaDownsample, |rec, tr| {
                 ssaa.record(rec, tr, frame, &shared, out)
             });
+        }
+    }
+}
+
+/// The visibility buffer's resolve reads the shared targets and the scene's buffers.
+struct GBufferResources<'a> {
+    targets: &'a Targets,
+    scene: &'a SceneGpu,
+}
+
+impl Resolve for GBufferResources<'_> {
+    fn image(&self, slot: Slot, parity: usize) -> Option<&Image> {
+        shared(self.targets, slot, parity)
+    }
+
+    fn buffer(&self, slot: Slot) -> Option<&Buffer> {
+        let tables = self.scene.visibility.as_ref();
+        match slot {
+            Slot::SceneVertices => Some(&self.scene.vertices),
+            Slot::SceneIndices => Some(&self.scene.indices),
+            Slot::SceneTriangleDraws => tables.map(|t| &t.triangle_draws),
+            Slot::SceneDraws => tables.map(|t| &t.draws),
+            _ => None,
         }
     }
 }

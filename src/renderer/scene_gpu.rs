@@ -2,6 +2,7 @@
 //! object in its own space), per-material colour and (optional) diffuse texture with its
 //! descriptor set, and the draws: a material's range of one of them, with the object's pose.
 
+use super::config::FRAMES_IN_FLIGHT;
 use crate::error::{Error, Result};
 use crate::scene::{DynamicObject, Mesh, TextureImage};
 use crate::shaders::MaterialPush;
@@ -80,8 +81,59 @@ pub struct SceneGpu {
     pub materials: Vec<MaterialGpu>,
     /// Each moving object's pose for the frame being recorded (`Renderer::set_time`).
     pub poses: Vec<Pose>,
+    /// `--gbuffer visibility`: what the resolve reads besides the vertices and indices.
+    pub visibility: Option<VisibilityTables>,
     _textures: Vec<Image>,
     _sampler: Option<Sampler>,
+}
+
+/// The visibility buffer's tables: the draw of each triangle, and per frame slot a copy of
+/// every draw's material push (colour and poses), written before the slot's frame is
+/// submitted (the slot's fence has signalled, so its last reader is done).
+pub struct VisibilityTables {
+    pub triangle_draws: Buffer,
+    pub draws: Buffer,
+}
+
+impl VisibilityTables {
+    fn new(
+        ctx: &Arc<Context>,
+        tracker: &mut Tracker,
+        draws: &[Draw],
+        triangles: usize,
+    ) -> Result<Self> {
+        let mut triangle_draws = vec![0u32; triangles];
+        for (d, draw) in draws.iter().enumerate() {
+            // Ranges are whole triangles inside the index list (checked when the mesh was
+            // built).
+            let first = draw.first_index as usize / 3;
+            let end = (first + draw.index_count as usize / 3).min(triangles);
+            triangle_draws[first.min(end)..end].fill(d as u32);
+        }
+        let bytes: Vec<u8> = triangle_draws
+            .iter()
+            .flat_map(|d| d.to_le_bytes())
+            .collect();
+        let buffer = Buffer::new(
+            ctx,
+            "scene.triangle_draws",
+            bytes.len().max(4) as u64,
+            vk::BufferUsageFlags::STORAGE_BUFFER | vk::BufferUsageFlags::TRANSFER_DST,
+            MemoryLocation::GpuOnly,
+        )?;
+        upload_buffer(ctx, tracker, &buffer, &bytes, Access::ComputeStorageRead)?;
+        let table = Buffer::new(
+            ctx,
+            "scene.draws",
+            (FRAMES_IN_FLIGHT * draws.len() * MaterialPush::SIZE) as u64,
+            vk::BufferUsageFlags::STORAGE_BUFFER,
+            MemoryLocation::CpuToGpu,
+        )?;
+        Ok(Self {
+            triangle_draws: buffer,
+            draws: table,
+        })
+    }
 }
 
 /// `statics` and every object's mesh in one vertex and index list (indices offset to their
@@ -131,8 +183,35 @@ impl SceneGpu {
             .unwrap_or(Pose::STILL)
     }
 
+    /// First entry of `slot`'s draw table (the resolve's push constant).
+    pub fn draw_table_base(&self, slot: usize) -> u32 {
+        (slot * self.draws.len()) as u32
+    }
+
+    /// Copy every draw's colour and pose for this frame into `slot`'s draw table (visibility
+    /// buffer only; the slot's last frame has finished).
+    pub fn write_draw_table(&mut self, slot: usize) -> Result<()> {
+        let entries: Vec<u8> = self
+            .draws
+            .iter()
+            .flat_map(|d| self.materials[d.material].push_bytes(&self.pose(d)))
+            .collect();
+        let Some(tables) = &mut self.visibility else {
+            return Ok(());
+        };
+        let start = slot * entries.len();
+        let dst = tables
+            .draws
+            .mapped_mut()
+            .and_then(|m| m.get_mut(start..start + entries.len()))
+            .ok_or_else(|| Error::Config("the draw table is not host-visible".into()))?;
+        dst.copy_from_slice(&entries);
+        Ok(())
+    }
+
     /// Upload `mesh` (what stands still) and `objects`. `material_layout` is the textured
-    /// permutation's set-1 layout, present only when a material has a texture.
+    /// permutation's set-1 layout, present only when a material has a texture; `visibility`
+    /// adds the visibility buffer's tables (and lets compute passes read the mesh).
     pub fn new(
         ctx: &Arc<Context>,
         tracker: &mut Tracker,
@@ -140,6 +219,7 @@ impl SceneGpu {
         mesh: &Mesh,
         objects: &[DynamicObject],
         material_layout: Option<vk::DescriptorSetLayout>,
+        visibility: bool,
     ) -> Result<Self> {
         if mesh.indices.is_empty() || mesh.vertices.is_empty() {
             return Err(Error::Config("the scene has no triangles to draw".into()));
@@ -154,18 +234,25 @@ impl SceneGpu {
             ctx,
             "vertices",
             vdata.len() as u64,
-            vk::BufferUsageFlags::VERTEX_BUFFER | vk::BufferUsageFlags::TRANSFER_DST,
+            vk::BufferUsageFlags::VERTEX_BUFFER
+                | vk::BufferUsageFlags::STORAGE_BUFFER
+                | vk::BufferUsageFlags::TRANSFER_DST,
             MemoryLocation::GpuOnly,
         )?;
         let indices = Buffer::new(
             ctx,
             "indices",
             idata.len() as u64,
-            vk::BufferUsageFlags::INDEX_BUFFER | vk::BufferUsageFlags::TRANSFER_DST,
+            vk::BufferUsageFlags::INDEX_BUFFER
+                | vk::BufferUsageFlags::STORAGE_BUFFER
+                | vk::BufferUsageFlags::TRANSFER_DST,
             MemoryLocation::GpuOnly,
         )?;
         upload_buffer(ctx, tracker, &vertices, &vdata, Access::VertexBufferRead)?;
         upload_buffer(ctx, tracker, &indices, &idata, Access::IndexBufferRead)?;
+        let visibility = visibility
+            .then(|| VisibilityTables::new(ctx, tracker, &draws, idata.len() / 12))
+            .transpose()?;
 
         // Textures: decode once per path (shared Arc), upload each once.
         let mut unique: Vec<Arc<TextureImage>> = Vec::new();
@@ -231,6 +318,7 @@ impl SceneGpu {
             draws,
             materials,
             poses: vec![Pose::STILL; objects.len()],
+            visibility,
             _textures: textures,
             _sampler: sampler,
         })

@@ -269,7 +269,10 @@ impl SkipTracker {
                 continue;
             }
             let left_out = plan.frame
-                || (matches!(pass, PassId::GBuffer | PassId::SraaGeometry) && plan.gbuffer)
+                || (matches!(
+                    pass,
+                    PassId::GBuffer | PassId::GBufferResolve | PassId::SraaGeometry
+                ) && plan.gbuffer)
                 // No lane ran: every temporal effect was left out.
                 || pass == PassId::Reproject
                 || effects

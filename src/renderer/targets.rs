@@ -2,6 +2,7 @@
 //! ping-pong pair that holds a frame's image and the previous one.
 
 use super::antialias::AaMode;
+use super::config::GBufferMode;
 use crate::error::Result;
 use crate::vk::{Context, Image, ImageDesc};
 use ash::vk;
@@ -110,7 +111,12 @@ pub struct GBuffer {
     /// what stands still): a moving object's pixels reproject to where they were.
     pub motion: Image,
     pub depth: Image,
+    /// `--gbuffer visibility`: each pixel's triangle, which the other targets are rebuilt from.
+    pub visibility: Option<Image>,
 }
+
+/// The visibility buffer's format: 1 + a triangle's index in the scene's index buffer.
+pub const VISIBILITY_FORMAT: vk::Format = vk::Format::R32_UINT;
 
 pub struct Rsm {
     pub position: Image,
@@ -281,8 +287,23 @@ impl Targets {
         height: u32,
         rsm_size: u32,
         aa: AaMode,
+        gbuffer: GBufferMode,
     ) -> Result<Self> {
         let s = (width, height);
+        // The visibility buffer's resolve writes the G-buffer from a compute pass.
+        let (g, visibility) = match gbuffer {
+            GBufferMode::Raster => (ATTACHMENT_READ, None),
+            GBufferMode::Visibility => (
+                ATTACHMENT_READ | vk::ImageUsageFlags::STORAGE,
+                Some(image(
+                    ctx,
+                    "gbuffer.visibility",
+                    s,
+                    VISIBILITY_FORMAT,
+                    ATTACHMENT_READ | vk::ImageUsageFlags::STORAGE,
+                )?),
+            ),
+        };
         let scale = aa.supersampling();
         let out = (width / scale, height / scale);
         let antialias = if aa.resolves() {
@@ -301,16 +322,17 @@ impl Targets {
             height,
             gbuffer: GBuffer {
                 position: PingPong::new([
-                    image(ctx, "gbuffer.position.0", s, gp, ATTACHMENT_READ)?,
-                    image(ctx, "gbuffer.position.1", s, gp, ATTACHMENT_READ)?,
+                    image(ctx, "gbuffer.position.0", s, gp, g)?,
+                    image(ctx, "gbuffer.position.1", s, gp, g)?,
                 ]),
                 normal: PingPong::new([
-                    image(ctx, "gbuffer.normal.0", s, gn, ATTACHMENT_READ)?,
-                    image(ctx, "gbuffer.normal.1", s, gn, ATTACHMENT_READ)?,
+                    image(ctx, "gbuffer.normal.0", s, gn, g)?,
+                    image(ctx, "gbuffer.normal.1", s, gn, g)?,
                 ]),
-                albedo: image(ctx, "gbuffer.albedo", s, ga, ATTACHMENT_READ)?,
-                motion: image(ctx, "gbuffer.motion", s, gm, ATTACHMENT_READ)?,
+                albedo: image(ctx, "gbuffer.albedo", s, ga, g)?,
+                motion: image(ctx, "gbuffer.motion", s, gm, g)?,
                 depth: image(ctx, "gbuffer.depth", s, DEPTH_FORMAT, DEPTH_READ)?,
+                visibility,
             },
             rsm: Rsm {
                 position: image(ctx, "rsm.position", r, rp, ATTACHMENT_READ)?,

@@ -37,6 +37,9 @@ pub struct DeviceInfo {
     pub timestamp_period: f32,
     pub timestamp_valid_bits: u32,
     pub max_push_constants_size: u32,
+    /// The geometryShader feature (enabled when present): fragment shaders may read
+    /// gl_PrimitiveID (the visibility buffer).
+    pub geometry_shader: bool,
 }
 
 /// Objects whose destruction waits until the GPU finished every submission made before they
@@ -132,8 +135,10 @@ impl Context {
             .iter()
             .map(|e| e.as_ptr())
             .collect();
+        let core = vk::PhysicalDeviceFeatures::default().geometry_shader(info.geometry_shader);
         let device_info = vk::DeviceCreateInfo::default()
             .queue_create_infos(&queue_info)
+            .enabled_features(&core)
             .enabled_extension_names(&ext_ptrs)
             .push_next(&mut f13)
             .push_next(&mut f12);
@@ -362,6 +367,7 @@ fn pick_device(
             instance.raw.get_physical_device_features2(pd, &mut feats);
             instance.raw.get_physical_device_queue_family_properties(pd)
         };
+        let geometry_shader = feats.features.geometry_shader != 0;
         let props = props2.properties;
         let name = props
             .device_name_as_c_str()
@@ -418,6 +424,7 @@ fn pick_device(
             timestamp_period: props.limits.timestamp_period,
             timestamp_valid_bits: families[family].timestamp_valid_bits,
             max_push_constants_size: props.limits.max_push_constants_size,
+            geometry_shader,
         };
         candidates.push((type_rank(props.device_type), pd, family as u32, info));
     }
