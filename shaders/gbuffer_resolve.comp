@@ -106,10 +106,15 @@ void main() {
     vec3 position = b.x * p0 + b.y * p1 + b.z * p2;
     vec4 prev_x = draws[entry].prev_model_x, prev_y = draws[entry].prev_model_y;
     vec4 prev_z = draws[entry].prev_model_z;
-    vec3 prev0 = place_with(prev_x, prev_y, prev_z, vertex_position(i0));
-    vec3 prev1 = place_with(prev_x, prev_y, prev_z, vertex_position(i1));
-    vec3 prev2 = place_with(prev_x, prev_y, prev_z, vertex_position(i2));
-    vec3 prev = b.x * prev0 + b.y * prev1 + b.z * prev2;
+    // What stood still (both poses equal, as every static draw's identity rows) did not
+    // move: the same products give the same point, so its motion is exactly 0 without them.
+    vec3 prev = position;
+    if (prev_x != model_x || prev_y != model_y || prev_z != model_z) {
+        vec3 prev0 = place_with(prev_x, prev_y, prev_z, vertex_position(i0));
+        vec3 prev1 = place_with(prev_x, prev_y, prev_z, vertex_position(i1));
+        vec3 prev2 = place_with(prev_x, prev_y, prev_z, vertex_position(i2));
+        prev = b.x * prev0 + b.y * prev1 + b.z * prev2;
+    }
     vec3 n = b.x * vertex_normal(i0) + b.y * vertex_normal(i1) + b.z * vertex_normal(i2);
     n = vec3(dot(model_x.xyz, n), dot(model_y.xyz, n), dot(model_z.xyz, n));
 
