@@ -569,3 +569,51 @@ fn bench_flicker_measures_consecutive_frames() {
     );
     assert!(ccipca["flicker"]["indirect_msd_mean"].as_f64().unwrap() > 0.0);
 }
+
+/// `bench --explain` prints the frame as data from the passes' declarations, and
+/// docs/ARCHITECTURE.md shows it for the default frame (the block after its
+/// `<!-- bench --explain -->` marker is this output, word for word). Independently of the
+/// document: the second frame leaves the light view out (the light did not change), draws the
+/// G-buffer before the reprojection reads it, and the composite writes the output last.
+#[test]
+fn bench_explain_prints_the_frame_the_architecture_doc_shows() {
+    let out = ssgi()
+        .args(["--validation", "bench", "--explain", "--size", "64x64"])
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "bench --explain failed:\n{stderr}");
+    let text = String::from_utf8(out.stdout).unwrap();
+    let lines: Vec<&str> = text.lines().collect();
+    let at = |pass: &str| {
+        lines
+            .iter()
+            .position(|l| l.split_whitespace().next() == Some(pass))
+            .unwrap_or_else(|| panic!("no {pass} line in:\n{text}"))
+    };
+    assert!(
+        lines[at("light_view")].ends_with("skipped (unchanged)"),
+        "{text}"
+    );
+    assert!(at("gbuffer") < at("reproject") && at("reproject") < at("composite"));
+    assert!(
+        lines[at("gbuffer")].contains("writes gbuffer.position."),
+        "{text}"
+    );
+    assert!(
+        lines[at("reproject")].contains("gbuffer.position."),
+        "{text}"
+    );
+    assert!(lines[at("composite")].contains("writes output"), "{text}");
+    let doc = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/docs/ARCHITECTURE.md"))
+        .unwrap();
+    let block = doc
+        .split("<!-- bench --explain -->\n```\n")
+        .nth(1)
+        .and_then(|rest| rest.split("```").next())
+        .expect("docs/ARCHITECTURE.md: a ``` block after <!-- bench --explain -->");
+    assert_eq!(
+        block, text,
+        "docs/ARCHITECTURE.md's frame differs from `ssgi bench --explain --size 64x64`"
+    );
+}

@@ -623,6 +623,11 @@ pub struct BenchArgs {
     /// follows) before running.
     #[arg(long)]
     pub explain_skips: bool,
+    /// Print the frame as data and exit without measuring: every pass of the path's second
+    /// frame (the first with a history), in recording order, with the images and buffers its
+    /// declaration reads, writes and updates, and the passes it left out and why.
+    #[arg(long)]
+    pub explain: bool,
     /// Read the output (and indirect light) back after every measured frame and report the
     /// flicker measure: each frame's mean squared RGB difference from the one before, in
     /// `frames[]` and summarized (Chen et al.: barely notable below 2.5e-5). Waits for every

@@ -131,6 +131,24 @@ impl Use {
         }
     }
 
+    /// Whether the pass reads what is there.
+    pub fn reads(self) -> bool {
+        matches!(
+            self,
+            Use::Sampled
+                | Use::StorageRead
+                | Use::StorageReadWrite
+                | Use::BufferRead
+                | Use::BufferReadWrite
+                | Use::WorkList
+        )
+    }
+
+    /// Whether the pass writes it.
+    pub fn writes(self) -> bool {
+        !matches!(self, Use::Sampled | Use::StorageRead | Use::BufferRead)
+    }
+
     fn is_buffer(self) -> bool {
         self.kind() == Some(DescriptorKind::StorageBuffer)
     }
@@ -253,16 +271,20 @@ pub fn attachments<'a>(
 pub fn access(pass: &str, binds: &[Bind], res: &dyn Resolve, parity: usize, t: &mut Tracker) {
     let unresolved = |b: &Bind| -> ! { panic!("{}", missing(pass, b)) };
     for b in binds {
-        for &a in b.usage.accesses() {
-            if b.usage.is_buffer() {
-                t.buffer(res.buffer(b.slot).unwrap_or_else(|| unresolved(b)), a);
-            } else {
-                t.image(
-                    res.image(b.slot, parity).unwrap_or_else(|| unresolved(b)),
-                    a,
-                );
+        let name = if b.usage.is_buffer() {
+            let buffer = res.buffer(b.slot).unwrap_or_else(|| unresolved(b));
+            for &a in b.usage.accesses() {
+                t.buffer(buffer, a);
             }
-        }
+            &buffer.name
+        } else {
+            let image = res.image(b.slot, parity).unwrap_or_else(|| unresolved(b));
+            for &a in b.usage.accesses() {
+                t.image(image, a);
+            }
+            &image.name
+        };
+        t.declare(pass, name, b.usage.reads(), b.usage.writes());
     }
 }
 

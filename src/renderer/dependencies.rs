@@ -7,7 +7,7 @@
 
 use super::config::RenderConfig;
 use crate::effects::{Effect, EffectId, REGISTRY};
-use crate::passes::decl::{Slot, Use};
+use crate::passes::decl::Slot;
 use crate::passes::{Change, PassId, PassLayout};
 
 /// Whether `e` accumulates into a reused history under `config`.
@@ -47,22 +47,6 @@ impl std::ops::BitOrAssign for Changes {
     fn bitor_assign(&mut self, o: Changes) {
         self.0 |= o.0;
     }
-}
-
-fn reads(u: Use) -> bool {
-    matches!(
-        u,
-        Use::Sampled
-            | Use::StorageRead
-            | Use::StorageReadWrite
-            | Use::BufferRead
-            | Use::BufferReadWrite
-            | Use::WorkList
-    )
-}
-
-fn writes(u: Use) -> bool {
-    !matches!(u, Use::Sampled | Use::StorageRead | Use::BufferRead)
 }
 
 /// Where what a slot holds comes from.
@@ -121,7 +105,7 @@ pub fn derive(frame: &[PassLayout], effects: &[Vec<PassLayout>]) -> Dependencies
         let before = (t, local.clone());
         let producer = |slot: Slot, t: &[Changes]| {
             all()
-                .filter(|l| l.binds.iter().any(|b| b.slot == slot && writes(b.usage)))
+                .filter(|l| l.binds.iter().any(|b| b.slot == slot && b.usage.writes()))
                 .fold(Changes::default(), |c, l| c | t[l.pass.index()])
         };
         let any_effect = effects
@@ -132,7 +116,7 @@ pub fn derive(frame: &[PassLayout], effects: &[Vec<PassLayout>]) -> Dependencies
         let read = |l: &PassLayout, own: Changes, inputs: Changes, t: &[Changes]| {
             l.binds
                 .iter()
-                .filter(|b| reads(b.usage))
+                .filter(|b| b.usage.reads())
                 .fold(inputs, |c, b| {
                     c | match source(b.slot) {
                         Source::Shared(s) => producer(s, t),
@@ -159,7 +143,7 @@ pub fn derive(frame: &[PassLayout], effects: &[Vec<PassLayout>]) -> Dependencies
                 .filter(|l| {
                     l.binds
                         .iter()
-                        .any(|b| writes(b.usage) && source(b.slot) == Source::Local)
+                        .any(|b| b.usage.writes() && source(b.slot) == Source::Local)
                 })
                 .fold(Changes::default(), |c, l| c | next[l.pass.index()]);
             local[e] |= lane_shared | writers;

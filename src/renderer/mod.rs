@@ -10,6 +10,7 @@ pub mod config;
 pub mod counters;
 pub mod dependencies;
 pub mod effect;
+pub mod explain;
 pub mod frame;
 pub mod frame_plan;
 mod motion;
@@ -313,6 +314,31 @@ impl Renderer {
     /// What makes each pass run again (`skip::explain`).
     pub fn explain_skips(&self) -> String {
         dependencies::explain(&self.config, &self.effects)
+    }
+
+    /// Render a frame from `first` at `times.0`, then one from `second` at `times.1`, and
+    /// describe the second (`explain::describe`): its passes in order with what each declares
+    /// it reads and writes, and the passes it left out.
+    pub fn explain_frame(
+        &mut self,
+        (first, second): (&Camera, &Camera),
+        times: (f32, f32),
+    ) -> Result<String> {
+        self.set_time(times.0);
+        self.render_frame(first)?;
+        self.tracker.start_declaring();
+        self.set_time(times.1);
+        let frame = self.frame_index;
+        let rendered = self.render_frame(second);
+        let declared = self.tracker.take_declared();
+        rendered?;
+        let timings = self.finish()?;
+        let skipped = timings
+            .into_iter()
+            .find(|t| t.frame == frame)
+            .map(|t| t.skipped)
+            .unwrap_or_default();
+        Ok(explain::describe(&declared, &skipped))
     }
 
     /// The dependency table itself: each pass and the changes that make it run again.

@@ -232,7 +232,7 @@ impl SceneGpu {
             .collect();
         let vertices = Buffer::new(
             ctx,
-            "vertices",
+            "scene.vertices",
             vdata.len() as u64,
             vk::BufferUsageFlags::VERTEX_BUFFER
                 | vk::BufferUsageFlags::STORAGE_BUFFER
@@ -241,7 +241,7 @@ impl SceneGpu {
         )?;
         let indices = Buffer::new(
             ctx,
-            "indices",
+            "scene.indices",
             idata.len() as u64,
             vk::BufferUsageFlags::INDEX_BUFFER
                 | vk::BufferUsageFlags::STORAGE_BUFFER

@@ -54,6 +54,8 @@ fn allocate(
 
 pub struct Buffer {
     ctx: Arc<Context>,
+    /// Its debug name (validation messages, `--explain`).
+    pub name: String,
     pub raw: vk::Buffer,
     pub size: u64,
     allocation: Option<Allocation>,
@@ -97,6 +99,7 @@ impl Buffer {
         }
         Ok(Self {
             ctx: ctx.clone(),
+            name: name.to_string(),
             raw,
             size,
             allocation: Some(allocation),

@@ -255,11 +255,45 @@ pub trait TrackedImage: Tracked {
 pub struct Tracker {
     images: Vec<vk::ImageMemoryBarrier2<'static>>,
     buffers: Vec<vk::BufferMemoryBarrier2<'static>>,
+    /// While `Some`: each pass's declared use of each resource, in recording order
+    /// (`ssgi bench --explain`).
+    declared: Option<Vec<Declared>>,
+}
+
+/// One resource a pass declared, as `--explain` prints it.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Declared {
+    pub pass: String,
+    pub resource: String,
+    pub reads: bool,
+    pub writes: bool,
 }
 
 impl Tracker {
     pub fn new() -> Self {
         Self::default()
+    }
+
+    /// Log the declared uses from now on (`take_declared` ends the log).
+    pub fn start_declaring(&mut self) {
+        self.declared = Some(Vec::new());
+    }
+
+    /// The uses declared since `start_declaring`, and stop logging.
+    pub fn take_declared(&mut self) -> Vec<Declared> {
+        self.declared.take().unwrap_or_default()
+    }
+
+    /// A pass's use of a resource (logged only while declaring).
+    pub fn declare(&mut self, pass: &str, resource: &str, reads: bool, writes: bool) {
+        if let Some(log) = &mut self.declared {
+            log.push(Declared {
+                pass: pass.to_string(),
+                resource: resource.to_string(),
+                reads,
+                writes,
+            });
+        }
     }
 
     pub fn image(&mut self, image: &impl TrackedImage, next: Access) {

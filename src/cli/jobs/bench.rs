@@ -204,6 +204,27 @@ fn bench_compare_reuse(
     Ok(())
 }
 
+/// `--explain`: the path's second frame as data, after its first.
+fn explain(args: &BenchArgs, renderer: &mut Renderer, path: &CameraPath) -> Result<String> {
+    let base = renderer.scene.camera;
+    let orbit = renderer.scene.orbit();
+    let times = (frame_time(0, args.scene.fps), frame_time(1, args.scene.fps));
+    let first = path.camera_at(&base, &orbit, times.0);
+    let second = path.camera_at(&base, &orbit, times.1);
+    let moving = if first == second {
+        "the camera still"
+    } else {
+        "the camera moving"
+    };
+    let (w, h) = args.scene.size;
+    let header = format!(
+        "frame 2 of {} at {w}x{h}, {moving}: the passes in recording order, with what each \
+         declares it reads, writes and updates (reads and writes)\n",
+        renderer.scene.name
+    );
+    Ok(header + &renderer.explain_frame((&first, &second), times)?)
+}
+
 fn on_off(reuse: bool) -> &'static str {
     if reuse {
         "on"
@@ -234,6 +255,12 @@ pub fn bench(cli: &Cli, args: &BenchArgs) -> Result<()> {
         return finish(&ctx);
     }
     let mut renderer = Renderer::new(&ctx, scene, args.scene.render_config())?;
+    if args.explain {
+        print!("{}", explain(args, &mut renderer, &path)?);
+        drop(renderer);
+        drop(sink);
+        return finish(&ctx);
+    }
     if args.explain_skips {
         print!("{}", renderer.explain_skips());
     }
