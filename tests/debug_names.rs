@@ -7,7 +7,7 @@ use ssgi::renderer::config::Effects;
 use ssgi::renderer::targets::Target;
 use ssgi::renderer::{FrameHook, RenderConfig, Renderer};
 use ssgi::scene::cornell_box;
-use ssgi::vk::cmd::Recorder;
+use ssgi::vk::recorder::Recorder;
 use ssgi::vk::{Buffer, Image, SubmitSync, Tracker};
 
 #[test]

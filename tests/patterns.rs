@@ -7,12 +7,12 @@ mod common;
 
 use ash::vk;
 use gpu_allocator::MemoryLocation;
-use ssgi::bench::rows::{REFERENCE_AO_PATTERNS, REFERENCE_PCF};
+use ssgi::bench::reuse_rows::{REFERENCE_AO_PATTERNS, REFERENCE_PCF};
 use ssgi::renderer::config::{AoConfig, TemporalConfig, MAX_PATTERNS};
 use ssgi::renderer::frame::REFERENCE_PATTERN_BASE;
 use ssgi::renderer::pcf::Pcf;
 use ssgi::shaders::{DescriptorKind, ProbePush, ReflectedBinding, PATTERN_OFFSETS_COMP};
-use ssgi::vk::cmd::Recorder;
+use ssgi::vk::recorder::Recorder;
 use ssgi::vk::{one_shot, Access, Buffer, Context, DescriptorPool, Pipeline, SetWriter, Tracker};
 use std::f32::consts::TAU;
 use std::sync::Arc;

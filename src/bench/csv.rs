@@ -3,7 +3,7 @@
 
 use super::compare::GROUPS;
 use super::measure::Buffer;
-use super::rows::{FrameSample, RowKind};
+use super::reuse_rows::{FrameSample, RowKind};
 use super::table_report::{group_present, TableReport};
 use std::collections::BTreeMap;
 

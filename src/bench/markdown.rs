@@ -2,7 +2,7 @@
 //! table with the thesis's numbers beside ours, the speed-up ratios, the error table, notes.
 
 use super::measure::Buffer;
-use super::rows::{RowKind, COLUMNS};
+use super::reuse_rows::{RowKind, COLUMNS};
 use super::table_report::{group_present, TableReport};
 
 fn num(v: Option<f64>, decimals: usize) -> String {
@@ -84,7 +84,7 @@ fn header(r: &TableReport) -> String {
         RowKind::Reuse.label(r.base_config.effects),
         RowKind::NoReuse.label(r.base_config.effects),
         RowKind::Reference.label(r.base_config.effects),
-        super::rows::REFERENCE_FRAMES,
+        super::reuse_rows::REFERENCE_FRAMES,
     );
     md += &format!("Error reference: {}.\n\n", r.reference);
     md += &format!(

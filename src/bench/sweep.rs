@@ -6,7 +6,7 @@
 use super::compare::{group_median, GROUPS};
 use super::ground_truth::{self, reference_buffer, FrameError, TruthQuality};
 use super::measure::{held_at, last_camera, measure, Buffer, LastFrame, RunSpec};
-use super::rows::{RowKind, REFERENCE_FRAMES};
+use super::reuse_rows::{RowKind, REFERENCE_FRAMES};
 use super::sweep_keys::{describe, Label};
 use crate::error::{Error, Result};
 use crate::frontend::sink::Offscreen;

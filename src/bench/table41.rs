@@ -4,7 +4,7 @@
 
 use super::decimate::decimate;
 use super::paths::EmbeddedPath;
-use super::rows_table::RowsTable;
+use super::reuse_tables::RowsTable;
 use super::table_report::{SceneResult, TableReport, COLUMN_NOTE};
 use super::thesis::table_4_1;
 use super::TableOptions;

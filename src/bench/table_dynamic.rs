@@ -5,7 +5,7 @@
 //! that moment. The thesis leaves dynamic scenes open (section 5); this measures what the
 //! motion-aware reprojection and `--invalidate` keep of the cache.
 
-use super::rows_table::RowsTable;
+use super::reuse_tables::RowsTable;
 use super::table_report::{SceneResult, TableReport, COLUMN_NOTE};
 use super::walkthrough::{write_series, EmbeddedScene};
 use super::TableOptions;

@@ -22,7 +22,7 @@
 
 use super::compare::GROUPS;
 use super::ground_truth::TruthQuality;
-use super::rows::{RowKind, RowResult};
+use super::reuse_rows::{RowKind, RowResult};
 use super::thesis::{Fps, Scene41};
 use crate::renderer::RenderConfig;
 use crate::vk::DeviceInfo;

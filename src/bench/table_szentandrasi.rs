@@ -22,7 +22,7 @@ use super::compare::GROUPS;
 use super::measure::{held_at, last_camera, measure, Buffer, RunSpec};
 use super::metrics::{image_error, Channels};
 use super::output::file_stem;
-use super::rows::group_ms;
+use super::reuse_rows::group_ms;
 use super::stats::summarize;
 use super::szentandrasi::{PaperRow, PaperScene, RATIOS, REFERENCE_SAMPLES, ROWS, SCENES};
 use super::table_run::{fixed, write_reports, TableRun};

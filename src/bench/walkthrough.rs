@@ -9,8 +9,8 @@ use super::plot::{
     write_line_plot, LinePlot, Series, NO_REUSE_AO_COLOR, NO_REUSE_COLOR, NO_REUSE_INDIRECT_COLOR,
     REUSE_AO_COLOR, REUSE_COLOR, REUSE_INDIRECT_COLOR,
 };
-use super::rows::{FrameSample, RowKind};
-use super::rows_table::RowsTable;
+use super::reuse_rows::{FrameSample, RowKind};
+use super::reuse_tables::RowsTable;
 use super::table_report::{SceneResult, TableReport, COLUMN_NOTE};
 use super::thesis::WALKTHROUGH_NUMBERS_MISSING;
 use super::TableOptions;

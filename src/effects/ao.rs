@@ -15,10 +15,10 @@ use crate::passes::compute::{ComputePass, Dispatch};
 use crate::passes::decl::{Bind, Slot, Use};
 use crate::passes::{PassId, PassLayout};
 use crate::renderer::config::RenderConfig;
-use crate::renderer::effect::{self, TemporalEffect};
 use crate::renderer::targets::{Target, Targets, AO_FORMAT, GBUFFER_COLOR_FORMATS};
 use crate::renderer::temporal::random_vectors;
 use crate::renderer::temporal::Sampling;
+use crate::renderer::temporal_effect::{self, TemporalEffect};
 use crate::shaders::{self, EffectPush};
 use crate::vk::{upload_image, Access, Context, Image, ImageDesc};
 use ash::vk;
@@ -225,7 +225,7 @@ impl AoEffect {
             )
         };
         Ok(Sized {
-            temporal: TemporalEffect::new(ctx, effect::AO, c, Sampling::FullRes)?,
+            temporal: TemporalEffect::new(ctx, temporal_effect::AO, c, Sampling::FullRes)?,
             raw: image("ao.raw")?,
             blurred: image("ao.blurred")?,
             levels: [level(1)?, level(2)?, level(3)?],

@@ -20,10 +20,10 @@ use crate::renderer::config::{
     CcipcaOrthogonalize, CcipcaProject, CcipcaStages, CcipcaWeighting, IndirectConfig,
     IndirectFilter, RenderConfig,
 };
-use crate::renderer::effect::TemporalEffect;
 use crate::renderer::targets::{Target, Targets};
+use crate::renderer::temporal_effect::TemporalEffect;
 use crate::shaders::{self, CcipcaPush, ShaderModuleInfo};
-use crate::vk::cmd::Recorder;
+use crate::vk::recorder::Recorder;
 use crate::vk::{Buffer, Context, DescriptorPool, Image, Tracker};
 use ash::vk;
 use gpu_allocator::MemoryLocation;

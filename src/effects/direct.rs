@@ -14,10 +14,10 @@ use crate::passes::compute::{ComputePass, Dispatch};
 use crate::passes::decl::{Bind, Slot, Use};
 use crate::passes::{PassId, PassLayout};
 use crate::renderer::config::RenderConfig;
-use crate::renderer::effect::{self, TemporalEffect};
 use crate::renderer::pcf::{Pcf, PcfKernel};
 use crate::renderer::targets::{Target, Targets, AO_FORMAT};
 use crate::renderer::temporal::Sampling;
+use crate::renderer::temporal_effect::{self, TemporalEffect};
 use crate::shaders::{self, EffectPush};
 use crate::vk::{Context, Image, ImageDesc};
 use ash::vk;
@@ -178,7 +178,7 @@ impl DirectEffect {
             temporal: if c.temporal.reuse {
                 Some(TemporalEffect::new(
                     ctx,
-                    effect::SHADOW,
+                    temporal_effect::SHADOW,
                     c,
                     Sampling::FullRes,
                 )?)

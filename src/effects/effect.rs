@@ -5,10 +5,10 @@ use crate::error::Result;
 use crate::passes::compute::{Dispatch, FrameSet};
 use crate::passes::{PassId, PassLayout};
 use crate::renderer::config::{Accumulate, RenderConfig};
-use crate::renderer::effect::{EffectKind, TemporalEffect};
 use crate::renderer::targets::{Target, Targets};
+use crate::renderer::temporal_effect::{EffectKind, TemporalEffect};
 use crate::shaders::EffectPush;
-use crate::vk::cmd::Recorder;
+use crate::vk::recorder::Recorder;
 use crate::vk::{Buffer, Context, DescriptorPool, GpuTimer, Image, Tracker};
 use std::sync::Arc;
 

@@ -19,11 +19,11 @@ use crate::passes::decl::{Bind, Slot, Use};
 use crate::passes::{PassId, PassLayout};
 use crate::renderer::config::{IndirectFilter, RenderConfig};
 use crate::renderer::counters::{FIXUP_DISPATCH_OFFSET, LOWRES_DISPATCH_OFFSET};
-use crate::renderer::effect::{self, TemporalEffect};
 use crate::renderer::targets::{Target, Targets, STATE_FORMAT};
 use crate::renderer::temporal::{tile_evaluations, Sampling};
+use crate::renderer::temporal_effect::{self, TemporalEffect};
 use crate::shaders::{self, EffectPush};
-use crate::vk::cmd::Recorder;
+use crate::vk::recorder::Recorder;
 use crate::vk::{Access, Buffer, Context, Image, ImageDesc, Tracker};
 use ash::vk;
 use gpu_allocator::MemoryLocation;
@@ -327,7 +327,7 @@ impl IndirectEffect {
         } else {
             Sampling::FullRes
         };
-        let temporal = TemporalEffect::new(ctx, effect::INDIRECT, c, sampling)?;
+        let temporal = TemporalEffect::new(ctx, temporal_effect::INDIRECT, c, sampling)?;
         let low = |name, format, usage| {
             Image::new(
                 ctx,

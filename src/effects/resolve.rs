@@ -3,8 +3,8 @@
 //! buffers the effect owns by index.
 
 use crate::passes::decl::{Resolve, Slot};
-use crate::renderer::effect::TemporalEffect;
 use crate::renderer::targets::{Target, Targets};
+use crate::renderer::temporal_effect::TemporalEffect;
 use crate::vk::{Buffer, Image};
 
 /// An effect's view of the frame's resources.

@@ -20,11 +20,11 @@ use crate::passes::{PassId, PassLayout};
 use crate::renderer::config::FRAMES_IN_FLIGHT;
 use crate::renderer::config::{RenderConfig, SsdoForm};
 use crate::renderer::counters::{self, Counter, CounterReadback};
-use crate::renderer::effect::{self, TemporalEffect};
 use crate::renderer::targets::{Target, Targets, AO_FORMAT};
 use crate::renderer::temporal::Sampling;
+use crate::renderer::temporal_effect::{self, TemporalEffect};
 use crate::shaders::{self, EffectPush};
-use crate::vk::cmd::Recorder;
+use crate::vk::recorder::Recorder;
 use crate::vk::{Buffer, Context, Image, ImageDesc, Tracker};
 use ash::vk;
 use std::sync::Arc;
@@ -384,7 +384,7 @@ impl SsdoEffect {
             temporal: if c.temporal.reuse {
                 Some(TemporalEffect::new(
                     ctx,
-                    effect::SSDO,
+                    temporal_effect::SSDO,
                     c,
                     Sampling::FullRes,
                 )?)

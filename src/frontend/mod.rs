@@ -4,9 +4,9 @@
 pub mod display;
 pub mod headless;
 pub mod png;
-pub mod present;
-pub mod presenter;
 pub mod progress;
 pub mod sink;
+pub mod swapchain_frame;
 pub mod view_state;
 pub mod window;
+pub mod window_sink;

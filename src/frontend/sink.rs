@@ -1,6 +1,6 @@
 //! Where the frames of a scripted run go: offscreen, or presented to a window. Benchmarks and
 //! tables render through a [`FrameSink`], so the same loop measures both. The window sink is
-//! `presenter.rs`, which depends on this file, not the other way round.
+//! `window_sink.rs`, which depends on this file, not the other way round.
 
 use crate::error::Result;
 use crate::renderer::Renderer;

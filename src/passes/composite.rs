@@ -9,7 +9,7 @@ use super::layout::PassLayout;
 use super::pass_id::PassId;
 use crate::error::{Error, Result};
 use crate::shaders;
-use crate::vk::cmd::Recorder;
+use crate::vk::recorder::Recorder;
 use crate::vk::{Buffer, Context, DescriptorPool, Image, Tracker};
 use std::sync::Arc;
 

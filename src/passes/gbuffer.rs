@@ -12,7 +12,7 @@ use crate::error::Result;
 use crate::renderer::scene_gpu::SceneGpu;
 use crate::renderer::targets::{DEPTH_FORMAT, GBUFFER_COLOR_FORMATS, VISIBILITY_FORMAT};
 use crate::shaders::{self, GBufferResolvePush, ShaderModuleInfo};
-use crate::vk::cmd::Recorder;
+use crate::vk::recorder::Recorder;
 use crate::vk::{Context, DescriptorPool, Tracker};
 use ash::vk;
 use std::sync::Arc;

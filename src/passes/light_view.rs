@@ -10,7 +10,7 @@ use crate::error::Result;
 use crate::renderer::scene_gpu::SceneGpu;
 use crate::renderer::targets::{DEPTH_FORMAT, RSM_COLOR_FORMATS};
 use crate::shaders;
-use crate::vk::cmd::Recorder;
+use crate::vk::recorder::Recorder;
 use crate::vk::{Context, Tracker};
 use ash::vk;
 use std::sync::Arc;

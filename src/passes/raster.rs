@@ -7,7 +7,7 @@ use super::pass_id::PassId;
 use crate::error::Result;
 use crate::renderer::scene_gpu::{Draw, SceneGpu};
 use crate::shaders::{DescriptorKind, ReflectedBinding, ShaderModuleInfo};
-use crate::vk::cmd::Recorder;
+use crate::vk::recorder::Recorder;
 use crate::vk::Tracker;
 use crate::vk::{Context, GraphicsDesc, Pipeline};
 use ash::vk;

@@ -10,7 +10,7 @@ use super::layout::PassLayout;
 use super::pass_id::PassId;
 use crate::error::{Error, Result};
 use crate::shaders::{self, ReprojectPush, ShaderModuleInfo};
-use crate::vk::cmd::Recorder;
+use crate::vk::recorder::Recorder;
 use crate::vk::{Context, DescriptorPool, Pipeline, SetWriter, Tracker};
 use ash::vk;
 use std::sync::Arc;

@@ -17,7 +17,7 @@ use crate::error::Result;
 use crate::renderer::scene_gpu::SceneGpu;
 use crate::renderer::targets::{DEPTH_FORMAT, GBUFFER_COLOR_FORMATS};
 use crate::shaders;
-use crate::vk::cmd::Recorder;
+use crate::vk::recorder::Recorder;
 use crate::vk::{Context, DescriptorPool, GraphicsDesc, Pipeline, Tracker};
 use std::sync::Arc;
 

@@ -7,7 +7,7 @@ use super::layout::PassLayout;
 use super::pass_id::PassId;
 use crate::error::Result;
 use crate::shaders;
-use crate::vk::cmd::Recorder;
+use crate::vk::recorder::Recorder;
 use crate::vk::{Context, DescriptorPool, Tracker};
 use std::sync::Arc;
 

@@ -9,7 +9,7 @@ use crate::effects::FrameInfo;
 use crate::error::Result;
 use crate::passes::compute::FrameSet;
 use crate::shaders::{DescriptorKind, ImageStatsPush, ReflectedBinding, IMAGE_STATS_COMP};
-use crate::vk::cmd::Recorder;
+use crate::vk::recorder::Recorder;
 use crate::vk::{
     one_shot, Access, Buffer, Context, DescriptorPool, Image, Pipeline, SetWriter, Tracker,
 };

@@ -5,7 +5,7 @@
 
 use crate::error::Result;
 use crate::shaders::CountersHeader;
-use crate::vk::cmd::Recorder;
+use crate::vk::recorder::Recorder;
 use crate::vk::{Access, Buffer, Context, Tracker};
 use ash::vk;
 use gpu_allocator::MemoryLocation;

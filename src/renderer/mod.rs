@@ -1,4 +1,4 @@
-//! The frame as a list of steps over the registered effects (DESIGN.md's "One frame"), frames
+//! The frame as a list of steps over the registered effects (docs/ARCHITECTURE.md's "One frame"), frames
 //! in flight and the shared targets; each frame records what its plan (`frame_plan.rs`) runs:
 //!
 //! light view (only when the light changed) → G-buffer → reprojection of every temporal effect
@@ -9,17 +9,17 @@ pub mod audit;
 pub mod config;
 pub mod counters;
 pub mod dependencies;
-pub mod effect;
 pub mod explain;
 pub mod frame;
 pub mod frame_plan;
 mod motion;
 pub mod pcf;
-pub mod reprojection;
+pub mod reprojection_lanes;
 pub mod scene_gpu;
 pub mod skip;
 pub mod targets;
 pub mod temporal;
+pub mod temporal_effect;
 
 use crate::effects::resolve::shared;
 use crate::effects::{self, Effect, EffectId, FrameInfo, Recording, Setup};
@@ -33,7 +33,7 @@ use crate::passes::sraa::SraaPass;
 use crate::passes::ssaa::SsaaPass;
 use crate::passes::PassId;
 use crate::scene::{Camera, Scene, SpotLight};
-use crate::vk::cmd::Recorder;
+use crate::vk::recorder::Recorder;
 use crate::vk::{
     read_buffer, read_image, Buffer, Context, DescriptorPool, FrameSlots, FrameTiming, GpuTimer,
     Image, ImageData, SetWriter, SkipReason, SubmitSync, Tracker,
@@ -45,7 +45,7 @@ use frame_plan::{FramePlan, FrameState, Past, Step};
 use glam::Mat4;
 use gpu_allocator::MemoryLocation;
 use motion::Motion;
-use reprojection::Reprojection;
+use reprojection_lanes::Reprojection;
 use scene_gpu::SceneGpu;
 use skip::{EffectState, Inputs, Plan, SkipTracker};
 use std::sync::Arc;
@@ -389,7 +389,7 @@ impl Renderer {
 
     /// As `render_frame`, with a hook that records after the composite (the window frontend
     /// copies the output into the swapchain image there) and the submission's semaphores.
-    /// The steps of DESIGN.md's "One frame", as the frame's plan has them.
+    /// The steps of docs/ARCHITECTURE.md's "One frame", as the frame's plan has them.
     pub fn render_frame_with(
         &mut self,
         camera: &Camera,

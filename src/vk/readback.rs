@@ -1,9 +1,9 @@
 //! Copy an image back to the host (tests, PNG output, G-buffer dumps).
 
-use super::cmd::Recorder;
-use super::commands::one_shot;
 use super::context::Context;
 use super::memory::{Buffer, Image};
+use super::recorder::Recorder;
+use super::submission::one_shot;
 use super::sync::{Access, Tracker};
 use crate::error::{Error, Result};
 use ash::vk;

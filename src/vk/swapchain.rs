@@ -18,10 +18,10 @@
 //! before the next frame. A zero extent (minimised window) is reported as `None` by
 //! [`Swapchain::surface_extent`]: the frontend then does not render.
 
-use super::cmd::Recorder;
 use super::context::{Context, SubmitSync};
 use super::memory::{Buffer, Image};
 use super::readback::ImageData;
+use super::recorder::Recorder;
 use super::surface::Surface;
 use super::sync::{Access, ResourceState, Tracked, TrackedImage, Tracker};
 use crate::error::{Error, Result, VkContext};

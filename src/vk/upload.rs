@@ -1,8 +1,8 @@
 //! One-off uploads of image data through a staging buffer.
 
-use super::commands::one_shot;
 use super::context::Context;
 use super::memory::{Buffer, Image};
+use super::submission::one_shot;
 use super::sync::{Access, Tracker};
 use crate::error::Result;
 use ash::vk;

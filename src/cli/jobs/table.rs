@@ -10,7 +10,7 @@ use crate::bench::{
 };
 use crate::cli::args::{Cli, TableArgs, TableName};
 use crate::error::{Error, Result};
-use crate::frontend::presenter::open_sink;
+use crate::frontend::window_sink::open_sink;
 use crate::renderer::config::Effects;
 use crate::scene::asset_dir_from_env;
 use std::path::PathBuf;

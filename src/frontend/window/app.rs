@@ -16,7 +16,7 @@ use super::script::{self, ScriptOp, ScriptStep};
 use super::stats::Stats;
 use crate::error::{Error, Result};
 use crate::frontend::display::{new_event_loop, presenting_context};
-use crate::frontend::present::{recreate, render_and_present, Presented, Recreated};
+use crate::frontend::swapchain_frame::{recreate, render_and_present, Presented, Recreated};
 use crate::frontend::view_state::{needs_rebuild, Action, ViewState, DISPLAY_CYCLE, HELP};
 use crate::renderer::targets::Target;
 use crate::renderer::{Renderer, FRAMES_IN_FLIGHT};

@@ -2,7 +2,7 @@
 //! Vulkan swapchain; the same `Renderer` as the headless frontend, whose output (or another
 //! target, for the buffer display) is blitted into the acquired swapchain image in the
 //! renderer's frame hook. Scripted runs (`bench --window`, `table --window`) present through
-//! `presenter.rs` instead, which shares the frame steps in `present.rs`.
+//! `window_sink.rs` instead, which shares the frame steps in `swapchain_frame.rs`.
 //!
 //! Files: `app.rs` the application and frame loop, `keys.rs` window input to viewer input,
 //! `fly_camera.rs` the camera step, `script.rs` the test script, `stats.rs` the title's

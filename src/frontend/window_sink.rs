@@ -12,8 +12,8 @@
 //! scales its output to the window.
 
 use super::display::{new_event_loop, presenting_context};
-use super::present::{recreate, render_and_present, Presented, Recreated};
 use super::sink::{FrameSink, Offscreen};
+use super::swapchain_frame::{recreate, render_and_present, Presented, Recreated};
 use crate::error::{Error, Result};
 use crate::renderer::targets::Target;
 use crate::renderer::{Renderer, FRAMES_IN_FLIGHT};

@@ -3,7 +3,7 @@
 //! scene's rows measured along its path.
 
 use super::ground_truth::TruthQuality;
-use super::rows::{measure_rows, RowResult, SceneRun};
+use super::reuse_rows::{measure_rows, RowResult, SceneRun};
 use super::table_report::{Header, TableReport};
 use super::thesis::SETUP;
 use super::TableOptions;
@@ -32,7 +32,7 @@ impl<'a> RowsTable<'a> {
         opts: &'a TableOptions,
         notes: Vec<String>,
     ) -> (Self, TableReport) {
-        let base = super::rows::base_config(opts.size.0, opts.size.1, opts.effects);
+        let base = super::reuse_rows::base_config(opts.size.0, opts.size.1, opts.effects);
         let (warmup, warmup_along_path) =
             super::warmup::before_path(opts.warmup, base.temporal.rotation_limit);
         let report = TableReport::new(

@@ -1,12 +1,12 @@
 //! The two steps every windowed frame shares, for the interactive viewer (`window/`) and for
-//! runs driven from outside the event loop (`presenter.rs`): bring a stale swapchain up to
+//! runs driven from outside the event loop (`window_sink.rs`): bring a stale swapchain up to
 //! date, and render one frame into an acquired swapchain image and present it.
 
 use crate::error::Result;
 use crate::renderer::targets::Target;
 use crate::renderer::{FrameHook, Renderer};
 use crate::scene::Camera;
-use crate::vk::cmd::Recorder;
+use crate::vk::recorder::Recorder;
 use crate::vk::{Buffer, FrameTiming, Image, Swapchain, Tracker};
 
 /// What [`recreate`] did.

@@ -8,7 +8,7 @@ use super::targets::{PingPong, HISTORY_FORMAT, MOMENTS_FORMAT, REGISTRATION_FORM
 use super::temporal::{budget_tile, RefreshSchedule, Sampling};
 use crate::error::Result;
 use crate::shaders::EffectPush;
-use crate::vk::cmd::Recorder;
+use crate::vk::recorder::Recorder;
 use crate::vk::{Buffer, Context, Image, ImageDesc, Tracker};
 use ash::vk;
 use std::sync::Arc;
