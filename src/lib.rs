@@ -3,6 +3,7 @@
 
 pub mod bench;
 pub mod cli;
+pub mod config;
 pub mod effects;
 pub mod error;
 pub mod files;
@@ -11,6 +12,7 @@ pub mod interrupt;
 pub mod passes;
 pub mod reference;
 pub mod renderer;
+pub mod resources;
 pub mod scene;
 pub mod shaders;
 pub mod vk;

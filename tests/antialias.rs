@@ -5,11 +5,11 @@
 
 mod common;
 
-use ssgi::renderer::antialias::{AaConfig, AaMode};
-use ssgi::renderer::config::Effects;
-use ssgi::renderer::pcf::Pcf;
-use ssgi::renderer::targets::Target;
+use ssgi::config::antialias::{AaConfig, AaMode};
+use ssgi::config::pcf::Pcf;
+use ssgi::config::Effects;
 use ssgi::renderer::{RenderConfig, Renderer};
+use ssgi::resources::targets::Target;
 use ssgi::vk::{Context, ImageData};
 use std::sync::Arc;
 

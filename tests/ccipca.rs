@@ -5,15 +5,15 @@
 
 mod common;
 
-use ssgi::effects::EffectId;
-use ssgi::reference::ccipca::{abs_cos, dot, Ccipca};
-use ssgi::renderer::config::{
+use ssgi::config::pcf::Pcf;
+use ssgi::config::{
     CcipcaOrthogonalize, CcipcaProject, CcipcaStages, CcipcaWeighting, Effects, IndirectConfig,
     IndirectFilter, RenderConfig, TemporalConfig,
 };
-use ssgi::renderer::pcf::Pcf;
-use ssgi::renderer::targets::Target;
+use ssgi::effects::EffectId;
+use ssgi::reference::ccipca::{abs_cos, dot, Ccipca};
 use ssgi::renderer::Renderer;
+use ssgi::resources::targets::Target;
 use ssgi::scene::cornell_box;
 use ssgi::vk::ImageData;
 

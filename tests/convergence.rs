@@ -5,13 +5,13 @@
 
 mod common;
 
-use ssgi::renderer::config::{
+use ssgi::config::pcf::{Pcf, PcfKernel};
+use ssgi::config::{
     Accumulate, AoConfig, Effects, IndirectConfig, Refresh, RenderConfig, TemporalConfig,
     MAX_REFRESH_BUDGET,
 };
-use ssgi::renderer::pcf::{Pcf, PcfKernel};
-use ssgi::renderer::targets::Target;
 use ssgi::renderer::Renderer;
+use ssgi::resources::targets::Target;
 use ssgi::scene::{cornell_box, Camera, Scene};
 use ssgi::vk::{Context, ImageData};
 use std::sync::Arc;

@@ -3,9 +3,9 @@
 
 mod common;
 
-use ssgi::renderer::config::Effects;
-use ssgi::renderer::targets::Target;
+use ssgi::config::Effects;
 use ssgi::renderer::{FrameHook, RenderConfig, Renderer};
+use ssgi::resources::targets::Target;
 use ssgi::scene::cornell_box;
 use ssgi::vk::recorder::Recorder;
 use ssgi::vk::{Buffer, Image, SubmitSync, Tracker};

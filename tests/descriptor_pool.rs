@@ -6,8 +6,8 @@
 
 mod common;
 
-use ssgi::renderer::antialias::AaMode;
-use ssgi::renderer::config::{Effects, GBufferMode, IndirectFilter, RenderConfig};
+use ssgi::config::antialias::AaMode;
+use ssgi::config::{Effects, GBufferMode, IndirectFilter, RenderConfig};
 use ssgi::renderer::Renderer;
 use ssgi::scene::cornell_box;
 use ssgi::vk::DescriptorCounts;

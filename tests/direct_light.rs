@@ -5,8 +5,8 @@
 mod common;
 
 use glam::Vec3;
-use ssgi::renderer::pcf::Pcf;
-use ssgi::renderer::targets::Target;
+use ssgi::config::pcf::Pcf;
+use ssgi::resources::targets::Target;
 use ssgi::scene::{cornell_box, pixel_to_ndc, Scene};
 use std::f32::consts::PI;
 

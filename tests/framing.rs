@@ -5,10 +5,10 @@
 
 mod common;
 
-use ssgi::renderer::config::Effects;
-use ssgi::renderer::pcf::Pcf;
-use ssgi::renderer::targets::Target;
+use ssgi::config::pcf::Pcf;
+use ssgi::config::Effects;
 use ssgi::renderer::{RenderConfig, Renderer};
+use ssgi::resources::targets::Target;
 use ssgi::scene::{asset_dir_from_env, load_scene, Camera, CameraPath, Orbit, Scene};
 use ssgi::vk::Context;
 use std::sync::Arc;

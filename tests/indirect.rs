@@ -7,12 +7,12 @@
 mod common;
 
 use glam::Vec3;
-use ssgi::renderer::config::{
+use ssgi::config::pcf::Pcf;
+use ssgi::config::{
     Effects, HistoryResample, IndirectConfig, IndirectInput, Refresh, RenderConfig, TemporalConfig,
 };
-use ssgi::renderer::pcf::Pcf;
-use ssgi::renderer::targets::Target;
 use ssgi::renderer::Renderer;
+use ssgi::resources::targets::Target;
 use ssgi::scene::{
     cornell_box, Camera, CameraPath, Material, MeshBuilder, Orbit, Scene, SpotLight,
 };

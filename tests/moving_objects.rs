@@ -7,11 +7,11 @@
 mod common;
 
 use glam::Vec3;
+use ssgi::config::pcf::Pcf;
+use ssgi::config::{Effects, Refresh, TemporalConfig};
 use ssgi::effects::EffectId;
-use ssgi::renderer::config::{Effects, Refresh, TemporalConfig};
-use ssgi::renderer::pcf::Pcf;
-use ssgi::renderer::targets::Target;
 use ssgi::renderer::{RenderConfig, Renderer};
+use ssgi::resources::targets::Target;
 use ssgi::scene::{sphere, Camera, DynamicObject, MeshBuilder, ObjectKey, Scene};
 use ssgi::vk::{FrameTiming, ImageData};
 

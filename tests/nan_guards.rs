@@ -6,11 +6,11 @@
 
 mod common;
 
+use ssgi::config::pcf::Pcf;
+use ssgi::config::{Effects, IndirectConfig, IndirectFilter, RenderConfig};
 use ssgi::effects::EffectId;
-use ssgi::renderer::config::{Effects, IndirectConfig, IndirectFilter, RenderConfig};
-use ssgi::renderer::pcf::Pcf;
-use ssgi::renderer::targets::Target;
 use ssgi::renderer::Renderer;
+use ssgi::resources::targets::Target;
 use ssgi::scene::cornell_box;
 use ssgi::vk::ImageData;
 

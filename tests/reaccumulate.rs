@@ -7,10 +7,10 @@
 mod common;
 
 use glam::Vec3;
-use ssgi::renderer::config::{Effects, RenderConfig, TemporalConfig};
-use ssgi::renderer::pcf::Pcf;
-use ssgi::renderer::targets::Target;
+use ssgi::config::pcf::Pcf;
+use ssgi::config::{Effects, RenderConfig, TemporalConfig};
 use ssgi::renderer::Renderer;
+use ssgi::resources::targets::Target;
 use ssgi::scene::{cornell_box, Camera};
 use ssgi::vk::{Context, ImageData};
 use std::sync::Arc;

@@ -5,9 +5,9 @@
 mod common;
 
 use glam::Vec3;
+use ssgi::config::pcf::Pcf;
 use ssgi::reference::{Accel, AoDefinition, Reference, Settings};
-use ssgi::renderer::pcf::Pcf;
-use ssgi::renderer::targets::Target;
+use ssgi::resources::targets::Target;
 use ssgi::scene::{cornell_box, load_scene, Scene};
 
 const SIZE: u32 = 64;

@@ -5,11 +5,11 @@
 mod common;
 
 use glam::Vec3;
-use ssgi::renderer::config::{AoConfig, Effects, RenderConfig, TemporalConfig, REFRESH_BUDGET};
-use ssgi::renderer::pcf::Pcf;
-use ssgi::renderer::targets::Target;
-use ssgi::renderer::temporal::{tile_evaluations, Sampling};
+use ssgi::config::pcf::Pcf;
+use ssgi::config::{AoConfig, Effects, RenderConfig, TemporalConfig, REFRESH_BUDGET};
 use ssgi::renderer::Renderer;
+use ssgi::resources::targets::Target;
+use ssgi::resources::temporal::{tile_evaluations, Sampling};
 use ssgi::scene::{cornell_box, Camera};
 use ssgi::vk::FrameTiming;
 
@@ -254,9 +254,9 @@ fn half_resolution_refresh_keeps_the_accumulated_estimator() {
         },
         temporal: TemporalConfig {
             invalidate: false,
-            refresh: ssgi::renderer::config::Refresh::Hard,
+            refresh: ssgi::config::Refresh::Hard,
             // Whole 16x16 tiles (the default 5% of a 64x64 frame is a pixel or two).
-            refresh_budget: ssgi::renderer::config::MAX_REFRESH_BUDGET,
+            refresh_budget: ssgi::config::MAX_REFRESH_BUDGET,
             ..Default::default()
         },
         skip_unchanged: false,

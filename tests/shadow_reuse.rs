@@ -3,10 +3,10 @@
 
 mod common;
 
-use ssgi::renderer::config::{Effects, RenderConfig, TemporalConfig};
-use ssgi::renderer::pcf::{Pcf, PcfKernel};
-use ssgi::renderer::targets::Target;
+use ssgi::config::pcf::{Pcf, PcfKernel};
+use ssgi::config::{Effects, RenderConfig, TemporalConfig};
 use ssgi::renderer::Renderer;
+use ssgi::resources::targets::Target;
 use ssgi::scene::Scene;
 use ssgi::vk::FrameTiming;
 

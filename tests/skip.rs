@@ -9,12 +9,12 @@
 mod common;
 
 use glam::Vec3;
-use ssgi::renderer::antialias::{AaConfig, AaMode};
-use ssgi::renderer::config::{Effects, TemporalConfig};
-use ssgi::renderer::pcf::Pcf;
+use ssgi::config::antialias::{AaConfig, AaMode};
+use ssgi::config::pcf::Pcf;
+use ssgi::config::{Effects, TemporalConfig};
 use ssgi::renderer::skip::Change;
-use ssgi::renderer::targets::Target;
 use ssgi::renderer::{RenderConfig, Renderer};
+use ssgi::resources::targets::Target;
 use ssgi::scene::path::frame_time;
 use ssgi::scene::{Camera, Keyframe, LightPath};
 use ssgi::vk::{Context, FrameTiming};

@@ -5,13 +5,13 @@
 mod common;
 
 use glam::{Mat4, Vec3, Vec4};
-use ssgi::effects::EffectId;
-use ssgi::renderer::config::{
+use ssgi::config::pcf::Pcf;
+use ssgi::config::{
     Accumulate, AoConfig, AoEstimator, Effects, Refresh, RenderConfig, TemporalConfig,
 };
-use ssgi::renderer::pcf::Pcf;
-use ssgi::renderer::targets::Target;
+use ssgi::effects::EffectId;
 use ssgi::renderer::Renderer;
+use ssgi::resources::targets::Target;
 use ssgi::scene::{cornell_box, Camera, Material, MeshBuilder, Scene};
 use ssgi::vk::{FrameTiming, ImageData};
 use std::sync::Arc;

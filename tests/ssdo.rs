@@ -8,12 +8,10 @@
 mod common;
 
 use glam::{Mat4, Vec2, Vec3, Vec4};
-use ssgi::renderer::config::{
-    AdaptiveSamples, Effects, RenderConfig, SsdoConfig, SsdoForm, TemporalConfig,
-};
-use ssgi::renderer::pcf::Pcf;
-use ssgi::renderer::targets::Target;
+use ssgi::config::pcf::Pcf;
+use ssgi::config::{AdaptiveSamples, Effects, RenderConfig, SsdoConfig, SsdoForm, TemporalConfig};
 use ssgi::renderer::Renderer;
+use ssgi::resources::targets::Target;
 use ssgi::scene::{cornell_box, Camera, Material, MeshBuilder, Scene, SpotLight};
 use ssgi::vk::ImageData;
 use std::sync::Arc;

@@ -8,7 +8,7 @@ mod schema;
 
 use ash::vk;
 use ssgi::renderer::audit::{audit_images, audit_pipeline, AuditKind, AuditRequest};
-use ssgi::renderer::targets::Target;
+use ssgi::resources::targets::Target;
 use ssgi::vk::{upload_image, Access, Image, ImageDesc, Tracker};
 
 /// CPU count of (nan, inf, negative, max |value| per channel) over RGBA texels.
@@ -99,7 +99,7 @@ fn audit_of_a_frame_matches_the_read_back_targets() {
         &ctx,
         ssgi::scene::cornell_box(),
         24,
-        ssgi::renderer::pcf::Pcf::DEFAULT,
+        ssgi::config::pcf::Pcf::DEFAULT,
         3,
     );
     let audits = r.audit().unwrap();

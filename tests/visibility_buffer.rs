@@ -7,9 +7,9 @@
 mod common;
 
 use glam::Vec3;
-use ssgi::renderer::config::GBufferMode;
-use ssgi::renderer::targets::Target;
+use ssgi::config::GBufferMode;
 use ssgi::renderer::{RenderConfig, Renderer};
+use ssgi::resources::targets::Target;
 use ssgi::scene::{
     asset_dir_from_env, load_scene, sphere, Camera, DynamicObject, MeshBuilder, ObjectKey, Scene,
 };

@@ -8,11 +8,11 @@ mod common;
 
 use common::rsm::{cpu_gather, v3};
 use glam::Vec3;
+use ssgi::config::pcf::Pcf;
+use ssgi::config::{Effects, IndirectConfig, Refresh, RenderConfig, TemporalConfig};
 use ssgi::effects::EffectId;
-use ssgi::renderer::config::{Effects, IndirectConfig, Refresh, RenderConfig, TemporalConfig};
-use ssgi::renderer::pcf::Pcf;
-use ssgi::renderer::targets::Target;
 use ssgi::renderer::Renderer;
+use ssgi::resources::targets::Target;
 use ssgi::scene::{cornell_box, Camera};
 use ssgi::vk::{FrameTiming, ImageData};
 

@@ -5,13 +5,13 @@
 
 use super::metrics::Channels;
 use super::{warmup, Report};
+use crate::config::{Effects, SsdoForm};
 use crate::error::Result;
 use crate::frontend::progress::Progress;
 use crate::frontend::sink::FrameSink;
 use crate::passes::PassId;
-use crate::renderer::config::{Effects, SsdoForm};
-use crate::renderer::targets::Target;
 use crate::renderer::{RenderConfig, Renderer};
+use crate::resources::targets::Target;
 use crate::scene::path::frame_time;
 use crate::scene::{Camera, CameraPath, Keyframe, Scene};
 use crate::vk::{Context, ImageData};

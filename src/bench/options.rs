@@ -1,7 +1,7 @@
 //! What a table run was asked for, independent of the command line.
 
 use crate::bench::warmup::Warmup;
-use crate::renderer::config::Effects;
+use crate::config::Effects;
 use std::path::PathBuf;
 
 #[derive(Clone, Debug)]

@@ -8,14 +8,14 @@ use super::measure::{held_at, last_camera, measure, Buffer, LastFrame, Measured,
 use super::metrics::{image_error, ImageError};
 use super::report::FrameRow;
 use super::Report;
+use crate::config::pcf::{Pcf, PcfKernel};
+use crate::config::Effects;
 use crate::error::{Error, Result};
 use crate::frontend::sink::FrameSink;
 use crate::passes::PassId;
 use crate::reference::compose::Terms;
 use crate::reference::run::Session;
 use crate::reference::trace::RefBuffer;
-use crate::renderer::config::Effects;
-use crate::renderer::pcf::{Pcf, PcfKernel};
 use crate::renderer::RenderConfig;
 use crate::scene::{CameraPath, Scene};
 use crate::vk::{Context, ImageData};
@@ -460,7 +460,7 @@ fn summarize(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::renderer::config::Effects;
+    use crate::config::Effects;
 
     #[test]
     fn row_configs_are_the_thesis_rows_and_valid() {

@@ -6,10 +6,10 @@ use crate::cli::args::{
     parse_bias, parse_bilateral, parse_ema_alpha, parse_epsilon, parse_fraction, parse_gate,
     parse_on_off, parse_pattern_count, parse_ssdo_scale, parse_vpls, AccumulateMode,
 };
-use crate::error::{Error, Result};
-use crate::renderer::config::{
+use crate::config::{
     Accumulate, AoConfig, AoEstimator, HistoryResample, Refresh, SsdoConfig, SsdoForm,
 };
+use crate::error::{Error, Result};
 use crate::renderer::frame::Pcf;
 use crate::renderer::RenderConfig;
 use clap::ValueEnum;
@@ -384,7 +384,7 @@ enum Setting {
     Budget(f32),
     Accumulate(Accumulate),
     MeanOfLimit,
-    Epsilon(crate::renderer::config::Epsilon),
+    Epsilon(crate::config::Epsilon),
     Pcf(Pcf),
     Form(SsdoForm),
     Filter(u32),
@@ -420,7 +420,7 @@ impl Setting {
             Key::RsmSize => count(crate::renderer::MAX_SIZE),
             Key::RotationLimit => parse_pattern_count(v).map(Setting::Count),
             Key::Vpls => parse_vpls(v).map(Setting::Count),
-            Key::Interleave => count(crate::renderer::config::IndirectConfig::MAX_INTERLEAVE),
+            Key::Interleave => count(crate::config::IndirectConfig::MAX_INTERLEAVE),
             Key::Refresh => Refresh::from_str(v, false).map(Setting::Refresh),
             Key::Resample => HistoryResample::from_str(v, false).map(Setting::Resample),
             Key::RefreshBudget => parse_fraction(v).map(Setting::Budget),
@@ -473,7 +473,7 @@ fn parse_accumulate(v: &str) -> std::result::Result<Setting, String> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::renderer::config::Epsilon;
+    use crate::config::Epsilon;
     use crate::renderer::frame::PcfKernel;
 
     fn err(r: Result<impl fmt::Debug>) -> String {

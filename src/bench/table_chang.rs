@@ -13,10 +13,10 @@
 use super::measure::{measure, RunSpec};
 use super::table_run::{fixed, pass_ms, warmup_frames, write_reports, TableRun};
 use super::{Report, TableOptions};
+use crate::config::{CcipcaProject, IndirectConfig, IndirectFilter, RenderConfig};
 use crate::error::{Error, Result};
 use crate::frontend::sink::FrameSink;
 use crate::passes::PassId;
-use crate::renderer::config::{CcipcaProject, IndirectConfig, IndirectFilter, RenderConfig};
 use crate::scene::{cornell_box, CameraPath};
 use crate::vk::Context;
 use serde::Serialize;

@@ -125,7 +125,7 @@ impl SceneResult {
 
 /// Whether a timing group (`compare::GROUPS`) belongs to a run with `effects`: columns of
 /// effects a table left out are dropped, not printed empty.
-pub fn group_present(group: &str, effects: &crate::renderer::config::Effects) -> bool {
+pub fn group_present(group: &str, effects: &crate::config::Effects) -> bool {
     match group {
         "ao" => effects.ao,
         "indirect" => effects.indirect,

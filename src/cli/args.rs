@@ -2,7 +2,7 @@
 //! parsers. Checks that need more than one flag, or the scene, happen in the jobs.
 
 use crate::bench::warmup::Warmup;
-use crate::renderer::config::{
+use crate::config::{
     AaConfig, AaMode, Accumulate, AdaptiveSamples, AoConfig, AoEstimator, CcipcaOrthogonalize,
     CcipcaProject, CcipcaWeighting, Effects, Epsilon, GBufferMode, HistoryResample, IndirectConfig,
     IndirectFilter, Refresh, SsdoConfig, SsdoForm, TemporalConfig,
@@ -361,7 +361,7 @@ pub fn parse_fraction(s: &str) -> Result<f32, String> {
         Some(p) => (p, 0.01),
         None => (s, 1.0),
     };
-    let max = crate::renderer::config::MAX_REFRESH_BUDGET;
+    let max = crate::config::MAX_REFRESH_BUDGET;
     match number.trim().parse::<f32>() {
         Ok(v) if v.is_finite() && v * scale > 0.0 && v * scale <= max => Ok(v * scale),
         _ => Err(format!(
@@ -526,7 +526,7 @@ pub fn parse_ema_alpha(s: &str) -> std::result::Result<f32, String> {
 /// A count of patterns or estimates, up to `config::MAX_PATTERNS` (the refresh evaluates
 /// every pattern of a pixel at once).
 pub fn parse_pattern_count(s: &str) -> std::result::Result<u32, String> {
-    let max = crate::renderer::config::MAX_PATTERNS;
+    let max = crate::config::MAX_PATTERNS;
     match s.parse::<u32>() {
         Ok(n) if (1..=max).contains(&n) => Ok(n),
         _ => Err(format!(

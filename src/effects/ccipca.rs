@@ -11,17 +11,17 @@ use super::effect::{
     every_pixel, float_image, Effect, EffectId, FrameInfo, Recording, Registration, Setup, TermKind,
 };
 use super::resolve::EffectResources;
+use crate::config::{
+    CcipcaOrthogonalize, CcipcaProject, CcipcaStages, CcipcaWeighting, IndirectConfig,
+    IndirectFilter, RenderConfig,
+};
 use crate::error::Result;
 use crate::passes::compute::{ComputePass, Dispatch};
 use crate::passes::decl::{Bind, Slot, Use};
 use crate::passes::{PassId, PassLayout};
 use crate::reference::ccipca::AMNESIC;
-use crate::renderer::config::{
-    CcipcaOrthogonalize, CcipcaProject, CcipcaStages, CcipcaWeighting, IndirectConfig,
-    IndirectFilter, RenderConfig,
-};
-use crate::renderer::targets::{Target, Targets};
-use crate::renderer::temporal_effect::TemporalEffect;
+use crate::resources::targets::{Target, Targets};
+use crate::resources::temporal_effect::TemporalEffect;
 use crate::shaders::{self, CcipcaPush, ShaderModuleInfo};
 use crate::vk::recorder::Recorder;
 use crate::vk::{Buffer, Context, DescriptorPool, Image, Tracker};

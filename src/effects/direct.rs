@@ -9,15 +9,15 @@ use super::effect::{
     TermKind,
 };
 use super::resolve::EffectResources;
+use crate::config::pcf::{Pcf, PcfKernel};
+use crate::config::RenderConfig;
 use crate::error::Result;
 use crate::passes::compute::{ComputePass, Dispatch};
 use crate::passes::decl::{Bind, Slot, Use};
 use crate::passes::{PassId, PassLayout};
-use crate::renderer::config::RenderConfig;
-use crate::renderer::pcf::{Pcf, PcfKernel};
-use crate::renderer::targets::{Target, Targets, AO_FORMAT};
-use crate::renderer::temporal::Sampling;
-use crate::renderer::temporal_effect::{self, TemporalEffect};
+use crate::resources::targets::{Target, Targets, AO_FORMAT};
+use crate::resources::temporal::Sampling;
+use crate::resources::temporal_effect::{self, TemporalEffect};
 use crate::shaders::{self, EffectPush};
 use crate::vk::{Context, Image, ImageDesc};
 use ash::vk;

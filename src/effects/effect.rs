@@ -1,12 +1,12 @@
 //! What an effect is to the renderer: the [`Effect`] trait, its registration, and what it is
 //! given to create itself and to record a frame.
 
+use crate::config::{Accumulate, RenderConfig};
 use crate::error::Result;
 use crate::passes::compute::{Dispatch, FrameSet};
 use crate::passes::{PassId, PassLayout};
-use crate::renderer::config::{Accumulate, RenderConfig};
-use crate::renderer::targets::{Target, Targets};
-use crate::renderer::temporal_effect::{EffectKind, TemporalEffect};
+use crate::resources::targets::{Target, Targets};
+use crate::resources::temporal_effect::{EffectKind, TemporalEffect};
 use crate::shaders::EffectPush;
 use crate::vk::recorder::Recorder;
 use crate::vk::{Buffer, Context, DescriptorPool, GpuTimer, Image, Tracker};

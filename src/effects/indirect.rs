@@ -13,15 +13,15 @@ use super::effect::{
     refresh_pixels, Effect, EffectId, FrameInfo, Recording, Registration, Setup, TermKind,
 };
 use super::resolve::EffectResources;
+use crate::config::{IndirectFilter, RenderConfig};
 use crate::error::Result;
 use crate::passes::compute::{ComputePass, Dispatch};
 use crate::passes::decl::{Bind, Slot, Use};
 use crate::passes::{PassId, PassLayout};
-use crate::renderer::config::{IndirectFilter, RenderConfig};
-use crate::renderer::counters::{FIXUP_DISPATCH_OFFSET, LOWRES_DISPATCH_OFFSET};
-use crate::renderer::targets::{Target, Targets, STATE_FORMAT};
-use crate::renderer::temporal::{tile_evaluations, Sampling};
-use crate::renderer::temporal_effect::{self, TemporalEffect};
+use crate::resources::counters::{FIXUP_DISPATCH_OFFSET, LOWRES_DISPATCH_OFFSET};
+use crate::resources::targets::{Target, Targets, STATE_FORMAT};
+use crate::resources::temporal::{tile_evaluations, Sampling};
+use crate::resources::temporal_effect::{self, TemporalEffect};
 use crate::shaders::{self, EffectPush};
 use crate::vk::recorder::Recorder;
 use crate::vk::{Access, Buffer, Context, Image, ImageDesc, Tracker};

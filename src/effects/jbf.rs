@@ -7,13 +7,13 @@ use super::effect::{
     every_pixel, float_image, Effect, EffectId, FrameInfo, Recording, Registration, Setup, TermKind,
 };
 use super::resolve::EffectResources;
+use crate::config::{IndirectFilter, RenderConfig};
 use crate::error::Result;
 use crate::passes::compute::ComputePass;
 use crate::passes::decl::{Bind, Slot, Use};
 use crate::passes::{PassId, PassLayout};
-use crate::renderer::config::{IndirectFilter, RenderConfig};
-use crate::renderer::targets::{Target, Targets};
-use crate::renderer::temporal_effect::TemporalEffect;
+use crate::resources::targets::{Target, Targets};
+use crate::resources::temporal_effect::TemporalEffect;
 use crate::shaders;
 use crate::vk::{Context, Image};
 use std::sync::Arc;

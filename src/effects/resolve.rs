@@ -3,8 +3,8 @@
 //! buffers the effect owns by index.
 
 use crate::passes::decl::{Resolve, Slot};
-use crate::renderer::targets::{Target, Targets};
-use crate::renderer::temporal_effect::TemporalEffect;
+use crate::resources::targets::{Target, Targets};
+use crate::resources::temporal_effect::TemporalEffect;
 use crate::vk::{Buffer, Image};
 
 /// An effect's view of the frame's resources.
@@ -44,7 +44,7 @@ pub fn shared(t: &Targets, slot: Slot, parity: usize) -> Option<&Image> {
     t.get(target, parity)
 }
 
-fn subpixels(t: &Targets) -> Option<&crate::renderer::targets::Subpixels> {
+fn subpixels(t: &Targets) -> Option<&crate::resources::targets::Subpixels> {
     t.antialias.as_ref()?.subpixels.as_ref()
 }
 

@@ -13,16 +13,16 @@ use super::effect::{
     every_pixel, refresh_dispatch, Effect, EffectId, FrameInfo, Recording, Registration, Setup,
 };
 use super::resolve::EffectResources;
+use crate::config::FRAMES_IN_FLIGHT;
+use crate::config::{RenderConfig, SsdoForm};
 use crate::error::Result;
 use crate::passes::compute::{ComputePass, Dispatch};
 use crate::passes::decl::{Bind, Slot, Use};
 use crate::passes::{PassId, PassLayout};
-use crate::renderer::config::FRAMES_IN_FLIGHT;
-use crate::renderer::config::{RenderConfig, SsdoForm};
-use crate::renderer::counters::{self, Counter, CounterReadback};
-use crate::renderer::targets::{Target, Targets, AO_FORMAT};
-use crate::renderer::temporal::Sampling;
-use crate::renderer::temporal_effect::{self, TemporalEffect};
+use crate::resources::counters::{self, Counter, CounterReadback};
+use crate::resources::targets::{Target, Targets, AO_FORMAT};
+use crate::resources::temporal::Sampling;
+use crate::resources::temporal_effect::{self, TemporalEffect};
 use crate::shaders::{self, EffectPush};
 use crate::vk::recorder::Recorder;
 use crate::vk::{Buffer, Context, Image, ImageDesc, Tracker};

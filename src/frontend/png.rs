@@ -1,7 +1,7 @@
 //! PNG output: the tonemapped image as is, and false-colour views of G-buffer / RSM targets.
 
 use crate::error::{Error, Result};
-use crate::renderer::targets::Target;
+use crate::resources::targets::Target;
 use crate::scene::Aabb;
 use crate::vk::ImageData;
 use std::path::Path;

@@ -3,8 +3,8 @@
 //! date, and render one frame into an acquired swapchain image and present it.
 
 use crate::error::Result;
-use crate::renderer::targets::Target;
 use crate::renderer::{FrameHook, Renderer};
+use crate::resources::targets::Target;
 use crate::scene::Camera;
 use crate::vk::recorder::Recorder;
 use crate::vk::{Buffer, FrameTiming, Image, Swapchain, Tracker};

@@ -1,10 +1,10 @@
 //! What the viewer's keys control: the displayed buffer, effect switches and temporal reuse,
 //! and how they map onto a renderer configuration.
 
-use crate::renderer::config::SsdoConfig;
+use crate::config::SsdoConfig;
 use crate::renderer::frame::Pcf;
-use crate::renderer::targets::Target;
 use crate::renderer::RenderConfig;
+use crate::resources::targets::Target;
 
 /// The viewer's keys, printed by `H` and documented in docs/cli.md.
 pub const HELP: &str = "\

@@ -15,8 +15,8 @@ use super::display::{new_event_loop, presenting_context};
 use super::sink::{FrameSink, Offscreen};
 use super::swapchain_frame::{recreate, render_and_present, Presented, Recreated};
 use crate::error::{Error, Result};
-use crate::renderer::targets::Target;
 use crate::renderer::{Renderer, FRAMES_IN_FLIGHT};
+use crate::resources::targets::Target;
 use crate::scene::Camera;
 use crate::vk::swapchain::present_mode_name;
 use crate::vk::{

@@ -5,7 +5,7 @@ use super::compute::FrameSet;
 use super::decl::{self, Bind, Resolve};
 use super::pass_id::PassId;
 use crate::error::Result;
-use crate::renderer::scene_gpu::{Draw, SceneGpu};
+use crate::resources::scene_gpu::{Draw, SceneGpu};
 use crate::shaders::{DescriptorKind, ReflectedBinding, ShaderModuleInfo};
 use crate::vk::recorder::Recorder;
 use crate::vk::Tracker;

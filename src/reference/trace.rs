@@ -34,7 +34,7 @@ pub struct Settings {
 impl Settings {
     /// The definition a renderer configuration's AO estimates (radius relative to the scene's
     /// bounding radius, eq 7's attenuation), with the point light.
-    pub fn for_render(config: &crate::renderer::RenderConfig, scene: &Scene) -> Self {
+    pub fn for_render(config: &crate::config::RenderConfig, scene: &Scene) -> Self {
         Settings {
             ao: AoDefinition {
                 radius: config.ao.radius * scene.bounds().radius().max(f32::MIN_POSITIVE),

@@ -3,11 +3,11 @@
 //! each channel's largest finite magnitude read back. `ssgi stress` and the tests use it to
 //! show that no buffer holds a value that could poison later frames.
 
-use super::targets::Target;
 use super::Renderer;
 use crate::effects::FrameInfo;
 use crate::error::Result;
 use crate::passes::compute::FrameSet;
+use crate::resources::targets::Target;
 use crate::shaders::{DescriptorKind, ImageStatsPush, ReflectedBinding, IMAGE_STATS_COMP};
 use crate::vk::recorder::Recorder;
 use crate::vk::{

@@ -5,7 +5,7 @@
 //! changes (`skip.rs`), `explain` prints the table (`ssgi bench --explain-skips`,
 //! docs/ARCHITECTURE.md), and tests/skip.rs compares the passes each change records with it.
 
-use super::config::RenderConfig;
+use crate::config::RenderConfig;
 use crate::effects::{Effect, EffectId, REGISTRY};
 use crate::passes::decl::Slot;
 use crate::passes::{Change, PassId, PassLayout};
@@ -204,7 +204,7 @@ pub fn triggers(config: &RenderConfig, effects: &[Box<dyn Effect>]) -> Vec<Trigg
         effect,
     };
     let mut rows = vec![row(PassId::LightView, None), row(PassId::GBuffer, None)];
-    if config.gbuffer == crate::renderer::config::GBufferMode::Visibility {
+    if config.gbuffer == crate::config::GBufferMode::Visibility {
         rows.push(row(PassId::GBufferResolve, None));
     }
     for e in effects {

@@ -1,11 +1,11 @@
 //! Per-frame constants: the `Frame` block (shaders/include/frame.glsl) filled member by
 //! member through the struct build.rs generates from it.
 
-use super::config::{IndirectConfig, IndirectInput, RenderConfig};
+use crate::config::{IndirectConfig, IndirectInput, RenderConfig};
 use crate::scene::{Camera, SpotLight};
 pub use crate::shaders::FrameBlock;
-// Old path of the PCF types, until every user imports them from `renderer::pcf`.
-pub use super::pcf::{Pcf, PcfKernel};
+// Old path of the PCF types, until every user imports them from `config::pcf`.
+pub use crate::config::pcf::{Pcf, PcfKernel};
 use glam::{Mat4, Vec3};
 
 /// First pattern of multi-pattern evaluations without reuse (references): an index range no

@@ -4,13 +4,13 @@
 //! moved and the light view is rendered again, and what the moving objects invalidate.
 //! Planning needs no device; `Renderer::render_frame_with` records what the plan says.
 
-use super::config::RenderConfig;
 use super::motion::{self, light_sees_motion, Moved};
-use super::scene_gpu::Pose;
 use super::skip::{EffectState, Inputs, Plan, SkipTracker};
-use super::targets::Targets;
+use crate::config::RenderConfig;
 use crate::effects::FrameInfo;
 use crate::passes::compute::FrameSet;
+use crate::resources::scene_gpu::Pose;
+use crate::resources::targets::Targets;
 use crate::scene::{DynamicObject, SpotLight};
 use crate::vk::SkipReason;
 use glam::{Mat4, Vec3};

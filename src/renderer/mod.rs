@@ -4,23 +4,16 @@
 //! light view (only when the light changed) → G-buffer → reprojection of every temporal effect
 //! → each effect's passes (shadow + direct, SSAO [+ blur], indirect light) → composite.
 
-pub mod antialias;
 pub mod audit;
-pub mod config;
-pub mod counters;
 pub mod dependencies;
 pub mod explain;
 pub mod frame;
 pub mod frame_plan;
 mod motion;
-pub mod pcf;
 pub mod reprojection_lanes;
-pub mod scene_gpu;
 pub mod skip;
-pub mod targets;
-pub mod temporal;
-pub mod temporal_effect;
 
+pub use crate::config::{RenderConfig, FRAMES_IN_FLIGHT, MAX_SIZE};
 use crate::effects::resolve::shared;
 use crate::effects::{self, Effect, EffectId, FrameInfo, Recording, Setup};
 use crate::error::{Error, Result};
@@ -32,6 +25,8 @@ use crate::passes::light_view::LightViewPass;
 use crate::passes::sraa::SraaPass;
 use crate::passes::ssaa::SsaaPass;
 use crate::passes::PassId;
+use crate::resources::scene_gpu::SceneGpu;
+use crate::resources::targets::{Target, Targets};
 use crate::scene::{Camera, Scene, SpotLight};
 use crate::vk::recorder::Recorder;
 use crate::vk::{
@@ -39,17 +34,14 @@ use crate::vk::{
     Image, ImageData, SetWriter, SkipReason, SubmitSync, Tracker,
 };
 use ash::vk;
-pub use config::{RenderConfig, FRAMES_IN_FLIGHT, MAX_SIZE};
 use frame::{frame_block, FrameBlock, FrameInputs};
 use frame_plan::{FramePlan, FrameState, Past, Step};
 use glam::Mat4;
 use gpu_allocator::MemoryLocation;
 use motion::Motion;
 use reprojection_lanes::Reprojection;
-use scene_gpu::SceneGpu;
 use skip::{EffectState, Inputs, Plan, SkipTracker};
 use std::sync::Arc;
-use targets::{Target, Targets};
 
 /// Extra recording at the end of a frame plus the frame's submit semaphores.
 pub struct FrameHook<'a> {
@@ -109,7 +101,7 @@ pub struct Renderer {
 impl Renderer {
     pub fn new(ctx: &Arc<Context>, scene: Scene, config: RenderConfig) -> Result<Self> {
         config.validate()?;
-        if config.gbuffer == config::GBufferMode::Visibility && !ctx.info.geometry_shader {
+        if config.gbuffer == crate::config::GBufferMode::Visibility && !ctx.info.geometry_shader {
             return Err(Error::Config(format!(
                 "--gbuffer visibility reads gl_PrimitiveID, which needs the geometryShader \
                  feature; {} does not have it (use --gbuffer raster)",
@@ -129,7 +121,7 @@ impl Renderer {
             &scene.mesh,
             &scene.objects,
             light_view.material_layout(),
-            config.gbuffer == config::GBufferMode::Visibility,
+            config.gbuffer == crate::config::GBufferMode::Visibility,
         )?;
         let effects = effects::create(&mut Setup {
             ctx,
@@ -189,7 +181,7 @@ impl Renderer {
                     ctx,
                     &pool,
                     textured,
-                    config.gbuffer == config::GBufferMode::Visibility,
+                    config.gbuffer == crate::config::GBufferMode::Visibility,
                 )?,
                 composite,
                 sraa,

@@ -2,7 +2,7 @@
 //! `Renderer::set_time`), the one the last frame drew it with, the frame's poses (the G-buffer
 //! writes the motion between them), and whether the light can see what moved.
 
-use super::scene_gpu::Pose;
+use crate::resources::scene_gpu::Pose;
 use crate::scene::{Aabb, DynamicObject, SpotLight};
 use glam::{Affine3A, Vec4};
 

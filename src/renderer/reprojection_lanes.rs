@@ -8,8 +8,8 @@ use crate::error::Result;
 use crate::passes::decl::Resolve;
 use crate::passes::reproject::{LaneFrame, ReprojectPass, MAX_LANES};
 use crate::passes::PassId;
-use crate::renderer::targets::Targets;
-use crate::renderer::temporal_effect::TemporalEffect;
+use crate::resources::targets::Targets;
+use crate::resources::temporal_effect::TemporalEffect;
 use crate::vk::{Context, DescriptorPool};
 use std::sync::Arc;
 

@@ -11,10 +11,10 @@
 //! either and copy the history forward unchanged. Without reuse an effect recomputes the same
 //! fixed-pattern estimate from the same inputs, so unchanged inputs suffice.
 
-use super::config::{RenderConfig, FRAMES_IN_FLIGHT};
 pub use super::dependencies::accumulates;
 use super::dependencies::Changes;
 pub use super::dependencies::{explain, triggers, Trigger};
+use crate::config::{RenderConfig, FRAMES_IN_FLIGHT};
 use crate::effects::Effect;
 pub use crate::passes::Change;
 use crate::passes::PassId;

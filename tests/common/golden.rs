@@ -2,10 +2,10 @@
 //! (tests/golden.rs, which compares) and the bless command (examples/bless_goldens.rs, the
 //! only thing that writes them).
 
-use ssgi::renderer::config::{AaMode, Effects, HistoryResample, IndirectFilter, SsdoForm};
-use ssgi::renderer::pcf::Pcf;
-use ssgi::renderer::targets::Target;
+use ssgi::config::pcf::Pcf;
+use ssgi::config::{AaMode, Effects, HistoryResample, IndirectFilter, SsdoForm};
 use ssgi::renderer::{RenderConfig, Renderer};
+use ssgi::resources::targets::Target;
 use ssgi::scene::{load_scene, CameraPath, Orbit};
 use std::path::{Path, PathBuf};
 

@@ -5,9 +5,9 @@
 pub mod golden;
 pub mod rsm;
 
-use ssgi::renderer::pcf::Pcf;
-use ssgi::renderer::targets::Target;
+use ssgi::config::pcf::Pcf;
 use ssgi::renderer::{RenderConfig, Renderer};
+use ssgi::resources::targets::Target;
 use ssgi::scene::{Camera, Scene};
 use ssgi::vk::{Context, ContextOptions, ImageData};
 use std::sync::Arc;

@@ -2,8 +2,8 @@
 //! awkward places, degenerate geometry, tiny and lopsided image sizes, the rotation limit at
 //! its bounds, and one long run with a jittering camera, cuts, resizes and light moves.
 
-use crate::renderer::config::Effects;
-use crate::renderer::config::MAX_PATTERNS;
+use crate::config::Effects;
+use crate::config::MAX_PATTERNS;
 use crate::renderer::RenderConfig;
 use crate::scene::{cornell_box, Camera, MeshBuilder, Scene};
 use glam::Vec3;
@@ -117,7 +117,7 @@ impl Case {
             what,
             scene,
             size: (32, 32),
-            rotation_limit: crate::renderer::config::TemporalConfig::default().rotation_limit,
+            rotation_limit: crate::config::TemporalConfig::default().rotation_limit,
             program: Program::Short,
         }
     }

@@ -7,13 +7,13 @@ use super::cases::{
     TURN_DEG_PER_FRAME,
 };
 use super::report::CaseResult;
+use crate::config::Accumulate;
 use crate::error::Result;
 use crate::frontend::progress::Progress;
 use crate::renderer::audit::AuditKind;
-use crate::renderer::config::Accumulate;
-use crate::renderer::targets::Target;
-use crate::renderer::temporal::Rng;
 use crate::renderer::{RenderConfig, Renderer};
+use crate::resources::targets::Target;
+use crate::resources::temporal::Rng;
 use crate::scene::Camera;
 use crate::vk::{Context, ImageData};
 use glam::{Quat, Vec3};

@@ -9,9 +9,9 @@ use crate::bench::{
     table_szentandrasi, walkthrough, TableOptions,
 };
 use crate::cli::args::{Cli, TableArgs, TableName};
+use crate::config::Effects;
 use crate::error::{Error, Result};
 use crate::frontend::window_sink::open_sink;
-use crate::renderer::config::Effects;
 use crate::scene::asset_dir_from_env;
 use std::path::PathBuf;
 

@@ -18,8 +18,8 @@ use crate::error::{Error, Result};
 use crate::frontend::display::{new_event_loop, presenting_context};
 use crate::frontend::swapchain_frame::{recreate, render_and_present, Presented, Recreated};
 use crate::frontend::view_state::{needs_rebuild, Action, ViewState, DISPLAY_CYCLE, HELP};
-use crate::renderer::targets::Target;
 use crate::renderer::{Renderer, FRAMES_IN_FLIGHT};
+use crate::resources::targets::Target;
 use crate::scene::Camera;
 use crate::vk::swapchain::present_mode_name;
 use crate::vk::{

@@ -2,7 +2,7 @@
 //! object in its own space), per-material colour and (optional) diffuse texture with its
 //! descriptor set, and the draws: a material's range of one of them, with the object's pose.
 
-use super::config::FRAMES_IN_FLIGHT;
+use crate::config::FRAMES_IN_FLIGHT;
 use crate::error::{Error, Result};
 use crate::scene::{DynamicObject, Mesh, TextureImage};
 use crate::shaders::MaterialPush;

@@ -1,9 +1,12 @@
 //! What a run renders: size, effects and their parameters. Parsed from the command line,
 //! validated here (absurd values get a clear error, never a silent clamp).
 
-pub use super::antialias::{AaConfig, AaMode};
-use super::pcf::Pcf;
+pub mod antialias;
+pub mod pcf;
+
 use crate::error::{Error, Result};
+pub use antialias::{AaConfig, AaMode};
+use pcf::Pcf;
 use serde::Serialize;
 
 /// Most patterns per pixel (rotation limit) and most estimates in a capped mean. The fp32

@@ -1,8 +1,8 @@
 //! Render targets every effect shares (G-buffer, reflective shadow map, output) and the
 //! ping-pong pair that holds a frame's image and the previous one.
 
-use super::antialias::AaMode;
-use super::config::GBufferMode;
+use crate::config::antialias::AaMode;
+use crate::config::GBufferMode;
 use crate::error::Result;
 use crate::vk::{Context, Image, ImageDesc};
 use ash::vk;

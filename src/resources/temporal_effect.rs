@@ -2,10 +2,10 @@
 //! lists and counters, refresh schedule and the push constants its passes share. The
 //! reprojection pass and the accumulation rules are the same for every effect.
 
-use super::config::{Refresh, RenderConfig, FRAMES_IN_FLIGHT};
 use super::counters::{self, Counter, CounterReadback, Role};
 use super::targets::{PingPong, HISTORY_FORMAT, MOMENTS_FORMAT, REGISTRATION_FORMAT, STATE_FORMAT};
 use super::temporal::{budget_tile, RefreshSchedule, Sampling};
+use crate::config::{Refresh, RenderConfig, FRAMES_IN_FLIGHT};
 use crate::error::Result;
 use crate::shaders::EffectPush;
 use crate::vk::recorder::Recorder;
