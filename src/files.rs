@@ -59,6 +59,24 @@ fn pause_before_rename(tmp: &Path, dest: &Path) {
     }
 }
 
+/// Encode `rgba` as PNG and write it atomically (`write_atomic`).
+pub fn write_png_rgba8(path: &Path, width: u32, height: u32, rgba: &[u8]) -> Result<()> {
+    let mut png = std::io::Cursor::new(Vec::new());
+    image::write_buffer_with_format(
+        &mut png,
+        rgba,
+        width,
+        height,
+        image::ColorType::Rgba8,
+        image::ImageFormat::Png,
+    )
+    .map_err(|e| Error::ImageWrite {
+        path: path.to_path_buf(),
+        message: e.to_string(),
+    })?;
+    write_atomic(path, &png.into_inner())
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -179,15 +179,6 @@ fn layer(module: &str) -> usize {
     }
 }
 
-/// Uses that point up the stack today, each to be removed by the restructuring (effects that
-/// own their configuration and passes that do not reach into the renderer); the test fails on
-/// any use not listed, and on a listed one that is gone, so the list only shrinks.
-const KNOWN_UPWARD: &[&str] = &[
-    "bench::sweep_keys -> cli::args",
-    "reference::output -> bench::error_metrics",
-    "reference::output -> frontend::png",
-];
-
 #[test]
 fn layers_are_used_downwards_only() {
     let uses = module_uses();
@@ -199,25 +190,10 @@ fn layers_are_used_downwards_only() {
             }
         }
     }
-    let new: Vec<&String> = upward
-        .iter()
-        .filter(|u| !KNOWN_UPWARD.contains(&u.as_str()))
-        .collect();
-    let gone: Vec<&&str> = KNOWN_UPWARD
-        .iter()
-        .filter(|k| !upward.iter().any(|u| u == **k))
-        .collect();
     assert!(
-        new.is_empty(),
+        upward.is_empty(),
         "uses up the layers (vk, scene, reference, config < resources < passes < effects < \
          renderer < frontend, bench < cli):\n{}",
-        new.iter()
-            .map(|s| s.as_str())
-            .collect::<Vec<_>>()
-            .join("\n")
-    );
-    assert!(
-        gone.is_empty(),
-        "fixed, so drop them from KNOWN_UPWARD: {gone:?}"
+        upward.join("\n")
     );
 }

@@ -3,10 +3,10 @@
 //! image. The shadow buffer is compared only where the light reaches (inside the cone, facing
 //! it): elsewhere the direct light is zero whatever the visibility says.
 
-use super::error_metrics::{buffer_error, flip_ldr, masked_mean, BufferError};
 use super::measure::{Buffer, LastFrame};
 use crate::error::{Error, Result};
 use crate::reference::compose::{final_image, to_rgb8, Terms};
+use crate::reference::error_metrics::{buffer_error, flip_ldr, masked_mean, BufferError};
 use crate::reference::{RefBuffer, Reference};
 use crate::scene::Scene;
 use crate::vk::ImageData;
@@ -231,7 +231,7 @@ pub fn write_converged_maps(
     dir: &std::path::Path,
     stem: &str,
 ) -> Result<Vec<std::path::PathBuf>> {
-    use super::error_metrics::{abs_error_per_pixel, write_error_map};
+    use crate::reference::error_metrics::{abs_error_per_pixel, write_error_map};
     let (w, h) = size(last);
     let mut written = Vec::new();
     let (m, buffers) = against_converged(last, converged);
@@ -273,7 +273,7 @@ pub fn write_error_maps(
     dir: &std::path::Path,
     stem: &str,
 ) -> Result<Vec<std::path::PathBuf>> {
-    use super::error_metrics::{abs_error_per_pixel, write_error_map};
+    use crate::reference::error_metrics::{abs_error_per_pixel, write_error_map};
     let mut written = Vec::new();
     for (b, image) in &last.buffers {
         let Compared {

@@ -5,7 +5,6 @@ pub mod aa_edges;
 pub mod compare;
 pub mod csv;
 pub mod decimate;
-pub mod error_metrics;
 pub mod ground_truth;
 pub mod markdown;
 pub mod measure;

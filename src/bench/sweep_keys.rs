@@ -2,7 +2,7 @@
 //! values given. Values use the command line's syntax and parsers (`--pcf`, `--vpls`,
 //! `--reuse`, ...), so a sweep accepts exactly what a single run accepts.
 
-use crate::cli::args::{
+use crate::config::parse::{
     parse_bias, parse_bilateral, parse_ema_alpha, parse_epsilon, parse_fraction, parse_gate,
     parse_on_off, parse_pattern_count, parse_ssdo_scale, parse_vpls, AccumulateMode,
 };

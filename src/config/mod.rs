@@ -2,6 +2,7 @@
 //! validated here (absurd values get a clear error, never a silent clamp).
 
 pub mod antialias;
+pub mod parse;
 pub mod pcf;
 
 use crate::error::{Error, Result};

@@ -1,28 +1,10 @@
 //! PNG output: the tonemapped image as is, and false-colour views of G-buffer / RSM targets.
 
-use crate::error::{Error, Result};
 use crate::resources::targets::Target;
 use crate::scene::Aabb;
 use crate::vk::ImageData;
-use std::path::Path;
 
-/// Encode `rgba` as PNG and write it atomically (see `crate::files`).
-pub fn write_rgba8(path: &Path, width: u32, height: u32, rgba: &[u8]) -> Result<()> {
-    let mut png = std::io::Cursor::new(Vec::new());
-    image::write_buffer_with_format(
-        &mut png,
-        rgba,
-        width,
-        height,
-        image::ColorType::Rgba8,
-        image::ImageFormat::Png,
-    )
-    .map_err(|e| Error::ImageWrite {
-        path: path.to_path_buf(),
-        message: e.to_string(),
-    })?;
-    crate::files::write_atomic(path, &png.into_inner())
-}
+pub use crate::files::write_png_rgba8 as write_rgba8;
 
 fn to_u8(v: f32) -> u8 {
     if v.is_finite() {

@@ -5,6 +5,7 @@
 
 pub mod ccipca;
 pub mod compose;
+pub mod error_metrics;
 pub mod estimate;
 pub mod estimators;
 pub mod output;

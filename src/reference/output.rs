@@ -3,9 +3,9 @@
 //! final image as the PNG the renderer would write.
 
 use super::compose::to_rgb8;
-use crate::bench::error_metrics::write_error_map;
 use crate::error::{Error, Result};
 use crate::files::write_atomic;
+use crate::reference::error_metrics::write_error_map;
 use image::{ExtendedColorType, ImageEncoder};
 use std::io::Cursor;
 use std::path::Path;
@@ -82,7 +82,7 @@ pub fn write_final_png(path: &Path, values: &[f32], width: u32, height: u32) -> 
         .chunks_exact(3)
         .flat_map(|p| [p[0], p[1], p[2], 255])
         .collect();
-    crate::frontend::png::write_rgba8(path, width, height, &rgba)
+    crate::files::write_png_rgba8(path, width, height, &rgba)
 }
 
 /// Everything `ssgi reference` writes into `out`: reference.json, `<buffer>.exr` and

@@ -45,7 +45,7 @@ pub fn write_error_map(
             [r, g, b, 255]
         })
         .collect();
-    crate::frontend::png::write_rgba8(path, width, height, &rgba)
+    crate::files::write_png_rgba8(path, width, height, &rgba)
 }
 
 #[cfg(test)]
