@@ -25,14 +25,14 @@ use ash::vk;
 use std::sync::Arc;
 
 /// 4x4 random rotation vectors of the pattern.
-const RANDOM: Slot = Slot::Own(0);
+const RANDOM: Slot = Slot::Own("random");
 /// Without reuse: this frame's AO, and its blur.
-const RAW: Slot = Slot::Own(1);
-const BLURRED: Slot = Slot::Own(2);
+const RAW: Slot = Slot::Own("raw");
+const BLURRED: Slot = Slot::Own("blurred");
 /// Point-sampled levels 1-3 of the G-buffer position (far taps).
-const LEVEL1: Slot = Slot::Own(3);
-const LEVEL2: Slot = Slot::Own(4);
-const LEVEL3: Slot = Slot::Own(5);
+const LEVEL1: Slot = Slot::Own("position_level1");
+const LEVEL2: Slot = Slot::Own("position_level2");
+const LEVEL3: Slot = Slot::Own("position_level3");
 
 const ACCUMULATE: &[Bind] = &[
     Bind::new(0, Slot::GPosition, Use::Sampled),
@@ -235,7 +235,7 @@ impl AoEffect {
     fn resources<'a>(
         &'a self,
         targets: &'a Targets,
-        own: &'a [[&'a Image; 2]; 6],
+        own: &'a [(Slot, [&'a Image; 2]); 6],
     ) -> EffectResources<'a> {
         EffectResources {
             targets,
@@ -257,16 +257,16 @@ impl AoEffect {
         }
     }
 
-    fn own(&self) -> [[&Image; 2]; 6] {
+    fn own(&self) -> [(Slot, [&Image; 2]); 6] {
         let s = &self.sized;
         let [l1, l2, l3] = &s.levels;
         [
-            [&self.random, &self.random],
-            [&s.raw, &s.raw],
-            [&s.blurred, &s.blurred],
-            [l1, l1],
-            [l2, l2],
-            [l3, l3],
+            (RANDOM, [&self.random, &self.random]),
+            (RAW, [&s.raw, &s.raw]),
+            (BLURRED, [&s.blurred, &s.blurred]),
+            (LEVEL1, [l1, l1]),
+            (LEVEL2, [l2, l2]),
+            (LEVEL3, [l3, l3]),
         ]
     }
 }

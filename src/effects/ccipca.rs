@@ -30,19 +30,19 @@ use gpu_allocator::MemoryLocation;
 use std::sync::Arc;
 
 /// This frame's noisy gather (rgb).
-const NOISY: Slot = Slot::Own(0);
+const NOISY: Slot = Slot::Own("noisy");
 /// The projection on the bases: the indirect light the composite adds.
-const FILTERED: Slot = Slot::Own(1);
+const FILTERED: Slot = Slot::Own("filtered");
 /// k basis images, vec4 per pixel, basis-major (basis 0's a: the pixel's sample count).
-const BASES: Slot = Slot::OwnBuffer(0);
+const BASES: Slot = Slot::OwnBuffer("bases");
 /// Per pixel: the residual (rgb) and the samples seen (a).
-const RESIDUAL: Slot = Slot::OwnBuffer(1);
+const RESIDUAL: Slot = Slot::OwnBuffer("residual");
 /// `SUM_VEC4S` vec4 of partial sums per 16x16 group.
-const PARTIALS: Slot = Slot::OwnBuffer(2);
+const PARTIALS: Slot = Slot::OwnBuffer("partials");
 /// `SUM_VEC4S` vec4 of image-wide sums per basis.
-const TOTALS: Slot = Slot::OwnBuffer(3);
+const TOTALS: Slot = Slot::OwnBuffer("totals");
 /// The other bases buffer: last frame's, which the warp reads.
-const BASES_PREV: Slot = Slot::OwnBuffer(4);
+const BASES_PREV: Slot = Slot::OwnBuffer("bases_prev");
 
 /// Pixels per side of the groups whose partial sums are stored.
 const GROUP_SIDE: u32 = 16;
@@ -324,20 +324,23 @@ impl CcipcaEffect {
         })
     }
 
-    fn own(&self) -> [[&Image; 2]; 2] {
+    fn own(&self) -> [(Slot, [&Image; 2]); 2] {
         let s = &self.sized;
-        [[&s.noisy, &s.noisy], [&s.filtered, &s.filtered]]
+        [
+            (NOISY, [&s.noisy, &s.noisy]),
+            (FILTERED, [&s.filtered, &s.filtered]),
+        ]
     }
 
     /// The buffers with `bases[current]` as this frame's.
-    fn buffers(&self, current: usize) -> [&Buffer; 5] {
+    fn buffers(&self, current: usize) -> [(Slot, &Buffer); 5] {
         let s = &self.sized;
         [
-            &s.bases[current],
-            &s.residual,
-            &s.partials,
-            &s.totals,
-            &s.bases[1 - current],
+            (BASES, &s.bases[current]),
+            (RESIDUAL, &s.residual),
+            (PARTIALS, &s.partials),
+            (TOTALS, &s.totals),
+            (BASES_PREV, &s.bases[1 - current]),
         ]
     }
 
@@ -358,7 +361,7 @@ impl CcipcaEffect {
         &self,
         info: &FrameInfo<'_>,
         r: &mut Recording<'_>,
-        own: &[[&Image; 2]; 2],
+        own: &[(Slot, [&Image; 2]); 2],
     ) {
         let other = 1 - self.work;
         let buffers = self.buffers(other);

@@ -24,9 +24,9 @@ use ash::vk;
 use std::sync::Arc;
 
 /// Shadow visibility computed every frame.
-const SHADOW: Slot = Slot::Own(0);
+const SHADOW: Slot = Slot::Own("shadow");
 /// The visibility the direct pass reads: `SHADOW`, or the accumulated history.
-const VISIBILITY: Slot = Slot::Own(1);
+const VISIBILITY: Slot = Slot::Own("visibility");
 const DIRECT: Slot = Slot::DirectLight;
 
 const SHADOW_FULL: &[Bind] = &[
@@ -189,19 +189,19 @@ impl DirectEffect {
     }
 
     /// The effect's images; `VISIBILITY` is the history when `from_history`.
-    fn own(&self, from_history: bool) -> [[&Image; 2]; 2] {
+    fn own(&self, from_history: bool) -> [(Slot, [&Image; 2]); 2] {
         let s = &self.sized;
         let visibility = match (&s.temporal, from_history) {
             (Some(t), true) => [t.history.current(0), t.history.current(1)],
             _ => [&s.shadow, &s.shadow],
         };
-        [[&s.shadow, &s.shadow], visibility]
+        [(SHADOW, [&s.shadow, &s.shadow]), (VISIBILITY, visibility)]
     }
 
     fn resources<'a>(
         &'a self,
         targets: &'a Targets,
-        own: &'a [[&'a Image; 2]; 2],
+        own: &'a [(Slot, [&'a Image; 2]); 2],
     ) -> EffectResources<'a> {
         EffectResources {
             targets,

@@ -32,18 +32,18 @@ use std::sync::Arc;
 
 /// 1 where the upsampling found no acceptable neighbour (Figure 4.1). Written only for the
 /// pixels recomputed this frame, so it is not discarded between frames.
-const DISCARD: Slot = Slot::Own(0);
+const DISCARD: Slot = Slot::Own("discard");
 /// With interleaving: one 9x9 low-resolution tile (block plus its right and bottom apron) per
 /// listed block.
-const LOWRES: Slot = Slot::OwnBuffer(0);
+const LOWRES: Slot = Slot::OwnBuffer("lowres");
 /// Without: the low-resolution samples, each computed once, where the classification listed it.
-const LOWRES_IMAGE: Slot = Slot::Own(1);
+const LOWRES_IMAGE: Slot = Slot::Own("lowres_image");
 /// Per low-resolution sample, in rows: 1 where a workgroup of the classification listed a
 /// block-border sample this frame; the gather sets it back to 0. (A buffer: naga reads no
 /// image atomics.)
-const CLAIMS: Slot = Slot::OwnBuffer(2);
+const CLAIMS: Slot = Slot::OwnBuffer("claims");
 /// One estimate (rgb, squared luminance) per refresh-tile pixel and pattern.
-const PARTIALS: Slot = Slot::OwnBuffer(1);
+const PARTIALS: Slot = Slot::OwnBuffer("partials");
 
 /// Lanes of indirect_spread.comp's workgroups (`SPREAD_LANES`).
 const SPREAD_LANES: u32 = 64;
@@ -385,21 +385,28 @@ impl IndirectEffect {
         })
     }
 
-    fn own(&self) -> [[&Image; 2]; 2] {
+    fn own(&self) -> [(Slot, [&Image; 2]); 2] {
         let s = &self.sized;
-        [[&s.discard, &s.discard], [&s.lowres_image, &s.lowres_image]]
+        [
+            (DISCARD, [&s.discard, &s.discard]),
+            (LOWRES_IMAGE, [&s.lowres_image, &s.lowres_image]),
+        ]
     }
 
-    fn buffers(&self) -> [&Buffer; 3] {
+    fn buffers(&self) -> [(Slot, &Buffer); 3] {
         let s = &self.sized;
-        [&s.lowres, &s.partials, &s.claims]
+        [
+            (LOWRES, &s.lowres),
+            (PARTIALS, &s.partials),
+            (CLAIMS, &s.claims),
+        ]
     }
 
     fn resources<'a>(
         &'a self,
         targets: &'a Targets,
-        own: &'a [[&'a Image; 2]; 2],
-        buffers: &'a [&'a Buffer; 3],
+        own: &'a [(Slot, [&'a Image; 2]); 2],
+        buffers: &'a [(Slot, &'a Buffer); 3],
     ) -> EffectResources<'a> {
         EffectResources {
             targets,

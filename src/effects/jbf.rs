@@ -18,8 +18,8 @@ use crate::shaders;
 use crate::vk::{Context, Image};
 use std::sync::Arc;
 
-const NOISY: Slot = Slot::Own(0);
-const FILTERED: Slot = Slot::Own(1);
+const NOISY: Slot = Slot::Own("noisy");
+const FILTERED: Slot = Slot::Own("filtered");
 
 const NOISY_GATHER: &[Bind] = &[
     Bind::new(0, Slot::GPosition, Use::Sampled),
@@ -105,9 +105,12 @@ impl JbfEffect {
         })
     }
 
-    fn own(&self) -> [[&Image; 2]; 2] {
+    fn own(&self) -> [(Slot, [&Image; 2]); 2] {
         let s = &self.sized;
-        [[&s.noisy, &s.noisy], [&s.filtered, &s.filtered]]
+        [
+            (NOISY, [&s.noisy, &s.noisy]),
+            (FILTERED, [&s.filtered, &s.filtered]),
+        ]
     }
 }
 

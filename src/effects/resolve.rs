@@ -11,10 +11,11 @@ use crate::vk::{Buffer, Image};
 pub struct EffectResources<'a> {
     pub targets: &'a Targets,
     pub temporal: Option<&'a TemporalEffect>,
-    /// `Slot::Own(i)`: per parity (most effect images are not ping-ponged: both the same).
-    pub own: &'a [[&'a Image; 2]],
-    /// `Slot::OwnBuffer(i)`.
-    pub own_buffers: &'a [&'a Buffer],
+    /// Each `Slot::Own` the effect's passes bind, with its image per parity (most effect
+    /// images are not ping-ponged: both the same).
+    pub own: &'a [(Slot, [&'a Image; 2])],
+    /// Each `Slot::OwnBuffer`, with its buffer.
+    pub own_buffers: &'a [(Slot, &'a Buffer)],
 }
 
 /// The shared targets every pass may read, for a parity (the images come from `Targets::get`,
@@ -58,7 +59,11 @@ impl Resolve for EffectResources<'_> {
             Slot::Registration => self.temporal.map(|e| e.registration.current(parity)),
             Slot::RegistrationPrev => self.temporal.map(|e| e.registration.previous(parity)),
             Slot::State => self.temporal.map(|e| &e.state),
-            Slot::Own(i) => self.own.get(i as usize).map(|pair| pair[parity]),
+            Slot::Own(_) => self
+                .own
+                .iter()
+                .find(|(s, _)| *s == slot)
+                .map(|(_, pair)| pair[parity]),
             _ => shared(self.targets, slot, parity),
         }
     }
@@ -66,7 +71,11 @@ impl Resolve for EffectResources<'_> {
     fn buffer(&self, slot: Slot) -> Option<&Buffer> {
         match slot {
             Slot::Counters => self.temporal.map(|e| &e.counters),
-            Slot::OwnBuffer(i) => self.own_buffers.get(i as usize).copied(),
+            Slot::OwnBuffer(_) => self
+                .own_buffers
+                .iter()
+                .find(|(s, _)| *s == slot)
+                .map(|(_, b)| *b),
             _ => None,
         }
     }

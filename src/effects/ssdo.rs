@@ -30,19 +30,19 @@ use ash::vk;
 use std::sync::Arc;
 
 /// The two-step form's directional-occlusion output: the senders' radiance, a = modulation.
-const LIT: Slot = Slot::Own(0);
+const LIT: Slot = Slot::Own("lit");
 /// SSDO's result (rgb bounce irradiance, a = modulation factor), before filtering.
-const RAW: Slot = Slot::Own(1);
+const RAW: Slot = Slot::Own("raw");
 /// The horizontal filter pass's output.
-const HALF_FILTERED: Slot = Slot::Own(2);
+const HALF_FILTERED: Slot = Slot::Own("half_filtered");
 /// The filtered result.
-const FILTERED: Slot = Slot::Own(3);
+const FILTERED: Slot = Slot::Own("filtered");
 /// The pre-pass's samples per block (r32ui, 1/scale resolution; 1x1 without the pre-pass).
-const BLOCK_SAMPLES: Slot = Slot::Own(4);
+const BLOCK_SAMPLES: Slot = Slot::Own("block_samples");
 /// The half-resolution result upsampled to the frame (1x1 at full resolution).
-const UPSAMPLED: Slot = Slot::Own(5);
+const UPSAMPLED: Slot = Slot::Own("upsampled");
 /// Pixels computed and samples taken this frame (the counters header, no work lists).
-const COUNTERS: Slot = Slot::OwnBuffer(0);
+const COUNTERS: Slot = Slot::OwnBuffer("counters");
 
 /// Report names of the counters the finishing pass (one step, or the bounce) fills; the mean
 /// sample count per pixel is their ratio (`ssdo_samples_per_pixel` in the report).
@@ -394,15 +394,20 @@ impl SsdoEffect {
         })
     }
 
-    fn own(&self) -> [[&Image; 2]; 6] {
-        self.sized.images.each_ref().map(|i| [i, i])
+    fn own(&self) -> [(Slot, [&Image; 2]); 6] {
+        let slots = [LIT, RAW, HALF_FILTERED, FILTERED, BLOCK_SAMPLES, UPSAMPLED];
+        let mut images = self.sized.images.iter();
+        slots.map(|slot| {
+            let image = images.next().expect("one image per slot");
+            (slot, [image, image])
+        })
     }
 
     fn resources<'a>(
         &'a self,
         targets: &'a Targets,
-        own: &'a [[&'a Image; 2]; 6],
-        buffers: &'a [&'a Buffer],
+        own: &'a [(Slot, [&'a Image; 2]); 6],
+        buffers: &'a [(Slot, &'a Buffer)],
     ) -> EffectResources<'a> {
         EffectResources {
             targets,
@@ -413,8 +418,8 @@ impl SsdoEffect {
     }
 
     /// `Slot::OwnBuffer` bindings: the counters, when SSDO keeps its own.
-    fn own_buffers(&self) -> Option<[&Buffer; 1]> {
-        self.own_counters.as_ref().map(|c| [&c.gpu])
+    fn own_buffers(&self) -> Option<[(Slot, &Buffer); 1]> {
+        self.own_counters.as_ref().map(|c| [(COUNTERS, &c.gpu)])
     }
 
     /// The image the composite reads: upsampled, filtered, or the raw result.

@@ -77,10 +77,11 @@ pub enum Slot {
     State,
     /// The effect's counters and work lists (indirect dispatch arguments first).
     Counters,
-    /// The `n`-th image the effect owns (see the effect's `image` resolver).
-    Own(u8),
-    /// The `n`-th buffer the effect owns.
-    OwnBuffer(u8),
+    /// An image the effect owns, by name: the effect lists each of its images under the slot
+    /// its passes bind it by (`EffectResources::own`), so order cannot pair them wrongly.
+    Own(&'static str),
+    /// A buffer the effect owns, by name (`EffectResources::own_buffers`).
+    OwnBuffer(&'static str),
     /// The `n`-th composite input (the effects' contributions, in registration order).
     Term(u8),
 }
