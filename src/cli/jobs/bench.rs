@@ -249,18 +249,20 @@ pub fn bench(cli: &Cli, args: &BenchArgs) -> Result<()> {
     let (scene, path) = load(cli, &args.scene)?;
     let window = args.window.then(|| format!("ssgi bench: {}", scene.name));
     let (ctx, mut sink) = open_sink(window, args.scene.size, context_options(cli))?;
+    // Before --compare-reuse: the frame as data is one renderer's, whatever the run would be.
+    if args.explain {
+        let mut renderer = Renderer::new(&ctx, scene, args.scene.render_config())?;
+        print!("{}", explain(args, &mut renderer, &path)?);
+        drop(renderer);
+        drop(sink);
+        return finish(&ctx);
+    }
     if args.compare_reuse {
         bench_compare_reuse(args, &ctx, sink.as_mut(), scene, path)?;
         drop(sink);
         return finish(&ctx);
     }
     let mut renderer = Renderer::new(&ctx, scene, args.scene.render_config())?;
-    if args.explain {
-        print!("{}", explain(args, &mut renderer, &path)?);
-        drop(renderer);
-        drop(sink);
-        return finish(&ctx);
-    }
     if args.explain_skips {
         print!("{}", renderer.explain_skips());
     }
