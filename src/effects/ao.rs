@@ -12,7 +12,7 @@ use super::effect::{
 use super::resolve::EffectResources;
 use crate::config::RenderConfig;
 use crate::error::Result;
-use crate::passes::compute::{ComputePass, Dispatch};
+use crate::passes::compute::{ComputePass, Dispatch, PassDecl};
 use crate::passes::decl::{Bind, Slot, Use};
 use crate::passes::{PassId, PassLayout};
 use crate::resources::targets::{Target, Targets, AO_FORMAT, GBUFFER_COLOR_FORMATS};
@@ -78,25 +78,32 @@ pub const REGISTRATION: Registration = Registration {
     layouts,
 };
 
+// Every pass of the effect, declared once (`PassDecl`): `layouts` and `new` both read these.
+const SSAO_ACCUMULATE_BLOCKS: PassDecl = PassDecl::new(
+    PassId::Ssao,
+    &shaders::SSAO_ACCUMULATE_COMP_BLOCKS,
+    ACCUMULATE,
+);
+const SSAO_ACCUMULATE_REFRESH: PassDecl = PassDecl::new(
+    PassId::SsaoRefresh,
+    &shaders::SSAO_ACCUMULATE_COMP_REFRESH,
+    ACCUMULATE,
+);
+const SSAO_FULL: PassDecl = PassDecl::new(PassId::Ssao, &shaders::SSAO_FULL_COMP, FULL);
+const BLUR_PASS: PassDecl = PassDecl::new(PassId::Blur, &shaders::BLUR_COMP, BLUR);
+const AO_POSITION_CHAIN: PassDecl = PassDecl::new(
+    PassId::AoPositionChain,
+    &shaders::AO_POSITION_CHAIN_COMP,
+    CHAIN,
+);
+
 fn layouts() -> Vec<PassLayout> {
     vec![
-        ComputePass::layout(
-            PassId::Ssao,
-            &shaders::SSAO_ACCUMULATE_COMP_BLOCKS,
-            ACCUMULATE,
-        ),
-        ComputePass::layout(
-            PassId::SsaoRefresh,
-            &shaders::SSAO_ACCUMULATE_COMP_REFRESH,
-            ACCUMULATE,
-        ),
-        ComputePass::layout(PassId::Ssao, &shaders::SSAO_FULL_COMP, FULL),
-        ComputePass::layout(PassId::Blur, &shaders::BLUR_COMP, BLUR),
-        ComputePass::layout(
-            PassId::AoPositionChain,
-            &shaders::AO_POSITION_CHAIN_COMP,
-            CHAIN,
-        ),
+        SSAO_ACCUMULATE_BLOCKS.layout(),
+        SSAO_ACCUMULATE_REFRESH.layout(),
+        SSAO_FULL.layout(),
+        BLUR_PASS.layout(),
+        AO_POSITION_CHAIN.layout(),
     ]
 }
 
@@ -144,47 +151,33 @@ impl AoEffect {
             &random_vectors(),
             Access::ComputeSampledRead,
         )?;
-        let (module, binds) = if reuse {
-            (&shaders::SSAO_ACCUMULATE_COMP_BLOCKS, ACCUMULATE)
+        let ssao = if reuse {
+            &SSAO_ACCUMULATE_BLOCKS
         } else {
-            (&shaders::SSAO_FULL_COMP, FULL)
+            &SSAO_FULL
         };
         let blur = if !reuse && s.config.ao.patterns == 1 {
-            Some(ComputePass::new(
-                s.ctx,
-                s.pool,
-                PassId::Blur,
-                &shaders::BLUR_COMP,
-                BLUR,
-            )?)
+            Some(ComputePass::declared(s.ctx, s.pool, &BLUR_PASS)?)
         } else {
             None
         };
         let chain = if s.config.ao.position_mips > 0 {
-            Some(ComputePass::new(
-                s.ctx,
-                s.pool,
-                PassId::AoPositionChain,
-                &shaders::AO_POSITION_CHAIN_COMP,
-                CHAIN,
-            )?)
+            Some(ComputePass::declared(s.ctx, s.pool, &AO_POSITION_CHAIN)?)
         } else {
             None
         };
         let refresh = if reuse {
-            Some(ComputePass::new(
+            Some(ComputePass::declared(
                 s.ctx,
                 s.pool,
-                PassId::SsaoRefresh,
-                &shaders::SSAO_ACCUMULATE_COMP_REFRESH,
-                ACCUMULATE,
+                &SSAO_ACCUMULATE_REFRESH,
             )?)
         } else {
             None
         };
         Ok(Self {
             reuse,
-            ssao: ComputePass::new(s.ctx, s.pool, PassId::Ssao, module, binds)?,
+            ssao: ComputePass::declared(s.ctx, s.pool, ssao)?,
             refresh,
             blur,
             chain,

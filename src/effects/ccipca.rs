@@ -16,13 +16,13 @@ use crate::config::{
     IndirectFilter, RenderConfig,
 };
 use crate::error::Result;
-use crate::passes::compute::{ComputePass, Dispatch};
+use crate::passes::compute::{ComputePass, Dispatch, PassDecl};
 use crate::passes::decl::{Bind, Slot, Use};
 use crate::passes::{PassId, PassLayout};
 use crate::reference::ccipca::AMNESIC;
 use crate::resources::targets::{Target, Targets};
 use crate::resources::temporal_effect::TemporalEffect;
-use crate::shaders::{self, CcipcaPush, ShaderModuleInfo};
+use crate::shaders::{self, CcipcaPush};
 use crate::vk::recorder::Recorder;
 use crate::vk::{Buffer, Context, DescriptorPool, Image, Tracker};
 use ash::vk;
@@ -120,49 +120,59 @@ const RECONSTRUCT: &[Bind] = &[
     Bind::new(10, FILTERED, Use::StorageWrite),
 ];
 
-/// Every pass: its timing row, module and declaration. Each is specialized for k bases.
-const PASSES: [(PassId, &ShaderModuleInfo, &[Bind]); 9] = [
-    (
-        PassId::CcipcaReproject,
-        &shaders::CCIPCA_REPROJECT_COMP,
-        REPROJECT,
-    ),
-    (
-        PassId::CcipcaReproject,
-        &shaders::CCIPCA_SUMS_COMP_GRAM,
-        SUMS,
-    ),
-    (
-        PassId::CcipcaReproject,
-        &shaders::CCIPCA_ORTHOGONALIZE_COMP,
-        ORTHOGONALIZE,
-    ),
-    (
-        PassId::IndirectNoisy,
-        &shaders::INDIRECT_NOISY_COMP_CCIPCA,
-        NOISY_GATHER,
-    ),
-    (PassId::CcipcaUpdate, &shaders::CCIPCA_SUMS_COMP, SUMS),
-    (
-        PassId::CcipcaUpdate,
-        &shaders::CCIPCA_UPDATE_COMP_UPDATE,
-        UPDATE,
-    ),
-    (
-        PassId::CcipcaReconstruct,
-        &shaders::CCIPCA_UPDATE_COMP_PROJECT,
-        PROJECT,
-    ),
-    (
-        PassId::CcipcaReconstruct,
-        &shaders::CCIPCA_RECONSTRUCT_COMP,
-        RECONSTRUCT,
-    ),
-    (
-        PassId::CcipcaBasisFilter,
-        &shaders::CCIPCA_BASIS_FILTER_COMP,
-        BASIS_FILTER,
-    ),
+// Every pass, declared once (`PassDecl`): `layouts` and `Passes::new` both read these. Each
+// is specialized for k bases.
+const REPROJECT_PASS: PassDecl = PassDecl::new(
+    PassId::CcipcaReproject,
+    &shaders::CCIPCA_REPROJECT_COMP,
+    REPROJECT,
+);
+const GRAM_PASS: PassDecl = PassDecl::new(
+    PassId::CcipcaReproject,
+    &shaders::CCIPCA_SUMS_COMP_GRAM,
+    SUMS,
+);
+const ORTHOGONALIZE_PASS: PassDecl = PassDecl::new(
+    PassId::CcipcaReproject,
+    &shaders::CCIPCA_ORTHOGONALIZE_COMP,
+    ORTHOGONALIZE,
+);
+const NOISY_PASS: PassDecl = PassDecl::new(
+    PassId::IndirectNoisy,
+    &shaders::INDIRECT_NOISY_COMP_CCIPCA,
+    NOISY_GATHER,
+);
+const SUMS_PASS: PassDecl = PassDecl::new(PassId::CcipcaUpdate, &shaders::CCIPCA_SUMS_COMP, SUMS);
+const UPDATE_PASS: PassDecl = PassDecl::new(
+    PassId::CcipcaUpdate,
+    &shaders::CCIPCA_UPDATE_COMP_UPDATE,
+    UPDATE,
+);
+const PROJECT_PASS: PassDecl = PassDecl::new(
+    PassId::CcipcaReconstruct,
+    &shaders::CCIPCA_UPDATE_COMP_PROJECT,
+    PROJECT,
+);
+const RECONSTRUCT_PASS: PassDecl = PassDecl::new(
+    PassId::CcipcaReconstruct,
+    &shaders::CCIPCA_RECONSTRUCT_COMP,
+    RECONSTRUCT,
+);
+const BASIS_FILTER_PASS: PassDecl = PassDecl::new(
+    PassId::CcipcaBasisFilter,
+    &shaders::CCIPCA_BASIS_FILTER_COMP,
+    BASIS_FILTER,
+);
+const PASSES: [&PassDecl; 9] = [
+    &REPROJECT_PASS,
+    &GRAM_PASS,
+    &ORTHOGONALIZE_PASS,
+    &NOISY_PASS,
+    &SUMS_PASS,
+    &UPDATE_PASS,
+    &PROJECT_PASS,
+    &RECONSTRUCT_PASS,
+    &BASIS_FILTER_PASS,
 ];
 
 pub const REGISTRATION: Registration = Registration {
@@ -173,13 +183,10 @@ pub const REGISTRATION: Registration = Registration {
 };
 
 fn layouts() -> Vec<PassLayout> {
-    PASSES
-        .iter()
-        .map(|&(id, module, binds)| ComputePass::layout(id, module, binds))
-        .collect()
+    PASSES.iter().map(|d| d.layout()).collect()
 }
 
-/// The passes in `PASSES` order, bound to one of the two bases buffers as the current one.
+/// The passes, bound to one of the two bases buffers as the current one.
 struct Passes {
     reproject: ComputePass,
     /// The Gram matrix's sums and the orthogonalization's transform.
@@ -197,20 +204,17 @@ struct Passes {
 
 impl Passes {
     fn new(ctx: &Arc<Context>, pool: &DescriptorPool, bases: u32) -> Result<Self> {
-        let [reproject, gram, orthogonalize, noisy, sums, update, project, reconstruct, basis_filter] =
-            PASSES.map(|(id, module, binds)| {
-                ComputePass::specialized(ctx, pool, id, (module, binds), &[bases])
-            });
+        let pass = |d: &PassDecl| ComputePass::declared_with(ctx, pool, d, &[bases]);
         Ok(Self {
-            reproject: reproject?,
-            gram: gram?,
-            orthogonalize: orthogonalize?,
-            noisy: noisy?,
-            sums: sums?,
-            update: update?,
-            project: project?,
-            reconstruct: reconstruct?,
-            basis_filter: basis_filter?,
+            reproject: pass(&REPROJECT_PASS)?,
+            gram: pass(&GRAM_PASS)?,
+            orthogonalize: pass(&ORTHOGONALIZE_PASS)?,
+            noisy: pass(&NOISY_PASS)?,
+            sums: pass(&SUMS_PASS)?,
+            update: pass(&UPDATE_PASS)?,
+            project: pass(&PROJECT_PASS)?,
+            reconstruct: pass(&RECONSTRUCT_PASS)?,
+            basis_filter: pass(&BASIS_FILTER_PASS)?,
         })
     }
 

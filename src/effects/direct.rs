@@ -12,7 +12,7 @@ use super::resolve::EffectResources;
 use crate::config::pcf::{Pcf, PcfKernel};
 use crate::config::RenderConfig;
 use crate::error::Result;
-use crate::passes::compute::{ComputePass, Dispatch};
+use crate::passes::compute::{ComputePass, Dispatch, PassDecl};
 use crate::passes::decl::{Bind, Slot, Use};
 use crate::passes::{PassId, PassLayout};
 use crate::resources::targets::{Target, Targets, AO_FORMAT};
@@ -61,20 +61,27 @@ pub const REGISTRATION: Registration = Registration {
     layouts,
 };
 
+// Every pass of the effect, declared once (`PassDecl`): `layouts` and `new` both read these.
+const SHADOW_FULL_PASS: PassDecl =
+    PassDecl::new(PassId::Shadow, &shaders::SHADOW_FULL_COMP, SHADOW_FULL);
+const SHADOW_ACCUMULATE_BLOCKS: PassDecl = PassDecl::new(
+    PassId::Shadow,
+    &shaders::SHADOW_ACCUMULATE_COMP_BLOCKS,
+    SHADOW_ACCUMULATE,
+);
+const SHADOW_ACCUMULATE_REFRESH: PassDecl = PassDecl::new(
+    PassId::ShadowRefresh,
+    &shaders::SHADOW_ACCUMULATE_COMP_REFRESH,
+    SHADOW_ACCUMULATE,
+);
+const DIRECT_PASS: PassDecl = PassDecl::new(PassId::Direct, &shaders::DIRECT_COMP, DIRECT_LIGHT);
+
 fn layouts() -> Vec<PassLayout> {
     vec![
-        ComputePass::layout(PassId::Shadow, &shaders::SHADOW_FULL_COMP, SHADOW_FULL),
-        ComputePass::layout(
-            PassId::Shadow,
-            &shaders::SHADOW_ACCUMULATE_COMP_BLOCKS,
-            SHADOW_ACCUMULATE,
-        ),
-        ComputePass::layout(
-            PassId::ShadowRefresh,
-            &shaders::SHADOW_ACCUMULATE_COMP_REFRESH,
-            SHADOW_ACCUMULATE,
-        ),
-        ComputePass::layout(PassId::Direct, &shaders::DIRECT_COMP, DIRECT_LIGHT),
+        SHADOW_FULL_PASS.layout(),
+        SHADOW_ACCUMULATE_BLOCKS.layout(),
+        SHADOW_ACCUMULATE_REFRESH.layout(),
+        DIRECT_PASS.layout(),
     ]
 }
 
@@ -114,42 +121,18 @@ fn shadow_reuse(config: &RenderConfig) -> bool {
 
 impl DirectEffect {
     pub fn new(s: &mut Setup<'_>) -> Result<Self> {
-        let direct = ComputePass::new(
-            s.ctx,
-            s.pool,
-            PassId::Direct,
-            &shaders::DIRECT_COMP,
-            DIRECT_LIGHT,
-        )?;
+        let direct = ComputePass::declared(s.ctx, s.pool, &DIRECT_PASS)?;
         let reuse = if s.config.temporal.reuse {
             Some(Reuse {
-                accumulate: ComputePass::new(
-                    s.ctx,
-                    s.pool,
-                    PassId::Shadow,
-                    &shaders::SHADOW_ACCUMULATE_COMP_BLOCKS,
-                    SHADOW_ACCUMULATE,
-                )?,
-                refresh: ComputePass::new(
-                    s.ctx,
-                    s.pool,
-                    PassId::ShadowRefresh,
-                    &shaders::SHADOW_ACCUMULATE_COMP_REFRESH,
-                    SHADOW_ACCUMULATE,
-                )?,
+                accumulate: ComputePass::declared(s.ctx, s.pool, &SHADOW_ACCUMULATE_BLOCKS)?,
+                refresh: ComputePass::declared(s.ctx, s.pool, &SHADOW_ACCUMULATE_REFRESH)?,
                 direct_from_history: direct.instance(s.pool, "direct from shadow history")?,
             })
         } else {
             None
         };
         Ok(Self {
-            shadow_full: ComputePass::new(
-                s.ctx,
-                s.pool,
-                PassId::Shadow,
-                &shaders::SHADOW_FULL_COMP,
-                SHADOW_FULL,
-            )?,
+            shadow_full: ComputePass::declared(s.ctx, s.pool, &SHADOW_FULL_PASS)?,
             direct,
             reuse,
             sized: Self::create_sized(s.ctx, s.config)?,

@@ -15,7 +15,7 @@ use super::effect::{
 use super::resolve::EffectResources;
 use crate::config::{IndirectFilter, RenderConfig};
 use crate::error::Result;
-use crate::passes::compute::{ComputePass, Dispatch};
+use crate::passes::compute::{ComputePass, Dispatch, PassDecl};
 use crate::passes::decl::{Bind, Slot, Use};
 use crate::passes::{PassId, PassLayout};
 use crate::resources::counters::{FIXUP_DISPATCH_OFFSET, LOWRES_DISPATCH_OFFSET};
@@ -130,63 +130,76 @@ pub const REGISTRATION: Registration = Registration {
     layouts,
 };
 
+// Every pass of the effect, declared once (`PassDecl`): `layouts` and `new` both read these.
+const INDIRECT_CLASSIFY: PassDecl = PassDecl::new(
+    PassId::IndirectClassify,
+    &shaders::INDIRECT_CLASSIFY_COMP,
+    CLASSIFY,
+);
+const INDIRECT_SPREAD_GATHER: PassDecl = PassDecl::new(
+    PassId::IndirectGather,
+    &shaders::INDIRECT_SPREAD_COMP_GATHER,
+    LOWRES_COMPACT,
+);
+const INDIRECT_LOWRES: PassDecl = PassDecl::new(
+    PassId::IndirectGather,
+    &shaders::INDIRECT_LOWRES_COMP,
+    LOWRES_GATHER,
+);
+const INDIRECT_UPSAMPLE_IMAGE: PassDecl = PassDecl::new(
+    PassId::IndirectUpsample,
+    &shaders::INDIRECT_UPSAMPLE_COMP_IMAGE,
+    UPSAMPLE_IMAGE,
+);
+const INDIRECT_UPSAMPLE_SLOTS: PassDecl = PassDecl::new(
+    PassId::IndirectUpsample,
+    &shaders::INDIRECT_UPSAMPLE_COMP_SLOTS,
+    UPSAMPLE,
+);
+const INDIRECT_SPREAD_FIXUP: PassDecl = PassDecl::new(
+    PassId::IndirectFixup,
+    &shaders::INDIRECT_SPREAD_COMP_FIXUP,
+    GATHER,
+);
+const INDIRECT_GATHER: PassDecl = PassDecl::new(
+    PassId::IndirectGather,
+    &shaders::INDIRECT_GATHER_COMP,
+    GATHER,
+);
+const INDIRECT_SPREAD_REFRESH: PassDecl = PassDecl::new(
+    PassId::IndirectRefresh,
+    &shaders::INDIRECT_SPREAD_COMP_REFRESH,
+    REFRESH,
+);
+const INDIRECT_SPREAD_REFRESH_LOWRES: PassDecl = PassDecl::new(
+    PassId::IndirectRefresh,
+    &shaders::INDIRECT_SPREAD_COMP_REFRESH_LOWRES,
+    REFRESH,
+);
+const INDIRECT_SPREAD_RESOLVE: PassDecl = PassDecl::new(
+    PassId::IndirectRefresh,
+    &shaders::INDIRECT_SPREAD_COMP_RESOLVE,
+    REFRESH,
+);
+const INDIRECT_SPREAD_RESOLVE_LOWRES: PassDecl = PassDecl::new(
+    PassId::IndirectRefresh,
+    &shaders::INDIRECT_SPREAD_COMP_RESOLVE_LOWRES,
+    REFRESH,
+);
+
 fn layouts() -> Vec<PassLayout> {
     vec![
-        ComputePass::layout(
-            PassId::IndirectClassify,
-            &shaders::INDIRECT_CLASSIFY_COMP,
-            CLASSIFY,
-        ),
-        ComputePass::layout(
-            PassId::IndirectGather,
-            &shaders::INDIRECT_SPREAD_COMP_GATHER,
-            LOWRES_COMPACT,
-        ),
-        ComputePass::layout(
-            PassId::IndirectGather,
-            &shaders::INDIRECT_LOWRES_COMP,
-            LOWRES_GATHER,
-        ),
-        ComputePass::layout(
-            PassId::IndirectUpsample,
-            &shaders::INDIRECT_UPSAMPLE_COMP_IMAGE,
-            UPSAMPLE_IMAGE,
-        ),
-        ComputePass::layout(
-            PassId::IndirectUpsample,
-            &shaders::INDIRECT_UPSAMPLE_COMP_SLOTS,
-            UPSAMPLE,
-        ),
-        ComputePass::layout(
-            PassId::IndirectFixup,
-            &shaders::INDIRECT_SPREAD_COMP_FIXUP,
-            GATHER,
-        ),
-        ComputePass::layout(
-            PassId::IndirectGather,
-            &shaders::INDIRECT_GATHER_COMP,
-            GATHER,
-        ),
-        ComputePass::layout(
-            PassId::IndirectRefresh,
-            &shaders::INDIRECT_SPREAD_COMP_REFRESH,
-            REFRESH,
-        ),
-        ComputePass::layout(
-            PassId::IndirectRefresh,
-            &shaders::INDIRECT_SPREAD_COMP_REFRESH_LOWRES,
-            REFRESH,
-        ),
-        ComputePass::layout(
-            PassId::IndirectRefresh,
-            &shaders::INDIRECT_SPREAD_COMP_RESOLVE,
-            REFRESH,
-        ),
-        ComputePass::layout(
-            PassId::IndirectRefresh,
-            &shaders::INDIRECT_SPREAD_COMP_RESOLVE_LOWRES,
-            REFRESH,
-        ),
+        INDIRECT_CLASSIFY.layout(),
+        INDIRECT_SPREAD_GATHER.layout(),
+        INDIRECT_LOWRES.layout(),
+        INDIRECT_UPSAMPLE_IMAGE.layout(),
+        INDIRECT_UPSAMPLE_SLOTS.layout(),
+        INDIRECT_SPREAD_FIXUP.layout(),
+        INDIRECT_GATHER.layout(),
+        INDIRECT_SPREAD_REFRESH.layout(),
+        INDIRECT_SPREAD_REFRESH_LOWRES.layout(),
+        INDIRECT_SPREAD_RESOLVE.layout(),
+        INDIRECT_SPREAD_RESOLVE_LOWRES.layout(),
     ]
 }
 
@@ -239,79 +252,42 @@ pub struct IndirectEffect {
 
 impl IndirectEffect {
     pub fn new(s: &mut Setup<'_>) -> Result<Self> {
-        let pass = |id, module, binds| ComputePass::new(s.ctx, s.pool, id, module, binds);
+        let pass = |decl: &PassDecl| ComputePass::declared(s.ctx, s.pool, decl);
         let gather = if s.config.indirect.half_res {
             let compact = s.config.indirect.interleave <= 1;
             let (lowres, upsample) = if compact {
                 (
                     LowRes::Compact {
-                        classify: pass(
-                            PassId::IndirectClassify,
-                            &shaders::INDIRECT_CLASSIFY_COMP,
-                            CLASSIFY,
-                        )?,
-                        gather: pass(
-                            PassId::IndirectGather,
-                            &shaders::INDIRECT_SPREAD_COMP_GATHER,
-                            LOWRES_COMPACT,
-                        )?,
+                        classify: pass(&INDIRECT_CLASSIFY)?,
+                        gather: pass(&INDIRECT_SPREAD_GATHER)?,
                     },
-                    pass(
-                        PassId::IndirectUpsample,
-                        &shaders::INDIRECT_UPSAMPLE_COMP_IMAGE,
-                        UPSAMPLE_IMAGE,
-                    )?,
+                    pass(&INDIRECT_UPSAMPLE_IMAGE)?,
                 )
             } else {
                 (
-                    LowRes::Blocks(pass(
-                        PassId::IndirectGather,
-                        &shaders::INDIRECT_LOWRES_COMP,
-                        LOWRES_GATHER,
-                    )?),
-                    pass(
-                        PassId::IndirectUpsample,
-                        &shaders::INDIRECT_UPSAMPLE_COMP_SLOTS,
-                        UPSAMPLE,
-                    )?,
+                    LowRes::Blocks(pass(&INDIRECT_LOWRES)?),
+                    pass(&INDIRECT_UPSAMPLE_SLOTS)?,
                 )
             };
             Gather::Half(HalfRes {
                 lowres,
                 upsample,
-                fixup: pass(
-                    PassId::IndirectFixup,
-                    &shaders::INDIRECT_SPREAD_COMP_FIXUP,
-                    GATHER,
-                )?,
+                fixup: pass(&INDIRECT_SPREAD_FIXUP)?,
             })
         } else {
-            Gather::Full(pass(
-                PassId::IndirectGather,
-                &shaders::INDIRECT_GATHER_COMP,
-                GATHER,
-            )?)
+            Gather::Full(pass(&INDIRECT_GATHER)?)
         };
         // At half resolution the refresh computes the estimator the accumulation converges
         // to there: its low-resolution samples' patterns, upsampled by the resolve.
-        let refresh = pass(
-            PassId::IndirectRefresh,
-            if s.config.indirect.half_res {
-                &shaders::INDIRECT_SPREAD_COMP_REFRESH_LOWRES
-            } else {
-                &shaders::INDIRECT_SPREAD_COMP_REFRESH
-            },
-            REFRESH,
-        )?;
-        let resolve = pass(
-            PassId::IndirectRefresh,
-            if s.config.indirect.half_res {
-                &shaders::INDIRECT_SPREAD_COMP_RESOLVE_LOWRES
-            } else {
-                &shaders::INDIRECT_SPREAD_COMP_RESOLVE
-            },
-            REFRESH,
-        )?;
+        let (refresh, resolve) = if s.config.indirect.half_res {
+            (
+                &INDIRECT_SPREAD_REFRESH_LOWRES,
+                &INDIRECT_SPREAD_RESOLVE_LOWRES,
+            )
+        } else {
+            (&INDIRECT_SPREAD_REFRESH, &INDIRECT_SPREAD_RESOLVE)
+        };
+        let (refresh, resolve) = (pass(refresh)?, pass(resolve)?);
         Ok(Self {
             gather,
             refresh,

@@ -9,7 +9,7 @@ use super::effect::{
 use super::resolve::EffectResources;
 use crate::config::{IndirectFilter, RenderConfig};
 use crate::error::Result;
-use crate::passes::compute::ComputePass;
+use crate::passes::compute::{ComputePass, PassDecl};
 use crate::passes::decl::{Bind, Slot, Use};
 use crate::passes::{PassId, PassLayout};
 use crate::resources::targets::{Target, Targets};
@@ -44,15 +44,17 @@ pub const REGISTRATION: Registration = Registration {
     layouts,
 };
 
+// Every pass of the effect, declared once (`PassDecl`): `layouts` and `new` both read these.
+const INDIRECT_NOISY_PLAIN: PassDecl = PassDecl::new(
+    PassId::IndirectNoisy,
+    &shaders::INDIRECT_NOISY_COMP_PLAIN,
+    NOISY_GATHER,
+);
+const INDIRECT_JBF: PassDecl =
+    PassDecl::new(PassId::IndirectJbf, &shaders::INDIRECT_JBF_COMP, FILTER);
+
 fn layouts() -> Vec<PassLayout> {
-    vec![
-        ComputePass::layout(
-            PassId::IndirectNoisy,
-            &shaders::INDIRECT_NOISY_COMP_PLAIN,
-            NOISY_GATHER,
-        ),
-        ComputePass::layout(PassId::IndirectJbf, &shaders::INDIRECT_JBF_COMP, FILTER),
-    ]
+    vec![INDIRECT_NOISY_PLAIN.layout(), INDIRECT_JBF.layout()]
 }
 
 /// Half the window's side of a joint bilateral filter.
@@ -79,20 +81,8 @@ impl JbfEffect {
     pub fn new(s: &mut Setup<'_>) -> Result<Self> {
         let r = radius(s.config.indirect.filter).unwrap_or(5);
         Ok(Self {
-            noisy: ComputePass::new(
-                s.ctx,
-                s.pool,
-                PassId::IndirectNoisy,
-                &shaders::INDIRECT_NOISY_COMP_PLAIN,
-                NOISY_GATHER,
-            )?,
-            filter: ComputePass::specialized(
-                s.ctx,
-                s.pool,
-                PassId::IndirectJbf,
-                (&shaders::INDIRECT_JBF_COMP, FILTER),
-                &[r],
-            )?,
+            noisy: ComputePass::declared(s.ctx, s.pool, &INDIRECT_NOISY_PLAIN)?,
+            filter: ComputePass::declared_with(s.ctx, s.pool, &INDIRECT_JBF, &[r])?,
             sized: Self::create_sized(s.ctx, s.config)?,
         })
     }

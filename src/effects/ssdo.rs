@@ -16,7 +16,7 @@ use super::resolve::EffectResources;
 use crate::config::FRAMES_IN_FLIGHT;
 use crate::config::{RenderConfig, SsdoForm};
 use crate::error::Result;
-use crate::passes::compute::{ComputePass, Dispatch};
+use crate::passes::compute::{ComputePass, Dispatch, PassDecl};
 use crate::passes::decl::{Bind, Slot, Use};
 use crate::passes::{PassId, PassLayout};
 use crate::resources::counters::{self, Counter, CounterReadback};
@@ -139,63 +139,83 @@ pub const REGISTRATION: Registration = Registration {
     layouts,
 };
 
+// Every pass of the effect, declared once (`PassDecl`): `layouts` and `new` both read these.
+const SSDO_ONE_STEP: PassDecl = PassDecl::new(PassId::Ssdo, &shaders::SSDO_COMP_ONE_STEP, ONE_STEP);
+const SSDO_SSAO: PassDecl = PassDecl::new(PassId::Ssdo, &shaders::SSDO_COMP_SSAO, ONE_STEP);
+const SSDO_DIRECTIONAL: PassDecl =
+    PassDecl::new(PassId::Ssdo, &shaders::SSDO_COMP_DIRECTIONAL, DIRECTIONAL);
+const SSDO_BOUNCE: PassDecl = PassDecl::new(PassId::SsdoBounce, &shaders::SSDO_COMP_BOUNCE, BOUNCE);
+const SSDO_SAMPLES: PassDecl =
+    PassDecl::new(PassId::SsdoSamples, &shaders::SSDO_SAMPLES_COMP, PREPASS);
+const SSDO_ACCUMULATE_BLOCKS: PassDecl = PassDecl::new(
+    PassId::Ssdo,
+    &shaders::SSDO_ACCUMULATE_COMP_BLOCKS,
+    ACCUMULATE,
+);
+const SSDO_ACCUMULATE_BLOCKS_SSAO: PassDecl = PassDecl::new(
+    PassId::Ssdo,
+    &shaders::SSDO_ACCUMULATE_COMP_BLOCKS_SSAO,
+    ACCUMULATE,
+);
+const SSDO_ACCUMULATE_REFRESH: PassDecl = PassDecl::new(
+    PassId::SsdoRefresh,
+    &shaders::SSDO_ACCUMULATE_COMP_REFRESH,
+    ACCUMULATE,
+);
+const SSDO_ACCUMULATE_REFRESH_SSAO: PassDecl = PassDecl::new(
+    PassId::SsdoRefresh,
+    &shaders::SSDO_ACCUMULATE_COMP_REFRESH_SSAO,
+    ACCUMULATE,
+);
+const SSDO_ACCUMULATE_RESOLVE: PassDecl = PassDecl::new(
+    PassId::SsdoResolve,
+    &shaders::SSDO_ACCUMULATE_COMP_RESOLVE,
+    RESOLVE,
+);
+const SSDO_ACCUMULATE_RESOLVE_SSAO: PassDecl = PassDecl::new(
+    PassId::SsdoResolve,
+    &shaders::SSDO_ACCUMULATE_COMP_RESOLVE_SSAO,
+    RESOLVE,
+);
+const SSDO_BILATERAL_HORIZONTAL: PassDecl = PassDecl::new(
+    PassId::SsdoBilateral,
+    &shaders::SSDO_BILATERAL_COMP_HORIZONTAL,
+    FILTER_H,
+);
+const SSDO_BILATERAL_VERTICAL: PassDecl = PassDecl::new(
+    PassId::SsdoBilateral,
+    &shaders::SSDO_BILATERAL_COMP_VERTICAL,
+    FILTER_V,
+);
+/// The upsampling of the raw result (no filter) and of the filtered one.
+const SSDO_UPSAMPLE_RAW: PassDecl = PassDecl::new(
+    PassId::SsdoUpsample,
+    &shaders::SSDO_UPSAMPLE_COMP,
+    UPSAMPLE_RAW,
+);
+const SSDO_UPSAMPLE_FILTERED: PassDecl = PassDecl::new(
+    PassId::SsdoUpsample,
+    &shaders::SSDO_UPSAMPLE_COMP,
+    UPSAMPLE_FILTERED,
+);
+
 fn layouts() -> Vec<PassLayout> {
     vec![
-        ComputePass::layout(PassId::Ssdo, &shaders::SSDO_COMP_ONE_STEP, ONE_STEP),
-        ComputePass::layout(PassId::Ssdo, &shaders::SSDO_COMP_SSAO, ONE_STEP),
-        ComputePass::layout(PassId::Ssdo, &shaders::SSDO_COMP_DIRECTIONAL, DIRECTIONAL),
-        ComputePass::layout(PassId::SsdoBounce, &shaders::SSDO_COMP_BOUNCE, BOUNCE),
-        ComputePass::layout(PassId::SsdoSamples, &shaders::SSDO_SAMPLES_COMP, PREPASS),
-        ComputePass::layout(
-            PassId::Ssdo,
-            &shaders::SSDO_ACCUMULATE_COMP_BLOCKS,
-            ACCUMULATE,
-        ),
-        ComputePass::layout(
-            PassId::Ssdo,
-            &shaders::SSDO_ACCUMULATE_COMP_BLOCKS_SSAO,
-            ACCUMULATE,
-        ),
-        ComputePass::layout(
-            PassId::SsdoRefresh,
-            &shaders::SSDO_ACCUMULATE_COMP_REFRESH,
-            ACCUMULATE,
-        ),
-        ComputePass::layout(
-            PassId::SsdoRefresh,
-            &shaders::SSDO_ACCUMULATE_COMP_REFRESH_SSAO,
-            ACCUMULATE,
-        ),
-        ComputePass::layout(
-            PassId::SsdoResolve,
-            &shaders::SSDO_ACCUMULATE_COMP_RESOLVE,
-            RESOLVE,
-        ),
-        ComputePass::layout(
-            PassId::SsdoResolve,
-            &shaders::SSDO_ACCUMULATE_COMP_RESOLVE_SSAO,
-            RESOLVE,
-        ),
-        ComputePass::layout(
-            PassId::SsdoBilateral,
-            &shaders::SSDO_BILATERAL_COMP_HORIZONTAL,
-            FILTER_H,
-        ),
-        ComputePass::layout(
-            PassId::SsdoBilateral,
-            &shaders::SSDO_BILATERAL_COMP_VERTICAL,
-            FILTER_V,
-        ),
-        ComputePass::layout(
-            PassId::SsdoUpsample,
-            &shaders::SSDO_UPSAMPLE_COMP,
-            UPSAMPLE_RAW,
-        ),
-        ComputePass::layout(
-            PassId::SsdoUpsample,
-            &shaders::SSDO_UPSAMPLE_COMP,
-            UPSAMPLE_FILTERED,
-        ),
+        SSDO_ONE_STEP.layout(),
+        SSDO_SSAO.layout(),
+        SSDO_DIRECTIONAL.layout(),
+        SSDO_BOUNCE.layout(),
+        SSDO_SAMPLES.layout(),
+        SSDO_ACCUMULATE_BLOCKS.layout(),
+        SSDO_ACCUMULATE_BLOCKS_SSAO.layout(),
+        SSDO_ACCUMULATE_REFRESH.layout(),
+        SSDO_ACCUMULATE_REFRESH_SSAO.layout(),
+        SSDO_ACCUMULATE_RESOLVE.layout(),
+        SSDO_ACCUMULATE_RESOLVE_SSAO.layout(),
+        SSDO_BILATERAL_HORIZONTAL.layout(),
+        SSDO_BILATERAL_VERTICAL.layout(),
+        SSDO_UPSAMPLE_RAW.layout(),
+        SSDO_UPSAMPLE_FILTERED.layout(),
     ]
 }
 
@@ -247,74 +267,56 @@ pub struct SsdoEffect {
 
 impl SsdoEffect {
     pub fn new(s: &mut Setup<'_>) -> Result<Self> {
-        let pass = |id, module, binds| ComputePass::new(s.ctx, s.pool, id, module, binds);
+        let pass = |decl: &PassDecl| ComputePass::declared(s.ctx, s.pool, decl);
         let ssao = s.config.ssdo.form == SsdoForm::Ssao;
         let form = match s.config.ssdo.form {
             // RenderConfig::validate keeps the cache to full-resolution one step and SSAO.
             _ if s.config.temporal.reuse => {
                 let (blocks, refresh, resolve) = if ssao {
                     (
-                        &shaders::SSDO_ACCUMULATE_COMP_BLOCKS_SSAO,
-                        &shaders::SSDO_ACCUMULATE_COMP_REFRESH_SSAO,
-                        &shaders::SSDO_ACCUMULATE_COMP_RESOLVE_SSAO,
+                        &SSDO_ACCUMULATE_BLOCKS_SSAO,
+                        &SSDO_ACCUMULATE_REFRESH_SSAO,
+                        &SSDO_ACCUMULATE_RESOLVE_SSAO,
                     )
                 } else {
                     (
-                        &shaders::SSDO_ACCUMULATE_COMP_BLOCKS,
-                        &shaders::SSDO_ACCUMULATE_COMP_REFRESH,
-                        &shaders::SSDO_ACCUMULATE_COMP_RESOLVE,
+                        &SSDO_ACCUMULATE_BLOCKS,
+                        &SSDO_ACCUMULATE_REFRESH,
+                        &SSDO_ACCUMULATE_RESOLVE,
                     )
                 };
                 Form::Cached {
-                    blocks: pass(PassId::Ssdo, blocks, ACCUMULATE)?,
-                    refresh: pass(PassId::SsdoRefresh, refresh, ACCUMULATE)?,
-                    resolve: pass(PassId::SsdoResolve, resolve, RESOLVE)?,
+                    blocks: pass(blocks)?,
+                    refresh: pass(refresh)?,
+                    resolve: pass(resolve)?,
                 }
             }
-            SsdoForm::OneStep => {
-                Form::Single(pass(PassId::Ssdo, &shaders::SSDO_COMP_ONE_STEP, ONE_STEP)?)
-            }
-            SsdoForm::Ssao => Form::Single(pass(PassId::Ssdo, &shaders::SSDO_COMP_SSAO, ONE_STEP)?),
+            SsdoForm::OneStep => Form::Single(pass(&SSDO_ONE_STEP)?),
+            SsdoForm::Ssao => Form::Single(pass(&SSDO_SSAO)?),
             SsdoForm::TwoStep => Form::TwoStep {
-                directional: pass(PassId::Ssdo, &shaders::SSDO_COMP_DIRECTIONAL, DIRECTIONAL)?,
-                bounce: pass(PassId::SsdoBounce, &shaders::SSDO_COMP_BOUNCE, BOUNCE)?,
+                directional: pass(&SSDO_DIRECTIONAL)?,
+                bounce: pass(&SSDO_BOUNCE)?,
             },
         };
         let filter = if s.config.ssdo.filter > 0 {
             Some([
-                pass(
-                    PassId::SsdoBilateral,
-                    &shaders::SSDO_BILATERAL_COMP_HORIZONTAL,
-                    FILTER_H,
-                )?,
-                pass(
-                    PassId::SsdoBilateral,
-                    &shaders::SSDO_BILATERAL_COMP_VERTICAL,
-                    FILTER_V,
-                )?,
+                pass(&SSDO_BILATERAL_HORIZONTAL)?,
+                pass(&SSDO_BILATERAL_VERTICAL)?,
             ])
         } else {
             None
         };
         let prepass = match s.config.ssdo.adaptive {
-            Some(_) => Some(pass(
-                PassId::SsdoSamples,
-                &shaders::SSDO_SAMPLES_COMP,
-                PREPASS,
-            )?),
+            Some(_) => Some(pass(&SSDO_SAMPLES)?),
             None => None,
         };
         let upsample = if s.config.ssdo.scale > 1 {
-            let binds = if filter.is_some() {
-                UPSAMPLE_FILTERED
+            let decl = if filter.is_some() {
+                &SSDO_UPSAMPLE_FILTERED
             } else {
-                UPSAMPLE_RAW
+                &SSDO_UPSAMPLE_RAW
             };
-            Some(pass(
-                PassId::SsdoUpsample,
-                &shaders::SSDO_UPSAMPLE_COMP,
-                binds,
-            )?)
+            Some(pass(decl)?)
         } else {
             None
         };

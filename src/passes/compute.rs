@@ -43,6 +43,31 @@ pub fn parity_sets(
     ])
 }
 
+/// A compute pass declared once: its timing row, shader module and resources. Both its
+/// reflection-check layout ([`PassDecl::layout`]) and its pipeline ([`ComputePass::declared`])
+/// come from it, so the two cannot name different modules or tables.
+#[derive(Clone, Copy)]
+pub struct PassDecl {
+    pub id: PassId,
+    pub module: &'static ShaderModuleInfo,
+    pub binds: &'static [Bind],
+}
+
+impl PassDecl {
+    pub const fn new(
+        id: PassId,
+        module: &'static ShaderModuleInfo,
+        binds: &'static [Bind],
+    ) -> Self {
+        Self { id, module, binds }
+    }
+
+    /// The layout entry for the up-front reflection check.
+    pub fn layout(&self) -> PassLayout {
+        ComputePass::layout(self.id, self.module, self.binds)
+    }
+}
+
 pub struct ComputePass {
     pub id: PassId,
     pipeline: Arc<Pipeline>,
@@ -73,6 +98,21 @@ impl ComputePass {
         binds: &'static [Bind],
     ) -> Result<Self> {
         Self::specialized(ctx, pool, id, (module, binds), &[])
+    }
+
+    /// The pass `decl` declares.
+    pub fn declared(ctx: &Arc<Context>, pool: &DescriptorPool, decl: &PassDecl) -> Result<Self> {
+        Self::new(ctx, pool, decl.id, decl.module, decl.binds)
+    }
+
+    /// The pass `decl` declares, with specialization constants.
+    pub fn declared_with(
+        ctx: &Arc<Context>,
+        pool: &DescriptorPool,
+        decl: &PassDecl,
+        constants: &[u32],
+    ) -> Result<Self> {
+        Self::specialized(ctx, pool, decl.id, (decl.module, decl.binds), constants)
     }
 
     /// With specialization constants (`constant_id = i` takes `constants[i]`).
