@@ -312,6 +312,13 @@ pub enum GBufferMode {
     Visibility,
 }
 
+impl GBufferMode {
+    /// Whether the G-buffer is a visibility buffer and its resolve.
+    pub fn visibility(self) -> bool {
+        self == GBufferMode::Visibility
+    }
+}
+
 /// When CCIPCA orthogonalizes its bases (the article's Algorithm 2).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, clap::ValueEnum)]
 #[serde(rename_all = "lowercase")]

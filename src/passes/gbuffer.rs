@@ -3,7 +3,7 @@
 //! `--gbuffer visibility` the raster pass writes each pixel's triangle (and, in a scene with
 //! textures, albedo) and a compute pass rebuilds the other targets from the triangles.
 
-use super::compute::{ComputePass, Dispatch, FrameSet};
+use super::compute::{ComputePass, Dispatch, FrameSet, PassDecl};
 use super::decl::{Bind, Resolve, Slot, Use};
 use super::layout::PassLayout;
 use super::pass_id::PassId;
@@ -11,7 +11,7 @@ use super::raster::{MaterialPipelines, RasterModules, FLAT_BINDINGS, TEXTURED_BI
 use crate::error::Result;
 use crate::resources::scene_gpu::SceneGpu;
 use crate::resources::targets::{DEPTH_FORMAT, GBUFFER_COLOR_FORMATS, VISIBILITY_FORMAT};
-use crate::shaders::{self, GBufferResolvePush, ShaderModuleInfo};
+use crate::shaders::{self, GBufferResolvePush};
 use crate::vk::recorder::Recorder;
 use crate::vk::{Context, DescriptorPool, Tracker};
 use ash::vk;
@@ -39,19 +39,7 @@ const VISIBILITY_ALBEDO_TARGETS: &[Bind] = &[
     Bind::new(0, Slot::GDepth, Use::DepthAttachment),
 ];
 
-/// gbuffer_resolve.comp's textured-scene permutation: albedo is the raster pass's.
-const RESOLVE_TEXTURED: &[Bind] = &[
-    Bind::new(0, Slot::GVisibility, Use::StorageRead),
-    Bind::new(1, Slot::SceneVertices, Use::BufferRead),
-    Bind::new(2, Slot::SceneIndices, Use::BufferRead),
-    Bind::new(3, Slot::SceneTriangleDraws, Use::BufferRead),
-    Bind::new(4, Slot::SceneDraws, Use::BufferRead),
-    Bind::new(5, Slot::GPosition, Use::StorageWrite),
-    Bind::new(6, Slot::GNormal, Use::StorageWrite),
-    Bind::new(7, Slot::GMotion, Use::StorageWrite),
-];
-
-/// Without textures the resolve writes albedo too.
+/// gbuffer_resolve.comp's bindings; without textures the resolve writes albedo too (the last).
 const RESOLVE_FLAT: &[Bind] = &[
     Bind::new(0, Slot::GVisibility, Use::StorageRead),
     Bind::new(1, Slot::SceneVertices, Use::BufferRead),
@@ -63,6 +51,20 @@ const RESOLVE_FLAT: &[Bind] = &[
     Bind::new(7, Slot::GMotion, Use::StorageWrite),
     Bind::new(8, Slot::GAlbedo, Use::StorageWrite),
 ];
+
+/// The textured-scene permutation: the same less albedo, which is the raster pass's.
+const RESOLVE_TEXTURED: &[Bind] = RESOLVE_FLAT.split_at(RESOLVE_FLAT.len() - 1).0;
+
+const RESOLVE_FLAT_PASS: PassDecl = PassDecl::new(
+    PassId::GBufferResolve,
+    &shaders::GBUFFER_RESOLVE_COMP_FLAT,
+    RESOLVE_FLAT,
+);
+const RESOLVE_TEXTURED_PASS: PassDecl = PassDecl::new(
+    PassId::GBufferResolve,
+    &shaders::GBUFFER_RESOLVE_COMP_TEXTURED,
+    RESOLVE_TEXTURED,
+);
 
 const MODULES: RasterModules = RasterModules {
     vertex: &shaders::MESH_VERT_CAMERA,
@@ -93,7 +95,7 @@ const VISIBILITY_ALBEDO_MODULES: RasterModules = RasterModules {
 struct Variant {
     targets: &'static [Bind],
     modules: &'static RasterModules,
-    resolve: Option<(&'static ShaderModuleInfo, &'static [Bind])>,
+    resolve: Option<&'static PassDecl>,
 }
 
 /// `visibility`: `--gbuffer visibility`.
@@ -107,12 +109,12 @@ fn variant(visibility: bool, textured: bool) -> Variant {
         (true, false) => Variant {
             targets: VISIBILITY_TARGETS,
             modules: &VISIBILITY_MODULES,
-            resolve: Some((&shaders::GBUFFER_RESOLVE_COMP_FLAT, RESOLVE_FLAT)),
+            resolve: Some(&RESOLVE_FLAT_PASS),
         },
         (true, true) => Variant {
             targets: VISIBILITY_ALBEDO_TARGETS,
             modules: &VISIBILITY_ALBEDO_MODULES,
-            resolve: Some((&shaders::GBUFFER_RESOLVE_COMP_TEXTURED, RESOLVE_TEXTURED)),
+            resolve: Some(&RESOLVE_TEXTURED_PASS),
         },
     }
 }
@@ -152,8 +154,8 @@ pub fn layouts() -> Vec<PassLayout> {
                 declared: declared.to_vec(),
                 binds: m.targets.to_vec(),
             });
-            if let Some((module, binds)) = m.resolve {
-                v.push(ComputePass::layout(PassId::GBufferResolve, module, binds));
+            if let Some(decl) = m.resolve {
+                v.push(decl.layout());
             }
         }
     }
@@ -196,9 +198,7 @@ impl GBufferPass {
         pipelines.first_triangle_instance = v.resolve.is_some();
         let resolve = v
             .resolve
-            .map(|(module, binds)| {
-                ComputePass::new(ctx, pool, PassId::GBufferResolve, module, binds)
-            })
+            .map(|decl| ComputePass::declared(ctx, pool, decl))
             .transpose()?;
         Ok(Self {
             pipelines,

@@ -204,7 +204,7 @@ pub fn triggers(config: &RenderConfig, effects: &[Box<dyn Effect>]) -> Vec<Trigg
         effect,
     };
     let mut rows = vec![row(PassId::LightView, None), row(PassId::GBuffer, None)];
-    if config.gbuffer == crate::config::GBufferMode::Visibility {
+    if config.gbuffer.visibility() {
         rows.push(row(PassId::GBufferResolve, None));
     }
     for e in effects {

@@ -1,6 +1,6 @@
 //! A frame is a plan: from this frame's inputs and what the renderer remembers of the frames
-//! before, which steps of docs/ARCHITECTURE.md's "One frame" run, which are left out and why (`skip.rs`),
-//! how the camera moved (moving, come to rest: re-accumulation starts), whether the light
+//! before, which steps of docs/ARCHITECTURE.md's "One frame" run, which are left out and why
+//! (`skip.rs`), how the camera moved (moving, come to rest: re-accumulation starts), whether the light
 //! moved and the light view is rendered again, and what the moving objects invalidate.
 //! Planning needs no device; `Renderer::render_frame_with` records what the plan says.
 

@@ -1,5 +1,6 @@
-//! The frame as a list of steps over the registered effects (docs/ARCHITECTURE.md's "One frame"), frames
-//! in flight and the shared targets; each frame records what its plan (`frame_plan.rs`) runs:
+//! The frame as a list of steps over the registered effects (docs/ARCHITECTURE.md's "One
+//! frame"), frames in flight and the shared targets; each frame records what its plan
+//! (`frame_plan.rs`) runs:
 //!
 //! light view (only when the light changed) → G-buffer → reprojection of every temporal effect
 //! → each effect's passes (shadow + direct, SSAO [+ blur], indirect light) → composite.
@@ -101,7 +102,7 @@ pub struct Renderer {
 impl Renderer {
     pub fn new(ctx: &Arc<Context>, scene: Scene, config: RenderConfig) -> Result<Self> {
         config.validate()?;
-        if config.gbuffer == crate::config::GBufferMode::Visibility && !ctx.info.geometry_shader {
+        if config.gbuffer.visibility() && !ctx.info.geometry_shader {
             return Err(Error::Config(format!(
                 "--gbuffer visibility reads gl_PrimitiveID, which needs the geometryShader \
                  feature; {} does not have it (use --gbuffer raster)",
@@ -121,7 +122,7 @@ impl Renderer {
             &scene.mesh,
             &scene.objects,
             light_view.material_layout(),
-            config.gbuffer == crate::config::GBufferMode::Visibility,
+            config.gbuffer.visibility(),
         )?;
         let effects = effects::create(&mut Setup {
             ctx,
@@ -177,12 +178,7 @@ impl Renderer {
             scene,
             passes: FramePasses {
                 light_view,
-                gbuffer: GBufferPass::new(
-                    ctx,
-                    &pool,
-                    textured,
-                    config.gbuffer == crate::config::GBufferMode::Visibility,
-                )?,
+                gbuffer: GBufferPass::new(ctx, &pool, textured, config.gbuffer.visibility())?,
                 composite,
                 sraa,
                 ssaa,

@@ -114,14 +114,14 @@ impl VisibilityTables {
             .iter()
             .flat_map(|d| d.to_le_bytes())
             .collect();
-        let buffer = Buffer::new(
+        let buffer = uploaded(
             ctx,
+            tracker,
             "scene.triangle_draws",
-            bytes.len().max(4) as u64,
-            vk::BufferUsageFlags::STORAGE_BUFFER | vk::BufferUsageFlags::TRANSFER_DST,
-            MemoryLocation::GpuOnly,
+            &bytes,
+            vk::BufferUsageFlags::STORAGE_BUFFER,
+            Access::ComputeStorageRead,
         )?;
-        upload_buffer(ctx, tracker, &buffer, &bytes, Access::ComputeStorageRead)?;
         let table = Buffer::new(
             ctx,
             "scene.draws",
@@ -178,9 +178,7 @@ fn combine(statics: &Mesh, objects: &[DynamicObject]) -> (Vec<u8>, Vec<u8>, Vec<
 impl SceneGpu {
     /// The pose of `draw`'s object (still for what stands still).
     pub fn pose(&self, draw: &Draw) -> Pose {
-        draw.object
-            .and_then(|o| self.poses.get(o).copied())
-            .unwrap_or(Pose::STILL)
+        pose_of(&self.poses, draw)
     }
 
     /// First entry of `slot`'s draw table (the resolve's push constant).
@@ -189,23 +187,28 @@ impl SceneGpu {
     }
 
     /// Copy every draw's colour and pose for this frame into `slot`'s draw table (visibility
-    /// buffer only; the slot's last frame has finished).
+    /// buffer only; the slot's last frame has finished). A scene without moving objects has
+    /// its tables written once, at creation: nothing in them changes.
     pub fn write_draw_table(&mut self, slot: usize) -> Result<()> {
-        let entries: Vec<u8> = self
-            .draws
-            .iter()
-            .flat_map(|d| self.materials[d.material].push_bytes(&self.pose(d)))
-            .collect();
+        if self.poses.is_empty() {
+            return Ok(());
+        }
+        self.fill_draw_table(slot)
+    }
+
+    fn fill_draw_table(&mut self, slot: usize) -> Result<()> {
         let Some(tables) = &mut self.visibility else {
             return Ok(());
         };
-        let start = slot * entries.len();
-        let dst = tables
+        let size = self.draws.len() * MaterialPush::SIZE;
+        let table = tables
             .draws
             .mapped_mut()
-            .and_then(|m| m.get_mut(start..start + entries.len()))
+            .and_then(|m| m.get_mut(slot * size..(slot + 1) * size))
             .ok_or_else(|| Error::Config("the draw table is not host-visible".into()))?;
-        dst.copy_from_slice(&entries);
+        for (entry, d) in table.chunks_exact_mut(MaterialPush::SIZE).zip(&self.draws) {
+            entry.copy_from_slice(&self.materials[d.material].push_bytes(&pose_of(&self.poses, d)));
+        }
         Ok(())
     }
 
@@ -230,26 +233,24 @@ impl SceneGpu {
             .iter()
             .chain(objects.iter().flat_map(|o| &o.mesh.materials))
             .collect();
-        let vertices = Buffer::new(
+        // Storage too: the visibility buffer's resolve reads the triangles.
+        let storage = vk::BufferUsageFlags::STORAGE_BUFFER;
+        let vertices = uploaded(
             ctx,
+            tracker,
             "scene.vertices",
-            vdata.len() as u64,
-            vk::BufferUsageFlags::VERTEX_BUFFER
-                | vk::BufferUsageFlags::STORAGE_BUFFER
-                | vk::BufferUsageFlags::TRANSFER_DST,
-            MemoryLocation::GpuOnly,
+            &vdata,
+            vk::BufferUsageFlags::VERTEX_BUFFER | storage,
+            Access::VertexBufferRead,
         )?;
-        let indices = Buffer::new(
+        let indices = uploaded(
             ctx,
+            tracker,
             "scene.indices",
-            idata.len() as u64,
-            vk::BufferUsageFlags::INDEX_BUFFER
-                | vk::BufferUsageFlags::STORAGE_BUFFER
-                | vk::BufferUsageFlags::TRANSFER_DST,
-            MemoryLocation::GpuOnly,
+            &idata,
+            vk::BufferUsageFlags::INDEX_BUFFER | storage,
+            Access::IndexBufferRead,
         )?;
-        upload_buffer(ctx, tracker, &vertices, &vdata, Access::VertexBufferRead)?;
-        upload_buffer(ctx, tracker, &indices, &idata, Access::IndexBufferRead)?;
         let visibility = visibility
             .then(|| VisibilityTables::new(ctx, tracker, &draws, idata.len() / 12))
             .transpose()?;
@@ -312,7 +313,7 @@ impl SceneGpu {
                 texture_set,
             });
         }
-        Ok(Self {
+        let mut scene = Self {
             vertices,
             indices,
             draws,
@@ -321,6 +322,37 @@ impl SceneGpu {
             visibility,
             _textures: textures,
             _sampler: sampler,
-        })
+        };
+        for slot in 0..FRAMES_IN_FLIGHT {
+            scene.fill_draw_table(slot)?;
+        }
+        Ok(scene)
     }
+}
+
+/// The pose of `draw`'s object among `poses` (still for what stands still).
+fn pose_of(poses: &[Pose], draw: &Draw) -> Pose {
+    draw.object
+        .and_then(|o| poses.get(o).copied())
+        .unwrap_or(Pose::STILL)
+}
+
+/// A device-local buffer of `usage` holding `bytes`, left in `then`.
+fn uploaded(
+    ctx: &Arc<Context>,
+    tracker: &mut Tracker,
+    name: &str,
+    bytes: &[u8],
+    usage: vk::BufferUsageFlags,
+    then: Access,
+) -> Result<Buffer> {
+    let buffer = Buffer::new(
+        ctx,
+        name,
+        bytes.len().max(4) as u64,
+        usage | vk::BufferUsageFlags::TRANSFER_DST,
+        MemoryLocation::GpuOnly,
+    )?;
+    upload_buffer(ctx, tracker, &buffer, bytes, then)?;
+    Ok(buffer)
 }
