@@ -1,4 +1,5 @@
-//! Compiles every `shaders/*.{vert,frag,comp}` (and each of its permutations) to SPIR-V with
+//! Compiles every `shaders/*.{vert,frag,comp}` and `shaders/<effect>/*.{vert,frag,comp}` (an
+//! effect's passes, beside its private headers) and each of their permutations to SPIR-V with
 //! glslang, validates the result with naga and generates `shaders.rs` in OUT_DIR: one
 //! `ShaderModuleInfo` per module holding its SPIR-V and its reflected bindings, push-constant
 //! size and workgroup size, so the Rust side cannot silently disagree with the shaders.
@@ -20,8 +21,10 @@ use std::collections::BTreeMap;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
+/// Resolves `#include "x.glsl"` in the including shader's own folder first (an effect's
+/// private headers live beside its passes), then in `shaders/include/`.
 struct Includer {
-    dir: PathBuf,
+    dirs: Vec<PathBuf>,
     seen: Vec<PathBuf>,
 }
 
@@ -33,8 +36,10 @@ impl glslang::include::IncludeHandler for Includer {
         _includer_name: &str,
         _depth: usize,
     ) -> Option<glslang::include::IncludeResult> {
-        let path = self.dir.join(header_name);
-        let data = std::fs::read_to_string(&path).ok()?;
+        let (path, data) = self.dirs.iter().find_map(|d| {
+            let path = d.join(header_name);
+            std::fs::read_to_string(&path).ok().map(|data| (path, data))
+        })?;
         self.seen.push(path);
         Some(glslang::include::IncludeResult {
             name: header_name.to_string(),
@@ -112,8 +117,11 @@ fn compile(
         version_profile: None,
         messages: glslang::ShaderMessage::DEFAULT,
     };
+    // `file` is relative to the crate root, the folder above shaders/include/.
+    let root = include_dir.ancestors().nth(2).unwrap_or(Path::new("."));
+    let own_dir = root.join(file.parent().unwrap_or(Path::new("shaders")));
     let mut includer = Includer {
-        dir: include_dir.to_path_buf(),
+        dirs: vec![own_dir.to_path_buf(), include_dir.to_path_buf()],
         seen: Vec::new(),
     };
     let defines: Vec<(&str, Option<&str>)> = perm
@@ -228,6 +236,12 @@ fn reflect(
     }
     bindings.sort();
     let file_name = file.file_name().unwrap().to_string_lossy();
+    // The module's name: its path under shaders/ (`ssdo/ssdo.comp` for an effect's pass).
+    let source_name = file
+        .strip_prefix("shaders")
+        .unwrap_or(file)
+        .to_string_lossy()
+        .replace('\\', "/");
     let spv_name = if suffix.is_empty() {
         format!("{file_name}.spv")
     } else {
@@ -236,7 +250,7 @@ fn reflect(
     let wg = entry.workgroup_size;
     let _ = writeln!(
         out,
-        "pub static {ident}: ShaderModuleInfo = ShaderModuleInfo {{\n    name: \"{file_name}\",\n    permutation: \"{suffix}\",\n    stage: ShaderStage::{stage},\n    spirv: include_bytes!(concat!(env!(\"OUT_DIR\"), \"/shaders/{spv_name}\")),\n    bindings: &["
+        "pub static {ident}: ShaderModuleInfo = ShaderModuleInfo {{\n    name: \"{source_name}\",\n    permutation: \"{suffix}\",\n    stage: ShaderStage::{stage},\n    spirv: include_bytes!(concat!(env!(\"OUT_DIR\"), \"/shaders/{spv_name}\")),\n    bindings: &["
     );
     for (set, binding, kind, count) in bindings {
         let _ = writeln!(
@@ -281,8 +295,23 @@ fn main() {
     };
     let probe_dir = shader_dir.join("probes");
     println!("cargo:rerun-if-changed=shaders/probes");
-    let files: Vec<(PathBuf, bool)> = shader_files(&shader_dir)
-        .into_iter()
+    // Passes: shaders/ and each effect's folder under it (its passes and private headers).
+    let mut pass_dirs = vec![shader_dir.clone()];
+    let mut effect_dirs: Vec<PathBuf> = std::fs::read_dir(&shader_dir)
+        .map(|entries| entries.filter_map(|e| e.ok().map(|e| e.path())).collect())
+        .unwrap_or_default();
+    effect_dirs.retain(|d| d.is_dir() && *d != include_dir && *d != probe_dir);
+    effect_dirs.sort();
+    for d in &effect_dirs {
+        println!("cargo:rerun-if-changed={}", d.display());
+        for e in std::fs::read_dir(d).into_iter().flatten().flatten() {
+            println!("cargo:rerun-if-changed={}", e.path().display());
+        }
+    }
+    pass_dirs.extend(effect_dirs);
+    let files: Vec<(PathBuf, bool)> = pass_dirs
+        .iter()
+        .flat_map(|d| shader_files(d))
         .map(|f| (f, false))
         .chain(shader_files(&probe_dir).into_iter().map(|f| (f, true)))
         .collect();
@@ -330,6 +359,11 @@ fn main() {
                     )
                 },
             ) {
+                Ok(()) if all.contains(&ident) || probes.contains(&ident) => errors.push(format!(
+                    "{}: module {ident} is also another folder's: a shader's name is its \
+                     module's, so it must be unique across shaders/",
+                    rel.display()
+                )),
                 Ok(()) if *probe => probes.push(ident),
                 Ok(()) => all.push(ident),
                 Err(e) => errors.push(e),

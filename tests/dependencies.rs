@@ -40,8 +40,13 @@ fn expanded(path: &Path, seen: &mut BTreeSet<std::path::PathBuf>, out: &mut Stri
     for line in text.lines() {
         let code = line.split("//").next().unwrap_or("");
         if let Some(rest) = code.trim().strip_prefix("#include \"") {
+            // As build.rs resolves it: the shader's own folder first, then shaders/include.
             let name = rest.trim_end_matches('"');
-            expanded(&shaders().join("include").join(name), seen, out);
+            let own = path.parent().map(|d| d.join(name));
+            let header = own
+                .filter(|p| p.exists())
+                .unwrap_or_else(|| shaders().join("include").join(name));
+            expanded(&header, seen, out);
         } else {
             out.push_str(code);
             out.push('\n');

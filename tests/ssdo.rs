@@ -240,7 +240,7 @@ fn cpu_ssdo(
     for i in 0..samples {
         let (omega, r) = hemisphere_sample(i, x as i32, y as i32, n, r_max);
         let s = p + r * omega;
-        // L_in: ambient plus the spot over its cosine-power lobe (shaders/include/ssdo.glsl).
+        // L_in: ambient plus the spot over its cosine-power lobe (shaders/ssdo/ssdo.glsl).
         let to_light = light.position - p;
         let dist2 = to_light.length_squared().max(light.min_distance_sq());
         let l = to_light.normalize();

@@ -115,7 +115,7 @@ pub enum SsdoForm {
 
 /// Szentandrasi's pre-pass (sections 4.2-4.3): each block of `scale` x `scale` pixels takes
 /// `min` samples plus one Halton period (10) for each threshold its change measure exceeds
-/// (shaders/ssdo_samples.comp).
+/// (shaders/ssdo/ssdo_samples.comp).
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
 pub struct AdaptiveSamples {
     pub min: u32,

@@ -1,7 +1,8 @@
 //! Effects: direct light with PCF shadows, SSAO, one-bounce indirect light (accumulated, or
-//! filtered by CCIPCA or a joint bilateral filter), SSDO. Each is one module that owns its passes, its size-dependent
-//! images, its temporal history and counters, its debug views and its contribution to the
-//! composite, and is registered in [`create`] with one line. The renderer only walks the list (see docs/ARCHITECTURE.md).
+//! filtered by CCIPCA or a joint bilateral filter), SSDO. Each is a folder here (its shaders in
+//! `shaders/<effect>/`) that owns its passes, its size-dependent images, its temporal history
+//! and counters, its debug views and its contribution to the composite, and is registered in
+//! [`create`] with one line. The renderer only walks the list (see docs/ARCHITECTURE.md).
 
 pub mod ao;
 pub mod ccipca;

@@ -1,5 +1,5 @@
 //! Candid covariance-free incremental PCA (Weng, Zhang & Hwang 2003) as Chen, Lei & Chang 2012
-//! apply it to images, in f64 on the CPU: the model the GPU filter (src/effects/ccipca.rs) is
+//! apply it to images, in f64 on the CPU: the model the GPU filter (src/effects/ccipca/) is
 //! checked against, frame by frame.
 //!
 //! Each frame is one sample: an image of `pixels` x `channels` values, i.e. one vector whose

@@ -2,7 +2,7 @@
 // Joint bilateral upsampling (Kopf et al. 2007) of half-resolution SSDO (Szentandrasi section
 // 4.1): each full-resolution pixel averages the 3x3 low-resolution texels around it, texel t
 // standing for the G-buffer's pixel t * scale, with the weights of the bilateral filter
-// (shaders/ssdo_bilateral.comp) guided by the full-resolution G-buffer:
+// (shaders/ssdo/ssdo_bilateral.comp) guided by the full-resolution G-buffer:
 //  - a Gaussian of the distance from the pixel to the texel's pixel (sigma = scale pixels);
 //  - exp(-(h / 2 footprints)^2), h the texel's distance from the pixel's tangent plane;
 //  - exp(-((1 - n . n') / 0.1)^2) of the normals.

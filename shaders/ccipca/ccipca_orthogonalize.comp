@@ -1,6 +1,6 @@
 #version 460
 // Chen et al.'s Algorithm 2 after the warp, in one pass: every basis becomes its row of the
-// transform the sums pass derived from the warped bases' Gram matrix (shaders/ccipca_sums.comp,
+// transform the sums pass derived from the warped bases' Gram matrix (shaders/ccipca/ccipca_sums.comp,
 // `gram`), v'_j = sum over m <= j of T_jm v_m, so the bases are read and written once. A warp
 // adds and removes dimensions, which breaks the orthogonality CCIPCA's updates assume.
 #extension GL_GOOGLE_include_directive : require

@@ -46,7 +46,7 @@ const BASES_PREV: Slot = Slot::OwnBuffer("bases_prev");
 
 /// Pixels per side of the groups whose partial sums are stored.
 const GROUP_SIDE: u32 = 16;
-/// Room for vec4 of sums per group and per basis (shaders/include/ccipca.glsl's SUM_VEC4S).
+/// Room for vec4 of sums per group and per basis (shaders/ccipca/ccipca.glsl's SUM_VEC4S).
 const SUM_VEC4S: u64 = 9;
 /// vec4 of sums of one basis update (UPDATE_SUM_VEC4S).
 const UPDATE_SUM_VEC4S: u32 = 2;

@@ -3,7 +3,7 @@
 // by a joint bilateral filter of radius `filter_radius` into the other bases buffer, which the
 // next frame works on. A basis is a learned image of the light and its variations, smooth
 // wherever the light is; the noise of the samples it was updated from is not, and would reach
-// every later projection. Weights as the joint bilateral baselines' (shaders/indirect_jbf.comp):
+// every later projection. Weights as the joint bilateral baselines' (shaders/jbf/indirect_jbf.comp):
 // Gaussian in screen distance (sigma = radius / 2), normal agreement ^16, tangent-plane
 // distance in pixel footprints (sigma 2). Basis 0's sample counts are the pixel's own.
 // Filtering each basis on its own tilts them towards each other (all lean to the smooth
