@@ -164,10 +164,18 @@ fn paths_resolve_to_modules() {
 }
 
 /// The layers of docs/ARCHITECTURE.md, lowest first: a module may use its own layer and the
-/// ones below. `scene`, `reference`, `config`, `shaders` (generated), `error`, `files` and
-/// `interrupt` are beside the stack: anyone may use them, and they use only `vk` and each other.
+/// ones below. `scene`, `reference`, `config` (with each effect's `config.rs`), `shaders`
+/// (generated), `error`, `files` and `interrupt` are beside the stack: anyone may use them,
+/// and they use only `vk` and each other.
 fn layer(module: &str) -> usize {
-    match module.split("::").next().unwrap_or("") {
+    // An effect's configuration (`effects::<effect>::config`: its parameters, their
+    // validation and value parsers) is plain data in the effect's folder: `RenderConfig`
+    // holds it, so it sits with `config` and may use only what `config` may.
+    let parts: Vec<&str> = module.split("::").collect();
+    if parts.len() == 3 && parts[0] == "effects" && parts[2] == "config" {
+        return 0;
+    }
+    match parts[0] {
         "error" | "files" | "interrupt" | "shaders" | "scene" | "reference" | "vk" | "config" => 0,
         "resources" => 1,
         "passes" => 2,

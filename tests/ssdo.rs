@@ -9,7 +9,8 @@ mod common;
 
 use glam::{Mat4, Vec2, Vec3, Vec4};
 use ssgi::config::pcf::Pcf;
-use ssgi::config::{AdaptiveSamples, Effects, RenderConfig, SsdoConfig, SsdoForm, TemporalConfig};
+use ssgi::config::{Effects, RenderConfig, TemporalConfig};
+use ssgi::effects::ssdo::config::{AdaptiveSamples, SsdoConfig, SsdoForm};
 use ssgi::renderer::Renderer;
 use ssgi::resources::targets::Target;
 use ssgi::scene::{cornell_box, Camera, Material, MeshBuilder, Scene, SpotLight};

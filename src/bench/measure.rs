@@ -5,7 +5,8 @@
 
 use super::metrics::Channels;
 use super::{warmup, Report};
-use crate::config::{Effects, SsdoForm};
+use crate::config::Effects;
+use crate::effects::ssdo::config::SsdoForm;
 use crate::error::Result;
 use crate::frontend::progress::Progress;
 use crate::frontend::sink::FrameSink;

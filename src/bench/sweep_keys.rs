@@ -3,12 +3,12 @@
 //! `--reuse`, ...), so a sweep accepts exactly what a single run accepts.
 
 use crate::config::parse::{
-    parse_bias, parse_bilateral, parse_ema_alpha, parse_epsilon, parse_fraction, parse_gate,
-    parse_on_off, parse_pattern_count, parse_ssdo_scale, parse_vpls, AccumulateMode,
+    parse_bias, parse_ema_alpha, parse_epsilon, parse_fraction, parse_gate, parse_on_off,
+    parse_pattern_count, parse_vpls, AccumulateMode,
 };
-use crate::config::{
-    Accumulate, AoConfig, AoEstimator, HistoryResample, Refresh, SsdoConfig, SsdoForm,
-};
+use crate::config::{Accumulate, AoConfig, AoEstimator, HistoryResample, Refresh};
+use crate::effects::ssdo::config::{parse_bilateral, parse_ssdo_scale};
+use crate::effects::ssdo::config::{SsdoConfig, SsdoForm};
 use crate::error::{Error, Result};
 use crate::renderer::frame::Pcf;
 use crate::renderer::RenderConfig;

@@ -1,7 +1,8 @@
 //! Szentandrási et al.'s Table 1 (frame rates of SSAO and SSDO at 1024x768 on an ATI Radeon
 //! HD 4850): its scenes, its rows as renderer configurations, and its numbers.
 
-use crate::config::{AdaptiveSamples, Effects, SsdoConfig, SsdoForm, TemporalConfig};
+use crate::config::{Effects, TemporalConfig};
+use crate::effects::ssdo::config::{AdaptiveSamples, SsdoConfig, SsdoForm};
 use crate::renderer::RenderConfig;
 use serde::Serialize;
 

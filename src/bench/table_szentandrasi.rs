@@ -28,7 +28,7 @@ use super::szentandrasi::{PaperRow, PaperScene, RATIOS, REFERENCE_SAMPLES, ROWS,
 use super::table_run::{fixed, write_reports, TableRun};
 use super::warmup::before_path;
 use super::{Report, TableOptions};
-use crate::config::SsdoForm;
+use crate::effects::ssdo::config::SsdoForm;
 use crate::error::{Error, Result};
 use crate::frontend::sink::FrameSink;
 use crate::scene::{load_scene, CameraPath, Scene};

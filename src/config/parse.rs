@@ -1,7 +1,7 @@
 //! The option values' parsers (strings to validated values), shared by the command line
 //! (`cli::args`) and the sweep's keys (`bench::sweep_keys`), and `--accumulate`'s choices.
 
-use super::{Epsilon, SsdoConfig};
+use super::Epsilon;
 
 /// `--accumulate` choices.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
@@ -10,31 +10,6 @@ pub enum AccumulateMode {
     Confidence,
     Ema,
     Mean,
-}
-
-/// `--ssdo-scale`: `1` or `0.5` (also `1/2`), returned as the resolution divisor.
-pub fn parse_ssdo_scale(s: &str) -> Result<u32, String> {
-    match s.trim() {
-        "1" | "1.0" => Ok(1),
-        "0.5" | ".5" | "1/2" => Ok(2),
-        _ => Err(format!(
-            "--ssdo-scale takes 1 (full resolution) or 0.5 (half), not {s:?}"
-        )),
-    }
-}
-
-/// `--bilateral`: an odd side up to 31, or `off` (0).
-pub fn parse_bilateral(s: &str) -> Result<u32, String> {
-    if s == "off" {
-        return Ok(0);
-    }
-    match s.parse::<u32>() {
-        Ok(n) if n % 2 == 1 && n <= SsdoConfig::MAX_FILTER => Ok(n),
-        _ => Err(format!(
-            "--bilateral takes an odd side from 1 to {} or off, not {s:?}",
-            SsdoConfig::MAX_FILTER
-        )),
-    }
 }
 
 /// A share of a frame's work: `5%` or `0.05`, in (0, 100] (above 1: more than a frame, e.g.

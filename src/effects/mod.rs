@@ -18,6 +18,7 @@ pub use effect::{
     TermKind,
 };
 
+use crate::config::RenderConfig;
 use crate::error::Result;
 use crate::passes::PassLayout;
 
@@ -49,4 +50,19 @@ pub fn all_layouts() -> Vec<PassLayout> {
         v.extend((r.layouts)());
     }
     v
+}
+
+/// Every effect's own command-line options, flattened into each subcommand that renders (an
+/// effect adds its `Args` struct here and its part of the configuration in `apply`).
+#[derive(clap::Args, Debug, Clone)]
+pub struct EffectArgs {
+    #[command(flatten)]
+    pub ssdo: ssdo::args::SsdoArgs,
+}
+
+impl EffectArgs {
+    /// Write each effect's part of `config` from its options.
+    pub fn apply(&self, config: &mut RenderConfig) {
+        config.ssdo = self.ssdo.config();
+    }
 }

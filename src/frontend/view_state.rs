@@ -1,7 +1,7 @@
 //! What the viewer's keys control: the displayed buffer, effect switches and temporal reuse,
 //! and how they map onto a renderer configuration.
 
-use crate::config::SsdoConfig;
+use crate::effects::ssdo::config::SsdoConfig;
 use crate::renderer::frame::Pcf;
 use crate::renderer::RenderConfig;
 use crate::resources::targets::Target;

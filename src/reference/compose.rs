@@ -3,8 +3,9 @@
 //! (π·E₁)/π, then Reinhard c/(1 + c) and the sRGB encoding, for the terms a run estimates.
 
 use super::trace::Reference;
+use crate::config::Effects;
 use crate::config::RenderConfig;
-use crate::config::{Effects, SsdoForm};
+use crate::effects::ssdo::config::SsdoForm;
 use glam::Vec3;
 
 /// The reference buffers a configuration's final image estimates. SSDO estimates the

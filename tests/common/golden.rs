@@ -3,7 +3,8 @@
 //! only thing that writes them).
 
 use ssgi::config::pcf::Pcf;
-use ssgi::config::{AaMode, Effects, HistoryResample, IndirectFilter, SsdoForm};
+use ssgi::config::{AaMode, Effects, HistoryResample, IndirectFilter};
+use ssgi::effects::ssdo::config::SsdoForm;
 use ssgi::renderer::{RenderConfig, Renderer};
 use ssgi::resources::targets::Target;
 use ssgi::scene::{load_scene, CameraPath, Orbit};

@@ -8,13 +8,16 @@
 //! resolution and a joint bilateral upsampling brings the result to the frame's. Every pixel
 //! every frame, no temporal reuse.
 
+pub mod args;
+pub mod config;
+
 use super::effect::TermKind;
 use super::effect::{
     every_pixel, refresh_dispatch, Effect, EffectId, FrameInfo, Recording, Registration, Setup,
 };
 use super::resolve::EffectResources;
+use crate::config::RenderConfig;
 use crate::config::FRAMES_IN_FLIGHT;
-use crate::config::{RenderConfig, SsdoForm};
 use crate::error::Result;
 use crate::passes::compute::{ComputePass, Dispatch, PassDecl};
 use crate::passes::decl::{Bind, Slot, Use};
@@ -27,6 +30,7 @@ use crate::shaders::{self, EffectPush};
 use crate::vk::recorder::Recorder;
 use crate::vk::{Buffer, Context, Image, ImageDesc, Tracker};
 use ash::vk;
+use config::SsdoForm;
 use std::sync::Arc;
 
 /// The two-step form's directional-occlusion output: the senders' radiance, a = modulation.
