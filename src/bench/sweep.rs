@@ -178,7 +178,7 @@ pub fn run(
         rows.push(SweepRow {
             label: label
                 .iter()
-                .map(|(k, v)| (k.name().to_string(), v.clone()))
+                .map(|(k, v)| (k.name.to_string(), v.clone()))
                 .collect(),
             config: *config,
             ms,

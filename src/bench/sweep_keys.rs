@@ -1,196 +1,138 @@
 //! The parameters `ssgi sweep --vary KEY=V1,V2,...` can vary, and the cartesian product of the
 //! values given. Values use the command line's syntax and parsers (`--pcf`, `--vpls`,
-//! `--reuse`, ...), so a sweep accepts exactly what a single run accepts.
+//! `--reuse`, ...), so a sweep accepts exactly what a single run accepts. The frame-wide keys
+//! (the cache's, the shadow map's size) are here; each effect declares its own in its folder
+//! (`effects/<effect>/sweep.rs`) and the registry lists them.
 
 use crate::config::parse::{
-    parse_bias, parse_ema_alpha, parse_epsilon, parse_fraction, parse_gate, parse_on_off,
-    parse_pattern_count, parse_vpls, AccumulateMode,
+    parse_bias, parse_count, parse_ema_alpha, parse_epsilon, parse_fraction, parse_gate,
+    parse_on_off, parse_pattern_count, AccumulateMode,
 };
-use crate::config::{Accumulate, AoConfig, AoEstimator, HistoryResample, Refresh};
-use crate::effects::ssdo::config::{parse_bilateral, parse_ssdo_scale};
-use crate::effects::ssdo::config::{SsdoConfig, SsdoForm};
+use crate::config::sweep_key::SweepKey;
+use crate::config::{Accumulate, HistoryResample, Refresh};
 use crate::error::{Error, Result};
-use crate::renderer::frame::Pcf;
 use crate::renderer::RenderConfig;
 use clap::ValueEnum;
-use std::fmt;
 
 /// Most combinations one sweep may expand to: far beyond any useful run, small enough that a
 /// typo such as ten keys of ten values fails with a message instead of exhausting memory.
 pub const MAX_COMBINATIONS: usize = 4096;
 
-/// A render parameter a sweep can vary.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-pub enum Key {
-    AoSamples,
-    AoEstimator,
-    AoRadius,
-    AoPatterns,
-    AoPositionMips,
-    Reuse,
-    Accumulate,
-    Refresh,
-    RefreshBudget,
-    RotationLimit,
-    Epsilon,
-    Resample,
-    Reaccumulate,
-    Vpls,
-    Interleave,
-    Visibility,
-    HalfRes,
-    Pcf,
-    RsmSize,
-    SsdoForm,
-    SsdoSamples,
-    SsdoRadius,
-    SsdoFilter,
-    SsdoScale,
+/// A key: one of `all_keys()`.
+pub type Key = &'static SweepKey;
+
+/// `temporal.accumulate`, applied after the other keys of a combination so that a bare `mean`
+/// caps at the combination's own rotation limit, like `--accumulate mean` without `--mean-cap`.
+pub const ACCUMULATE: SweepKey = SweepKey {
+    name: "temporal.accumulate",
+    syntax: "gated[:SIGMAS]|confidence[:BIAS]|ema[:ALPHA]|mean[:CAP]",
+    description: "history merge, default parameter if none; mean alone caps at the rotation limit",
+    set: |c, v| {
+        c.temporal.accumulate = parse_accumulate(v, c.temporal.rotation_limit)?;
+        Ok(())
+    },
+};
+
+/// The frame-wide keys: the cache's and the shadow map's size.
+pub const FRAME_KEYS: &[SweepKey] = &[
+    SweepKey {
+        name: "temporal.reuse",
+        syntax: "on|off",
+        description: "reverse-reprojection reuse; off = no-reuse baseline (--reuse)",
+        set: |c, v| {
+            c.temporal.reuse = parse_on_off(v)?;
+            Ok(())
+        },
+    },
+    ACCUMULATE,
+    SweepKey {
+        name: "temporal.refresh",
+        syntax: "feathered|on|hard|off",
+        description: "tiled refresh, one tile recomputed per frame; hard = the thesis's seams",
+        set: |c, v| {
+            c.temporal.refresh = Refresh::from_str(v, false)?;
+            Ok(())
+        },
+    },
+    SweepKey {
+        name: "temporal.refresh_budget",
+        syntax: "PERCENT% or fraction in (0, 100]",
+        description: "refresh work per frame, share of a full frame's (--refresh-budget)",
+        set: |c, v| {
+            c.temporal.refresh_budget = parse_fraction(v)?;
+            Ok(())
+        },
+    },
+    SweepKey {
+        name: "temporal.rotation_limit",
+        syntax: "integer 1..=2048",
+        description: "patterns per pixel before it counts as converged",
+        set: |c, v| {
+            c.temporal.rotation_limit = parse_pattern_count(v)?;
+            Ok(())
+        },
+    },
+    SweepKey {
+        name: "temporal.epsilon",
+        syntax: "NUMBER|abs:NUMBER",
+        description: "disocclusion threshold: pixel footprints, or abs: world units",
+        set: |c, v| {
+            c.temporal.epsilon = parse_epsilon(v)?;
+            Ok(())
+        },
+    },
+    SweepKey {
+        name: "temporal.resample",
+        syntax: "bilinear|point",
+        description: "history read between texels under motion (--history-resample)",
+        set: |c, v| {
+            c.temporal.resample = HistoryResample::from_str(v, false)?;
+            Ok(())
+        },
+    },
+    SweepKey {
+        name: "temporal.reaccumulate",
+        syntax: "on|off",
+        description: "histories re-accumulate when the camera stops (--reaccumulate)",
+        set: |c, v| {
+            c.temporal.reaccumulate = parse_on_off(v)?;
+            Ok(())
+        },
+    },
+    SweepKey {
+        name: "rsm_size",
+        syntax: "integer 1..=16384",
+        description: "side of the (reflective) shadow map in texels (--rsm-size)",
+        set: |c, v| {
+            c.rsm_size = parse_count(v, 1, crate::renderer::MAX_SIZE)?;
+            Ok(())
+        },
+    },
+];
+
+/// Every key, in the order `help_table` lists them: the frame-wide ones, then each effect's
+/// in registry order.
+pub fn all_keys() -> Vec<Key> {
+    FRAME_KEYS
+        .iter()
+        .chain(crate::effects::sweep_keys())
+        .collect()
 }
 
-impl Key {
-    /// Every key, in the order `help_table` lists them.
-    pub const ALL: [Key; 24] = [
-        Key::AoSamples,
-        Key::AoEstimator,
-        Key::AoRadius,
-        Key::AoPatterns,
-        Key::AoPositionMips,
-        Key::Reuse,
-        Key::Accumulate,
-        Key::Refresh,
-        Key::RefreshBudget,
-        Key::RotationLimit,
-        Key::Epsilon,
-        Key::Resample,
-        Key::Reaccumulate,
-        Key::Vpls,
-        Key::Interleave,
-        Key::Visibility,
-        Key::HalfRes,
-        Key::Pcf,
-        Key::RsmSize,
-        Key::SsdoForm,
-        Key::SsdoSamples,
-        Key::SsdoRadius,
-        Key::SsdoFilter,
-        Key::SsdoScale,
-    ];
-
-    /// The name given to `--vary`: the field's path in `RenderConfig`.
-    pub fn name(self) -> &'static str {
-        match self {
-            Key::AoSamples => "ao.samples",
-            Key::AoEstimator => "ao.estimator",
-            Key::AoRadius => "ao.radius",
-            Key::AoPatterns => "ao.patterns",
-            Key::AoPositionMips => "ao.position_mips",
-            Key::Reuse => "temporal.reuse",
-            Key::Accumulate => "temporal.accumulate",
-            Key::Refresh => "temporal.refresh",
-            Key::RefreshBudget => "temporal.refresh_budget",
-            Key::RotationLimit => "temporal.rotation_limit",
-            Key::Epsilon => "temporal.epsilon",
-            Key::Resample => "temporal.resample",
-            Key::Reaccumulate => "temporal.reaccumulate",
-            Key::Vpls => "indirect.vpls",
-            Key::Interleave => "indirect.interleave",
-            Key::Visibility => "indirect.visibility",
-            Key::HalfRes => "indirect.half_res",
-            Key::Pcf => "pcf",
-            Key::RsmSize => "rsm_size",
-            Key::SsdoForm => "ssdo.form",
-            Key::SsdoSamples => "ssdo.samples",
-            Key::SsdoRadius => "ssdo.radius",
-            Key::SsdoFilter => "ssdo.filter",
-            Key::SsdoScale => "ssdo.scale",
-        }
-    }
-
-    pub fn description(self) -> &'static str {
-        match self {
-            Key::AoSamples => "SSAO samples per pattern (--ao-samples)",
-            Key::AoEstimator => "SSAO estimator (--ao)",
-            Key::AoRadius => "SSAO sampling radius, fraction of the scene's bounding radius",
-            Key::AoPatterns => "SSAO patterns evaluated at once per frame",
-            Key::AoPositionMips => {
-                "far SSAO taps read position levels up to this; 0 = off (--ao-position-mips)"
-            }
-            Key::Reuse => "reverse-reprojection reuse; off = no-reuse baseline (--reuse)",
-            Key::Accumulate => {
-                "history merge, default parameter if none; mean alone caps at the rotation limit"
-            }
-            Key::Refresh => {
-                "tiled refresh, one tile recomputed per frame; hard = the thesis's seams"
-            }
-            Key::RefreshBudget => {
-                "refresh work per frame, share of a full frame's (--refresh-budget)"
-            }
-            Key::RotationLimit => "patterns per pixel before it counts as converged",
-            Key::Epsilon => "disocclusion threshold: pixel footprints, or abs: world units",
-            Key::Resample => "history read between texels under motion (--history-resample)",
-            Key::Reaccumulate => "histories re-accumulate when the camera stops (--reaccumulate)",
-            Key::Vpls => "VPLs gathered per pixel and frame; all = every RSM texel (--vpls)",
-            Key::Interleave => "interleaved gather: NxN blocks share the VPLs (--interleave)",
-            Key::Visibility => "screen-space visibility test per VPL (--vpl-visibility)",
-            Key::HalfRes => "indirect gather at half resolution (--half-res)",
-            Key::Pcf => "shadow filtering kernel (--pcf)",
-            Key::RsmSize => "side of the (reflective) shadow map in texels (--rsm-size)",
-            Key::SsdoForm => "SSDO in one pass, Ritschel's two, or SSAO on its pipeline (--ssdo)",
-            Key::SsdoSamples => "SSDO hemisphere samples per pixel (--ssdo-samples)",
-            Key::SsdoRadius => "SSDO hemisphere radius, fraction of the scene's bounding radius",
-            Key::SsdoFilter => "SSDO's separable bilateral filter side (--bilateral)",
-            Key::SsdoScale => "SSDO's resolution, upsampled when half (--ssdo-scale)",
-        }
-    }
-
-    /// The values accepted, as shown in errors and `help_table`.
-    pub fn syntax(self) -> &'static str {
-        match self {
-            Key::AoSamples => "integer 1..=4096",
-            Key::AoEstimator => "thesis|crytek|szentandrasi",
-            Key::AoRadius => "number in (0, 10]",
-            Key::AoPatterns => "integer 1..=1024",
-            Key::AoPositionMips => "integer 0..=3",
-            Key::Reuse | Key::Reaccumulate | Key::Visibility | Key::HalfRes => "on|off",
-            Key::Refresh => "feathered|on|hard|off",
-            Key::RefreshBudget => "PERCENT% or fraction in (0, 100]",
-            Key::Accumulate => "gated[:SIGMAS]|confidence[:BIAS]|ema[:ALPHA]|mean[:CAP]",
-            Key::RotationLimit => "integer 1..=2048",
-            Key::Epsilon => "NUMBER|abs:NUMBER",
-            Key::Resample => "bilinear|point",
-            Key::Vpls => "integer 1..=16384|all",
-            Key::Interleave => "integer 1..=8",
-            Key::Pcf => "hard|9|SQUARE (25, 49, ...)|disc:N",
-            Key::RsmSize => "integer 1..=16384",
-            Key::SsdoForm => "one-step|two-step|ssao",
-            Key::SsdoSamples => "integer 1..=4096",
-            Key::SsdoRadius => "number in (0, 10]",
-            Key::SsdoFilter => "odd integer 1..=31|off",
-            Key::SsdoScale => "1|0.5",
-        }
-    }
-
-    /// The key called `name`; an unknown name gets every valid key in the error.
-    pub fn parse(name: &str) -> Result<Key> {
-        let name = name.trim();
-        Key::ALL
-            .into_iter()
-            .find(|k| k.name() == name)
-            .ok_or_else(|| {
-                let known: Vec<&str> = Key::ALL.iter().map(|k| k.name()).collect();
-                Error::Config(format!(
-                    "unknown --vary key {name:?}; valid keys: {}",
-                    known.join(", ")
-                ))
-            })
-    }
-}
-
-impl fmt::Display for Key {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(self.name())
-    }
+/// The key called `name`; an unknown name gets every valid key in the error.
+pub fn parse_key(name: &str) -> Result<Key> {
+    let name = name.trim();
+    let keys = all_keys();
+    keys.iter()
+        .copied()
+        .find(|k| k.name == name)
+        .ok_or_else(|| {
+            let known: Vec<&str> = keys.iter().map(|k| k.name).collect();
+            Error::Config(format!(
+                "unknown --vary key {name:?}; valid keys: {}",
+                known.join(", ")
+            ))
+        })
 }
 
 /// One `--vary KEY=V1,V2,...`: the values stay strings (trimmed) so reports can label each
@@ -210,24 +152,22 @@ pub fn parse_vary(s: &str) -> Result<Vary> {
             s.trim()
         ))
     })?;
-    let key = Key::parse(name)?;
+    let key = parse_key(name)?;
     let values: Vec<String> = list.split(',').map(|v| v.trim().to_string()).collect();
     if values.iter().any(String::is_empty) {
         return Err(Error::Config(format!(
             "--vary {key}: empty value in {:?} (expected {})",
             list.trim(),
-            key.syntax()
+            key.syntax
         )));
     }
-    let mut settings: Vec<(&str, Setting)> = Vec::with_capacity(values.len());
-    for v in &values {
-        let setting = Setting::parse(key, v)?;
-        if let Some((first, _)) = settings.iter().find(|(_, s)| *s == setting) {
+    for (i, v) in values.iter().enumerate() {
+        check(key, v)?;
+        if let Some(first) = values[..i].iter().find(|w| same_value(key, w, v)) {
             return Err(Error::Config(format!(
                 "--vary {key}: {first:?} and {v:?} set the same value; give each once"
             )));
         }
-        settings.push((v, setting));
     }
     Ok(Vary { key, values })
 }
@@ -235,44 +175,36 @@ pub fn parse_vary(s: &str) -> Result<Vary> {
 /// Set `key`'s field of `config` to `value`. Only the value's syntax and the command line's
 /// range checks happen here; `RenderConfig::validate` is the caller's job, since a value may be
 /// valid or not depending on the other fields (`indirect.vpls=all` needs a small `rsm_size`).
+/// A rejected value leaves `config` as it was.
 pub fn apply(config: &mut RenderConfig, key: Key, value: &str) -> Result<()> {
-    // Setting::parse gives Count and Flag only for the keys matched below.
-    match Setting::parse(key, value.trim())? {
-        Setting::Count(n) => match key {
-            Key::AoSamples => config.ao.samples = n,
-            Key::AoPatterns => config.ao.patterns = n,
-            Key::AoPositionMips => config.ao.position_mips = n,
-            Key::RotationLimit => config.temporal.rotation_limit = n,
-            Key::Vpls => config.indirect.vpls = n,
-            Key::Interleave => config.indirect.interleave = n,
-            Key::SsdoSamples => config.ssdo.samples = n,
-            _ => config.rsm_size = n,
-        },
-        Setting::Flag(on) => match key {
-            Key::Reuse => config.temporal.reuse = on,
-            Key::Reaccumulate => config.temporal.reaccumulate = on,
-            Key::Visibility => config.indirect.visibility = on,
-            _ => config.indirect.half_res = on,
-        },
-        Setting::Radius(r) if key == Key::SsdoRadius => config.ssdo.radius = r,
-        Setting::Radius(r) => config.ao.radius = r,
-        Setting::Form(f) => config.ssdo.form = f,
-        Setting::Filter(side) => config.ssdo.filter = side,
-        Setting::Divisor(d) => config.ssdo.scale = d,
-        Setting::Estimator(e) => config.ao.estimator = e,
-        Setting::Refresh(r) => config.temporal.refresh = r,
-        Setting::Resample(r) => config.temporal.resample = r,
-        Setting::Budget(b) => config.temporal.refresh_budget = b,
-        Setting::Accumulate(a) => config.temporal.accumulate = a,
-        Setting::MeanOfLimit => {
-            config.temporal.accumulate = Accumulate::Mean {
-                cap: config.temporal.rotation_limit,
-            }
-        }
-        Setting::Epsilon(e) => config.temporal.epsilon = e,
-        Setting::Pcf(p) => config.pcf = p,
-    }
+    let mut c = *config;
+    (key.set)(&mut c, value.trim()).map_err(|why| invalid(key, value, &why))?;
+    *config = c;
     Ok(())
+}
+
+fn invalid(key: Key, value: &str, why: &str) -> Error {
+    Error::Config(format!(
+        "--vary {key}: invalid value {value:?} ({why}); expected {}",
+        key.syntax
+    ))
+}
+
+/// Whether `value` is one of `key`'s values.
+fn check(key: Key, value: &str) -> Result<()> {
+    apply(&mut RenderConfig::default(), key, value)
+}
+
+/// Whether two values of `key` set the same configuration from every base: the default, and
+/// the default with another rotation limit (a bare `mean`, capped at the limit, is not `mean:N`
+/// for any one N).
+fn same_value(key: Key, a: &str, b: &str) -> bool {
+    let mut other = RenderConfig::default();
+    other.temporal.rotation_limit += 1;
+    [RenderConfig::default(), other].into_iter().all(|base| {
+        let (mut x, mut y) = (base, base);
+        apply(&mut x, key, a).is_ok() && apply(&mut y, key, b).is_ok() && x == y
+    })
 }
 
 /// A combination's (key, value) pairs, in `--vary` order, values as the user wrote them.
@@ -306,7 +238,7 @@ pub fn combinations(base: &RenderConfig, varies: &[Vary]) -> Result<Vec<(Label, 
         })?;
     // Application order: `--vary` order, with temporal.accumulate moved last.
     let mut order: Vec<usize> = (0..varies.len()).collect();
-    order.sort_by_key(|&i| varies[i].key == Key::Accumulate);
+    order.sort_by_key(|&i| *varies[i].key == ACCUMULATE);
     let mut out = Vec::with_capacity(count);
     for index in 0..count {
         // Mixed-radix digits of `index`, last --vary fastest.
@@ -352,9 +284,9 @@ pub fn describe(label: &[(Key, String)]) -> String {
 /// The keys, their values and what they change, one per line, for `ssgi sweep --help` and
 /// error messages.
 pub fn help_table() -> String {
-    let rows: Vec<[&str; 3]> = Key::ALL
+    let rows: Vec<[&str; 3]> = all_keys()
         .iter()
-        .map(|k| [k.name(), k.syntax(), k.description()])
+        .map(|k| [k.name, k.syntax, k.description])
         .collect();
     let width = |c: usize| {
         rows.iter()
@@ -371,102 +303,33 @@ pub fn help_table() -> String {
     out
 }
 
-/// A parsed value: what `apply` writes, and what makes two values duplicates. A bare `mean`
-/// stays distinct from `mean:N` because its cap follows the rotation limit.
-#[derive(Clone, Copy, Debug, PartialEq)]
-enum Setting {
-    Count(u32),
-    Flag(bool),
-    Radius(f32),
-    Estimator(AoEstimator),
-    Refresh(Refresh),
-    Resample(HistoryResample),
-    Budget(f32),
-    Accumulate(Accumulate),
-    MeanOfLimit,
-    Epsilon(crate::config::Epsilon),
-    Pcf(Pcf),
-    Form(SsdoForm),
-    Filter(u32),
-    /// A resolution divisor.
-    Divisor(u32),
-}
-
-impl Setting {
-    fn parse(key: Key, value: &str) -> Result<Setting> {
-        Setting::parse_inner(key, value).map_err(|why| {
-            Error::Config(format!(
-                "--vary {key}: invalid value {value:?} ({why}); expected {}",
-                key.syntax()
-            ))
-        })
-    }
-
-    fn parse_inner(key: Key, v: &str) -> std::result::Result<Setting, String> {
-        let count = |max: u32| match v.parse::<u32>() {
-            Ok(n) if (1..=max).contains(&n) => Ok(Setting::Count(n)),
-            _ => Err(format!("not an integer in 1..={max}")),
-        };
-        match key {
-            Key::AoSamples => count(4096),
-            Key::AoPatterns => count(1024),
-            Key::AoPositionMips => match v.parse::<u32>() {
-                Ok(n) if n <= AoConfig::MAX_POSITION_MIPS => Ok(Setting::Count(n)),
-                _ => Err(format!(
-                    "not an integer in 0..={}",
-                    AoConfig::MAX_POSITION_MIPS
-                )),
-            },
-            Key::RsmSize => count(crate::renderer::MAX_SIZE),
-            Key::RotationLimit => parse_pattern_count(v).map(Setting::Count),
-            Key::Vpls => parse_vpls(v).map(Setting::Count),
-            Key::Interleave => count(crate::config::IndirectConfig::MAX_INTERLEAVE),
-            Key::Refresh => Refresh::from_str(v, false).map(Setting::Refresh),
-            Key::Resample => HistoryResample::from_str(v, false).map(Setting::Resample),
-            Key::RefreshBudget => parse_fraction(v).map(Setting::Budget),
-            Key::Reuse | Key::Reaccumulate | Key::Visibility | Key::HalfRes => {
-                parse_on_off(v).map(Setting::Flag)
-            }
-            Key::SsdoSamples => count(SsdoConfig::MAX_SAMPLES),
-            Key::SsdoForm => SsdoForm::from_str(v, false).map(Setting::Form),
-            Key::SsdoFilter => parse_bilateral(v).map(Setting::Filter),
-            Key::SsdoScale => parse_ssdo_scale(v).map(Setting::Divisor),
-            Key::AoRadius | Key::SsdoRadius => match v.parse::<f32>() {
-                Ok(r) if r.is_finite() && r > 0.0 && r <= 10.0 => Ok(Setting::Radius(r)),
-                _ => Err("not a number in (0, 10]".into()),
-            },
-            Key::AoEstimator => AoEstimator::from_str(v, false).map(Setting::Estimator),
-            Key::Accumulate => parse_accumulate(v),
-            Key::Epsilon => parse_epsilon(v).map(Setting::Epsilon),
-            Key::Pcf => Pcf::parse(v).map(Setting::Pcf),
-        }
-    }
-}
-
 /// `MODE[:PARAMETER]`: the mode as `--accumulate` takes it, the parameter as `--gate`,
-/// `--bias`, `--ema-alpha` or `--mean-cap` takes it; without one, the command line's default.
-fn parse_accumulate(v: &str) -> std::result::Result<Setting, String> {
+/// `--bias`, `--ema-alpha` or `--mean-cap` takes it; without one, the command line's default
+/// (a bare `mean` caps at `rotation_limit`).
+fn parse_accumulate(v: &str, rotation_limit: u32) -> std::result::Result<Accumulate, String> {
     let (mode, parameter) = match v.split_once(':') {
         Some((m, p)) => (m, Some(p)),
         None => (v, None),
     };
     let mode = AccumulateMode::from_str(mode, false)?;
     Ok(match (mode, parameter) {
-        (AccumulateMode::Gated, None) => Setting::Accumulate(Accumulate::GATED),
-        (AccumulateMode::Gated, Some(p)) => Setting::Accumulate(Accumulate::Gated {
+        (AccumulateMode::Gated, None) => Accumulate::GATED,
+        (AccumulateMode::Gated, Some(p)) => Accumulate::Gated {
             sigmas: parse_gate(p)?,
-        }),
-        (AccumulateMode::Confidence, None) => Setting::Accumulate(Accumulate::CONFIDENCE),
-        (AccumulateMode::Confidence, Some(p)) => Setting::Accumulate(Accumulate::Confidence {
+        },
+        (AccumulateMode::Confidence, None) => Accumulate::CONFIDENCE,
+        (AccumulateMode::Confidence, Some(p)) => Accumulate::Confidence {
             bias: parse_bias(p)?,
-        }),
-        (AccumulateMode::Ema, p) => Setting::Accumulate(Accumulate::Ema {
+        },
+        (AccumulateMode::Ema, p) => Accumulate::Ema {
             alpha: p.map_or(Ok(Accumulate::EMA_ALPHA), parse_ema_alpha)?,
-        }),
-        (AccumulateMode::Mean, None) => Setting::MeanOfLimit,
-        (AccumulateMode::Mean, Some(p)) => Setting::Accumulate(Accumulate::Mean {
+        },
+        (AccumulateMode::Mean, None) => Accumulate::Mean {
+            cap: rotation_limit,
+        },
+        (AccumulateMode::Mean, Some(p)) => Accumulate::Mean {
             cap: parse_pattern_count(p)?,
-        }),
+        },
     })
 }
 
@@ -475,6 +338,7 @@ mod tests {
     use super::*;
     use crate::config::Epsilon;
     use crate::renderer::frame::PcfKernel;
+    use std::fmt;
 
     fn err(r: Result<impl fmt::Debug>) -> String {
         r.expect_err("expected an error").to_string()
@@ -483,58 +347,48 @@ mod tests {
     /// Sets the field a key should set, written out by hand.
     type SetByHand = fn(&mut RenderConfig);
 
+    fn key(name: &str) -> Key {
+        parse_key(name).unwrap()
+    }
+
     #[test]
-    fn each_key_changes_exactly_its_field() {
+    fn each_frame_key_changes_exactly_its_field() {
         let base = RenderConfig::default();
-        let cases: Vec<(Key, &str, SetByHand)> = vec![
-            (Key::AoSamples, "16", |c| c.ao.samples = 16),
-            (Key::AoEstimator, "crytek", |c| {
-                c.ao.estimator = AoEstimator::Crytek
-            }),
-            (Key::AoRadius, "0.5", |c| c.ao.radius = 0.5),
-            (Key::AoPatterns, "8", |c| c.ao.patterns = 8),
-            (Key::AoPositionMips, "2", |c| c.ao.position_mips = 2),
-            (Key::SsdoForm, "two-step", |c| {
-                c.ssdo.form = SsdoForm::TwoStep
-            }),
-            (Key::SsdoSamples, "50", |c| c.ssdo.samples = 50),
-            (Key::SsdoRadius, "0.1", |c| c.ssdo.radius = 0.1),
-            (Key::SsdoFilter, "off", |c| c.ssdo.filter = 0),
-            (Key::SsdoScale, "0.5", |c| c.ssdo.scale = 2),
-            (Key::Reuse, "off", |c| c.temporal.reuse = false),
-            (Key::Reaccumulate, "off", |c| {
+        let cases: Vec<(&str, &str, SetByHand)> = vec![
+            ("temporal.reuse", "off", |c| c.temporal.reuse = false),
+            ("temporal.reaccumulate", "off", |c| {
                 c.temporal.reaccumulate = false
             }),
-            (Key::Accumulate, "ema:0.25", |c| {
+            ("temporal.accumulate", "ema:0.25", |c| {
                 c.temporal.accumulate = Accumulate::Ema { alpha: 0.25 }
             }),
-            (Key::Refresh, "hard", |c| c.temporal.refresh = Refresh::Hard),
-            (Key::Resample, "point", |c| {
+            ("temporal.refresh", "hard", |c| {
+                c.temporal.refresh = Refresh::Hard
+            }),
+            ("temporal.resample", "point", |c| {
                 c.temporal.resample = HistoryResample::Point
             }),
-            (Key::RefreshBudget, "225%", |c| {
+            ("temporal.refresh_budget", "225%", |c| {
                 c.temporal.refresh_budget = 2.25
             }),
-            (Key::RotationLimit, "64", |c| c.temporal.rotation_limit = 64),
-            (Key::Epsilon, "abs:0.1", |c| {
+            ("temporal.rotation_limit", "64", |c| {
+                c.temporal.rotation_limit = 64
+            }),
+            ("temporal.epsilon", "abs:0.1", |c| {
                 c.temporal.epsilon = Epsilon::Absolute { epsilon: 0.1 }
             }),
-            (Key::Vpls, "all", |c| c.indirect.vpls = 0),
-            (Key::Interleave, "2", |c| c.indirect.interleave = 2),
-            (Key::Visibility, "on", |c| c.indirect.visibility = true),
-            (Key::HalfRes, "off", |c| c.indirect.half_res = false),
-            (Key::Pcf, "9", |c| c.pcf = Pcf::NINE),
-            (Key::RsmSize, "1024", |c| c.rsm_size = 1024),
+            ("rsm_size", "1024", |c| c.rsm_size = 1024),
         ];
-        assert_eq!(cases.len(), Key::ALL.len(), "a key without a test");
-        for (key, value, set) in cases {
+        assert_eq!(cases.len(), FRAME_KEYS.len(), "a key without a test");
+        for (name, value, set) in cases {
+            let key = key(name);
             let mut expected = base;
             set(&mut expected);
             assert_ne!(expected, base, "{key}={value} must differ from the default");
             let mut got = base;
             apply(&mut got, key, value).unwrap();
             assert_eq!(got, expected, "{key}={value}");
-            assert_eq!(Key::parse(key.name()).unwrap(), key);
+            assert_eq!(parse_key(key.name).unwrap(), key);
         }
     }
 
@@ -543,7 +397,7 @@ mod tests {
         let set = |v: &str| {
             let mut c = RenderConfig::default();
             c.temporal.rotation_limit = 20;
-            apply(&mut c, Key::Accumulate, v).map(|_| c.temporal.accumulate)
+            apply(&mut c, &ACCUMULATE, v).map(|_| c.temporal.accumulate)
         };
         assert_eq!(set("gated").unwrap(), Accumulate::GATED);
         assert_eq!(set("gated:3").unwrap(), Accumulate::Gated { sigmas: 3.0 });
@@ -577,7 +431,7 @@ mod tests {
             );
         }
         let mut c = RenderConfig::default();
-        apply(&mut c, Key::Pcf, "disc:16").unwrap();
+        apply(&mut c, key("pcf"), "disc:16").unwrap();
         assert_eq!(c.pcf.kernel, PcfKernel::Disc { samples: 16 });
     }
 
@@ -585,17 +439,17 @@ mod tests {
     fn unknown_key_lists_every_key() {
         let e = err(parse_vary("ao.sample=1,2"));
         assert!(e.contains("\"ao.sample\""), "{e}");
-        for k in Key::ALL {
-            assert!(e.contains(k.name()), "{e} lacks {k}");
+        for k in all_keys() {
+            assert!(e.contains(k.name), "{e} lacks {k}");
         }
         let table = help_table();
-        for k in Key::ALL {
+        for k in all_keys() {
             assert!(
-                table.contains(k.name()) && table.contains(k.syntax()),
+                table.contains(k.name) && table.contains(k.syntax),
                 "{table}"
             );
         }
-        assert_eq!(table.lines().count(), Key::ALL.len() + 1);
+        assert_eq!(table.lines().count(), all_keys().len() + 1);
     }
 
     #[test]
@@ -616,7 +470,7 @@ mod tests {
             ),
         ] {
             let e = err(parse_vary(s));
-            let syntax = Key::parse(key).unwrap().syntax();
+            let syntax = parse_key(key).unwrap().syntax;
             assert!(
                 e.contains(key) && e.contains(&format!("{value:?}")) && e.contains(syntax),
                 "{s}: {e}"
@@ -630,10 +484,10 @@ mod tests {
         // A bare mean follows the rotation limit, so it is not mean:36.
         assert!(parse_vary("temporal.accumulate=mean,mean:36").is_ok());
         let v = parse_vary(" ao.samples = 8 , 16 ").unwrap();
-        assert_eq!(v.key, Key::AoSamples);
+        assert_eq!(v.key, key("ao.samples"));
         assert_eq!(v.values, ["8", "16"]);
         let mut c = RenderConfig::default();
-        assert!(apply(&mut c, Key::AoSamples, "-1").is_err());
+        assert!(apply(&mut c, key("ao.samples"), "-1").is_err());
         assert_eq!(
             c,
             RenderConfig::default(),

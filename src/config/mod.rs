@@ -4,6 +4,7 @@
 pub mod antialias;
 pub mod parse;
 pub mod pcf;
+pub mod sweep_key;
 
 use crate::effects::ssdo::config::SsdoConfig;
 use crate::error::{Error, Result};

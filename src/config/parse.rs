@@ -104,3 +104,19 @@ pub fn parse_epsilon(s: &str) -> Result<Epsilon, String> {
         Epsilon::Relative { scale: v }
     })
 }
+
+/// An integer in `min..=max` (a sweep value's count).
+pub fn parse_count(s: &str, min: u32, max: u32) -> Result<u32, String> {
+    match s.parse::<u32>() {
+        Ok(n) if (min..=max).contains(&n) => Ok(n),
+        _ => Err(format!("not an integer in {min}..={max}")),
+    }
+}
+
+/// A sampling radius as a fraction of the scene's bounding radius: in (0, 10].
+pub fn parse_radius(s: &str) -> Result<f32, String> {
+    match s.parse::<f32>() {
+        Ok(r) if r.is_finite() && r > 0.0 && r <= 10.0 => Ok(r),
+        _ => Err("not a number in (0, 10]".into()),
+    }
+}

@@ -1,6 +1,7 @@
 //! What an effect is to the renderer: the [`Effect`] trait, its registration, and what it is
 //! given to create itself and to record a frame.
 
+use crate::config::sweep_key::SweepKey;
 use crate::config::{Accumulate, RenderConfig};
 use crate::error::Result;
 use crate::passes::compute::{Dispatch, FrameSet};
@@ -245,6 +246,8 @@ pub struct Registration {
     pub enabled: fn(&RenderConfig) -> bool,
     pub create: fn(&mut Setup<'_>) -> Result<Box<dyn Effect>>,
     pub layouts: fn() -> Vec<PassLayout>,
+    /// The parameters `ssgi sweep --vary` may vary (`effects/<effect>/sweep.rs`).
+    pub sweep_keys: &'static [SweepKey],
 }
 
 /// The refresh pass's dispatch this frame, one workgroup per pixel of the refresh tile in

@@ -18,6 +18,7 @@ pub use effect::{
     TermKind,
 };
 
+use crate::config::sweep_key::SweepKey;
 use crate::config::RenderConfig;
 use crate::error::Result;
 use crate::passes::PassLayout;
@@ -40,6 +41,11 @@ pub fn create(s: &mut Setup<'_>) -> Result<Vec<Box<dyn Effect>>> {
         .filter(|r| (r.enabled)(s.config))
         .map(|r| (r.create)(s))
         .collect()
+}
+
+/// Every effect's sweep keys, in registry order.
+pub fn sweep_keys() -> impl Iterator<Item = &'static SweepKey> {
+    REGISTRY.iter().flat_map(|r| r.sweep_keys)
 }
 
 /// Every pipeline of every pass, shared and per effect, for the reflection check (also done

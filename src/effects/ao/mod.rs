@@ -5,6 +5,8 @@
 //! `--ao-position-mips`, a pass first writes point-sampled levels of the G-buffer position that
 //! far taps read.
 
+pub mod sweep;
+
 use super::effect::{
     every_pixel, refresh_dispatch, Effect, EffectId, FrameInfo, Recording, Registration, Setup,
     TermKind,
@@ -76,6 +78,7 @@ pub const REGISTRATION: Registration = Registration {
     enabled: |c| c.effects.ao,
     create: |s| Ok(Box::new(AoEffect::new(s)?)),
     layouts,
+    sweep_keys: sweep::SWEEP_KEYS,
 };
 
 // Every pass of the effect, declared once (`PassDecl`): `layouts` and `new` both read these.

@@ -180,6 +180,7 @@ pub const REGISTRATION: Registration = Registration {
     enabled: |c| c.effects.indirect && c.indirect.filter == IndirectFilter::Ccipca,
     create: |s| Ok(Box::new(CcipcaEffect::new(s)?)),
     layouts,
+    sweep_keys: &[],
 };
 
 fn layouts() -> Vec<PassLayout> {

@@ -4,6 +4,8 @@
 //! per frame and accumulated over the blocks that need work. Then the direct pass:
 //! rgb = outgoing diffuse radiance albedo/pi * E * V, a = V.
 
+pub mod sweep;
+
 use super::effect::{
     every_pixel, refresh_dispatch, Effect, EffectId, FrameInfo, Recording, Registration, Setup,
     TermKind,
@@ -59,6 +61,7 @@ pub const REGISTRATION: Registration = Registration {
     enabled: |c| c.effects.direct,
     create: |s| Ok(Box::new(DirectEffect::new(s)?)),
     layouts,
+    sweep_keys: sweep::SWEEP_KEYS,
 };
 
 // Every pass of the effect, declared once (`PassDecl`): `layouts` and `new` both read these.

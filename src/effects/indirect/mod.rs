@@ -9,6 +9,8 @@
 //! accumulation converges to. It always goes through the reprojection:
 //! without reuse every pixel is new and every block listed, with the fixed pattern 0.
 
+pub mod sweep;
+
 use super::effect::{
     refresh_pixels, Effect, EffectId, FrameInfo, Recording, Registration, Setup, TermKind,
 };
@@ -128,6 +130,7 @@ pub const REGISTRATION: Registration = Registration {
     enabled: |c| c.effects.indirect && c.indirect.filter == IndirectFilter::Accumulate,
     create: |s| Ok(Box::new(IndirectEffect::new(s)?)),
     layouts,
+    sweep_keys: sweep::SWEEP_KEYS,
 };
 
 // Every pass of the effect, declared once (`PassDecl`): `layouts` and `new` both read these.

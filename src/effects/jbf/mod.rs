@@ -42,6 +42,7 @@ pub const REGISTRATION: Registration = Registration {
     enabled: |c| c.effects.indirect && radius(c.indirect.filter).is_some(),
     create: |s| Ok(Box::new(JbfEffect::new(s)?)),
     layouts,
+    sweep_keys: &[],
 };
 
 // Every pass of the effect, declared once (`PassDecl`): `layouts` and `new` both read these.

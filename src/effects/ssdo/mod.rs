@@ -10,6 +10,7 @@
 
 pub mod args;
 pub mod config;
+pub mod sweep;
 
 use super::effect::TermKind;
 use super::effect::{
@@ -141,6 +142,7 @@ pub const REGISTRATION: Registration = Registration {
     enabled: |c| c.effects.ssdo,
     create: |s| Ok(Box::new(SsdoEffect::new(s)?)),
     layouts,
+    sweep_keys: sweep::SWEEP_KEYS,
 };
 
 // Every pass of the effect, declared once (`PassDecl`): `layouts` and `new` both read these.

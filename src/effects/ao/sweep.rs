@@ -1,0 +1,91 @@
+//! SSAO's keys for `ssgi sweep --vary` (the registry hands them to the sweep).
+
+use crate::config::parse::{parse_count, parse_radius};
+use crate::config::sweep_key::SweepKey;
+use crate::config::{AoConfig, AoEstimator};
+use clap::ValueEnum;
+
+pub const SWEEP_KEYS: &[SweepKey] = &[
+    SweepKey {
+        name: "ao.samples",
+        syntax: "integer 1..=4096",
+        description: "SSAO samples per pattern (--ao-samples)",
+        set: |c, v| {
+            c.ao.samples = parse_count(v, 1, 4096)?;
+            Ok(())
+        },
+    },
+    SweepKey {
+        name: "ao.estimator",
+        syntax: "thesis|crytek|szentandrasi",
+        description: "SSAO estimator (--ao)",
+        set: |c, v| {
+            c.ao.estimator = AoEstimator::from_str(v, false)?;
+            Ok(())
+        },
+    },
+    SweepKey {
+        name: "ao.radius",
+        syntax: "number in (0, 10]",
+        description: "SSAO sampling radius, fraction of the scene's bounding radius",
+        set: |c, v| {
+            c.ao.radius = parse_radius(v)?;
+            Ok(())
+        },
+    },
+    SweepKey {
+        name: "ao.patterns",
+        syntax: "integer 1..=1024",
+        description: "SSAO patterns evaluated at once per frame",
+        set: |c, v| {
+            c.ao.patterns = parse_count(v, 1, 1024)?;
+            Ok(())
+        },
+    },
+    SweepKey {
+        name: "ao.position_mips",
+        syntax: "integer 0..=3",
+        description: "far SSAO taps read position levels up to this; 0 = off (--ao-position-mips)",
+        set: |c, v| {
+            c.ao.position_mips = parse_count(v, 0, AoConfig::MAX_POSITION_MIPS)?;
+            Ok(())
+        },
+    },
+];
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::config::AoEstimator;
+    use crate::config::RenderConfig;
+
+    /// Sets the field a key should set, written out by hand.
+    type SetByHand = fn(&mut RenderConfig);
+
+    #[test]
+    fn each_key_changes_exactly_its_field() {
+        let base = RenderConfig::default();
+        let cases: Vec<(&str, &str, SetByHand)> = vec![
+            ("ao.samples", "16", |c| c.ao.samples = 16),
+            ("ao.estimator", "crytek", |c| {
+                c.ao.estimator = AoEstimator::Crytek
+            }),
+            ("ao.radius", "0.5", |c| c.ao.radius = 0.5),
+            ("ao.patterns", "8", |c| c.ao.patterns = 8),
+            ("ao.position_mips", "2", |c| c.ao.position_mips = 2),
+        ];
+        assert_eq!(cases.len(), SWEEP_KEYS.len(), "a key without a test");
+        for (key, (name, value, by_hand)) in SWEEP_KEYS.iter().zip(cases) {
+            assert_eq!(key.name, name, "cases in the keys' order");
+            let mut expected = base;
+            by_hand(&mut expected);
+            assert_ne!(
+                expected, base,
+                "{name}={value} must differ from the default"
+            );
+            let mut got = base;
+            (key.set)(&mut got, value).unwrap();
+            assert_eq!(got, expected, "{name}={value}");
+        }
+    }
+}

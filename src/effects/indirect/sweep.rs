@@ -1,0 +1,80 @@
+//! The indirect light's keys for `ssgi sweep --vary` (the gather's: they apply to CCIPCA's
+//! and the joint bilateral filters' noisy gather too).
+
+use crate::config::parse::{parse_count, parse_on_off, parse_vpls};
+use crate::config::sweep_key::SweepKey;
+use crate::config::IndirectConfig;
+
+pub const SWEEP_KEYS: &[SweepKey] = &[
+    SweepKey {
+        name: "indirect.vpls",
+        syntax: "integer 1..=16384|all",
+        description: "VPLs gathered per pixel and frame; all = every RSM texel (--vpls)",
+        set: |c, v| {
+            c.indirect.vpls = parse_vpls(v)?;
+            Ok(())
+        },
+    },
+    SweepKey {
+        name: "indirect.interleave",
+        syntax: "integer 1..=8",
+        description: "interleaved gather: NxN blocks share the VPLs (--interleave)",
+        set: |c, v| {
+            c.indirect.interleave = parse_count(v, 1, IndirectConfig::MAX_INTERLEAVE)?;
+            Ok(())
+        },
+    },
+    SweepKey {
+        name: "indirect.visibility",
+        syntax: "on|off",
+        description: "screen-space visibility test per VPL (--vpl-visibility)",
+        set: |c, v| {
+            c.indirect.visibility = parse_on_off(v)?;
+            Ok(())
+        },
+    },
+    SweepKey {
+        name: "indirect.half_res",
+        syntax: "on|off",
+        description: "indirect gather at half resolution (--half-res)",
+        set: |c, v| {
+            c.indirect.half_res = parse_on_off(v)?;
+            Ok(())
+        },
+    },
+];
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::config::RenderConfig;
+
+    /// Sets the field a key should set, written out by hand.
+    type SetByHand = fn(&mut RenderConfig);
+
+    #[test]
+    fn each_key_changes_exactly_its_field() {
+        let base = RenderConfig::default();
+        let cases: Vec<(&str, &str, SetByHand)> = vec![
+            ("indirect.vpls", "all", |c| c.indirect.vpls = 0),
+            ("indirect.interleave", "2", |c| c.indirect.interleave = 2),
+            ("indirect.visibility", "on", |c| {
+                c.indirect.visibility = true
+            }),
+            ("indirect.half_res", "off", |c| c.indirect.half_res = false),
+        ];
+        assert_eq!(cases.len(), SWEEP_KEYS.len(), "a key without a test");
+        for (key, (name, value, by_hand)) in SWEEP_KEYS.iter().zip(cases) {
+            assert_eq!(key.name, name, "cases in the keys' order");
+            let mut expected = base;
+            by_hand(&mut expected);
+            assert_ne!(
+                expected, base,
+                "{name}={value} must differ from the default"
+            );
+            let mut got = base;
+            (key.set)(&mut got, value).unwrap();
+            assert_eq!(got, expected, "{name}={value}");
+        }
+    }
+}
