@@ -122,9 +122,12 @@ fn derived_changes_follow_the_resources() {
     let d = derive(&frame_layouts(), &effects);
     let set = |c: &[Change]| Changes::of(c);
     use Change::*;
-    assert_eq!(d.pass(PassId::LightView), set(&[Light, Object]));
-    assert_eq!(d.pass(PassId::GBuffer), set(&[Camera, Object]));
-    assert_eq!(d.pass(PassId::SraaGeometry), set(&[Camera, Object]));
+    assert_eq!(d.pass(PassId::LIGHT_VIEW), set(&[Light, Object]));
+    assert_eq!(d.pass(PassId::GBUFFER), set(&[Camera, Object]));
+    assert_eq!(
+        d.pass(ssgi::passes::sraa::pass::SRAA_GEOMETRY),
+        set(&[Camera, Object])
+    );
     for (r, changes) in REGISTRY.iter().zip(&d.effects) {
         let lit = r.id != EffectId::Ao;
         assert_eq!(
@@ -139,12 +142,14 @@ fn derived_changes_follow_the_resources() {
         }
     }
     // The AO's blur reads nothing of the light, directly or through its sources.
-    assert!(!d.pass(PassId::Blur).contains(Light));
+    assert!(!d.pass(ssgi::effects::ao::pass::BLUR).contains(Light));
     // SSDO's blur reads the SSDO result, which reads the direct light.
-    assert!(d.pass(PassId::SsdoBilateral).contains(Light));
+    assert!(d
+        .pass(ssgi::effects::ssdo::pass::SSDO_BILATERAL)
+        .contains(Light));
     let everything = set(&Change::ALL);
-    assert_eq!(d.pass(PassId::Composite), everything);
-    assert_eq!(d.pass(PassId::Sraa), everything);
+    assert_eq!(d.pass(PassId::COMPOSITE), everything);
+    assert_eq!(d.pass(ssgi::passes::sraa::pass::SRAA), everything);
     // Only AO: the reprojection still declares the light (the shadow lane's reach).
     let ao_only = derive(&frame_layouts(), &[(REGISTRY[1].layouts)()]);
     assert_eq!(REGISTRY[1].id, EffectId::Ao);

@@ -1,8 +1,7 @@
 //! Every pass's declared descriptor layout equals what naga reflected from its shaders, and
 //! every compiled shader module belongs to some pass.
 
-use ssgi::effects::all_layouts;
-use ssgi::passes::PassId;
+use ssgi::effects::{all_layouts, all_passes};
 use ssgi::shaders::{DescriptorKind, ReflectedBinding, ALL};
 use ssgi::vk::pipeline::check_bindings;
 
@@ -25,11 +24,32 @@ fn every_shader_module_is_used_by_a_pass() {
     }
 }
 
+/// A pass is known by its name (timing rows, skip reports, labels): no two passes share one,
+/// and every pipeline's pass is in the recording order.
+#[test]
+fn pass_names_are_unique_and_every_pass_is_ordered() {
+    let all = all_passes();
+    for (i, p) in all.iter().enumerate() {
+        assert!(
+            !all[..i].iter().any(|q| q.name() == p.name()),
+            "two passes are named {}",
+            p.name()
+        );
+    }
+    for layout in all_layouts() {
+        assert!(
+            all.contains(&layout.pass),
+            "{} has a pipeline but no place in effects::all_passes",
+            layout.pass.name()
+        );
+    }
+}
+
 #[test]
 fn a_wrong_declaration_is_rejected() {
     let layout = all_layouts()
         .into_iter()
-        .find(|l| l.pass == PassId::Direct)
+        .find(|l| l.pass == ssgi::effects::direct::pass::DIRECT)
         .unwrap();
     let mut wrong: Vec<ReflectedBinding> = layout.declared.to_vec();
     wrong.last_mut().unwrap().kind = DescriptorKind::SampledImage;

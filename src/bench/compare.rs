@@ -7,44 +7,21 @@ use crate::passes::PassId;
 use serde::Serialize;
 use std::collections::BTreeMap;
 
-/// Pass groups whose summed per-frame time is compared.
-pub const GROUPS: &[(&str, &[PassId])] = &[
-    ("reproject", &[PassId::Reproject]),
-    (
-        "ao",
-        &[
-            PassId::AoPositionChain,
-            PassId::Ssao,
-            PassId::SsaoRefresh,
-            PassId::Blur,
-        ],
-    ),
-    ("shadow", &[PassId::Shadow, PassId::ShadowRefresh]),
-    ("direct", &[PassId::Direct]),
-    (
-        "indirect",
-        &[
-            PassId::IndirectClassify,
-            PassId::IndirectGather,
-            PassId::IndirectUpsample,
-            PassId::IndirectFixup,
-            PassId::IndirectRefresh,
-        ],
-    ),
-    (
-        "ssdo",
-        &[
-            PassId::SsdoSamples,
-            PassId::Ssdo,
-            PassId::SsdoBounce,
-            PassId::SsdoRefresh,
-            PassId::SsdoResolve,
-            PassId::SsdoBilateral,
-            PassId::SsdoUpsample,
-        ],
-    ),
-    ("total", &[]),
-];
+/// A named group of passes whose summed per-frame time is compared (`total`: every pass).
+pub type Group = (&'static str, &'static [PassId]);
+
+/// The groups compared, in report order: the reprojection, each effect's (its registration's
+/// `timing_groups`, in registry order), the total.
+pub fn groups() -> Vec<Group> {
+    let mut v: Vec<Group> = vec![("reproject", &[PassId::REPROJECT])];
+    v.extend(
+        crate::effects::REGISTRY
+            .iter()
+            .flat_map(|r| r.timing_groups.iter().copied()),
+    );
+    v.push(("total", &[]));
+    v
+}
 
 /// Whether the timing row `name` belongs to a group of `passes` (every pass when empty).
 pub fn in_group(passes: &[PassId], name: &str) -> bool {
@@ -122,7 +99,7 @@ fn ratio(a: Option<f64>, b: Option<f64>) -> Option<f64> {
 
 impl Comparison {
     pub fn new(what: &str, labels: [&str; 2], runs: [Report; 2]) -> Self {
-        let groups = GROUPS
+        let groups = groups()
             .iter()
             .map(|(name, passes)| {
                 let first = group_median(&runs[0], passes);

@@ -1,7 +1,7 @@
 //! CSV output: one row per table row (summary), and one row per frame of a walkthrough.
 //! Fields are numbers, fixed identifiers and scene names without commas; empty = no value.
 
-use super::compare::GROUPS;
+use super::compare::groups;
 use super::measure::Buffer;
 use super::reuse_rows::{FrameSample, RowKind};
 use super::table_report::{group_present, TableReport};
@@ -22,7 +22,7 @@ fn field(s: &str) -> String {
 /// Every row of every scene: timings per group, pixels, errors, the thesis's fps.
 pub fn summary(r: &TableReport) -> String {
     let effects = r.base_config.effects;
-    let groups: Vec<&str> = GROUPS
+    let groups: Vec<&str> = groups()
         .iter()
         .map(|(g, _)| *g)
         .filter(|g| group_present(g, &effects))
@@ -94,7 +94,7 @@ pub fn frames(reuse: &[FrameSample], no_reuse: &[FrameSample], pixels: u64) -> S
     let (a, b) = (by_frame(reuse), by_frame(no_reuse));
     let mut header = vec!["frame".to_string()];
     for kind in ["reuse", "no_reuse"] {
-        for (g, _) in GROUPS {
+        for (g, _) in groups() {
             header.push(format!("{kind}_{g}_ms"));
         }
     }
@@ -112,8 +112,8 @@ pub fn frames(reuse: &[FrameSample], no_reuse: &[FrameSample], pixels: u64) -> S
     for frame in frames {
         let mut f = vec![frame.to_string()];
         for side in [&a, &b] {
-            for (g, _) in GROUPS {
-                f.push(opt(side.get(&frame).and_then(|s| s.ms.get(*g).copied())));
+            for (g, _) in groups() {
+                f.push(opt(side.get(&frame).and_then(|s| s.ms.get(g).copied())));
             }
         }
         f.push(fraction(a.get(&frame).and_then(|s| s.ssao_computed_pixels)));

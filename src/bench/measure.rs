@@ -10,7 +10,6 @@ use crate::effects::ssdo::config::SsdoForm;
 use crate::error::Result;
 use crate::frontend::progress::Progress;
 use crate::frontend::sink::FrameSink;
-use crate::passes::PassId;
 use crate::renderer::{RenderConfig, Renderer};
 use crate::resources::targets::Target;
 use crate::scene::path::frame_time;
@@ -315,7 +314,10 @@ pub fn measure(
         },
         sink.present_mode(),
     );
-    let names: Vec<&str> = PassId::ALL.iter().map(|p| p.name()).collect();
+    let names: Vec<&str> = crate::effects::all_passes()
+        .iter()
+        .map(|p| p.name())
+        .collect();
     let report = Report::new(
         &ctx.info,
         spec.config.width,

@@ -2,7 +2,7 @@
 //! reference, each measured on one context along the same camera path, with the error of its
 //! last frame against the reference rendered from the same camera.
 
-use super::compare::{group_median, in_group, GROUPS};
+use super::compare::{group_median, groups, in_group};
 use super::ground_truth::{self, FrameError, TruthQuality};
 use super::measure::{held_at, last_camera, measure, Buffer, LastFrame, Measured, RunSpec};
 use super::metrics::{image_error, ImageError};
@@ -23,7 +23,7 @@ use serde::Serialize;
 use std::collections::BTreeMap;
 use std::sync::Arc;
 
-/// Timing groups (of `compare::GROUPS`) shown as table columns, in order: SSAO, indirect
+/// Timing groups (of `compare::groups`) shown as table columns, in order: SSAO, indirect
 /// light, the reprojection shared by every temporal effect, the whole frame.
 pub const COLUMNS: [&str; 4] = ["ao", "indirect", "reproject", "total"];
 
@@ -140,7 +140,7 @@ pub struct RowResult {
     /// Frames measured (after warmup) and warmup frames of this row's run.
     pub measured_frames: usize,
     pub warmup: u32,
-    /// Median per-frame GPU milliseconds of each group of `compare::GROUPS` over the measured
+    /// Median per-frame GPU milliseconds of each group of `compare::groups` over the measured
     /// frames (`None`: the group never ran).
     pub ms: BTreeMap<String, Option<f64>>,
     /// 1000 / ms.
@@ -163,7 +163,7 @@ pub struct RowResult {
 pub struct FrameSample {
     /// Frame number along the path, from 0.
     pub frame: u64,
-    /// GPU milliseconds of each group of `compare::GROUPS` that ran in this frame.
+    /// GPU milliseconds of each group of `compare::groups` that ran in this frame.
     pub ms: BTreeMap<String, f64>,
     pub ssao_computed_pixels: Option<u64>,
     pub disoccluded_pixels: Option<u64>,
@@ -179,7 +179,7 @@ impl RowResult {
             .filter(|f| f.index >= warmup)
             .map(|f| FrameSample {
                 frame: f.index - warmup,
-                ms: GROUPS
+                ms: groups()
                     .iter()
                     .filter_map(|(name, passes)| {
                         group_ms(f, passes).map(|ms| (name.to_string(), ms))
@@ -405,7 +405,7 @@ fn summarize(
     warmup: u32,
 ) -> Result<RowResult> {
     let Measured { report, last, .. } = measured;
-    let ms: BTreeMap<String, Option<f64>> = GROUPS
+    let ms: BTreeMap<String, Option<f64>> = groups()
         .iter()
         .map(|(name, passes)| (name.to_string(), group_median(&report, passes)))
         .collect();
@@ -497,8 +497,20 @@ mod tests {
             counters: BTreeMap::new(),
             flicker: None,
         };
-        assert_eq!(group_ms(&frame, &[PassId::Ssao, PassId::Blur]), Some(2.5));
+        assert_eq!(
+            group_ms(
+                &frame,
+                &[
+                    crate::effects::ao::pass::SSAO,
+                    crate::effects::ao::pass::BLUR
+                ]
+            ),
+            Some(2.5)
+        );
         assert_eq!(group_ms(&frame, &[]), Some(3.5));
-        assert_eq!(group_ms(&frame, &[PassId::IndirectGather]), None);
+        assert_eq!(
+            group_ms(&frame, &[crate::effects::indirect::pass::INDIRECT_GATHER]),
+            None
+        );
     }
 }

@@ -3,7 +3,7 @@
 //! with its median GPU time per pass group and the error of its last frame against the CPU
 //! ground truth and against the converged estimator of the same technique.
 
-use super::compare::{group_median, GROUPS};
+use super::compare::{group_median, groups};
 use super::ground_truth::{self, reference_buffer, FrameError, TruthQuality};
 use super::measure::{held_at, last_camera, measure, Buffer, LastFrame, RunSpec};
 use super::reuse_rows::{RowKind, REFERENCE_FRAMES};
@@ -27,7 +27,7 @@ pub struct SweepRow {
     /// The varied keys and values, in --vary order.
     pub label: Vec<(String, String)>,
     pub config: RenderConfig,
-    /// Median per-frame GPU milliseconds of each pass group (`compare::GROUPS`).
+    /// Median per-frame GPU milliseconds of each pass group (`compare::groups`).
     pub ms: BTreeMap<String, Option<f64>>,
     /// Median GPU milliseconds of each pass over the measured frames in which it ran.
     pub passes: BTreeMap<String, Option<f64>>,
@@ -159,7 +159,7 @@ pub fn run(
                 .ok_or_else(|| Error::Config("the converged run kept no frame".into()))?;
             converged.push((cc, Rc::new(first)));
         }
-        let ms = GROUPS
+        let ms = groups()
             .iter()
             .map(|(name, passes)| (name.to_string(), group_median(&measured.report, passes)))
             .collect();

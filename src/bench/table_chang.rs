@@ -16,7 +16,6 @@ use super::{Report, TableOptions};
 use crate::config::{CcipcaProject, IndirectConfig, IndirectFilter, RenderConfig};
 use crate::error::{Error, Result};
 use crate::frontend::sink::FrameSink;
-use crate::passes::PassId;
 use crate::scene::{cornell_box, CameraPath};
 use crate::vk::Context;
 use serde::Serialize;
@@ -192,9 +191,9 @@ pub fn run(
             )?;
             let r = &m.report;
             let (reproject_ms, ipca_ms, reconstruct_ms) = (
-                pass_ms(r, PassId::CcipcaReproject),
-                pass_ms(r, PassId::CcipcaUpdate),
-                pass_ms(r, PassId::CcipcaReconstruct),
+                pass_ms(r, crate::effects::ccipca::pass::CCIPCA_REPROJECT),
+                pass_ms(r, crate::effects::ccipca::pass::CCIPCA_UPDATE),
+                pass_ms(r, crate::effects::ccipca::pass::CCIPCA_RECONSTRUCT),
             );
             let total_ms = match (reproject_ms, ipca_ms, reconstruct_ms) {
                 (Some(a), Some(b), Some(c)) => Some(a + b + c),
@@ -208,7 +207,7 @@ pub fn run(
                 ipca_ms,
                 reconstruct_ms,
                 total_ms,
-                input_ms: pass_ms(r, PassId::IndirectNoisy),
+                input_ms: pass_ms(r, crate::effects::ccipca::pass::INDIRECT_NOISY),
                 paper: paper(size, bases),
                 report: m.report,
             };

@@ -20,7 +20,7 @@
 //!                             "report": <bench report, see report.rs> } ] } ] }
 //! ```
 
-use super::compare::GROUPS;
+use super::compare::groups;
 use super::ground_truth::TruthQuality;
 use super::reuse_rows::{RowKind, RowResult};
 use super::thesis::{Fps, Scene41};
@@ -67,7 +67,7 @@ impl SceneResult {
                 .find(|r| r.kind == kind)
                 .and_then(|r| r.ms.get(group).copied().flatten())
         };
-        let speedups = GROUPS
+        let speedups = groups()
             .iter()
             .map(|(group, _)| {
                 let ratio = match (ms(RowKind::Reuse, group), ms(RowKind::NoReuse, group)) {
@@ -123,7 +123,7 @@ impl SceneResult {
     }
 }
 
-/// Whether a timing group (`compare::GROUPS`) belongs to a run with `effects`: columns of
+/// Whether a timing group (`compare::groups`) belongs to a run with `effects`: columns of
 /// effects a table left out are dropped, not printed empty.
 pub fn group_present(group: &str, effects: &crate::config::Effects) -> bool {
     match group {

@@ -17,7 +17,6 @@ use crate::config::pcf::Pcf;
 use crate::config::RenderConfig;
 use crate::error::{Error, Result};
 use crate::frontend::sink::FrameSink;
-use crate::passes::PassId;
 use crate::vk::{Context, ImageData};
 use serde::Serialize;
 use std::path::{Path, PathBuf};
@@ -177,15 +176,15 @@ fn run_size(
         }
         let subpixel = mode.subpixel();
         let aa_pass = if mode == AaMode::Ssaa16 {
-            PassId::SsaaDownsample
+            crate::passes::ssaa::pass::SSAA_DOWNSAMPLE
         } else {
-            PassId::Sraa
+            crate::passes::sraa::pass::SRAA
         };
         let total_ms = m.report.total.median_ms;
         let ssaa_ms = rows.first().and_then(|r| r.total_ms).or(total_ms);
         rows.push(RowResult {
             mode,
-            geometry_ms: pass_ms(&m.report, PassId::SraaGeometry),
+            geometry_ms: pass_ms(&m.report, crate::passes::sraa::pass::SRAA_GEOMETRY),
             aa_ms: pass_ms(&m.report, aa_pass),
             total_ms,
             paper_geometry_ms: paper.filter(|_| subpixel).map(|p| p.1),

@@ -18,7 +18,7 @@
 //!                               "ours_ssdo", "paper" } ] } ] }
 //! ```
 
-use super::compare::GROUPS;
+use super::compare::groups;
 use super::measure::{held_at, last_camera, measure, Buffer, RunSpec};
 use super::metrics::{image_error, Channels};
 use super::output::file_stem;
@@ -106,7 +106,7 @@ pub struct TableReport {
 
 /// Median of a group's per-frame time over the measured frames.
 fn group_median(report: &Report, group: &str) -> Option<f64> {
-    let passes = GROUPS.iter().find(|(g, _)| *g == group)?.1;
+    let passes = groups().iter().find(|(g, _)| *g == group)?.1;
     let times: Vec<f64> = report
         .frames
         .iter()

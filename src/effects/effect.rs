@@ -246,6 +246,10 @@ pub struct Registration {
     pub enabled: fn(&RenderConfig) -> bool,
     pub create: fn(&mut Setup<'_>) -> Result<Box<dyn Effect>>,
     pub layouts: fn() -> Vec<PassLayout>,
+    /// Every pass the effect may record, in recording order (`Effect::passes`).
+    pub passes: &'static [PassId],
+    /// Named groups of its passes whose summed time reports compare (`bench::compare::groups`).
+    pub timing_groups: &'static [(&'static str, &'static [PassId])],
     /// The parameters `ssgi sweep --vary` may vary (`effects/<effect>/sweep.rs`).
     pub sweep_keys: &'static [SweepKey],
 }

@@ -21,7 +21,7 @@ pub use effect::{
 use crate::config::sweep_key::SweepKey;
 use crate::config::RenderConfig;
 use crate::error::Result;
-use crate::passes::PassLayout;
+use crate::passes::{PassId, PassLayout};
 
 /// The registry, in recording order (also the composite's term order). Adding an effect is its
 /// module and one line here.
@@ -41,6 +41,28 @@ pub fn create(s: &mut Setup<'_>) -> Result<Vec<Box<dyn Effect>>> {
         .filter(|r| (r.enabled)(s.config))
         .map(|r| (r.create)(s))
         .collect()
+}
+
+/// Every pass a frame may record, in recording order: the frame's own before the effects',
+/// each effect's in registry order (a pass two effects share, CCIPCA's and the joint bilateral
+/// filters' noisy gather, once), then the composite and antialiasing. The timing report's
+/// rows follow it.
+pub fn all_passes() -> Vec<PassId> {
+    let mut v: Vec<PassId> = PassId::BEFORE_EFFECTS.to_vec();
+    for p in REGISTRY.iter().flat_map(|r| r.passes) {
+        if !v.contains(p) {
+            v.push(*p);
+        }
+    }
+    v.extend(crate::passes::AFTER_EFFECTS);
+    v
+}
+
+/// The position of `pass` in `all_passes()` (the recording order); passes of no registered
+/// effect after them.
+pub fn pass_order(pass: PassId) -> usize {
+    let all = all_passes();
+    all.iter().position(|p| *p == pass).unwrap_or(all.len())
 }
 
 /// Every effect's sweep keys, in registry order.

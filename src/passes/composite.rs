@@ -51,7 +51,7 @@ pub fn layouts() -> Vec<PassLayout> {
         .into_iter()
         .map(|linear| {
             let (module, binds) = module(linear);
-            ComputePass::layout(PassId::Composite, module, binds)
+            ComputePass::layout(PassId::COMPOSITE, module, binds)
         })
         .collect()
 }
@@ -117,7 +117,7 @@ impl CompositePass {
             pass: ComputePass::specialized(
                 ctx,
                 pool,
-                PassId::Composite,
+                PassId::COMPOSITE,
                 module(linear),
                 &constants,
             )?,

@@ -56,12 +56,12 @@ const RESOLVE_FLAT: &[Bind] = &[
 const RESOLVE_TEXTURED: &[Bind] = RESOLVE_FLAT.split_at(RESOLVE_FLAT.len() - 1).0;
 
 const RESOLVE_FLAT_PASS: PassDecl = PassDecl::new(
-    PassId::GBufferResolve,
+    PassId::GBUFFER_RESOLVE,
     &shaders::GBUFFER_RESOLVE_COMP_FLAT,
     RESOLVE_FLAT,
 );
 const RESOLVE_TEXTURED_PASS: PassDecl = PassDecl::new(
-    PassId::GBufferResolve,
+    PassId::GBUFFER_RESOLVE,
     &shaders::GBUFFER_RESOLVE_COMP_TEXTURED,
     RESOLVE_TEXTURED,
 );
@@ -149,7 +149,7 @@ pub fn layouts() -> Vec<PassLayout> {
                 ),
             };
             v.push(PassLayout {
-                pass: PassId::GBuffer,
+                pass: PassId::GBUFFER,
                 modules: vec![vertex, fragment],
                 declared: declared.to_vec(),
                 binds: m.targets.to_vec(),
@@ -161,7 +161,7 @@ pub fn layouts() -> Vec<PassLayout> {
     }
     // The flat materials of a textured scene's visibility pass.
     v.push(PassLayout {
-        pass: PassId::GBuffer,
+        pass: PassId::GBUFFER,
         modules: vec![
             VISIBILITY_ALBEDO_MODULES.vertex,
             VISIBILITY_ALBEDO_MODULES.flat,
@@ -189,7 +189,7 @@ impl GBufferPass {
         let v = variant(visibility, textured);
         let mut pipelines = MaterialPipelines::new(
             ctx,
-            PassId::GBuffer,
+            PassId::GBUFFER,
             v.modules,
             &color_formats(v.targets),
             DEPTH_FORMAT,

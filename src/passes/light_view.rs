@@ -33,13 +33,13 @@ const MODULES: RasterModules = RasterModules {
 pub fn layouts() -> Vec<PassLayout> {
     vec![
         PassLayout {
-            pass: PassId::LightView,
+            pass: PassId::LIGHT_VIEW,
             modules: vec![MODULES.vertex, MODULES.flat],
             declared: FLAT_BINDINGS.to_vec(),
             binds: TARGETS.to_vec(),
         },
         PassLayout {
-            pass: PassId::LightView,
+            pass: PassId::LIGHT_VIEW,
             modules: vec![MODULES.vertex, MODULES.textured],
             declared: TEXTURED_BINDINGS.to_vec(),
             binds: TARGETS.to_vec(),
@@ -55,7 +55,7 @@ impl LightViewPass {
     pub fn new(ctx: &Arc<Context>, textured: bool) -> Result<Self> {
         let pipelines = MaterialPipelines::new(
             ctx,
-            PassId::LightView,
+            PassId::LIGHT_VIEW,
             &MODULES,
             &RSM_COLOR_FORMATS,
             DEPTH_FORMAT,

@@ -18,6 +18,15 @@ pub mod ssaa;
 pub use layout::{PassLayout, FRAME_BINDING};
 pub use pass_id::{Change, PassId};
 
+/// The frame's passes recorded after the effects', in recording order: the composite and the
+/// antialiasing passes.
+pub const AFTER_EFFECTS: [PassId; 4] = [
+    PassId::COMPOSITE,
+    sraa::pass::SRAA_GEOMETRY,
+    sraa::pass::SRAA,
+    ssaa::pass::SSAA_DOWNSAMPLE,
+];
+
 /// Every pipeline of the passes every frame runs (the effects add theirs: see
 /// `effects::all_layouts`), for the reflection check (also done at pipeline creation).
 pub fn frame_layouts() -> Vec<PassLayout> {

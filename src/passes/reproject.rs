@@ -65,7 +65,7 @@ fn binds(lanes: usize) -> Vec<Bind> {
 pub fn layouts() -> Vec<PassLayout> {
     (1..=MAX_LANES)
         .map(|n| PassLayout {
-            pass: PassId::Reproject,
+            pass: PassId::REPROJECT,
             modules: vec![module(n)],
             declared: decl::layout(&binds(n)),
             binds: binds(n),
@@ -141,7 +141,7 @@ impl ReprojectPass {
                  (add a permutation to shaders/reproject.comp and a lane to LANE_BINDS)"
             )));
         }
-        let name = PassId::Reproject.name();
+        let name = PassId::REPROJECT.name();
         let pipeline = Pipeline::compute_specialized(
             ctx,
             name,
@@ -161,7 +161,7 @@ impl ReprojectPass {
     /// resolver per lane in lane order (creation and resize, device idle).
     pub fn bind(&self, ctx: &Context, shared: &dyn Resolve, lanes: &[&dyn Resolve]) -> Result<()> {
         assert_eq!(lanes.len(), self.lanes, "one resolver per lane");
-        let name = PassId::Reproject.name();
+        let name = PassId::REPROJECT.name();
         for (parity, set) in self.sets.iter().enumerate() {
             let mut w = decl::write_binds(SetWriter::new(), name, SHARED, shared, parity)?;
             for (binds, res) in LANE_BINDS.iter().zip(lanes) {
@@ -183,7 +183,7 @@ impl ReprojectPass {
         lanes: &[(&dyn Resolve, LaneFrame)],
         (width, height): (u32, u32),
     ) {
-        let name = PassId::Reproject.name();
+        let name = PassId::REPROJECT.name();
         decl::access(name, SHARED, shared, frame.parity, tracker);
         for (binds, (res, lane)) in LANE_BINDS.iter().zip(lanes) {
             if lane.active {

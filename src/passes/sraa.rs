@@ -11,7 +11,6 @@
 use super::compute::{ComputePass, Dispatch, FrameSet};
 use super::decl::{Bind, Resolve, Slot, Use};
 use super::layout::PassLayout;
-use super::pass_id::PassId;
 use super::raster::{begin_attachments, FLAT_BINDINGS, VERTEX_ATTRIBUTES, VERTEX_BINDINGS};
 use crate::error::Result;
 use crate::resources::scene_gpu::SceneGpu;
@@ -20,6 +19,17 @@ use crate::shaders;
 use crate::vk::recorder::Recorder;
 use crate::vk::{Context, DescriptorPool, GraphicsDesc, Pipeline, Tracker};
 use std::sync::Arc;
+
+/// The effect's passes (timing rows and the scene inputs each reads).
+pub mod pass {
+    use crate::passes::pass_id::{Change, PassId};
+
+    /// SRAA: position and normal at the 4 subpixels (4 renders with shifted projections).
+    pub const SRAA_GEOMETRY: PassId =
+        PassId::new("sraa_geometry", &[Change::Camera, Change::Object]);
+    /// SRAA: each subpixel's shading from the shaded pixels around it, box-filtered.
+    pub const SRAA: PassId = PassId::new("sraa", &[Change::Camera, Change::Light, Change::Config]);
+}
 
 /// Attachments of subpixel `n`'s render: position, normal (the G-buffer's formats), depth.
 const fn subpixel_targets(n: u8) -> [Bind; 3] {
@@ -58,12 +68,12 @@ const RECONSTRUCT: &[Bind] = &[
 pub fn layouts() -> Vec<PassLayout> {
     vec![
         PassLayout {
-            pass: PassId::SraaGeometry,
+            pass: pass::SRAA_GEOMETRY,
             modules: vec![&shaders::MESH_VERT_SUBPIXEL, &shaders::SUBPIXEL_FRAG],
             declared: FLAT_BINDINGS.to_vec(),
             binds: SUBPIXEL_TARGETS.concat(),
         },
-        ComputePass::layout(PassId::Sraa, &shaders::SRAA_COMP, RECONSTRUCT),
+        ComputePass::layout(pass::SRAA, &shaders::SRAA_COMP, RECONSTRUCT),
     ]
 }
 
@@ -82,16 +92,10 @@ impl SraaPass {
             color_formats: &COLOR_FORMATS,
             depth_format: DEPTH_FORMAT,
         };
-        let name = PassId::SraaGeometry.name();
+        let name = pass::SRAA_GEOMETRY.name();
         Ok(Self {
             geometry: Pipeline::graphics(ctx, name, &desc, FLAT_BINDINGS)?,
-            reconstruct: ComputePass::new(
-                ctx,
-                pool,
-                PassId::Sraa,
-                &shaders::SRAA_COMP,
-                RECONSTRUCT,
-            )?,
+            reconstruct: ComputePass::new(ctx, pool, pass::SRAA, &shaders::SRAA_COMP, RECONSTRUCT)?,
         })
     }
 

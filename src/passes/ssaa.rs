@@ -4,12 +4,19 @@
 use super::compute::{ComputePass, Dispatch, FrameSet};
 use super::decl::{Bind, Resolve, Slot, Use};
 use super::layout::PassLayout;
-use super::pass_id::PassId;
 use crate::error::Result;
 use crate::shaders;
 use crate::vk::recorder::Recorder;
 use crate::vk::{Context, DescriptorPool, Tracker};
 use std::sync::Arc;
+
+/// The effect's passes (timing rows and the scene inputs each reads).
+pub mod pass {
+    use crate::passes::pass_id::{Change, PassId};
+
+    /// 16x supersampling: the 4x4 box filter into the output.
+    pub const SSAA_DOWNSAMPLE: PassId = PassId::new("ssaa_downsample", &[Change::Config]);
+}
 
 const DOWNSAMPLE: &[Bind] = &[
     Bind::new(0, Slot::Shaded, Use::Sampled),
@@ -18,7 +25,7 @@ const DOWNSAMPLE: &[Bind] = &[
 
 pub fn layout() -> PassLayout {
     ComputePass::layout(
-        PassId::SsaaDownsample,
+        pass::SSAA_DOWNSAMPLE,
         &shaders::SSAA_DOWNSAMPLE_COMP,
         DOWNSAMPLE,
     )
@@ -33,7 +40,7 @@ impl SsaaPass {
         let pass = ComputePass::new(
             ctx,
             pool,
-            PassId::SsaaDownsample,
+            pass::SSAA_DOWNSAMPLE,
             &shaders::SSAA_DOWNSAMPLE_COMP,
             DOWNSAMPLE,
         )?;

@@ -9,6 +9,7 @@ use crate::config::RenderConfig;
 use crate::effects::{Effect, EffectId, REGISTRY};
 use crate::passes::decl::Slot;
 use crate::passes::{Change, PassId, PassLayout};
+use std::collections::HashMap;
 
 /// Whether `e` accumulates into a reused history under `config`.
 pub fn accumulates(config: &RenderConfig, e: &dyn Effect) -> bool {
@@ -85,35 +86,40 @@ const LANE: &[Change] = &[Change::Camera, Change::Object, Change::Config];
 
 /// Every pass's changes and every effect's (the union of its passes').
 pub struct Dependencies {
-    passes: [Changes; PassId::ALL.len()],
+    passes: HashMap<PassId, Changes>,
     pub effects: Vec<Changes>,
 }
 
 impl Dependencies {
     pub fn pass(&self, p: PassId) -> Changes {
-        self.passes[p.index()]
+        at(&self.passes, p)
     }
+}
+
+/// A pass's changes in `t` (none until the fixed point reaches it).
+fn at(t: &HashMap<PassId, Changes>, p: PassId) -> Changes {
+    t.get(&p).copied().unwrap_or_default()
 }
 
 /// The changes each pass of `frame` (the passes every frame runs) and of each effect of
 /// `effects` (their layouts) depends on: a fixed point, as histories feed themselves.
 pub fn derive(frame: &[PassLayout], effects: &[Vec<PassLayout>]) -> Dependencies {
-    let mut t = [Changes::default(); PassId::ALL.len()];
+    let mut t: HashMap<PassId, Changes> = HashMap::new();
     let mut local = vec![Changes::default(); effects.len()];
     let all = || frame.iter().chain(effects.iter().flatten());
     loop {
-        let before = (t, local.clone());
-        let producer = |slot: Slot, t: &[Changes]| {
+        let before = (t.clone(), local.clone());
+        let producer = |slot: Slot, t: &HashMap<PassId, Changes>| {
             all()
                 .filter(|l| l.binds.iter().any(|b| b.slot == slot && b.usage.writes()))
-                .fold(Changes::default(), |c, l| c | t[l.pass.index()])
+                .fold(Changes::default(), |c, l| c | at(t, l.pass))
         };
         let any_effect = effects
             .iter()
             .flatten()
-            .fold(Changes::default(), |c, l| c | t[l.pass.index()]);
+            .fold(Changes::default(), |c, l| c | at(&t, l.pass));
         // What a pass reads: its own inputs, and its sources' changes.
-        let read = |l: &PassLayout, own: Changes, inputs: Changes, t: &[Changes]| {
+        let read = |l: &PassLayout, own: Changes, inputs: Changes, t: &HashMap<PassId, Changes>| {
             l.binds
                 .iter()
                 .filter(|b| b.usage.reads())
@@ -126,17 +132,19 @@ pub fn derive(frame: &[PassLayout], effects: &[Vec<PassLayout>]) -> Dependencies
                 })
         };
         let mut lane_shared = Changes::of(LANE);
-        for l in frame.iter().filter(|l| l.pass == PassId::Reproject) {
+        for l in frame.iter().filter(|l| l.pass == PassId::REPROJECT) {
             lane_shared |= read(l, Changes::default(), Changes::of(LANE), &t);
         }
-        let mut next = t;
-        for l in frame.iter().filter(|l| l.pass != PassId::Reproject) {
-            next[l.pass.index()] |= read(l, Changes::default(), Changes::of(l.pass.inputs()), &t);
+        let mut next = t.clone();
+        for l in frame.iter().filter(|l| l.pass != PassId::REPROJECT) {
+            *next.entry(l.pass).or_default() |=
+                read(l, Changes::default(), Changes::of(l.pass.inputs()), &t);
         }
-        let mut reproject = Changes::of(PassId::Reproject.inputs()) | lane_shared;
+        let mut reproject = Changes::of(PassId::REPROJECT.inputs()) | lane_shared;
         for (e, layouts) in effects.iter().enumerate() {
             for l in layouts {
-                next[l.pass.index()] |= read(l, local[e], Changes::of(l.pass.inputs()), &t);
+                *next.entry(l.pass).or_default() |=
+                    read(l, local[e], Changes::of(l.pass.inputs()), &t);
             }
             let writers = layouts
                 .iter()
@@ -145,13 +153,13 @@ pub fn derive(frame: &[PassLayout], effects: &[Vec<PassLayout>]) -> Dependencies
                         .iter()
                         .any(|b| b.usage.writes() && source(b.slot) == Source::Local)
                 })
-                .fold(Changes::default(), |c, l| c | next[l.pass.index()]);
+                .fold(Changes::default(), |c, l| c | at(&next, l.pass));
             local[e] |= lane_shared | writers;
             reproject |= local[e];
         }
-        next[PassId::Reproject.index()] |= reproject;
+        *next.entry(PassId::REPROJECT).or_default() |= reproject;
         t = next;
-        if (t, local.clone()) == before {
+        if (&t, &local) == (&before.0, &before.1) {
             break;
         }
     }
@@ -160,7 +168,7 @@ pub fn derive(frame: &[PassLayout], effects: &[Vec<PassLayout>]) -> Dependencies
         .map(|layouts| {
             layouts
                 .iter()
-                .fold(Changes::default(), |c, l| c | t[l.pass.index()])
+                .fold(Changes::default(), |c, l| c | at(&t, l.pass))
         })
         .collect();
     Dependencies { passes: t, effects }
@@ -203,24 +211,28 @@ pub fn triggers(config: &RenderConfig, effects: &[Box<dyn Effect>]) -> Vec<Trigg
         changes: d.pass(pass).list(),
         effect,
     };
-    let mut rows = vec![row(PassId::LightView, None), row(PassId::GBuffer, None)];
+    let mut rows = vec![row(PassId::LIGHT_VIEW, None), row(PassId::GBUFFER, None)];
     if config.gbuffer.visibility() {
-        rows.push(row(PassId::GBufferResolve, None));
+        rows.push(row(PassId::GBUFFER_RESOLVE, None));
     }
     for e in effects {
         for &pass in e.passes() {
             rows.push(row(pass, Some((e.id(), accumulates(config, e.as_ref())))));
         }
     }
-    rows.push(row(PassId::Reproject, None));
-    rows.push(row(PassId::Composite, None));
+    rows.push(row(PassId::REPROJECT, None));
+    rows.push(row(PassId::COMPOSITE, None));
     if config.aa.mode.subpixel() {
-        rows.extend([row(PassId::SraaGeometry, None), row(PassId::Sraa, None)]);
+        rows.extend([
+            row(crate::passes::sraa::pass::SRAA_GEOMETRY, None),
+            row(crate::passes::sraa::pass::SRAA, None),
+        ]);
     }
     if config.aa.mode.supersampling() > 1 {
-        rows.push(row(PassId::SsaaDownsample, None));
+        rows.push(row(crate::passes::ssaa::pass::SSAA_DOWNSAMPLE, None));
     }
-    rows.sort_by_key(|t| t.pass.index());
+    let order = crate::effects::all_passes();
+    rows.sort_by_key(|t| order.iter().position(|p| *p == t.pass));
     rows.dedup_by_key(|t| t.pass);
     rows
 }
@@ -230,10 +242,10 @@ fn why(t: &Trigger) -> String {
     let names: Vec<&str> = t.changes.iter().map(|c| c.name()).collect();
     let mut out = names.join(", ");
     match (t.pass, t.effect) {
-        (PassId::LightView, _) => {
+        (PassId::LIGHT_VIEW, _) => {
             out += " (objects whose bounds, this frame or the last, meet the light's frustum)"
         }
-        (PassId::Reproject, _) => out += "; a lane per effect with a reused history that runs",
+        (PassId::REPROJECT, _) => out += "; a lane per effect with a reused history that runs",
         (_, Some((id, true))) => {
             out += &format!("; {id:?}: every frame until its history converges")
         }

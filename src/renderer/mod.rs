@@ -187,7 +187,11 @@ impl Renderer {
             scene_gpu,
             frames,
             slots: FrameSlots::new(ctx, FRAMES_IN_FLIGHT)?,
-            timer: GpuTimer::new(ctx, FRAMES_IN_FLIGHT, PassId::ALL.len() as u32 + 2)?,
+            timer: GpuTimer::new(
+                ctx,
+                FRAMES_IN_FLIGHT,
+                crate::effects::all_passes().len() as u32 + 2,
+            )?,
             tracker,
             frame_index: 0,
             past: Past::default(),
@@ -424,7 +428,7 @@ impl Renderer {
         hook: &mut Option<FrameHook<'_>>,
     ) -> (Option<PassId>, SubmitSync) {
         self.timer
-            .skip(slot, PassId::LightView.name(), SkipReason::Unchanged);
+            .skip(slot, PassId::LIGHT_VIEW.name(), SkipReason::Unchanged);
         self.skips.report(
             &mut self.timer,
             slot,
@@ -754,13 +758,13 @@ impl FramePasses {
     ) {
         let (frame, shared) = (info.frame, SharedTargets(info.targets));
         match plan.skipped(Step::LightView) {
-            None => r.timed(PassId::LightView, |rec, tr| {
+            None => r.timed(PassId::LIGHT_VIEW, |rec, tr| {
                 self.light_view.record(rec, tr, frame, scene, &shared)
             }),
-            Some(reason) => r.timer.skip(r.slot, PassId::LightView.name(), reason),
+            Some(reason) => r.timer.skip(r.slot, PassId::LIGHT_VIEW.name(), reason),
         }
         if plan.runs(Step::GBuffer) {
-            r.timed(PassId::GBuffer, |rec, tr| {
+            r.timed(PassId::GBUFFER, |rec, tr| {
                 self.gbuffer.record(rec, tr, frame, scene, &shared)
             });
             if self.gbuffer.resolves() {
@@ -772,7 +776,7 @@ impl FramePasses {
                     scene.draw_table_base(r.slot),
                     (info.targets.width, info.targets.height),
                 );
-                r.timed(PassId::GBufferResolve, |rec, tr| {
+                r.timed(PassId::GBUFFER_RESOLVE, |rec, tr| {
                     self.gbuffer
                         .record_resolve(rec, tr, frame, &res, base, size)
                 });
@@ -792,24 +796,24 @@ impl FramePasses {
     ) {
         let (frame, t) = (info.frame, info.targets);
         let shared = SharedTargets(t);
-        r.timed(PassId::Composite, |rec, tr| {
+        r.timed(PassId::COMPOSITE, |rec, tr| {
             self.composite
                 .record(rec, tr, frame, terms, t.width, t.height)
         });
         if let Some(sraa) = &self.sraa {
             // The subpixel geometry, as the G-buffer, only while the camera or objects move.
             if plan.runs(Step::GBuffer) {
-                r.timed(PassId::SraaGeometry, |rec, tr| {
+                r.timed(crate::passes::sraa::pass::SRAA_GEOMETRY, |rec, tr| {
                     sraa.record_geometry(rec, tr, frame, scene, &shared)
                 });
             }
-            r.timed(PassId::Sraa, |rec, tr| {
+            r.timed(crate::passes::sraa::pass::SRAA, |rec, tr| {
                 sraa.record_reconstruct(rec, tr, frame, &shared, (t.width, t.height))
             });
         }
         if let Some(ssaa) = &self.ssaa {
             let out = (t.output.desc.width, t.output.desc.height);
-            r.timed(PassId::SsaaDownsample, |rec, tr| {
+            r.timed(crate::passes::ssaa::pass::SSAA_DOWNSAMPLE, |rec, tr| {
                 ssaa.record(rec, tr, frame, &shared, out)
             });
         }

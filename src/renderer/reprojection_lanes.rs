@@ -142,7 +142,7 @@ impl Reprojection {
         });
         let lanes = &lanes[..count];
         let size = (targets.width, targets.height);
-        r.timed(PassId::Reproject, |rec, tr| {
+        r.timed(PassId::REPROJECT, |rec, tr| {
             pass.record(rec, tr, info.frame, &shared, lanes, size)
         });
     }

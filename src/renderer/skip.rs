@@ -132,6 +132,9 @@ pub struct SkipTracker {
     /// The passes recorded since the configuration last changed, and whether each
     /// accumulates into a reused history (a skipped one is then `converged`).
     known: Vec<(PassId, bool)>,
+    /// Every pass in recording order (`effects::all_passes`), to name a recorded pass and
+    /// keep `known` in that order.
+    order: Vec<PassId>,
     /// What each slot's frame skipped (its skipped effects copied no counters).
     slots: [Plan; FRAMES_IN_FLIGHT],
 }
@@ -165,6 +168,7 @@ impl SkipTracker {
                 })
                 .collect(),
             known: Vec::new(),
+            order: crate::effects::all_passes(),
             slots: [Plan::default(); FRAMES_IN_FLIGHT],
         }
     }
@@ -271,10 +275,10 @@ impl SkipTracker {
             let left_out = plan.frame
                 || (matches!(
                     pass,
-                    PassId::GBuffer | PassId::GBufferResolve | PassId::SraaGeometry
+                    PassId::GBUFFER | PassId::GBUFFER_RESOLVE | crate::passes::sraa::pass::SRAA_GEOMETRY
                 ) && plan.gbuffer)
                 // No lane ran: every temporal effect was left out.
-                || pass == PassId::Reproject
+                || pass == PassId::REPROJECT
                 || effects
                     .iter()
                     .enumerate()
@@ -293,7 +297,7 @@ impl SkipTracker {
         // allocated or sorted on the frames in between.
         let mut added = false;
         for &name in timer.recorded(slot) {
-            let Some(pass) = PassId::ALL.into_iter().find(|p| p.name() == name) else {
+            let Some(&pass) = self.order.iter().find(|p| p.name() == name) else {
                 continue;
             };
             if self.known.iter().any(|(p, _)| *p == pass) {
@@ -303,11 +307,13 @@ impl SkipTracker {
                 .iter()
                 .any(|e| accumulates(config, e.as_ref()) && e.accumulating().contains(&pass));
             self.known
-                .push((pass, pass == PassId::Reproject || accumulated));
+                .push((pass, pass == PassId::REPROJECT || accumulated));
             added = true;
         }
         if added {
-            self.known.sort_by_key(|(p, _)| p.index());
+            let order = &self.order;
+            self.known
+                .sort_by_key(|(p, _)| order.iter().position(|o| o == p));
         }
     }
 }

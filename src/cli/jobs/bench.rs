@@ -12,7 +12,6 @@ use crate::frontend::headless;
 use crate::frontend::progress::Progress;
 use crate::frontend::sink::FrameSink;
 use crate::frontend::window_sink::open_sink;
-use crate::passes::PassId;
 use crate::renderer::Renderer;
 use crate::scene::path::frame_time;
 use crate::scene::{CameraPath, Scene};
@@ -83,7 +82,10 @@ fn report(
     timings: &[FrameTiming],
     warmup: Outcome,
 ) -> Report {
-    let names: Vec<&str> = PassId::ALL.iter().map(|p| p.name()).collect();
+    let names: Vec<&str> = crate::effects::all_passes()
+        .iter()
+        .map(|p| p.name())
+        .collect();
     Report::new(
         &ctx.info,
         args.scene.size.0,

@@ -26,6 +26,26 @@ use crate::vk::{upload_image, Access, Context, Image, ImageDesc};
 use ash::vk;
 use std::sync::Arc;
 
+/// The effect's passes (timing rows and the scene inputs each reads).
+pub mod pass {
+    use crate::passes::pass_id::{Change, PassId};
+
+    /// Point-sampled levels of the G-buffer position for SSAO's far taps (--ao-position-mips).
+    pub const AO_POSITION_CHAIN: PassId = PassId::new("ao_position_chain", &[Change::Config]);
+    /// Screen-space ambient occlusion.
+    pub const SSAO: PassId = PassId::new("ssao", &[Change::Camera, Change::Config]);
+    /// The AO's refresh tile, every pattern, spread over threads.
+    pub const SSAO_REFRESH: PassId = PassId::new("ssao_refresh", &[Change::Camera, Change::Config]);
+    /// 5x5 Gaussian blur of the AO (no-reuse baseline only).
+    pub const BLUR: PassId = PassId::new("blur", &[Change::Config]);
+
+    /// Every pass the effect may record, in recording order.
+    pub const ALL: &[PassId] = &[AO_POSITION_CHAIN, SSAO, SSAO_REFRESH, BLUR];
+
+    /// The timing groups `bench --compare-reuse`, tables and sweeps compare (summed per frame).
+    pub const GROUPS: &[(&str, &[PassId])] = &[("ao", ALL)];
+}
+
 /// 4x4 random rotation vectors of the pattern.
 const RANDOM: Slot = Slot::Own("random");
 /// Without reuse: this frame's AO, and its blur.
@@ -78,24 +98,26 @@ pub const REGISTRATION: Registration = Registration {
     enabled: |c| c.effects.ao,
     create: |s| Ok(Box::new(AoEffect::new(s)?)),
     layouts,
+    passes: pass::ALL,
+    timing_groups: pass::GROUPS,
     sweep_keys: sweep::SWEEP_KEYS,
 };
 
 // Every pass of the effect, declared once (`PassDecl`): `layouts` and `new` both read these.
 const SSAO_ACCUMULATE_BLOCKS: PassDecl = PassDecl::new(
-    PassId::Ssao,
+    pass::SSAO,
     &shaders::SSAO_ACCUMULATE_COMP_BLOCKS,
     ACCUMULATE,
 );
 const SSAO_ACCUMULATE_REFRESH: PassDecl = PassDecl::new(
-    PassId::SsaoRefresh,
+    pass::SSAO_REFRESH,
     &shaders::SSAO_ACCUMULATE_COMP_REFRESH,
     ACCUMULATE,
 );
-const SSAO_FULL: PassDecl = PassDecl::new(PassId::Ssao, &shaders::SSAO_FULL_COMP, FULL);
-const BLUR_PASS: PassDecl = PassDecl::new(PassId::Blur, &shaders::BLUR_COMP, BLUR);
+const SSAO_FULL: PassDecl = PassDecl::new(pass::SSAO, &shaders::SSAO_FULL_COMP, FULL);
+const BLUR_PASS: PassDecl = PassDecl::new(pass::BLUR, &shaders::BLUR_COMP, BLUR);
 const AO_POSITION_CHAIN: PassDecl = PassDecl::new(
-    PassId::AoPositionChain,
+    pass::AO_POSITION_CHAIN,
     &shaders::AO_POSITION_CHAIN_COMP,
     CHAIN,
 );
@@ -269,16 +291,11 @@ impl AoEffect {
 
 impl Effect for AoEffect {
     fn passes(&self) -> &'static [PassId] {
-        &[
-            PassId::AoPositionChain,
-            PassId::Ssao,
-            PassId::SsaoRefresh,
-            PassId::Blur,
-        ]
+        pass::ALL
     }
 
     fn accumulating(&self) -> &'static [PassId] {
-        &[PassId::Ssao, PassId::SsaoRefresh]
+        &[pass::SSAO, pass::SSAO_REFRESH]
     }
 
     fn id(&self) -> EffectId {
@@ -349,20 +366,20 @@ impl Effect for AoEffect {
                 width: d.width,
                 height: d.height,
             };
-            r.timed(PassId::AoPositionChain, |rec, tr| {
+            r.timed(pass::AO_POSITION_CHAIN, |rec, tr| {
                 chain.record(rec, tr, info.frame, &res, &[], level1)
             });
         }
-        r.timed(PassId::Ssao, |rec, tr| {
+        r.timed(pass::SSAO, |rec, tr| {
             self.ssao.record(rec, tr, info.frame, &res, push, dispatch)
         });
         if let (Some(p), Some(tile)) = (&self.refresh, refresh_dispatch(&self.push)) {
-            r.timed(PassId::SsaoRefresh, |rec, tr| {
+            r.timed(pass::SSAO_REFRESH, |rec, tr| {
                 p.record(rec, tr, info.frame, &res, push, tile)
             });
         }
         if let Some(blur) = &self.blur {
-            r.timed(PassId::Blur, |rec, tr| {
+            r.timed(pass::BLUR, |rec, tr| {
                 blur.record(rec, tr, info.frame, &res, &[], every_pixel(info))
             });
         }

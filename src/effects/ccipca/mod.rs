@@ -29,6 +29,39 @@ use ash::vk;
 use gpu_allocator::MemoryLocation;
 use std::sync::Arc;
 
+/// The effect's passes (timing rows and the scene inputs each reads).
+pub mod pass {
+    use crate::passes::pass_id::{Change, PassId};
+
+    /// CCIPCA's input: a new noisy full-resolution gather each frame (--vpls per pixel).
+    pub const INDIRECT_NOISY: PassId = PassId::new(
+        "indirect_noisy",
+        &[Change::Camera, Change::Light, Change::Config],
+    );
+    /// CCIPCA: the bases warped along the reprojection and orthogonalized (a moving camera).
+    pub const CCIPCA_REPROJECT: PassId =
+        PassId::new("ccipca_reproject", &[Change::Camera, Change::Config]);
+    /// CCIPCA: every basis updated from the noisy image, in turn (image-wide sums on the GPU).
+    pub const CCIPCA_UPDATE: PassId = PassId::new("ccipca_update", &[Change::Config]);
+    /// CCIPCA: the noisy image projected on the updated bases.
+    pub const CCIPCA_RECONSTRUCT: PassId = PassId::new("ccipca_reconstruct", &[Change::Config]);
+    /// CCIPCA: the bases smoothed for the next frame (--ccipca-basis-filter).
+    pub const CCIPCA_BASIS_FILTER: PassId =
+        PassId::new("ccipca_basis_filter", &[Change::Camera, Change::Config]);
+
+    /// Every pass the effect may record, in recording order.
+    pub const ALL: &[PassId] = &[
+        CCIPCA_REPROJECT,
+        INDIRECT_NOISY,
+        CCIPCA_UPDATE,
+        CCIPCA_RECONSTRUCT,
+        CCIPCA_BASIS_FILTER,
+    ];
+
+    /// The timing groups `bench --compare-reuse`, tables and sweeps compare (summed per frame).
+    pub const GROUPS: &[(&str, &[PassId])] = &[];
+}
+
 /// This frame's noisy gather (rgb).
 const NOISY: Slot = Slot::Own("noisy");
 /// The projection on the bases: the indirect light the composite adds.
@@ -123,43 +156,43 @@ const RECONSTRUCT: &[Bind] = &[
 // Every pass, declared once (`PassDecl`): `layouts` and `Passes::new` both read these. Each
 // is specialized for k bases.
 const REPROJECT_PASS: PassDecl = PassDecl::new(
-    PassId::CcipcaReproject,
+    pass::CCIPCA_REPROJECT,
     &shaders::CCIPCA_REPROJECT_COMP,
     REPROJECT,
 );
 const GRAM_PASS: PassDecl = PassDecl::new(
-    PassId::CcipcaReproject,
+    pass::CCIPCA_REPROJECT,
     &shaders::CCIPCA_SUMS_COMP_GRAM,
     SUMS,
 );
 const ORTHOGONALIZE_PASS: PassDecl = PassDecl::new(
-    PassId::CcipcaReproject,
+    pass::CCIPCA_REPROJECT,
     &shaders::CCIPCA_ORTHOGONALIZE_COMP,
     ORTHOGONALIZE,
 );
 const NOISY_PASS: PassDecl = PassDecl::new(
-    PassId::IndirectNoisy,
+    pass::INDIRECT_NOISY,
     &shaders::INDIRECT_NOISY_COMP_CCIPCA,
     NOISY_GATHER,
 );
-const SUMS_PASS: PassDecl = PassDecl::new(PassId::CcipcaUpdate, &shaders::CCIPCA_SUMS_COMP, SUMS);
+const SUMS_PASS: PassDecl = PassDecl::new(pass::CCIPCA_UPDATE, &shaders::CCIPCA_SUMS_COMP, SUMS);
 const UPDATE_PASS: PassDecl = PassDecl::new(
-    PassId::CcipcaUpdate,
+    pass::CCIPCA_UPDATE,
     &shaders::CCIPCA_UPDATE_COMP_UPDATE,
     UPDATE,
 );
 const PROJECT_PASS: PassDecl = PassDecl::new(
-    PassId::CcipcaReconstruct,
+    pass::CCIPCA_RECONSTRUCT,
     &shaders::CCIPCA_UPDATE_COMP_PROJECT,
     PROJECT,
 );
 const RECONSTRUCT_PASS: PassDecl = PassDecl::new(
-    PassId::CcipcaReconstruct,
+    pass::CCIPCA_RECONSTRUCT,
     &shaders::CCIPCA_RECONSTRUCT_COMP,
     RECONSTRUCT,
 );
 const BASIS_FILTER_PASS: PassDecl = PassDecl::new(
-    PassId::CcipcaBasisFilter,
+    pass::CCIPCA_BASIS_FILTER,
     &shaders::CCIPCA_BASIS_FILTER_COMP,
     BASIS_FILTER,
 );
@@ -180,6 +213,8 @@ pub const REGISTRATION: Registration = Registration {
     enabled: |c| c.effects.indirect && c.indirect.filter == IndirectFilter::Ccipca,
     create: |s| Ok(Box::new(CcipcaEffect::new(s)?)),
     layouts,
+    passes: pass::ALL,
+    timing_groups: pass::GROUPS,
     sweep_keys: &[],
 };
 
@@ -381,7 +416,7 @@ impl CcipcaEffect {
         let bases = info.config.indirect.bases;
         let gram = self.push_bytes(0, if always { gram_vec4s(bases) } else { 0 });
         let filter = &self.passes[other];
-        r.timed(PassId::CcipcaBasisFilter, |rec, tr| {
+        r.timed(pass::CCIPCA_BASIS_FILTER, |rec, tr| {
             filter
                 .basis_filter
                 .record(rec, tr, info.frame, &res, &gram, pixels);
@@ -403,12 +438,7 @@ impl Effect for CcipcaEffect {
     }
 
     fn passes(&self) -> &'static [PassId] {
-        &[
-            PassId::CcipcaReproject,
-            PassId::IndirectNoisy,
-            PassId::CcipcaUpdate,
-            PassId::CcipcaReconstruct,
-        ]
+        pass::ALL
     }
 
     fn resize(&mut self, ctx: &Arc<Context>, config: &RenderConfig) -> Result<()> {
@@ -504,7 +534,7 @@ impl Effect for CcipcaEffect {
         if self.warp {
             // Warp (storing the Gram matrix's partial sums), add them up, orthogonalize.
             let gram = sums(0, gram_vec4s(info.config.indirect.bases));
-            r.timed(PassId::CcipcaReproject, |rec, tr| {
+            r.timed(pass::CCIPCA_REPROJECT, |rec, tr| {
                 passes
                     .reproject
                     .record(rec, tr, info.frame, &res, &gram, pixels);
@@ -519,7 +549,7 @@ impl Effect for CcipcaEffect {
         if info.config.indirect.ccipca_stages == CcipcaStages::WarpOnly {
             return;
         }
-        r.timed(PassId::IndirectNoisy, |rec, tr| {
+        r.timed(pass::INDIRECT_NOISY, |rec, tr| {
             passes
                 .noisy
                 .record(rec, tr, info.frame, &res, &push(0), pixels)
@@ -537,15 +567,15 @@ impl Effect for CcipcaEffect {
         };
         let before = info.config.indirect.project == CcipcaProject::Before;
         if before {
-            r.timed(PassId::CcipcaReconstruct, |rec, tr| {
+            r.timed(pass::CCIPCA_RECONSTRUCT, |rec, tr| {
                 chain(&passes.project, rec, tr)
             });
         }
-        r.timed(PassId::CcipcaUpdate, |rec, tr| {
+        r.timed(pass::CCIPCA_UPDATE, |rec, tr| {
             chain(&passes.update, rec, tr)
         });
         if !before {
-            r.timed(PassId::CcipcaReconstruct, |rec, tr| {
+            r.timed(pass::CCIPCA_RECONSTRUCT, |rec, tr| {
                 passes
                     .reconstruct
                     .record(rec, tr, info.frame, &res, &push(0), pixels)

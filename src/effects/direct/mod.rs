@@ -25,6 +25,29 @@ use crate::vk::{Context, Image, ImageDesc};
 use ash::vk;
 use std::sync::Arc;
 
+/// The effect's passes (timing rows and the scene inputs each reads).
+pub mod pass {
+    use crate::passes::pass_id::{Change, PassId};
+
+    /// PCF shadow visibility (every frame, or accumulated with the cache).
+    pub const SHADOW: PassId =
+        PassId::new("shadow", &[Change::Camera, Change::Light, Change::Config]);
+    /// The shadow's refresh tile, every pattern, spread over threads.
+    pub const SHADOW_REFRESH: PassId = PassId::new(
+        "shadow_refresh",
+        &[Change::Camera, Change::Light, Change::Config],
+    );
+    /// Direct spot light times the shadow visibility.
+    pub const DIRECT: PassId = PassId::new("direct", &[Change::Light, Change::Config]);
+
+    /// Every pass the effect may record, in recording order.
+    pub const ALL: &[PassId] = &[SHADOW, SHADOW_REFRESH, DIRECT];
+
+    /// The timing groups `bench --compare-reuse`, tables and sweeps compare (summed per frame).
+    pub const GROUPS: &[(&str, &[PassId])] =
+        &[("shadow", &[SHADOW, SHADOW_REFRESH]), ("direct", &[DIRECT])];
+}
+
 /// Shadow visibility computed every frame.
 const SHADOW: Slot = Slot::Own("shadow");
 /// The visibility the direct pass reads: `SHADOW`, or the accumulated history.
@@ -61,23 +84,25 @@ pub const REGISTRATION: Registration = Registration {
     enabled: |c| c.effects.direct,
     create: |s| Ok(Box::new(DirectEffect::new(s)?)),
     layouts,
+    passes: pass::ALL,
+    timing_groups: pass::GROUPS,
     sweep_keys: sweep::SWEEP_KEYS,
 };
 
 // Every pass of the effect, declared once (`PassDecl`): `layouts` and `new` both read these.
 const SHADOW_FULL_PASS: PassDecl =
-    PassDecl::new(PassId::Shadow, &shaders::SHADOW_FULL_COMP, SHADOW_FULL);
+    PassDecl::new(pass::SHADOW, &shaders::SHADOW_FULL_COMP, SHADOW_FULL);
 const SHADOW_ACCUMULATE_BLOCKS: PassDecl = PassDecl::new(
-    PassId::Shadow,
+    pass::SHADOW,
     &shaders::SHADOW_ACCUMULATE_COMP_BLOCKS,
     SHADOW_ACCUMULATE,
 );
 const SHADOW_ACCUMULATE_REFRESH: PassDecl = PassDecl::new(
-    PassId::ShadowRefresh,
+    pass::SHADOW_REFRESH,
     &shaders::SHADOW_ACCUMULATE_COMP_REFRESH,
     SHADOW_ACCUMULATE,
 );
-const DIRECT_PASS: PassDecl = PassDecl::new(PassId::Direct, &shaders::DIRECT_COMP, DIRECT_LIGHT);
+const DIRECT_PASS: PassDecl = PassDecl::new(pass::DIRECT, &shaders::DIRECT_COMP, DIRECT_LIGHT);
 
 fn layouts() -> Vec<PassLayout> {
     vec![
@@ -208,11 +233,11 @@ impl DirectEffect {
 
 impl Effect for DirectEffect {
     fn passes(&self) -> &'static [PassId] {
-        &[PassId::Shadow, PassId::ShadowRefresh, PassId::Direct]
+        pass::ALL
     }
 
     fn accumulating(&self) -> &'static [PassId] {
-        &[PassId::Shadow, PassId::ShadowRefresh]
+        &[pass::SHADOW, pass::SHADOW_REFRESH]
     }
 
     fn id(&self) -> EffectId {
@@ -293,15 +318,15 @@ impl Effect for DirectEffect {
             ),
             None => (&self.shadow_full, &self.direct, &[], every_pixel(info)),
         };
-        r.timed(PassId::Shadow, |rec, tr| {
+        r.timed(pass::SHADOW, |rec, tr| {
             shadow.record(rec, tr, info.frame, &res, push, dispatch)
         });
         if let (Some(reuse), Some(tile)) = (accumulated, refresh_dispatch(&self.push)) {
-            r.timed(PassId::ShadowRefresh, |rec, tr| {
+            r.timed(pass::SHADOW_REFRESH, |rec, tr| {
                 reuse.refresh.record(rec, tr, info.frame, &res, push, tile)
             });
         }
-        r.timed(PassId::Direct, |rec, tr| {
+        r.timed(pass::DIRECT, |rec, tr| {
             direct.record(rec, tr, info.frame, &res, &[], every_pixel(info))
         });
     }

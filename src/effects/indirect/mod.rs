@@ -32,6 +32,50 @@ use gpu_allocator::MemoryLocation;
 use std::cell::Cell;
 use std::sync::Arc;
 
+/// The effect's passes (timing rows and the scene inputs each reads).
+pub mod pass {
+    use crate::passes::pass_id::{Change, PassId};
+
+    /// The half-resolution gather's list: the low-resolution samples the upsampling reads.
+    pub const INDIRECT_CLASSIFY: PassId = PassId::new(
+        "indirect_classify",
+        &[Change::Camera, Change::Light, Change::Config],
+    );
+    /// RSM gather (half resolution, or full resolution without half-res).
+    pub const INDIRECT_GATHER: PassId = PassId::new(
+        "indirect_gather",
+        &[Change::Camera, Change::Light, Change::Config],
+    );
+    /// Geometry-aware upsampling of the half-resolution gather.
+    pub const INDIRECT_UPSAMPLE: PassId = PassId::new(
+        "indirect_upsample",
+        &[Change::Camera, Change::Light, Change::Config],
+    );
+    /// Full-resolution gather of the pixels the upsampling discarded.
+    pub const INDIRECT_FIXUP: PassId = PassId::new(
+        "indirect_fixup",
+        &[Change::Camera, Change::Light, Change::Config],
+    );
+    /// Indirect light's refresh tile, every pattern (at half resolution of the samples its
+    /// pixels are upsampled from), spread over threads.
+    pub const INDIRECT_REFRESH: PassId = PassId::new(
+        "indirect_refresh",
+        &[Change::Camera, Change::Light, Change::Config],
+    );
+
+    /// Every pass the effect may record, in recording order.
+    pub const ALL: &[PassId] = &[
+        INDIRECT_CLASSIFY,
+        INDIRECT_GATHER,
+        INDIRECT_UPSAMPLE,
+        INDIRECT_FIXUP,
+        INDIRECT_REFRESH,
+    ];
+
+    /// The timing groups `bench --compare-reuse`, tables and sweeps compare (summed per frame).
+    pub const GROUPS: &[(&str, &[PassId])] = &[("indirect", ALL)];
+}
+
 /// 1 where the upsampling found no acceptable neighbour (Figure 4.1). Written only for the
 /// pixels recomputed this frame, so it is not discarded between frames.
 const DISCARD: Slot = Slot::Own("discard");
@@ -130,62 +174,64 @@ pub const REGISTRATION: Registration = Registration {
     enabled: |c| c.effects.indirect && c.indirect.filter == IndirectFilter::Accumulate,
     create: |s| Ok(Box::new(IndirectEffect::new(s)?)),
     layouts,
+    passes: pass::ALL,
+    timing_groups: pass::GROUPS,
     sweep_keys: sweep::SWEEP_KEYS,
 };
 
 // Every pass of the effect, declared once (`PassDecl`): `layouts` and `new` both read these.
 const INDIRECT_CLASSIFY: PassDecl = PassDecl::new(
-    PassId::IndirectClassify,
+    pass::INDIRECT_CLASSIFY,
     &shaders::INDIRECT_CLASSIFY_COMP,
     CLASSIFY,
 );
 const INDIRECT_SPREAD_GATHER: PassDecl = PassDecl::new(
-    PassId::IndirectGather,
+    pass::INDIRECT_GATHER,
     &shaders::INDIRECT_SPREAD_COMP_GATHER,
     LOWRES_COMPACT,
 );
 const INDIRECT_LOWRES: PassDecl = PassDecl::new(
-    PassId::IndirectGather,
+    pass::INDIRECT_GATHER,
     &shaders::INDIRECT_LOWRES_COMP,
     LOWRES_GATHER,
 );
 const INDIRECT_UPSAMPLE_IMAGE: PassDecl = PassDecl::new(
-    PassId::IndirectUpsample,
+    pass::INDIRECT_UPSAMPLE,
     &shaders::INDIRECT_UPSAMPLE_COMP_IMAGE,
     UPSAMPLE_IMAGE,
 );
 const INDIRECT_UPSAMPLE_SLOTS: PassDecl = PassDecl::new(
-    PassId::IndirectUpsample,
+    pass::INDIRECT_UPSAMPLE,
     &shaders::INDIRECT_UPSAMPLE_COMP_SLOTS,
     UPSAMPLE,
 );
 const INDIRECT_SPREAD_FIXUP: PassDecl = PassDecl::new(
-    PassId::IndirectFixup,
+    pass::INDIRECT_FIXUP,
     &shaders::INDIRECT_SPREAD_COMP_FIXUP,
     GATHER,
 );
 const INDIRECT_GATHER: PassDecl = PassDecl::new(
-    PassId::IndirectGather,
+    pass::INDIRECT_GATHER,
     &shaders::INDIRECT_GATHER_COMP,
     GATHER,
 );
 const INDIRECT_SPREAD_REFRESH: PassDecl = PassDecl::new(
-    PassId::IndirectRefresh,
+    pass::INDIRECT_REFRESH,
     &shaders::INDIRECT_SPREAD_COMP_REFRESH,
     REFRESH,
 );
 const INDIRECT_SPREAD_REFRESH_LOWRES: PassDecl = PassDecl::new(
-    PassId::IndirectRefresh,
+    pass::INDIRECT_REFRESH,
     &shaders::INDIRECT_SPREAD_COMP_REFRESH_LOWRES,
     REFRESH,
 );
 const INDIRECT_SPREAD_RESOLVE: PassDecl = PassDecl::new(
-    PassId::IndirectRefresh,
+    pass::INDIRECT_REFRESH,
     &shaders::INDIRECT_SPREAD_COMP_RESOLVE,
     REFRESH,
 );
 const INDIRECT_SPREAD_RESOLVE_LOWRES: PassDecl = PassDecl::new(
-    PassId::IndirectRefresh,
+    pass::INDIRECT_REFRESH,
     &shaders::INDIRECT_SPREAD_COMP_RESOLVE_LOWRES,
     REFRESH,
 );
@@ -227,7 +273,8 @@ struct HalfRes {
 
 /// The gather at half or at full resolution.
 enum Gather {
-    Half(HalfRes),
+    /// Boxed: four passes beside the full gather's one.
+    Half(Box<HalfRes>),
     Full(ComputePass),
 }
 
@@ -272,11 +319,11 @@ impl IndirectEffect {
                     pass(&INDIRECT_UPSAMPLE_SLOTS)?,
                 )
             };
-            Gather::Half(HalfRes {
+            Gather::Half(Box::new(HalfRes {
                 lowres,
                 upsample,
                 fixup: pass(&INDIRECT_SPREAD_FIXUP)?,
-            })
+            }))
         } else {
             Gather::Full(pass(&INDIRECT_GATHER)?)
         };
@@ -448,22 +495,16 @@ impl IndirectEffect {
 
 impl Effect for IndirectEffect {
     fn passes(&self) -> &'static [PassId] {
-        &[
-            PassId::IndirectClassify,
-            PassId::IndirectGather,
-            PassId::IndirectUpsample,
-            PassId::IndirectFixup,
-            PassId::IndirectRefresh,
-        ]
+        pass::ALL
     }
 
     fn accumulating(&self) -> &'static [PassId] {
         &[
-            PassId::IndirectClassify,
-            PassId::IndirectGather,
-            PassId::IndirectUpsample,
-            PassId::IndirectFixup,
-            PassId::IndirectRefresh,
+            pass::INDIRECT_CLASSIFY,
+            pass::INDIRECT_GATHER,
+            pass::INDIRECT_UPSAMPLE,
+            pass::INDIRECT_FIXUP,
+            pass::INDIRECT_REFRESH,
         ]
     }
 

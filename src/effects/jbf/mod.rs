@@ -18,6 +18,20 @@ use crate::shaders;
 use crate::vk::{Context, Image};
 use std::sync::Arc;
 
+/// The effect's passes (timing rows and the scene inputs each reads).
+pub mod pass {
+    use crate::passes::pass_id::{Change, PassId};
+
+    /// The joint bilateral filter of the noisy gather (--indirect-filter jbf11|jbf17).
+    pub const INDIRECT_JBF: PassId = PassId::new("indirect_jbf", &[Change::Camera, Change::Config]);
+
+    /// Every pass the effect may record, in recording order.
+    pub const ALL: &[PassId] = &[crate::effects::ccipca::pass::INDIRECT_NOISY, INDIRECT_JBF];
+
+    /// The timing groups `bench --compare-reuse`, tables and sweeps compare (summed per frame).
+    pub const GROUPS: &[(&str, &[PassId])] = &[];
+}
+
 const NOISY: Slot = Slot::Own("noisy");
 const FILTERED: Slot = Slot::Own("filtered");
 
@@ -42,17 +56,19 @@ pub const REGISTRATION: Registration = Registration {
     enabled: |c| c.effects.indirect && radius(c.indirect.filter).is_some(),
     create: |s| Ok(Box::new(JbfEffect::new(s)?)),
     layouts,
+    passes: pass::ALL,
+    timing_groups: pass::GROUPS,
     sweep_keys: &[],
 };
 
 // Every pass of the effect, declared once (`PassDecl`): `layouts` and `new` both read these.
 const INDIRECT_NOISY_PLAIN: PassDecl = PassDecl::new(
-    PassId::IndirectNoisy,
+    crate::effects::ccipca::pass::INDIRECT_NOISY,
     &shaders::INDIRECT_NOISY_COMP_PLAIN,
     NOISY_GATHER,
 );
 const INDIRECT_JBF: PassDecl =
-    PassDecl::new(PassId::IndirectJbf, &shaders::INDIRECT_JBF_COMP, FILTER);
+    PassDecl::new(pass::INDIRECT_JBF, &shaders::INDIRECT_JBF_COMP, FILTER);
 
 fn layouts() -> Vec<PassLayout> {
     vec![INDIRECT_NOISY_PLAIN.layout(), INDIRECT_JBF.layout()]
@@ -111,7 +127,7 @@ impl Effect for JbfEffect {
     }
 
     fn passes(&self) -> &'static [PassId] {
-        &[PassId::IndirectNoisy, PassId::IndirectJbf]
+        pass::ALL
     }
 
     fn resize(&mut self, ctx: &Arc<Context>, config: &RenderConfig) -> Result<()> {
@@ -156,10 +172,10 @@ impl Effect for JbfEffect {
             own_buffers: &[],
         };
         let pixels = every_pixel(info);
-        r.timed(PassId::IndirectNoisy, |rec, tr| {
+        r.timed(crate::effects::ccipca::pass::INDIRECT_NOISY, |rec, tr| {
             self.noisy.record(rec, tr, info.frame, &res, &[], pixels)
         });
-        r.timed(PassId::IndirectJbf, |rec, tr| {
+        r.timed(pass::INDIRECT_JBF, |rec, tr| {
             self.filter.record(rec, tr, info.frame, &res, &[], pixels)
         });
     }

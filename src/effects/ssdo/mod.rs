@@ -34,6 +34,52 @@ use ash::vk;
 use config::SsdoForm;
 use std::sync::Arc;
 
+/// The effect's passes (timing rows and the scene inputs each reads).
+pub mod pass {
+    use crate::passes::pass_id::{Change, PassId};
+
+    /// SSDO's pre-pass: samples per block from the normal and depth changes.
+    pub const SSDO_SAMPLES: PassId = PassId::new("ssdo_samples", &[Change::Camera, Change::Config]);
+    /// SSDO: modulation factor and bounce in one pass, or the two-step form's directional
+    /// occlusion pass.
+    pub const SSDO: PassId = PassId::new("ssdo", &[Change::Camera, Change::Light, Change::Config]);
+    /// The two-step SSDO's bounce pass.
+    pub const SSDO_BOUNCE: PassId = PassId::new(
+        "ssdo_bounce",
+        &[Change::Camera, Change::Light, Change::Config],
+    );
+    /// With the cache: SSDO's refresh tile, every pattern, spread over threads.
+    pub const SSDO_REFRESH: PassId = PassId::new(
+        "ssdo_refresh",
+        &[Change::Camera, Change::Light, Change::Config],
+    );
+    /// With the cache: the accumulated bounce and factor into the image the filter reads.
+    pub const SSDO_RESOLVE: PassId = PassId::new(
+        "ssdo_resolve",
+        &[Change::Camera, Change::Light, Change::Config],
+    );
+    /// SSDO's separable bilateral filter (both directions).
+    pub const SSDO_BILATERAL: PassId =
+        PassId::new("ssdo_bilateral", &[Change::Camera, Change::Config]);
+    /// Joint bilateral upsampling of half-resolution SSDO (--ssdo-scale 0.5).
+    pub const SSDO_UPSAMPLE: PassId =
+        PassId::new("ssdo_upsample", &[Change::Camera, Change::Config]);
+
+    /// Every pass the effect may record, in recording order.
+    pub const ALL: &[PassId] = &[
+        SSDO_SAMPLES,
+        SSDO,
+        SSDO_BOUNCE,
+        SSDO_REFRESH,
+        SSDO_RESOLVE,
+        SSDO_BILATERAL,
+        SSDO_UPSAMPLE,
+    ];
+
+    /// The timing groups `bench --compare-reuse`, tables and sweeps compare (summed per frame).
+    pub const GROUPS: &[(&str, &[PassId])] = &[("ssdo", ALL)];
+}
+
 /// The two-step form's directional-occlusion output: the senders' radiance, a = modulation.
 const LIT: Slot = Slot::Own("lit");
 /// SSDO's result (rgb bounce irradiance, a = modulation factor), before filtering.
@@ -142,65 +188,67 @@ pub const REGISTRATION: Registration = Registration {
     enabled: |c| c.effects.ssdo,
     create: |s| Ok(Box::new(SsdoEffect::new(s)?)),
     layouts,
+    passes: pass::ALL,
+    timing_groups: pass::GROUPS,
     sweep_keys: sweep::SWEEP_KEYS,
 };
 
 // Every pass of the effect, declared once (`PassDecl`): `layouts` and `new` both read these.
-const SSDO_ONE_STEP: PassDecl = PassDecl::new(PassId::Ssdo, &shaders::SSDO_COMP_ONE_STEP, ONE_STEP);
-const SSDO_SSAO: PassDecl = PassDecl::new(PassId::Ssdo, &shaders::SSDO_COMP_SSAO, ONE_STEP);
+const SSDO_ONE_STEP: PassDecl = PassDecl::new(pass::SSDO, &shaders::SSDO_COMP_ONE_STEP, ONE_STEP);
+const SSDO_SSAO: PassDecl = PassDecl::new(pass::SSDO, &shaders::SSDO_COMP_SSAO, ONE_STEP);
 const SSDO_DIRECTIONAL: PassDecl =
-    PassDecl::new(PassId::Ssdo, &shaders::SSDO_COMP_DIRECTIONAL, DIRECTIONAL);
-const SSDO_BOUNCE: PassDecl = PassDecl::new(PassId::SsdoBounce, &shaders::SSDO_COMP_BOUNCE, BOUNCE);
+    PassDecl::new(pass::SSDO, &shaders::SSDO_COMP_DIRECTIONAL, DIRECTIONAL);
+const SSDO_BOUNCE: PassDecl = PassDecl::new(pass::SSDO_BOUNCE, &shaders::SSDO_COMP_BOUNCE, BOUNCE);
 const SSDO_SAMPLES: PassDecl =
-    PassDecl::new(PassId::SsdoSamples, &shaders::SSDO_SAMPLES_COMP, PREPASS);
+    PassDecl::new(pass::SSDO_SAMPLES, &shaders::SSDO_SAMPLES_COMP, PREPASS);
 const SSDO_ACCUMULATE_BLOCKS: PassDecl = PassDecl::new(
-    PassId::Ssdo,
+    pass::SSDO,
     &shaders::SSDO_ACCUMULATE_COMP_BLOCKS,
     ACCUMULATE,
 );
 const SSDO_ACCUMULATE_BLOCKS_SSAO: PassDecl = PassDecl::new(
-    PassId::Ssdo,
+    pass::SSDO,
     &shaders::SSDO_ACCUMULATE_COMP_BLOCKS_SSAO,
     ACCUMULATE,
 );
 const SSDO_ACCUMULATE_REFRESH: PassDecl = PassDecl::new(
-    PassId::SsdoRefresh,
+    pass::SSDO_REFRESH,
     &shaders::SSDO_ACCUMULATE_COMP_REFRESH,
     ACCUMULATE,
 );
 const SSDO_ACCUMULATE_REFRESH_SSAO: PassDecl = PassDecl::new(
-    PassId::SsdoRefresh,
+    pass::SSDO_REFRESH,
     &shaders::SSDO_ACCUMULATE_COMP_REFRESH_SSAO,
     ACCUMULATE,
 );
 const SSDO_ACCUMULATE_RESOLVE: PassDecl = PassDecl::new(
-    PassId::SsdoResolve,
+    pass::SSDO_RESOLVE,
     &shaders::SSDO_ACCUMULATE_COMP_RESOLVE,
     RESOLVE,
 );
 const SSDO_ACCUMULATE_RESOLVE_SSAO: PassDecl = PassDecl::new(
-    PassId::SsdoResolve,
+    pass::SSDO_RESOLVE,
     &shaders::SSDO_ACCUMULATE_COMP_RESOLVE_SSAO,
     RESOLVE,
 );
 const SSDO_BILATERAL_HORIZONTAL: PassDecl = PassDecl::new(
-    PassId::SsdoBilateral,
+    pass::SSDO_BILATERAL,
     &shaders::SSDO_BILATERAL_COMP_HORIZONTAL,
     FILTER_H,
 );
 const SSDO_BILATERAL_VERTICAL: PassDecl = PassDecl::new(
-    PassId::SsdoBilateral,
+    pass::SSDO_BILATERAL,
     &shaders::SSDO_BILATERAL_COMP_VERTICAL,
     FILTER_V,
 );
 /// The upsampling of the raw result (no filter) and of the filtered one.
 const SSDO_UPSAMPLE_RAW: PassDecl = PassDecl::new(
-    PassId::SsdoUpsample,
+    pass::SSDO_UPSAMPLE,
     &shaders::SSDO_UPSAMPLE_COMP,
     UPSAMPLE_RAW,
 );
 const SSDO_UPSAMPLE_FILTERED: PassDecl = PassDecl::new(
-    PassId::SsdoUpsample,
+    pass::SSDO_UPSAMPLE,
     &shaders::SSDO_UPSAMPLE_COMP,
     UPSAMPLE_FILTERED,
 );
@@ -445,24 +493,16 @@ impl SsdoEffect {
 
 impl Effect for SsdoEffect {
     fn passes(&self) -> &'static [PassId] {
-        &[
-            PassId::SsdoSamples,
-            PassId::Ssdo,
-            PassId::SsdoBounce,
-            PassId::SsdoRefresh,
-            PassId::SsdoResolve,
-            PassId::SsdoBilateral,
-            PassId::SsdoUpsample,
-        ]
+        pass::ALL
     }
 
     fn accumulating(&self) -> &'static [PassId] {
         &[
-            PassId::SsdoSamples,
-            PassId::Ssdo,
-            PassId::SsdoBounce,
-            PassId::SsdoRefresh,
-            PassId::SsdoResolve,
+            pass::SSDO_SAMPLES,
+            pass::SSDO,
+            pass::SSDO_BOUNCE,
+            pass::SSDO_REFRESH,
+            pass::SSDO_RESOLVE,
         ]
     }
 
@@ -581,13 +621,13 @@ impl Effect for SsdoEffect {
                 width: d.width,
                 height: d.height,
             };
-            r.timed(PassId::SsdoSamples, |rec, tr| {
+            r.timed(pass::SSDO_SAMPLES, |rec, tr| {
                 p.record(rec, tr, info.frame, &res, &[], blocks)
             });
         }
         match &self.form {
             Form::Single(p) => {
-                r.timed(PassId::Ssdo, |rec, tr| {
+                r.timed(pass::SSDO, |rec, tr| {
                     p.record(rec, tr, info.frame, &res, &[], all)
                 });
             }
@@ -595,10 +635,10 @@ impl Effect for SsdoEffect {
                 directional,
                 bounce,
             } => {
-                r.timed(PassId::Ssdo, |rec, tr| {
+                r.timed(pass::SSDO, |rec, tr| {
                     directional.record(rec, tr, info.frame, &res, &[], all)
                 });
-                r.timed(PassId::SsdoBounce, |rec, tr| {
+                r.timed(pass::SSDO_BOUNCE, |rec, tr| {
                     bounce.record(rec, tr, info.frame, &res, &[], all)
                 });
             }
@@ -608,28 +648,28 @@ impl Effect for SsdoEffect {
                 resolve,
             } => {
                 let push = self.push.to_bytes();
-                r.timed(PassId::Ssdo, |rec, tr| {
+                r.timed(pass::SSDO, |rec, tr| {
                     let listed = Dispatch::Indirect { offset: 0 };
                     blocks.record(rec, tr, info.frame, &res, &push, listed)
                 });
                 if let Some(tile) = refresh_dispatch(&self.push) {
-                    r.timed(PassId::SsdoRefresh, |rec, tr| {
+                    r.timed(pass::SSDO_REFRESH, |rec, tr| {
                         refresh.record(rec, tr, info.frame, &res, &push, tile)
                     });
                 }
-                r.timed(PassId::SsdoResolve, |rec, tr| {
+                r.timed(pass::SSDO_RESOLVE, |rec, tr| {
                     resolve.record(rec, tr, info.frame, &res, &[], all)
                 });
             }
         }
         if let Some([h, v]) = &self.filter {
-            r.timed(PassId::SsdoBilateral, |rec, tr| {
+            r.timed(pass::SSDO_BILATERAL, |rec, tr| {
                 h.record(rec, tr, info.frame, &res, &[], all);
                 v.record(rec, tr, info.frame, &res, &[], all);
             });
         }
         if let Some(p) = &self.upsample {
-            r.timed(PassId::SsdoUpsample, |rec, tr| {
+            r.timed(pass::SSDO_UPSAMPLE, |rec, tr| {
                 p.record(rec, tr, info.frame, &res, &[], every_pixel(info))
             });
         }
