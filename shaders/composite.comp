@@ -25,7 +25,7 @@ layout(constant_id = 4) const uint KIND3 = 0u;
 const uint TERM_RADIANCE = 0u;
 const uint TERM_AMBIENT_VISIBILITY = 1u;
 const uint TERM_VPL_IRRADIANCE = 2u;
-const uint TERM_SSDO = 3u;
+const uint TERM_BOUNCE_MODULATION = 3u;
 
 layout(set = 1, binding = 0) uniform texture2D g_position;
 layout(set = 1, binding = 1) uniform texture2D g_albedo;
@@ -44,15 +44,15 @@ float visibility_of(uint kind, vec4 t) {
     return kind == TERM_AMBIENT_VISIBILITY ? t.r : 1.0;
 }
 
-// SSDO's modulation factor of a term (1 for other kinds).
+// A bounce-and-modulation term's modulation factor (1 for other kinds): SSDO's.
 float modulation_of(uint kind, vec4 t) {
-    return kind == TERM_SSDO ? t.a : 1.0;
+    return kind == TERM_BOUNCE_MODULATION ? t.a : 1.0;
 }
 
 // Radiance a term adds for a receiver of albedo `albedo`.
 vec3 radiance_of(uint kind, vec4 t, vec3 albedo, float modulation) {
     if (kind == TERM_RADIANCE) return t.rgb * modulation;
-    if (kind == TERM_SSDO) return albedo / PI * t.rgb;
+    if (kind == TERM_BOUNCE_MODULATION) return albedo / PI * t.rgb;
     // Eq 9 treats a VPL as emitting Phi cos / d^2; a diffuse emitter of flux Phi has intensity
     // Phi cos / pi, hence the 1/pi, and the receiver reflects albedo / pi of it.
     if (kind == TERM_VPL_IRRADIANCE) return albedo / PI * t.rgb / PI;

@@ -10,6 +10,7 @@ pub mod files;
 pub mod frontend;
 pub mod interrupt;
 pub mod passes;
+pub mod post;
 pub mod reference;
 pub mod renderer;
 pub mod resources;

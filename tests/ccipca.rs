@@ -6,11 +6,10 @@
 mod common;
 
 use ssgi::config::pcf::Pcf;
-use ssgi::config::{
-    CcipcaOrthogonalize, CcipcaProject, CcipcaStages, CcipcaWeighting, Effects, IndirectConfig,
-    IndirectFilter, RenderConfig, TemporalConfig,
+use ssgi::config::{Effects, IndirectConfig, IndirectFilter, RenderConfig, TemporalConfig};
+use ssgi::effects::ccipca::config::{
+    CcipcaConfig, CcipcaOrthogonalize, CcipcaProject, CcipcaStages, CcipcaWeighting,
 };
-use ssgi::effects::EffectId;
 use ssgi::reference::ccipca::{abs_cos, dot, Ccipca};
 use ssgi::renderer::Renderer;
 use ssgi::resources::targets::Target;
@@ -32,6 +31,9 @@ fn config(size: u32, vpls: u32, bases: u32) -> RenderConfig {
         indirect: IndirectConfig {
             vpls,
             filter: IndirectFilter::Ccipca,
+            ..Default::default()
+        },
+        ccipca: CcipcaConfig {
             bases,
             ..Default::default()
         },
@@ -65,11 +67,11 @@ fn gpu_filter_matches_the_cpu_model_frame_by_frame() {
     let size = 32;
     for project in [CcipcaProject::After, CcipcaProject::Before] {
         let mut c = config(size, 4, 3);
-        c.indirect.project = project;
-        c.indirect.basis_filter = 0;
+        c.ccipca.project = project;
+        c.ccipca.basis_filter = 0;
         let mut r = Renderer::new(&ctx, cornell_box(), c).unwrap();
         let camera = r.scene.camera;
-        let mut cpu = Ccipca::new((size * size) as usize, 3, 3, c.indirect.max_age);
+        let mut cpu = Ccipca::new((size * size) as usize, 3, 3, c.ccipca.max_age);
         for frame in 0..12 {
             r.render_frame(&camera).unwrap();
             let noisy = rgb(&common::read(&mut r, Target::IndirectNoisy));
@@ -204,8 +206,8 @@ fn static_view_converges_and_stops_flickering() {
     let ctx = common::context();
     let ours = static_run(&ctx, config(48, 4, 3), 96);
     let mut article = config(48, 4, 3);
-    article.indirect.project = CcipcaProject::After;
-    article.indirect.basis_filter = 0;
+    article.ccipca.project = CcipcaProject::After;
+    article.ccipca.basis_filter = 0;
     let article = static_run(&ctx, article, 96);
     for (name, r) in [("defaults", &ours), ("article's order", &article)] {
         eprintln!(
@@ -283,26 +285,26 @@ fn warped_bases_are_orthogonalized() {
     let (size, k, frames) = (48, 5, 12);
     let mut c = config(size, 4, k);
     // Filtered bases lean towards the smooth image and each other; this is about the warp.
-    c.indirect.basis_filter = 0;
+    c.ccipca.basis_filter = 0;
     let mut r = Renderer::new(&ctx, cornell_box(), c).unwrap();
     let camera = r.scene.camera;
     for _ in 0..frames {
         r.render_frame(&camera).unwrap();
     }
     let (before, ages) = bases(
-        &r.read_buffer(EffectId::Ccipca, "bases").unwrap(),
+        &r.read_buffer(ssgi::effects::ccipca::ID, "bases").unwrap(),
         k as usize,
     );
     assert!(
         ages.iter().all(|&a| a == frames as f32),
         "sample counts {ages:?}"
     );
-    r.config.indirect.ccipca_stages = CcipcaStages::WarpOnly;
+    r.config.ccipca.stages = CcipcaStages::WarpOnly;
     let mut moved = camera;
     moved.position += glam::Vec3::new(0.25, 0.0, 0.0);
     r.render_frame(&moved).unwrap();
     let (after, ages) = bases(
-        &r.read_buffer(EffectId::Ccipca, "bases").unwrap(),
+        &r.read_buffer(ssgi::effects::ccipca::ID, "bases").unwrap(),
         k as usize,
     );
     r.finish().unwrap();
@@ -340,8 +342,8 @@ fn warped_bases_are_orthogonalized() {
 fn still_camera_worst_cos(ctx: &std::sync::Arc<ssgi::vk::Context>, o: CcipcaOrthogonalize) -> f64 {
     let k = 4;
     let mut c = config(48, 4, k);
-    c.indirect.orthogonalize = o;
-    assert!(c.indirect.basis_filter > 0, "the default filters the bases");
+    c.ccipca.orthogonalize = o;
+    assert!(c.ccipca.basis_filter > 0, "the default filters the bases");
     let mut r = Renderer::new(ctx, cornell_box(), c).unwrap();
     let camera = r.scene.camera;
     let mut worst = 0.0f64;
@@ -349,7 +351,7 @@ fn still_camera_worst_cos(ctx: &std::sync::Arc<ssgi::vk::Context>, o: CcipcaOrth
         r.render_frame(&camera).unwrap();
         if frame % 25 == 0 {
             let (v, _) = bases(
-                &r.read_buffer(EffectId::Ccipca, "bases").unwrap(),
+                &r.read_buffer(ssgi::effects::ccipca::ID, "bases").unwrap(),
                 k as usize,
             );
             let cos = worst_cos(&v);
@@ -398,12 +400,12 @@ fn disocclusion_errors(
     let ctx = common::context();
     let size = 48;
     let mut c = config(size, vpls, 3);
-    c.indirect.weighting = weighting;
-    c.indirect.max_age = 128;
-    c.indirect.new_pixel_vpls = new_pixel_vpls;
+    c.ccipca.weighting = weighting;
+    c.ccipca.max_age = 128;
+    c.ccipca.new_pixel_vpls = new_pixel_vpls;
     let mut r = Renderer::new(&ctx, cornell_box(), c).unwrap();
     let camera = r.scene.camera;
-    for _ in 0..c.indirect.max_age {
+    for _ in 0..c.ccipca.max_age {
         r.render_frame(&camera).unwrap();
     }
     let mut moved = camera;
@@ -421,12 +423,12 @@ fn disocclusion_errors(
     for frame in 0..frames {
         r.render_frame(&moved).unwrap();
         if frame == 0 {
-            let (_, ages) = bases(&r.read_buffer(EffectId::Ccipca, "bases").unwrap(), 3);
+            let (_, ages) = bases(
+                &r.read_buffer(ssgi::effects::ccipca::ID, "bases").unwrap(),
+                3,
+            );
             // Kept pixels have reached the memory; new ones have one sample's worth.
-            region = ages
-                .iter()
-                .map(|&a| a < c.indirect.max_age as f32)
-                .collect();
+            region = ages.iter().map(|&a| a < c.ccipca.max_age as f32).collect();
             let n = region.iter().filter(|r| **r).count();
             assert!((50..1000).contains(&n), "{n} pixels uncovered");
         }
@@ -678,7 +680,7 @@ fn adaptive_sampling_lowers_the_error_of_new_pixels() {
 fn skipping_waits_until_the_memory_is_full() {
     let ctx = common::context();
     let mut c = config(32, 4, 3);
-    c.indirect.max_age = 6;
+    c.ccipca.max_age = 6;
     c.skip_unchanged = true;
     let mut r = Renderer::new(&ctx, cornell_box(), c).unwrap();
     let camera = r.scene.camera;

@@ -3,8 +3,10 @@
 //! light), and what the table derives through the resource declarations must hold for the
 //! cases a reader can check by hand. No GPU needed.
 
-use ssgi::effects::{all_layouts, EffectId, REGISTRY};
-use ssgi::passes::{frame_layouts, Change, PassId};
+use ssgi::effects::REGISTRY;
+use ssgi::passes::{Change, PassId};
+use ssgi::renderer::all_layouts;
+use ssgi::renderer::catalog::frame_layouts;
 use ssgi::renderer::dependencies::{derive, Changes};
 use ssgi::shaders::ShaderStage;
 use std::collections::{BTreeMap, BTreeSet};
@@ -125,11 +127,11 @@ fn derived_changes_follow_the_resources() {
     assert_eq!(d.pass(PassId::LIGHT_VIEW), set(&[Light, Object]));
     assert_eq!(d.pass(PassId::GBUFFER), set(&[Camera, Object]));
     assert_eq!(
-        d.pass(ssgi::passes::sraa::pass::SRAA_GEOMETRY),
+        d.pass(ssgi::post::sraa::pass::SRAA_GEOMETRY),
         set(&[Camera, Object])
     );
     for (r, changes) in REGISTRY.iter().zip(&d.effects) {
-        let lit = r.id != EffectId::Ao;
+        let lit = r.id != ssgi::effects::ao::ID;
         assert_eq!(
             changes.contains(Light),
             lit,
@@ -149,9 +151,9 @@ fn derived_changes_follow_the_resources() {
         .contains(Light));
     let everything = set(&Change::ALL);
     assert_eq!(d.pass(PassId::COMPOSITE), everything);
-    assert_eq!(d.pass(ssgi::passes::sraa::pass::SRAA), everything);
+    assert_eq!(d.pass(ssgi::post::sraa::pass::SRAA), everything);
     // Only AO: the reprojection still declares the light (the shadow lane's reach).
     let ao_only = derive(&frame_layouts(), &[(REGISTRY[1].layouts)()]);
-    assert_eq!(REGISTRY[1].id, EffectId::Ao);
+    assert_eq!(REGISTRY[1].id, ssgi::effects::ao::ID);
     assert!(!ao_only.effects[0].contains(Light));
 }

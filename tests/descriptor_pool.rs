@@ -47,7 +47,7 @@ fn configs() -> Vec<(&'static str, RenderConfig)> {
             "ccipca 7 bases",
             with(&|c| {
                 c.indirect.filter = IndirectFilter::Ccipca;
-                c.indirect.bases = 7;
+                c.ccipca.bases = 7;
             }),
         ),
         (

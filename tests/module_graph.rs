@@ -179,7 +179,7 @@ fn layer(module: &str) -> usize {
         "error" | "files" | "interrupt" | "shaders" | "scene" | "reference" | "vk" | "config" => 0,
         "resources" => 1,
         "passes" => 2,
-        "effects" => 3,
+        "effects" | "post" => 3,
         "renderer" => 4,
         "frontend" | "bench" => 5,
         "cli" | "" => 6,
@@ -200,7 +200,7 @@ fn layers_are_used_downwards_only() {
     }
     assert!(
         upward.is_empty(),
-        "uses up the layers (vk, scene, reference, config < resources < passes < effects < \
+        "uses up the layers (vk, scene, reference, config < resources < passes < effects, post < \
          renderer < frontend, bench < cli):\n{}",
         upward.join("\n")
     );

@@ -9,7 +9,6 @@ mod common;
 use glam::Vec3;
 use ssgi::config::pcf::Pcf;
 use ssgi::config::{Effects, Refresh, TemporalConfig};
-use ssgi::effects::EffectId;
 use ssgi::renderer::{RenderConfig, Renderer};
 use ssgi::resources::targets::Target;
 use ssgi::scene::{sphere, Camera, DynamicObject, MeshBuilder, ObjectKey, Scene};
@@ -120,7 +119,11 @@ fn a_moving_ball_uncovers_only_what_was_behind_it() {
     let pos = common::read(&mut r, Target::GPosition);
     let prev = common::read(&mut r, Target::GPositionHistory);
     let motion = common::read(&mut r, Target::GMotion);
-    for id in [EffectId::Ao, EffectId::Direct, EffectId::Indirect] {
+    for id in [
+        ssgi::effects::ao::ID,
+        ssgi::effects::direct::ID,
+        ssgi::effects::indirect::ID,
+    ] {
         let state = r.read_state(id).unwrap();
         let (mut agree, mut uncovered, mut ball_new, mut ball) = (0, 0, 0, 0);
         let (mut found, mut false_alarms) = (0, 0);
@@ -261,7 +264,7 @@ fn a_moving_ball_drops_what_it_reaches_and_leaves_nothing_stale() {
         if invalidate {
             let pos = common::read(&mut r, Target::GPosition);
             let prev = common::read(&mut r, Target::GPositionHistory);
-            let state = r.read_state(EffectId::Ao).unwrap();
+            let state = r.read_state(ssgi::effects::ao::ID).unwrap();
             let (mut agree, mut reached) = (0usize, 0usize);
             for y in 0..SIZE {
                 for x in 0..SIZE {

@@ -8,7 +8,6 @@ mod common;
 
 use ssgi::config::pcf::Pcf;
 use ssgi::config::{Effects, IndirectConfig, IndirectFilter, RenderConfig};
-use ssgi::effects::EffectId;
 use ssgi::renderer::Renderer;
 use ssgi::resources::targets::Target;
 use ssgi::scene::cornell_box;
@@ -102,7 +101,7 @@ fn compare(a: &[[f32; 4]], b: &[[f32; 4]], radius: u32) -> (f32, usize) {
 fn a_nan_sample_stays_out_of_ccipcas_sums_and_bases() {
     let (clean, _) = run(IndirectFilter::Ccipca, 8, None);
     let (planted, mut r) = run(IndirectFilter::Ccipca, 8, Some(6));
-    let bases = r.read_buffer(EffectId::Ccipca, "bases").unwrap();
+    let bases = r.read_buffer(ssgi::effects::ccipca::ID, "bases").unwrap();
     let bad_bases = bases
         .chunks_exact(4)
         .filter(|b| !f32::from_le_bytes([b[0], b[1], b[2], b[3]]).is_finite())

@@ -1,7 +1,7 @@
 //! Every pass's declared descriptor layout equals what naga reflected from its shaders, and
 //! every compiled shader module belongs to some pass.
 
-use ssgi::effects::{all_layouts, all_passes};
+use ssgi::renderer::{all_layouts, all_passes};
 use ssgi::shaders::{DescriptorKind, ReflectedBinding, ALL};
 use ssgi::vk::pipeline::check_bindings;
 
@@ -39,9 +39,22 @@ fn pass_names_are_unique_and_every_pass_is_ordered() {
     for layout in all_layouts() {
         assert!(
             all.contains(&layout.pass),
-            "{} has a pipeline but no place in effects::all_passes",
+            "{} has a pipeline but no place in renderer::all_passes",
             layout.pass.name()
         );
+    }
+}
+
+/// An effect is known by its name (state readback, reports): no two registered effects share
+/// one.
+#[test]
+fn effect_names_are_unique() {
+    let names: Vec<&str> = ssgi::effects::REGISTRY
+        .iter()
+        .map(|r| r.id.name())
+        .collect();
+    for (i, n) in names.iter().enumerate() {
+        assert!(!names[..i].contains(n), "two effects are named {n}");
     }
 }
 

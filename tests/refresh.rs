@@ -20,13 +20,9 @@ fn config(size: u32) -> RenderConfig {
         rsm_size: 128,
         pcf: Pcf::NINE,
         effects: Effects::ALL,
-        ao: Default::default(),
-        indirect: Default::default(),
-        ssdo: Default::default(),
         temporal: TemporalConfig::default(),
-        aa: Default::default(),
-        gbuffer: Default::default(),
         skip_unchanged: true,
+        ..RenderConfig::default()
     }
 }
 

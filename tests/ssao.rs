@@ -29,14 +29,11 @@ fn config(size: u32, temporal: TemporalConfig, ao: AoConfig) -> RenderConfig {
             ssdo: false,
         },
         ao,
-        indirect: Default::default(),
-        ssdo: Default::default(),
         temporal,
-        aa: Default::default(),
         // Every frame reads the cache's counters: a converged frame must run, not be skipped
         // (tests/skip.rs covers skipping).
-        gbuffer: Default::default(),
         skip_unchanged: false,
+        ..RenderConfig::default()
     }
 }
 
@@ -294,7 +291,11 @@ fn translation_recompute_mask_matches_cpu_reprojection() {
     let pos0 = r.read(Target::GPositionHistory).unwrap();
     let nrm1 = r.read(Target::GNormal).unwrap();
     let nrm0 = r.read(Target::GNormalHistory).unwrap();
-    for id in [EffectId::Direct, EffectId::Ao, EffectId::Indirect] {
+    for id in [
+        ssgi::effects::direct::ID,
+        ssgi::effects::ao::ID,
+        ssgi::effects::indirect::ID,
+    ] {
         let state = r.read_state(id).unwrap();
         check_mask(id, &state, [&pos0, &pos1], [&nrm0, &nrm1], (c0, c1));
     }
@@ -413,10 +414,14 @@ fn shared_reprojection_matches_each_effect_alone() {
         ssdo: false,
     };
     let alone = [
-        (EffectId::Direct, Target::Shadow, only(true, false, false)),
-        (EffectId::Ao, Target::Ao, only(false, true, false)),
         (
-            EffectId::Indirect,
+            ssgi::effects::direct::ID,
+            Target::Shadow,
+            only(true, false, false),
+        ),
+        (ssgi::effects::ao::ID, Target::Ao, only(false, true, false)),
+        (
+            ssgi::effects::indirect::ID,
             Target::Indirect,
             only(false, false, true),
         ),

@@ -10,7 +10,6 @@ use common::rsm::{cpu_gather, v3};
 use glam::Vec3;
 use ssgi::config::pcf::Pcf;
 use ssgi::config::{Effects, IndirectConfig, Refresh, RenderConfig, TemporalConfig};
-use ssgi::effects::EffectId;
 use ssgi::renderer::Renderer;
 use ssgi::resources::targets::Target;
 use ssgi::scene::{cornell_box, Camera};
@@ -118,7 +117,7 @@ fn compacted_gather_lists_each_needed_sample_once() {
     };
     let mut r = Renderer::new(&ctx, cornell_box(), config(96, ind, temporal)).unwrap();
     let t = converge_then_pan(&mut r);
-    let state = r.read_state(EffectId::Indirect).unwrap();
+    let state = r.read_state(ssgi::effects::indirect::ID).unwrap();
     let pos = r.read(Target::GPosition).unwrap();
     let expected = needed_samples(&state, &pos);
     let listed = counter(&t, "indirect_lowres_samples");
@@ -185,7 +184,10 @@ fn pixel_lists_hold_exactly_the_working_pixels() {
     };
     let mut r = Renderer::new(&ctx, cornell_box(), c).unwrap();
     let t = converge_then_pan(&mut r);
-    for (id, prefix) in [(EffectId::Ao, "ssao"), (EffectId::Direct, "shadow")] {
+    for (id, prefix) in [
+        (ssgi::effects::ao::ID, "ssao"),
+        (ssgi::effects::direct::ID, "shadow"),
+    ] {
         let working = working_pixels(&r.read_state(id).unwrap());
         eprintln!(
             "{prefix}: {working} new or accumulating pixels of {}",

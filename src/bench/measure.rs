@@ -314,7 +314,7 @@ pub fn measure(
         },
         sink.present_mode(),
     );
-    let names: Vec<&str> = crate::effects::all_passes()
+    let names: Vec<&str> = crate::renderer::all_passes()
         .iter()
         .map(|p| p.name())
         .collect();

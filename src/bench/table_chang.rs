@@ -13,7 +13,8 @@
 use super::measure::{measure, RunSpec};
 use super::table_run::{fixed, pass_ms, warmup_frames, write_reports, TableRun};
 use super::{Report, TableOptions};
-use crate::config::{CcipcaProject, IndirectConfig, IndirectFilter, RenderConfig};
+use crate::config::{IndirectConfig, IndirectFilter, RenderConfig};
+use crate::effects::ccipca::config::{CcipcaConfig, CcipcaProject};
 use crate::error::{Error, Result};
 use crate::frontend::sink::FrameSink;
 use crate::scene::{cornell_box, CameraPath};
@@ -138,10 +139,13 @@ fn config(opts: &TableOptions, size: (u32, u32), bases: u32) -> RenderConfig {
         indirect: IndirectConfig {
             vpls: VPLS,
             filter: IndirectFilter::Ccipca,
+            ..IndirectConfig::default()
+        },
+        ccipca: CcipcaConfig {
             bases,
             project: CcipcaProject::After,
             basis_filter: 0,
-            ..IndirectConfig::default()
+            ..CcipcaConfig::default()
         },
         ..RenderConfig::default()
     }

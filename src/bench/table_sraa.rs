@@ -176,15 +176,15 @@ fn run_size(
         }
         let subpixel = mode.subpixel();
         let aa_pass = if mode == AaMode::Ssaa16 {
-            crate::passes::ssaa::pass::SSAA_DOWNSAMPLE
+            crate::post::ssaa::pass::SSAA_DOWNSAMPLE
         } else {
-            crate::passes::sraa::pass::SRAA
+            crate::post::sraa::pass::SRAA
         };
         let total_ms = m.report.total.median_ms;
         let ssaa_ms = rows.first().and_then(|r| r.total_ms).or(total_ms);
         rows.push(RowResult {
             mode,
-            geometry_ms: pass_ms(&m.report, crate::passes::sraa::pass::SRAA_GEOMETRY),
+            geometry_ms: pass_ms(&m.report, crate::post::sraa::pass::SRAA_GEOMETRY),
             aa_ms: pass_ms(&m.report, aa_pass),
             total_ms,
             paper_geometry_ms: paper.filter(|_| subpixel).map(|p| p.1),

@@ -7,9 +7,8 @@ pub use crate::config::parse::{
     parse_pattern_count, parse_vpls, AccumulateMode,
 };
 use crate::config::{
-    AaConfig, AaMode, Accumulate, AoConfig, AoEstimator, CcipcaOrthogonalize, CcipcaProject,
-    CcipcaWeighting, Effects, Epsilon, GBufferMode, HistoryResample, IndirectConfig,
-    IndirectFilter, Refresh, TemporalConfig,
+    AaConfig, AaMode, Accumulate, AoConfig, AoEstimator, Effects, Epsilon, GBufferMode,
+    HistoryResample, IndirectConfig, IndirectFilter, Refresh, TemporalConfig,
 };
 use crate::effects::EffectArgs;
 use crate::renderer::frame::Pcf;
@@ -177,33 +176,6 @@ pub struct SceneArgs {
     /// gathers (each in turn), the others take its sample where they lie on its surface.
     #[arg(long, default_value = "off", value_parser = parse_on_off, action = clap::ArgAction::Set)]
     pub noisy_half_res: bool,
-    /// CCIPCA basis images (1..=8; Chen et al. use 3, 5 and 7).
-    #[arg(long, default_value_t = IndirectConfig::default().bases, value_parser = clap::value_parser!(u32).range(1..=IndirectConfig::MAX_BASES as i64))]
-    pub bases: u32,
-    /// CCIPCA step per pixel: `per-pixel` from the pixel's own sample count in every basis
-    /// (Chen et al.), `first-basis` from it in the first basis and from the frames since the
-    /// restart in the others, `uniform` from the frames since the restart.
-    #[arg(long, value_enum, default_value_t = CcipcaWeighting::PerPixel)]
-    pub ccipca_weighting: CcipcaWeighting,
-    /// CCIPCA: project each frame on last frame's bases, `before` updating them from it (they
-    /// hold none of this frame's noise), or `after` (the article's order).
-    #[arg(long, value_enum, default_value_t = CcipcaProject::Before)]
-    pub ccipca_project: CcipcaProject,
-    /// CCIPCA basis filtering: radius in pixels (0-8) of the joint bilateral filter that
-    /// smooths every basis after the updates (0 = off).
-    #[arg(long, default_value_t = IndirectConfig::default().basis_filter, value_parser = clap::value_parser!(u32).range(0..=IndirectConfig::MAX_BASIS_FILTER as i64))]
-    pub ccipca_basis_filter: u32,
-    /// CCIPCA: orthogonalize the bases after a warp only (the article), or `always`, after
-    /// every basis filtering too (the bases stay orthogonal on a still camera).
-    #[arg(long, value_enum, default_value_t = CcipcaOrthogonalize::Warp)]
-    pub ccipca_orthogonalize: CcipcaOrthogonalize,
-    /// CCIPCA adaptive sampling: VPLs gathered by a pixel new to the view after a camera move
-    /// (0 = as many as any other pixel, --vpls; at most 16384).
-    #[arg(long, default_value_t = 0, value_parser = clap::value_parser!(u32).range(0..=16384))]
-    pub ccipca_new_pixel_vpls: u32,
-    /// CCIPCA memory: frames after which a pixel's update step stops shrinking (1..=1048576).
-    #[arg(long, default_value_t = IndirectConfig::default().max_age, value_parser = clap::value_parser!(u32).range(1..=1 << 20))]
-    pub ccipca_max_age: u32,
     /// Gather indirect light at half resolution with geometry-aware upsampling.
     #[arg(long, default_value = "on", value_parser = parse_on_off, action = clap::ArgAction::Set)]
     pub half_res: bool,
@@ -297,16 +269,10 @@ impl SceneArgs {
                 vpl_lanes: self.vpl_lanes,
                 filter: self.indirect_filter,
                 noisy_half_res: self.noisy_half_res,
-                bases: self.bases,
-                weighting: self.ccipca_weighting,
-                basis_filter: self.ccipca_basis_filter,
-                orthogonalize: self.ccipca_orthogonalize,
-                project: self.ccipca_project,
-                new_pixel_vpls: self.ccipca_new_pixel_vpls,
-                max_age: self.ccipca_max_age,
                 ..IndirectConfig::default()
             },
             // Set from the effects' own options below.
+            ccipca: Default::default(),
             ssdo: Default::default(),
             temporal: TemporalConfig {
                 reuse: self.reuse,

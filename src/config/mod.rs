@@ -6,6 +6,7 @@ pub mod parse;
 pub mod pcf;
 pub mod sweep_key;
 
+use crate::effects::ccipca::config::CcipcaConfig;
 use crate::effects::ssdo::config::SsdoConfig;
 use crate::error::{Error, Result};
 pub use antialias::{AaConfig, AaMode};
@@ -123,29 +124,6 @@ pub struct IndirectConfig {
     /// pixel of each 2x2 block gathers (each in turn), the others take its sample where they
     /// lie on its surface.
     pub noisy_half_res: bool,
-    /// CCIPCA: basis images (Chen et al.'s Table 1: 3, 5, 7).
-    pub bases: u32,
-    /// CCIPCA: whose sample count sets each pixel's step (Chen et al.'s per-pixel weighting,
-    /// on the first basis or on all, or uniform).
-    pub weighting: CcipcaWeighting,
-    /// CCIPCA: project each frame on the bases after updating them from it (the article) or
-    /// on last frame's.
-    pub project: CcipcaProject,
-    /// CCIPCA: radius [px] of the joint bilateral filter applied to every basis after the
-    /// updates (the article's basis filtering); 0 = off.
-    pub basis_filter: u32,
-    /// CCIPCA: orthogonalize after warps only, or after basis filtering too.
-    pub orthogonalize: CcipcaOrthogonalize,
-    /// CCIPCA's adaptive sampling: VPLs gathered by a pixel new to the view after a camera
-    /// move (0 = `vpls`, as any other pixel).
-    pub new_pixel_vpls: u32,
-    /// CCIPCA: samples after which a pixel's step stops shrinking (see
-    /// src/reference/ccipca.rs): the filter's memory, in frames.
-    pub max_age: u32,
-    /// How far a CCIPCA frame goes: everything, or (tests) only the warp and
-    /// orthogonalization. Not on the command line and not in reports.
-    #[serde(skip)]
-    pub ccipca_stages: CcipcaStages,
     /// What the passes compute per pixel: the gather, or a test ramp. Not on the command line
     /// and not in reports.
     #[serde(skip)]
@@ -170,32 +148,6 @@ pub enum IndirectFilter {
     Jbf17,
 }
 
-/// Whose sample count sets a CCIPCA update's step at a pixel.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, clap::ValueEnum)]
-#[serde(rename_all = "kebab-case")]
-pub enum CcipcaWeighting {
-    /// The pixel's own for every basis (Chen et al. section 3.4.2): a pixel new to the view
-    /// takes large steps.
-    #[default]
-    PerPixel,
-    /// The pixel's own for the first basis, the frames since the restart for the others.
-    FirstBasis,
-    /// The frames since the bases restarted, the same for every pixel (plain CCIPCA).
-    Uniform,
-}
-
-/// Which bases CCIPCA projects a frame on.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, clap::ValueEnum)]
-#[serde(rename_all = "lowercase")]
-pub enum CcipcaProject {
-    /// Last frame's (warped) bases, before the frame updates them: the frame's own noise is
-    /// not in the bases it is projected on. A pixel new to the view is dark for one frame.
-    #[default]
-    Before,
-    /// The bases updated from the frame (Chen et al.'s Figure 2: warp, update, project).
-    After,
-}
-
 /// How the G-buffer is made (`--gbuffer`).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, clap::ValueEnum)]
 #[serde(rename_all = "lowercase")]
@@ -216,28 +168,6 @@ impl GBufferMode {
     }
 }
 
-/// When CCIPCA orthogonalizes its bases (the article's Algorithm 2).
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, clap::ValueEnum)]
-#[serde(rename_all = "lowercase")]
-pub enum CcipcaOrthogonalize {
-    /// After a warp only (the article): on a still camera basis filtering tilts the bases
-    /// towards each other until they are nearly one (|cos| 0.99 after 25 frames), so the
-    /// projection acts as on the first basis alone.
-    #[default]
-    Warp,
-    /// Also after every basis filtering: the bases stay orthogonal, `--bases` of them.
-    Always,
-}
-
-/// The CCIPCA passes a frame records.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub enum CcipcaStages {
-    #[default]
-    All,
-    /// Only the warp and the orthogonalization: the bases as the updates would find them.
-    WarpOnly,
-}
-
 /// The value the indirect passes compute for a pixel before upsampling and accumulation.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum IndirectInput {
@@ -255,11 +185,6 @@ impl IndirectConfig {
     /// low-resolution tile of a block.
     pub const MAX_INTERLEAVE: u32 = 8;
 
-    /// Most CCIPCA bases (the shaders' partial sums are sized for them).
-    pub const MAX_BASES: u32 = 8;
-    /// Largest basis filter radius: its window is read once per basis and pixel.
-    pub const MAX_BASIS_FILTER: u32 = 8;
-
     /// Nearest step of each VPL's screen-space visibility march [px]: eq 8's log spacing
     /// starting one and a half pixels out, like SSAO's default, so the march leaves the
     /// receiver's own pixel before testing depth.
@@ -276,14 +201,6 @@ impl Default for IndirectConfig {
             vpl_lanes: 16,
             filter: IndirectFilter::Accumulate,
             noisy_half_res: false,
-            bases: 3,
-            weighting: CcipcaWeighting::PerPixel,
-            project: CcipcaProject::Before,
-            basis_filter: 2,
-            orthogonalize: CcipcaOrthogonalize::Warp,
-            new_pixel_vpls: 0,
-            max_age: 256,
-            ccipca_stages: CcipcaStages::All,
             input: IndirectInput::Gather,
         }
     }
@@ -537,6 +454,7 @@ pub struct RenderConfig {
     pub effects: Effects,
     pub ao: AoConfig,
     pub indirect: IndirectConfig,
+    pub ccipca: CcipcaConfig,
     pub ssdo: SsdoConfig,
     pub temporal: TemporalConfig,
     pub aa: AaConfig,
@@ -556,6 +474,7 @@ impl Default for RenderConfig {
             effects: Effects::ALL,
             ao: AoConfig::default(),
             indirect: IndirectConfig::default(),
+            ccipca: CcipcaConfig::default(),
             ssdo: SsdoConfig::default(),
             temporal: TemporalConfig::default(),
             aa: AaConfig::default(),
@@ -662,32 +581,7 @@ impl RenderConfig {
                 il * il
             ));
         }
-        if !(1..=IndirectConfig::MAX_BASES).contains(&self.indirect.bases) {
-            return bad(format!(
-                "{} CCIPCA bases outside 1..={}",
-                self.indirect.bases,
-                IndirectConfig::MAX_BASES
-            ));
-        }
-        if self.indirect.new_pixel_vpls > 16384 {
-            return bad(format!(
-                "{} VPLs for a new pixel is more than 16384",
-                self.indirect.new_pixel_vpls
-            ));
-        }
-        if self.indirect.basis_filter > IndirectConfig::MAX_BASIS_FILTER {
-            return bad(format!(
-                "CCIPCA basis filter radius {} px is more than {}",
-                self.indirect.basis_filter,
-                IndirectConfig::MAX_BASIS_FILTER
-            ));
-        }
-        if !(1..=1 << 20).contains(&self.indirect.max_age) {
-            return bad(format!(
-                "CCIPCA memory {} frames outside 1..=1048576",
-                self.indirect.max_age
-            ));
-        }
+        self.ccipca.validate()?;
         if self.indirect.vpls == 0 && self.rsm_size > 128 {
             return bad(format!(
                 "--vpls all gathers every RSM texel: use --rsm-size 128 or less (got {})",

@@ -13,15 +13,25 @@ use crate::vk::recorder::Recorder;
 use crate::vk::{Buffer, Context, DescriptorPool, GpuTimer, Image, Tracker};
 use std::sync::Arc;
 
-/// Which effect (typed, for lookups that must not depend on strings).
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum EffectId {
-    Direct,
-    Ao,
-    Indirect,
-    Ccipca,
-    IndirectJbf,
-    Ssdo,
+/// Which effect: its name, declared in its folder (`ID`), for lookups (`Renderer::read_state`)
+/// and reports. No two registered effects share one (`tests/reflection.rs`).
+#[derive(Clone, Copy, PartialEq, Eq, Hash)]
+pub struct EffectId(&'static str);
+
+impl EffectId {
+    pub const fn new(name: &'static str) -> EffectId {
+        EffectId(name)
+    }
+
+    pub fn name(self) -> &'static str {
+        self.0
+    }
+}
+
+impl std::fmt::Debug for EffectId {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.0)
+    }
 }
 
 /// How the composite adds an effect's image (the `kind` codes of shaders/composite.comp).
@@ -34,10 +44,10 @@ pub enum TermKind {
     /// Eq 9's one-bounce irradiance from VPL flux: the receiver reflects albedo/pi of it, and a
     /// VPL of flux Phi has intensity Phi cos / pi (eq 9 leaves that 1/pi out).
     VplIrradiance = 2,
-    /// SSDO: rgb = bounce irradiance (the receiver reflects albedo/pi of it), a = the
-    /// modulation factor, which darkens the ambient light and the radiance terms (Szentandrasi
-    /// section 4.1: "the diffuse and/or the ambient component").
-    Ssdo = 3,
+    /// rgb = bounce irradiance (the receiver reflects albedo/pi of it), a = a modulation
+    /// factor that darkens the ambient light and the radiance terms (SSDO's: Szentandrasi
+    /// section 4.1, "the diffuse and/or the ambient component").
+    BounceAndModulation = 3,
 }
 
 /// What every effect sees of the frame being recorded.

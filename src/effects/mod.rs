@@ -43,26 +43,16 @@ pub fn create(s: &mut Setup<'_>) -> Result<Vec<Box<dyn Effect>>> {
         .collect()
 }
 
-/// Every pass a frame may record, in recording order: the frame's own before the effects',
-/// each effect's in registry order (a pass two effects share, CCIPCA's and the joint bilateral
-/// filters' noisy gather, once), then the composite and antialiasing. The timing report's
-/// rows follow it.
-pub fn all_passes() -> Vec<PassId> {
-    let mut v: Vec<PassId> = PassId::BEFORE_EFFECTS.to_vec();
+/// Every effect's passes in registry order (a pass two effects share, CCIPCA's and the joint
+/// bilateral filters' noisy gather, once).
+pub fn effect_passes() -> Vec<PassId> {
+    let mut v: Vec<PassId> = Vec::new();
     for p in REGISTRY.iter().flat_map(|r| r.passes) {
         if !v.contains(p) {
             v.push(*p);
         }
     }
-    v.extend(crate::passes::AFTER_EFFECTS);
     v
-}
-
-/// The position of `pass` in `all_passes()` (the recording order); passes of no registered
-/// effect after them.
-pub fn pass_order(pass: PassId) -> usize {
-    let all = all_passes();
-    all.iter().position(|p| *p == pass).unwrap_or(all.len())
 }
 
 /// Every effect's sweep keys, in registry order.
@@ -70,14 +60,10 @@ pub fn sweep_keys() -> impl Iterator<Item = &'static SweepKey> {
     REGISTRY.iter().flat_map(|r| r.sweep_keys)
 }
 
-/// Every pipeline of every pass, shared and per effect, for the reflection check (also done
-/// when each pipeline is built).
-pub fn all_layouts() -> Vec<PassLayout> {
-    let mut v = crate::passes::frame_layouts();
-    for r in REGISTRY {
-        v.extend((r.layouts)());
-    }
-    v
+/// Every pipeline of every effect, for the reflection check (also done when each pipeline is
+/// built; `renderer::all_layouts` adds the frame's own and the post stages').
+pub fn effect_layouts() -> Vec<PassLayout> {
+    REGISTRY.iter().flat_map(|r| (r.layouts)()).collect()
 }
 
 /// Every effect's own command-line options, flattened into each subcommand that renders (an
@@ -85,12 +71,15 @@ pub fn all_layouts() -> Vec<PassLayout> {
 #[derive(clap::Args, Debug, Clone)]
 pub struct EffectArgs {
     #[command(flatten)]
+    pub ccipca: ccipca::args::CcipcaArgs,
+    #[command(flatten)]
     pub ssdo: ssdo::args::SsdoArgs,
 }
 
 impl EffectArgs {
     /// Write each effect's part of `config` from its options.
     pub fn apply(&self, config: &mut RenderConfig) {
+        config.ccipca = self.ccipca.config();
         config.ssdo = self.ssdo.config();
     }
 }

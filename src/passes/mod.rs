@@ -1,6 +1,7 @@
 //! Passes: the declaration every pass is made from (`decl`), the shared compute and raster
 //! helpers, and the passes every frame runs whatever the effects (light view, G-buffer,
-//! reprojection, composite, antialiasing). The effects' own passes live in `src/effects/`. `PassId` names
+//! reprojection, composite). The effects' own passes live in `src/effects/`, the antialiasing's
+//! in `src/post/`. `PassId` names
 //! are the rows of the timing report.
 
 pub mod composite;
@@ -12,30 +13,17 @@ pub mod light_view;
 pub mod pass_id;
 pub mod raster;
 pub mod reproject;
-pub mod sraa;
-pub mod ssaa;
 
 pub use layout::{PassLayout, FRAME_BINDING};
 pub use pass_id::{Change, PassId};
 
-/// The frame's passes recorded after the effects', in recording order: the composite and the
-/// antialiasing passes.
-pub const AFTER_EFFECTS: [PassId; 4] = [
-    PassId::COMPOSITE,
-    sraa::pass::SRAA_GEOMETRY,
-    sraa::pass::SRAA,
-    ssaa::pass::SSAA_DOWNSAMPLE,
-];
-
 /// Every pipeline of the passes every frame runs (the effects add theirs: see
-/// `effects::all_layouts`), for the reflection check (also done at pipeline creation).
+/// `renderer::all_layouts`), for the reflection check (also done at pipeline creation).
 pub fn frame_layouts() -> Vec<PassLayout> {
     let mut v = Vec::new();
     v.extend(light_view::layouts());
     v.extend(gbuffer::layouts());
     v.extend(reproject::layouts());
     v.extend(composite::layouts());
-    v.extend(sraa::layouts());
-    v.push(ssaa::layout());
     v
 }

@@ -1,6 +1,6 @@
 //! `PassId`: the typed name of every pass (timing rows, command labels, debug names) and the
 //! scene inputs it reads. The frame's own passes are declared here; each effect declares its
-//! passes in its folder, and `effects::all_passes` puts them in recording order.
+//! passes in its folder, and `renderer::all_passes` puts them in recording order.
 
 /// A pass: its name (the timing report's row, the command label, the pipelines' debug name)
 /// and the scene inputs it reads itself (`inputs`). No two passes share a name

@@ -24,14 +24,14 @@ pub const TEXTURED_BINDINGS: &[ReflectedBinding] = &[
     binding(1, 1, DescriptorKind::Sampler),
 ];
 
-pub(super) const VERTEX_BINDINGS: [vk::VertexInputBindingDescription; 1] =
+pub const VERTEX_BINDINGS: [vk::VertexInputBindingDescription; 1] =
     [vk::VertexInputBindingDescription {
         binding: 0,
         stride: 32,
         input_rate: vk::VertexInputRate::VERTEX,
     }];
 
-pub(super) const VERTEX_ATTRIBUTES: [vk::VertexInputAttributeDescription; 3] = [
+pub const VERTEX_ATTRIBUTES: [vk::VertexInputAttributeDescription; 3] = [
     vk::VertexInputAttributeDescription {
         location: 0,
         binding: 0,

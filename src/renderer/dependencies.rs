@@ -190,7 +190,7 @@ fn effect_layouts(effects: &[Box<dyn Effect>]) -> Vec<Vec<PassLayout>> {
 
 /// The dependencies of the passes every frame runs and of `effects`.
 pub fn of(effects: &[Box<dyn Effect>]) -> Dependencies {
-    derive(&crate::passes::frame_layouts(), &effect_layouts(effects))
+    derive(&super::catalog::frame_layouts(), &effect_layouts(effects))
 }
 
 /// One row of the dependency table: a pass and the changes that make it run again.
@@ -222,16 +222,10 @@ pub fn triggers(config: &RenderConfig, effects: &[Box<dyn Effect>]) -> Vec<Trigg
     }
     rows.push(row(PassId::REPROJECT, None));
     rows.push(row(PassId::COMPOSITE, None));
-    if config.aa.mode.subpixel() {
-        rows.extend([
-            row(crate::passes::sraa::pass::SRAA_GEOMETRY, None),
-            row(crate::passes::sraa::pass::SRAA, None),
-        ]);
+    for stage in crate::post::REGISTRY.iter().filter(|r| (r.enabled)(config)) {
+        rows.extend(stage.passes.iter().map(|&p| row(p, None)));
     }
-    if config.aa.mode.supersampling() > 1 {
-        rows.push(row(crate::passes::ssaa::pass::SSAA_DOWNSAMPLE, None));
-    }
-    let order = crate::effects::all_passes();
+    let order = super::catalog::all_passes();
     rows.sort_by_key(|t| order.iter().position(|p| *p == t.pass));
     rows.dedup_by_key(|t| t.pass);
     rows

@@ -6,6 +6,7 @@
 //! → each effect's passes (shadow + direct, SSAO [+ blur], indirect light) → composite.
 
 pub mod audit;
+pub mod catalog;
 pub mod dependencies;
 pub mod explain;
 pub mod frame;
@@ -23,9 +24,8 @@ use crate::passes::compute::FrameSet;
 use crate::passes::decl::{Resolve, Slot};
 use crate::passes::gbuffer::GBufferPass;
 use crate::passes::light_view::LightViewPass;
-use crate::passes::sraa::SraaPass;
-use crate::passes::ssaa::SsaaPass;
 use crate::passes::PassId;
+use crate::post::{self, PostFrame, PostStage};
 use crate::resources::scene_gpu::SceneGpu;
 use crate::resources::targets::{Target, Targets};
 use crate::scene::{Camera, Scene, SpotLight};
@@ -35,6 +35,7 @@ use crate::vk::{
     Image, ImageData, SetWriter, SkipReason, SubmitSync, Tracker,
 };
 use ash::vk;
+pub use catalog::{all_layouts, all_passes};
 use frame::{frame_block, FrameBlock, FrameInputs};
 use frame_plan::{FramePlan, FrameState, Past, Step};
 use glam::Mat4;
@@ -146,13 +147,7 @@ impl Renderer {
             .map(|e| e.term(&targets, 0).0 as u32)
             .collect();
         let composite = CompositePass::new(ctx, &pool, &kinds, aa.resolves())?;
-        let sraa = aa
-            .subpixel()
-            .then(|| SraaPass::new(ctx, &pool))
-            .transpose()?;
-        let ssaa = (aa.supersampling() > 1)
-            .then(|| SsaaPass::new(ctx, &pool))
-            .transpose()?;
+        let post = post::create(ctx, &pool, &config)?;
         // Set 0 layout: every pipeline declares the same frame binding, so any of them works.
         let frame_layout = composite.frame_layout();
         let mut frames = Vec::new();
@@ -180,8 +175,7 @@ impl Renderer {
                 light_view,
                 gbuffer: GBufferPass::new(ctx, &pool, textured, config.gbuffer.visibility())?,
                 composite,
-                sraa,
-                ssaa,
+                post,
             },
             effects,
             scene_gpu,
@@ -190,7 +184,7 @@ impl Renderer {
             timer: GpuTimer::new(
                 ctx,
                 FRAMES_IN_FLIGHT,
-                crate::effects::all_passes().len() as u32 + 2,
+                catalog::all_passes().len() as u32 + 2,
             )?,
             tracker,
             frame_index: 0,
@@ -224,11 +218,8 @@ impl Renderer {
                 scene: &self.scene_gpu,
             },
         )?;
-        if let Some(sraa) = &self.passes.sraa {
-            sraa.bind(&self.ctx, &shared)?;
-        }
-        if let Some(ssaa) = &self.passes.ssaa {
-            ssaa.bind(&self.ctx, &shared)?;
+        for stage in &self.passes.post {
+            stage.bind(&self.ctx, &shared)?;
         }
         self.passes
             .composite
@@ -696,7 +687,7 @@ fn resolve_target<'a>(
     };
     match target {
         // The recompute mask shows AO's state when AO runs, else the shadows'.
-        Target::State => of(EffectId::Ao).or_else(|| of(EffectId::Direct)),
+        Target::State => of(crate::effects::ao::ID).or_else(|| of(crate::effects::direct::ID)),
         _ => targets.get(target, parity).or_else(|| {
             effects
                 .iter()
@@ -740,10 +731,8 @@ struct FramePasses {
     light_view: LightViewPass,
     gbuffer: GBufferPass,
     composite: CompositePass,
-    /// `--aa sraa|sraa-shadow`: subpixel geometry and reconstruction.
-    sraa: Option<SraaPass>,
-    /// `--aa ssaa16`: the 4x4 box filter into the output.
-    ssaa: Option<SsaaPass>,
+    /// The post stages the configuration turns on (antialiasing), in registry order.
+    post: Vec<Box<dyn PostStage>>,
 }
 
 impl FramePasses {
@@ -800,22 +789,16 @@ impl FramePasses {
             self.composite
                 .record(rec, tr, frame, terms, t.width, t.height)
         });
-        if let Some(sraa) = &self.sraa {
-            // The subpixel geometry, as the G-buffer, only while the camera or objects move.
-            if plan.runs(Step::GBuffer) {
-                r.timed(crate::passes::sraa::pass::SRAA_GEOMETRY, |rec, tr| {
-                    sraa.record_geometry(rec, tr, frame, scene, &shared)
-                });
-            }
-            r.timed(crate::passes::sraa::pass::SRAA, |rec, tr| {
-                sraa.record_reconstruct(rec, tr, frame, &shared, (t.width, t.height))
-            });
-        }
-        if let Some(ssaa) = &self.ssaa {
-            let out = (t.output.desc.width, t.output.desc.height);
-            r.timed(crate::passes::ssaa::pass::SSAA_DOWNSAMPLE, |rec, tr| {
-                ssaa.record(rec, tr, frame, &shared, out)
-            });
+        let f = PostFrame {
+            frame,
+            scene,
+            targets: &shared,
+            render: (t.width, t.height),
+            output: (t.output.desc.width, t.output.desc.height),
+            geometry: plan.runs(Step::GBuffer),
+        };
+        for stage in &self.post {
+            stage.record(r, &f);
         }
     }
 }

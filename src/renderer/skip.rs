@@ -132,7 +132,7 @@ pub struct SkipTracker {
     /// The passes recorded since the configuration last changed, and whether each
     /// accumulates into a reused history (a skipped one is then `converged`).
     known: Vec<(PassId, bool)>,
-    /// Every pass in recording order (`effects::all_passes`), to name a recorded pass and
+    /// Every pass in recording order (`renderer::all_passes`), to name a recorded pass and
     /// keep `known` in that order.
     order: Vec<PassId>,
     /// What each slot's frame skipped (its skipped effects copied no counters).
@@ -168,7 +168,7 @@ impl SkipTracker {
                 })
                 .collect(),
             known: Vec::new(),
-            order: crate::effects::all_passes(),
+            order: super::catalog::all_passes(),
             slots: [Plan::default(); FRAMES_IN_FLIGHT],
         }
     }
@@ -272,11 +272,14 @@ impl SkipTracker {
             if timer.recorded(slot).contains(&name) || timer.is_skipped(slot, name) {
                 continue;
             }
+            // A pass that draws the scene's geometry (a post stage's too) is left out with
+            // the G-buffer.
+            let geometry = matches!(pass, PassId::GBUFFER | PassId::GBUFFER_RESOLVE)
+                || crate::post::REGISTRY
+                    .iter()
+                    .any(|r| r.geometry_passes.contains(&pass));
             let left_out = plan.frame
-                || (matches!(
-                    pass,
-                    PassId::GBUFFER | PassId::GBUFFER_RESOLVE | crate::passes::sraa::pass::SRAA_GEOMETRY
-                ) && plan.gbuffer)
+                || geometry && plan.gbuffer
                 // No lane ran: every temporal effect was left out.
                 || pass == PassId::REPROJECT
                 || effects

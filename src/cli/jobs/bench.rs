@@ -82,7 +82,7 @@ fn report(
     timings: &[FrameTiming],
     warmup: Outcome,
 ) -> Report {
-    let names: Vec<&str> = crate::effects::all_passes()
+    let names: Vec<&str> = crate::renderer::all_passes()
         .iter()
         .map(|p| p.name())
         .collect();

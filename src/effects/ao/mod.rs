@@ -17,16 +17,57 @@ use crate::error::Result;
 use crate::passes::compute::{ComputePass, Dispatch, PassDecl};
 use crate::passes::decl::{Bind, Slot, Use};
 use crate::passes::{PassId, PassLayout};
+use crate::resources::counters::{Counter, Role};
 use crate::resources::targets::{Target, Targets, AO_FORMAT, GBUFFER_COLOR_FORMATS};
 use crate::resources::temporal::random_vectors;
 use crate::resources::temporal::Sampling;
-use crate::resources::temporal_effect::{self, TemporalEffect};
+use crate::resources::temporal_effect::{EffectKind, MovedReach, TemporalEffect};
 use crate::shaders::{self, EffectPush};
 use crate::vk::{upload_image, Access, Context, Image, ImageDesc};
 use ash::vk;
 use std::sync::Arc;
 
 /// The effect's passes (timing rows and the scene inputs each reads).
+/// The effect's name (`Effect::id`).
+pub const ID: EffectId = EffectId::new("ao");
+
+pub const KIND: EffectKind = EffectKind {
+    name: "ao",
+    block_shift: 0,
+    refresh_tile: 64,
+    counters: &[
+        ("disoccluded_pixels", Counter::Disoccluded),
+        ("ssao_computed_pixels", Counter::Computed),
+        ("ssao_refresh_evaluations", Counter::Refresh),
+        ("ssao_invalidated_pixels", Counter::Invalidated),
+        ("ssao_invocations", Counter::Invocations(Role::Gather)),
+        (
+            "ssao_active_invocations",
+            Counter::ActiveInvocations(Role::Gather),
+        ),
+        (
+            "ssao_serial_evaluations",
+            Counter::SerialEvaluations(Role::Gather),
+        ),
+        (
+            "ssao_refresh_invocations",
+            Counter::Invocations(Role::Refresh),
+        ),
+        (
+            "ssao_refresh_active_invocations",
+            Counter::ActiveInvocations(Role::Refresh),
+        ),
+        (
+            "ssao_refresh_serial_evaluations",
+            Counter::SerialEvaluations(Role::Refresh),
+        ),
+    ],
+    fixups: false,
+    moved: MovedReach::AoRadius,
+    lit: false,
+    reaccumulates: true,
+};
+
 pub mod pass {
     use crate::passes::pass_id::{Change, PassId};
 
@@ -94,7 +135,7 @@ const BLUR: &[Bind] = &[
 ];
 
 pub const REGISTRATION: Registration = Registration {
-    id: EffectId::Ao,
+    id: ID,
     enabled: |c| c.effects.ao,
     create: |s| Ok(Box::new(AoEffect::new(s)?)),
     layouts,
@@ -243,7 +284,7 @@ impl AoEffect {
             )
         };
         Ok(Sized {
-            temporal: TemporalEffect::new(ctx, temporal_effect::AO, c, Sampling::FullRes)?,
+            temporal: TemporalEffect::new(ctx, KIND, c, Sampling::FullRes)?,
             raw: image("ao.raw")?,
             blurred: image("ao.blurred")?,
             levels: [level(1)?, level(2)?, level(3)?],
@@ -299,7 +340,7 @@ impl Effect for AoEffect {
     }
 
     fn id(&self) -> EffectId {
-        EffectId::Ao
+        ID
     }
 
     fn resize(&mut self, ctx: &Arc<Context>, config: &RenderConfig) -> Result<()> {

@@ -7,13 +7,16 @@
 //! reprojection and orthogonalized (section 3.4). The equations and the CPU model the passes
 //! are checked against are in src/reference/ccipca.rs.
 
+pub mod args;
+pub mod config;
+
 use super::effect::{
     every_pixel, float_image, Effect, EffectId, FrameInfo, Recording, Registration, Setup, TermKind,
 };
 use super::resolve::EffectResources;
-use crate::config::{
-    CcipcaOrthogonalize, CcipcaProject, CcipcaStages, CcipcaWeighting, IndirectConfig,
-    IndirectFilter, RenderConfig,
+use crate::config::{IndirectFilter, RenderConfig};
+use crate::effects::ccipca::config::{
+    CcipcaOrthogonalize, CcipcaProject, CcipcaStages, CcipcaWeighting,
 };
 use crate::error::Result;
 use crate::passes::compute::{ComputePass, Dispatch, PassDecl};
@@ -30,6 +33,9 @@ use gpu_allocator::MemoryLocation;
 use std::sync::Arc;
 
 /// The effect's passes (timing rows and the scene inputs each reads).
+/// The effect's name (`Effect::id`).
+pub const ID: EffectId = EffectId::new("ccipca");
+
 pub mod pass {
     use crate::passes::pass_id::{Change, PassId};
 
@@ -209,7 +215,7 @@ const PASSES: [&PassDecl; 9] = [
 ];
 
 pub const REGISTRATION: Registration = Registration {
-    id: EffectId::Ccipca,
+    id: ID,
     enabled: |c| c.effects.indirect && c.indirect.filter == IndirectFilter::Ccipca,
     create: |s| Ok(Box::new(CcipcaEffect::new(s)?)),
     layouts,
@@ -287,7 +293,7 @@ impl Passes {
 
 /// Whether a frame ends by filtering the bases into the other buffer.
 fn filters_bases(c: &RenderConfig) -> bool {
-    c.indirect.basis_filter > 0 && c.indirect.ccipca_stages == CcipcaStages::All
+    c.ccipca.basis_filter > 0 && c.ccipca.stages == CcipcaStages::All
 }
 
 struct Sized {
@@ -319,7 +325,7 @@ pub struct CcipcaEffect {
 
 impl CcipcaEffect {
     pub fn new(s: &mut Setup<'_>) -> Result<Self> {
-        let first = Passes::new(s.ctx, s.pool, s.config.indirect.bases)?;
+        let first = Passes::new(s.ctx, s.pool, s.config.ccipca.bases)?;
         let second = first.instance(s.pool)?;
         Ok(Self {
             passes: [first, second],
@@ -346,7 +352,7 @@ impl CcipcaEffect {
         let pixels = c.width as u64 * c.height as u64;
         let groups = c.width.div_ceil(GROUP_SIDE) * c.height.div_ceil(GROUP_SIDE);
         let vec4 = 16;
-        let bases = c.indirect.bases as u64 * pixels * vec4;
+        let bases = c.ccipca.bases as u64 * pixels * vec4;
         Ok(Sized {
             noisy: image("ccipca.noisy")?,
             filtered: image("ccipca.filtered")?,
@@ -358,7 +364,7 @@ impl CcipcaEffect {
             partials: buffer("ccipca.partials", groups as u64 * SUM_VEC4S * vec4)?,
             totals: buffer(
                 "ccipca.totals",
-                IndirectConfig::MAX_BASES as u64 * SUM_VEC4S * vec4,
+                config::CcipcaConfig::MAX_BASES as u64 * SUM_VEC4S * vec4,
             )?,
             groups,
         })
@@ -412,8 +418,8 @@ impl CcipcaEffect {
             own_buffers: &buffers,
         };
         let pixels = every_pixel(info);
-        let always = info.config.indirect.orthogonalize == CcipcaOrthogonalize::Always;
-        let bases = info.config.indirect.bases;
+        let always = info.config.ccipca.orthogonalize == CcipcaOrthogonalize::Always;
+        let bases = info.config.ccipca.bases;
         let gram = self.push_bytes(0, if always { gram_vec4s(bases) } else { 0 });
         let filter = &self.passes[other];
         r.timed(pass::CCIPCA_BASIS_FILTER, |rec, tr| {
@@ -434,7 +440,7 @@ impl CcipcaEffect {
 
 impl Effect for CcipcaEffect {
     fn id(&self) -> EffectId {
-        EffectId::Ccipca
+        ID
     }
 
     fn passes(&self) -> &'static [PassId] {
@@ -475,11 +481,11 @@ impl Effect for CcipcaEffect {
     /// Every frame adds a sample until the memory is full; with unchanged inputs the bases
     /// then only wander with the noise, so the filter has settled.
     fn settling(&self, config: &RenderConfig) -> bool {
-        self.age < config.indirect.max_age
+        self.age < config.ccipca.max_age
     }
 
     fn prepare(&mut self, info: &FrameInfo<'_>) {
-        let c = &info.config.indirect;
+        let c = &info.config.ccipca;
         let restart = !info.reusing();
         self.warp = !restart && info.camera_moved;
         self.work = if self.warp {
@@ -533,7 +539,7 @@ impl Effect for CcipcaEffect {
         let push = |basis| sums(basis, UPDATE_SUM_VEC4S);
         if self.warp {
             // Warp (storing the Gram matrix's partial sums), add them up, orthogonalize.
-            let gram = sums(0, gram_vec4s(info.config.indirect.bases));
+            let gram = sums(0, gram_vec4s(info.config.ccipca.bases));
             r.timed(pass::CCIPCA_REPROJECT, |rec, tr| {
                 passes
                     .reproject
@@ -546,7 +552,7 @@ impl Effect for CcipcaEffect {
                     .record(rec, tr, info.frame, &res, &gram, pixels);
             });
         }
-        if info.config.indirect.ccipca_stages == CcipcaStages::WarpOnly {
+        if info.config.ccipca.stages == CcipcaStages::WarpOnly {
             return;
         }
         r.timed(pass::INDIRECT_NOISY, |rec, tr| {
@@ -554,7 +560,7 @@ impl Effect for CcipcaEffect {
                 .noisy
                 .record(rec, tr, info.frame, &res, &push(0), pixels)
         });
-        let bases = info.config.indirect.bases;
+        let bases = info.config.ccipca.bases;
         // Each basis: its sums, then the pass that uses them.
         let chain = |pass: &ComputePass, rec: &Recorder<'_>, tr: &mut Tracker| {
             for basis in 0..bases {
@@ -565,7 +571,7 @@ impl Effect for CcipcaEffect {
                 pass.record(rec, tr, info.frame, &res, &bytes, pixels);
             }
         };
-        let before = info.config.indirect.project == CcipcaProject::Before;
+        let before = info.config.ccipca.project == CcipcaProject::Before;
         if before {
             r.timed(pass::CCIPCA_RECONSTRUCT, |rec, tr| {
                 chain(&passes.project, rec, tr)

@@ -17,15 +17,55 @@ use crate::error::Result;
 use crate::passes::compute::{ComputePass, Dispatch, PassDecl};
 use crate::passes::decl::{Bind, Slot, Use};
 use crate::passes::{PassId, PassLayout};
+use crate::resources::counters::{Counter, Role};
 use crate::resources::targets::{Target, Targets, AO_FORMAT};
 use crate::resources::temporal::Sampling;
-use crate::resources::temporal_effect::{self, TemporalEffect};
+use crate::resources::temporal_effect::{EffectKind, MovedReach, TemporalEffect};
 use crate::shaders::{self, EffectPush};
 use crate::vk::{Context, Image, ImageDesc};
 use ash::vk;
 use std::sync::Arc;
 
 /// The effect's passes (timing rows and the scene inputs each reads).
+/// The effect's name (`Effect::id`).
+pub const ID: EffectId = EffectId::new("direct");
+
+pub const KIND: EffectKind = EffectKind {
+    name: "shadow",
+    block_shift: 0,
+    refresh_tile: 64,
+    counters: &[
+        ("shadow_computed_pixels", Counter::Computed),
+        ("shadow_refresh_evaluations", Counter::Refresh),
+        ("shadow_invalidated_pixels", Counter::Invalidated),
+        ("shadow_invocations", Counter::Invocations(Role::Gather)),
+        (
+            "shadow_active_invocations",
+            Counter::ActiveInvocations(Role::Gather),
+        ),
+        (
+            "shadow_serial_evaluations",
+            Counter::SerialEvaluations(Role::Gather),
+        ),
+        (
+            "shadow_refresh_invocations",
+            Counter::Invocations(Role::Refresh),
+        ),
+        (
+            "shadow_refresh_active_invocations",
+            Counter::ActiveInvocations(Role::Refresh),
+        ),
+        (
+            "shadow_refresh_serial_evaluations",
+            Counter::SerialEvaluations(Role::Refresh),
+        ),
+    ],
+    fixups: false,
+    moved: MovedReach::ShadowFootprint,
+    lit: true,
+    reaccumulates: true,
+};
+
 pub mod pass {
     use crate::passes::pass_id::{Change, PassId};
 
@@ -80,7 +120,7 @@ const DIRECT_LIGHT: &[Bind] = &[
 ];
 
 pub const REGISTRATION: Registration = Registration {
-    id: EffectId::Direct,
+    id: ID,
     enabled: |c| c.effects.direct,
     create: |s| Ok(Box::new(DirectEffect::new(s)?)),
     layouts,
@@ -187,12 +227,7 @@ impl DirectEffect {
         Ok(Sized {
             shadow: image("shadow", AO_FORMAT)?,
             temporal: if c.temporal.reuse {
-                Some(TemporalEffect::new(
-                    ctx,
-                    temporal_effect::SHADOW,
-                    c,
-                    Sampling::FullRes,
-                )?)
+                Some(TemporalEffect::new(ctx, KIND, c, Sampling::FullRes)?)
             } else {
                 None
             },
@@ -241,7 +276,7 @@ impl Effect for DirectEffect {
     }
 
     fn id(&self) -> EffectId {
-        EffectId::Direct
+        ID
     }
 
     fn resize(&mut self, ctx: &Arc<Context>, config: &RenderConfig) -> Result<()> {

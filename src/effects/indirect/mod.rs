@@ -20,10 +20,10 @@ use crate::error::Result;
 use crate::passes::compute::{ComputePass, Dispatch, PassDecl};
 use crate::passes::decl::{Bind, Slot, Use};
 use crate::passes::{PassId, PassLayout};
-use crate::resources::counters::{FIXUP_DISPATCH_OFFSET, LOWRES_DISPATCH_OFFSET};
+use crate::resources::counters::{Counter, Role, FIXUP_DISPATCH_OFFSET, LOWRES_DISPATCH_OFFSET};
 use crate::resources::targets::{Target, Targets, STATE_FORMAT};
 use crate::resources::temporal::{tile_evaluations, Sampling};
-use crate::resources::temporal_effect::{self, TemporalEffect};
+use crate::resources::temporal_effect::{EffectKind, MovedReach, TemporalEffect};
 use crate::shaders::{self, EffectPush};
 use crate::vk::recorder::Recorder;
 use crate::vk::{Access, Buffer, Context, Image, ImageDesc, Tracker};
@@ -33,6 +33,62 @@ use std::cell::Cell;
 use std::sync::Arc;
 
 /// The effect's passes (timing rows and the scene inputs each reads).
+/// The effect's name (`Effect::id`).
+pub const ID: EffectId = EffectId::new("indirect");
+
+pub const KIND: EffectKind = EffectKind {
+    name: "indirect",
+    block_shift: 4,
+    refresh_tile: 16,
+    counters: &[
+        ("indirect_computed_pixels", Counter::Computed),
+        ("indirect_fixup_pixels", Counter::Fixup),
+        ("indirect_refresh_evaluations", Counter::Refresh),
+        ("indirect_invalidated_pixels", Counter::Invalidated),
+        ("indirect_lowres_samples", Counter::LowresSamples),
+        (
+            "indirect_gather_invocations",
+            Counter::Invocations(Role::Gather),
+        ),
+        (
+            "indirect_gather_active_invocations",
+            Counter::ActiveInvocations(Role::Gather),
+        ),
+        (
+            "indirect_gather_serial_evaluations",
+            Counter::SerialEvaluations(Role::Gather),
+        ),
+        (
+            "indirect_fixup_invocations",
+            Counter::Invocations(Role::Fixup),
+        ),
+        (
+            "indirect_fixup_active_invocations",
+            Counter::ActiveInvocations(Role::Fixup),
+        ),
+        (
+            "indirect_fixup_serial_evaluations",
+            Counter::SerialEvaluations(Role::Fixup),
+        ),
+        (
+            "indirect_refresh_invocations",
+            Counter::Invocations(Role::Refresh),
+        ),
+        (
+            "indirect_refresh_active_invocations",
+            Counter::ActiveInvocations(Role::Refresh),
+        ),
+        (
+            "indirect_refresh_serial_evaluations",
+            Counter::SerialEvaluations(Role::Refresh),
+        ),
+    ],
+    fixups: true,
+    moved: MovedReach::Inside,
+    lit: true,
+    reaccumulates: true,
+};
+
 pub mod pass {
     use crate::passes::pass_id::{Change, PassId};
 
@@ -170,7 +226,7 @@ const GATHER: &[Bind] = gather_inputs![
 ];
 
 pub const REGISTRATION: Registration = Registration {
-    id: EffectId::Indirect,
+    id: ID,
     enabled: |c| c.effects.indirect && c.indirect.filter == IndirectFilter::Accumulate,
     create: |s| Ok(Box::new(IndirectEffect::new(s)?)),
     layouts,
@@ -353,7 +409,7 @@ impl IndirectEffect {
         } else {
             Sampling::FullRes
         };
-        let temporal = TemporalEffect::new(ctx, temporal_effect::INDIRECT, c, sampling)?;
+        let temporal = TemporalEffect::new(ctx, KIND, c, sampling)?;
         let low = |name, format, usage| {
             Image::new(
                 ctx,
@@ -509,7 +565,7 @@ impl Effect for IndirectEffect {
     }
 
     fn id(&self) -> EffectId {
-        EffectId::Indirect
+        ID
     }
 
     fn resize(&mut self, ctx: &Arc<Context>, config: &RenderConfig) -> Result<()> {

@@ -19,6 +19,9 @@ use crate::vk::{Context, Image};
 use std::sync::Arc;
 
 /// The effect's passes (timing rows and the scene inputs each reads).
+/// The effect's name (`Effect::id`).
+pub const ID: EffectId = EffectId::new("jbf");
+
 pub mod pass {
     use crate::passes::pass_id::{Change, PassId};
 
@@ -52,7 +55,7 @@ const FILTER: &[Bind] = &[
 ];
 
 pub const REGISTRATION: Registration = Registration {
-    id: EffectId::IndirectJbf,
+    id: ID,
     enabled: |c| c.effects.indirect && radius(c.indirect.filter).is_some(),
     create: |s| Ok(Box::new(JbfEffect::new(s)?)),
     layouts,
@@ -123,7 +126,7 @@ impl JbfEffect {
 
 impl Effect for JbfEffect {
     fn id(&self) -> EffectId {
-        EffectId::IndirectJbf
+        ID
     }
 
     fn passes(&self) -> &'static [PassId] {

@@ -23,10 +23,10 @@ use crate::error::Result;
 use crate::passes::compute::{ComputePass, Dispatch, PassDecl};
 use crate::passes::decl::{Bind, Slot, Use};
 use crate::passes::{PassId, PassLayout};
-use crate::resources::counters::{self, Counter, CounterReadback};
+use crate::resources::counters::{self, Counter, CounterReadback, Role};
 use crate::resources::targets::{Target, Targets, AO_FORMAT};
 use crate::resources::temporal::Sampling;
-use crate::resources::temporal_effect::{self, TemporalEffect};
+use crate::resources::temporal_effect::{EffectKind, MovedReach, TemporalEffect};
 use crate::shaders::{self, EffectPush};
 use crate::vk::recorder::Recorder;
 use crate::vk::{Buffer, Context, Image, ImageDesc, Tracker};
@@ -35,6 +35,48 @@ use config::SsdoForm;
 use std::sync::Arc;
 
 /// The effect's passes (timing rows and the scene inputs each reads).
+/// The effect's name (`Effect::id`).
+pub const ID: EffectId = EffectId::new("ssdo");
+
+/// SSDO with the cache (`--reuse on`): the factor's running mean rides in the moments' w.
+pub const KIND: EffectKind = EffectKind {
+    name: "ssdo",
+    block_shift: 0,
+    refresh_tile: 64,
+    counters: &[
+        ("disoccluded_pixels", Counter::Disoccluded),
+        ("ssdo_computed_pixels", Counter::Computed),
+        ("ssdo_samples", Counter::Samples),
+        ("ssdo_refresh_evaluations", Counter::Refresh),
+        ("ssdo_invalidated_pixels", Counter::Invalidated),
+        ("ssdo_invocations", Counter::Invocations(Role::Gather)),
+        (
+            "ssdo_active_invocations",
+            Counter::ActiveInvocations(Role::Gather),
+        ),
+        (
+            "ssdo_serial_evaluations",
+            Counter::SerialEvaluations(Role::Gather),
+        ),
+        (
+            "ssdo_refresh_invocations",
+            Counter::Invocations(Role::Refresh),
+        ),
+        (
+            "ssdo_refresh_active_invocations",
+            Counter::ActiveInvocations(Role::Refresh),
+        ),
+        (
+            "ssdo_refresh_serial_evaluations",
+            Counter::SerialEvaluations(Role::Refresh),
+        ),
+    ],
+    fixups: false,
+    moved: MovedReach::SsdoRadius,
+    lit: true,
+    reaccumulates: false,
+};
+
 pub mod pass {
     use crate::passes::pass_id::{Change, PassId};
 
@@ -184,7 +226,7 @@ const UPSAMPLE_FILTERED: &[Bind] = &upsample(FILTERED);
 const UPSAMPLE_RAW: &[Bind] = &upsample(RAW);
 
 pub const REGISTRATION: Registration = Registration {
-    id: EffectId::Ssdo,
+    id: ID,
     enabled: |c| c.effects.ssdo,
     create: |s| Ok(Box::new(SsdoEffect::new(s)?)),
     layouts,
@@ -438,12 +480,7 @@ impl SsdoEffect {
                 image("ssdo.upsampled", upsampled)?,
             ],
             temporal: if c.temporal.reuse {
-                Some(TemporalEffect::new(
-                    ctx,
-                    temporal_effect::SSDO,
-                    c,
-                    Sampling::FullRes,
-                )?)
+                Some(TemporalEffect::new(ctx, KIND, c, Sampling::FullRes)?)
             } else {
                 None
             },
@@ -507,7 +544,7 @@ impl Effect for SsdoEffect {
     }
 
     fn id(&self) -> EffectId {
-        EffectId::Ssdo
+        ID
     }
 
     fn resize(&mut self, ctx: &Arc<Context>, config: &RenderConfig) -> Result<()> {
@@ -680,7 +717,7 @@ impl Effect for SsdoEffect {
             // rgba = the unoccluded fraction: the composite reads red, as for AO.
             (TermKind::AmbientVisibility, self.result())
         } else {
-            (TermKind::Ssdo, self.result())
+            (TermKind::BounceAndModulation, self.result())
         }
     }
 

@@ -1,6 +1,6 @@
 //! Subpixel reconstruction antialiasing (`--aa sraa|sraa-shadow`): the subpixel geometry (four
 //! renders of position and normal, the projection shifted to each subpixel of the rotated
-//! grid, as Chiu et al. render theirs) and the reconstruction (shaders/sraa.comp: eq 1's
+//! grid, as Chiu et al. render theirs) and the reconstruction (shaders/sraa/sraa.comp: eq 1's
 //! weights over the shaded pixels around each subpixel, then the box filter into the output).
 //!
 //! Four renders rather than one 4x multisampled G-buffer: the subpixels land exactly where
@@ -8,11 +8,14 @@
 //! locations or sample-rate shading), and the reconstruction reads plain images. The cost is
 //! four vertex passes; `sraa_geometry` times all four.
 
-use super::compute::{ComputePass, Dispatch, FrameSet};
-use super::decl::{Bind, Resolve, Slot, Use};
-use super::layout::PassLayout;
-use super::raster::{begin_attachments, FLAT_BINDINGS, VERTEX_ATTRIBUTES, VERTEX_BINDINGS};
+use super::stage::{PostFrame, PostRegistration, PostStage};
+use crate::config::RenderConfig;
+use crate::effects::Recording;
 use crate::error::Result;
+use crate::passes::compute::{ComputePass, Dispatch, FrameSet};
+use crate::passes::decl::{Bind, Resolve, Slot, Use};
+use crate::passes::layout::PassLayout;
+use crate::passes::raster::{begin_attachments, FLAT_BINDINGS, VERTEX_ATTRIBUTES, VERTEX_BINDINGS};
 use crate::resources::scene_gpu::SceneGpu;
 use crate::resources::targets::{DEPTH_FORMAT, GBUFFER_COLOR_FORMATS};
 use crate::shaders;
@@ -20,7 +23,7 @@ use crate::vk::recorder::Recorder;
 use crate::vk::{Context, DescriptorPool, GraphicsDesc, Pipeline, Tracker};
 use std::sync::Arc;
 
-/// The effect's passes (timing rows and the scene inputs each reads).
+/// The stage's passes (timing rows and the scene inputs each reads).
 pub mod pass {
     use crate::passes::pass_id::{Change, PassId};
 
@@ -29,7 +32,18 @@ pub mod pass {
         PassId::new("sraa_geometry", &[Change::Camera, Change::Object]);
     /// SRAA: each subpixel's shading from the shaded pixels around it, box-filtered.
     pub const SRAA: PassId = PassId::new("sraa", &[Change::Camera, Change::Light, Change::Config]);
+
+    /// Every pass, in recording order.
+    pub const ALL: &[PassId] = &[SRAA_GEOMETRY, SRAA];
 }
+
+pub const REGISTRATION: PostRegistration = PostRegistration {
+    enabled: |c: &RenderConfig| c.aa.mode.subpixel(),
+    create: |ctx, pool| Ok(Box::new(SraaPass::new(ctx, pool)?)),
+    layouts,
+    passes: pass::ALL,
+    geometry_passes: &[pass::SRAA_GEOMETRY],
+};
 
 /// Attachments of subpixel `n`'s render: position, normal (the G-buffer's formats), depth.
 const fn subpixel_targets(n: u8) -> [Bind; 3] {
@@ -99,12 +113,8 @@ impl SraaPass {
         })
     }
 
-    pub fn bind(&self, ctx: &Context, res: &dyn Resolve) -> Result<()> {
-        self.reconstruct.bind(ctx, res)
-    }
-
     /// The four subpixel renders; the draw's first instance tells mesh.vert which subpixel.
-    pub fn record_geometry(
+    fn record_geometry(
         &self,
         rec: &Recorder<'_>,
         tracker: &mut Tracker,
@@ -127,7 +137,7 @@ impl SraaPass {
     }
 
     /// The reconstruction over the render size.
-    pub fn record_reconstruct(
+    fn record_reconstruct(
         &self,
         rec: &Recorder<'_>,
         tracker: &mut Tracker,
@@ -143,5 +153,23 @@ impl SraaPass {
             &[],
             Dispatch::Pixels { width, height },
         );
+    }
+}
+
+impl PostStage for SraaPass {
+    fn bind(&self, ctx: &Context, targets: &dyn Resolve) -> Result<()> {
+        self.reconstruct.bind(ctx, targets)
+    }
+
+    fn record(&self, r: &mut Recording<'_>, f: &PostFrame<'_>) {
+        // The subpixel geometry, as the G-buffer, only while the camera or objects move.
+        if f.geometry {
+            r.timed(pass::SRAA_GEOMETRY, |rec, tr| {
+                self.record_geometry(rec, tr, f.frame, f.scene, f.targets)
+            });
+        }
+        r.timed(pass::SRAA, |rec, tr| {
+            self.record_reconstruct(rec, tr, f.frame, f.targets, f.render)
+        });
     }
 }
