@@ -168,11 +168,11 @@ fn paths_resolve_to_modules() {
 /// (generated), `error`, `files` and `interrupt` are beside the stack: anyone may use them,
 /// and they use only `vk` and each other.
 fn layer(module: &str) -> usize {
-    // An effect's configuration (`effects::<effect>::config`: its parameters, their
+    // An effect's or post stage's configuration (`effects::<effect>::config`: its parameters, their
     // validation and value parsers) is plain data in the effect's folder: `RenderConfig`
     // holds it, so it sits with `config` and may use only what `config` may.
     let parts: Vec<&str> = module.split("::").collect();
-    if parts.len() == 3 && parts[0] == "effects" && parts[2] == "config" {
+    if parts.len() == 3 && matches!(parts[0], "effects" | "post") && parts[2] == "config" {
         return 0;
     }
     match parts[0] {

@@ -7,10 +7,11 @@ pub use crate::config::parse::{
     parse_pattern_count, parse_vpls, AccumulateMode,
 };
 use crate::config::{
-    AaConfig, AaMode, Accumulate, AoConfig, AoEstimator, Effects, Epsilon, GBufferMode,
-    HistoryResample, IndirectConfig, IndirectFilter, Refresh, TemporalConfig,
+    Accumulate, AoConfig, AoEstimator, Effects, Epsilon, GBufferMode, HistoryResample,
+    IndirectConfig, IndirectFilter, Refresh, TemporalConfig,
 };
 use crate::effects::EffectArgs;
+use crate::post::PostArgs;
 use crate::renderer::frame::Pcf;
 use crate::renderer::{RenderConfig, MAX_SIZE};
 use crate::scene::HUGE_COORDINATE;
@@ -207,12 +208,6 @@ pub struct SceneArgs {
     /// the pixel (the estimator's own value, no smear, more pixels accumulating).
     #[arg(long, value_enum, default_value_t = HistoryResample::Bilinear)]
     pub history_resample: HistoryResample,
-    /// Antialiasing: `none`; `sraa` (shade once per pixel, geometry at 4 subpixels, each
-    /// subpixel's shading rebuilt from the pixels around it with depth and normal weights);
-    /// `sraa-shadow` (SRAA with a shadow test per subpixel in the weights); `ssaa16` (render
-    /// at 4x width and height, box-filter 4x4: the reference).
-    #[arg(long, value_enum, default_value_t = AaMode::None)]
-    pub aa: AaMode,
     /// How the G-buffer is made: `raster` (one raster pass writes every target) or
     /// `visibility` (the raster pass writes each pixel's triangle, a compute pass rebuilds the
     /// targets: for GPUs whose raster output is narrow; the same image within float rounding).
@@ -222,15 +217,9 @@ pub struct SceneArgs {
     /// two frames once every temporal effect has converged (its output is the last one).
     #[arg(long, default_value = "on", value_parser = parse_on_off, action = clap::ArgAction::Set)]
     pub skip_unchanged: bool,
-    /// SRAA's depth scale (eq 1's sigma_z) on the relative difference of eye distances.
-    #[arg(long, default_value_t = 10.0)]
-    pub sraa_sigma_z: f32,
-    /// SRAA's normal scale (eq 1's sigma_n) on 1 - sat(n_j . n_i).
-    #[arg(long, default_value_t = 0.25)]
-    pub sraa_sigma_n: f32,
-    /// `sraa-shadow`'s scale on the difference of two samples' shadow tests (0 or 1).
-    #[arg(long, default_value_t = 4.0)]
-    pub sraa_sigma_shadow: f32,
+    /// The post stages' options (the post registry's `PostArgs`: `--aa` and each stage's).
+    #[command(flatten)]
+    pub post_options: PostArgs,
     /// Each effect's own options (the registry's `EffectArgs`).
     #[command(flatten)]
     pub effect_options: EffectArgs,
@@ -285,16 +274,13 @@ impl SceneArgs {
                 invalidate: self.invalidate,
                 reaccumulate: self.reaccumulate,
             },
-            aa: AaConfig {
-                mode: self.aa,
-                sigma_z: self.sraa_sigma_z,
-                sigma_n: self.sraa_sigma_n,
-                sigma_shadow: self.sraa_sigma_shadow,
-            },
+            // Set from the post stages' options below.
+            aa: Default::default(),
             gbuffer: self.gbuffer,
             skip_unchanged: self.skip_unchanged,
         };
         self.effect_options.apply(&mut config);
+        self.post_options.apply(&mut config);
         config
     }
 }

@@ -1,13 +1,15 @@
 //! Antialiasing settings: none, subpixel reconstruction (SRAA: Chajdas et al. 2011; Chiu et
 //! al.'s shadow-aware weights), or 16x supersampling (the reference).
 
-use crate::error::{Error, Result};
+use crate::error::Result;
+use crate::post::sraa::config::SraaConfig;
 use serde::Serialize;
 
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, clap::ValueEnum)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, clap::ValueEnum)]
 #[serde(rename_all = "kebab-case")]
 pub enum AaMode {
     /// One sample per pixel, at its centre.
+    #[default]
     None,
     /// Shade once per pixel, sample geometry at 4 subpixels (rotated grid), rebuild each
     /// subpixel's shading with eq 1's depth and normal weights, box-filter the four.
@@ -39,52 +41,24 @@ impl AaMode {
     }
 }
 
-#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize)]
 pub struct AaConfig {
     pub mode: AaMode,
-    /// Eq 1's depth scale, on the relative difference of the distances from the eye (the
-    /// paper's 10: a neighbour 10% nearer or farther weighs 1/e).
-    pub sigma_z: f32,
-    /// Eq 1's normal scale, on 1 - sat(n_j . n_i) (the paper's 0.25).
-    pub sigma_n: f32,
-    /// The shadow term's scale on the difference of the hard shadow tests (0 or 1) with
-    /// `sraa-shadow`: 4 leaves exp(-16) across a shadow edge. The report gives no value (its
-    /// eq 2 is not in the text); ours.
-    pub sigma_shadow: f32,
-}
-
-impl Default for AaConfig {
-    fn default() -> Self {
-        Self {
-            mode: AaMode::None,
-            sigma_z: 10.0,
-            sigma_n: 0.25,
-            sigma_shadow: 4.0,
-        }
-    }
+    /// SRAA's weights (with `sraa` and `sraa-shadow`).
+    pub sraa: SraaConfig,
 }
 
 impl AaConfig {
     /// The shadow term's scale the shaders get: 0 turns the term off.
     pub fn shadow_scale(&self) -> f32 {
         if self.mode == AaMode::SraaShadow {
-            self.sigma_shadow
+            self.sraa.sigma_shadow
         } else {
             0.0
         }
     }
 
     pub fn validate(&self) -> Result<()> {
-        for (what, v) in [
-            ("SRAA depth scale", self.sigma_z),
-            ("SRAA normal scale", self.sigma_n),
-            ("SRAA shadow scale", self.sigma_shadow),
-        ] {
-            // Past 1e4 exp(-(s x)^2) underflows for any difference a float resolves.
-            if !(v.is_finite() && (0.0..=1e4).contains(&v)) {
-                return Err(Error::Config(format!("{what} {v} must be in [0, 10000]")));
-            }
-        }
-        Ok(())
+        self.sraa.validate()
     }
 }

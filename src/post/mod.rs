@@ -10,7 +10,7 @@ pub mod stage;
 
 pub use stage::{PostFrame, PostRegistration, PostStage};
 
-use crate::config::RenderConfig;
+use crate::config::{AaConfig, AaMode, RenderConfig};
 use crate::error::Result;
 use crate::passes::PassLayout;
 use crate::vk::{Context, DescriptorPool};
@@ -35,4 +35,28 @@ pub fn create(
 /// Every pipeline of every post stage, for the reflection check and the dependency table.
 pub fn all_layouts() -> Vec<PassLayout> {
     REGISTRY.iter().flat_map(|r| (r.layouts)()).collect()
+}
+
+/// The post stages' command-line options, flattened into each subcommand that renders: which
+/// antialiasing runs (`--aa`) and each stage's own.
+#[derive(clap::Args, Debug, Clone)]
+pub struct PostArgs {
+    /// Antialiasing: `none`; `sraa` (shade once per pixel, geometry at 4 subpixels, each
+    /// subpixel's shading rebuilt from the pixels around it with depth and normal weights);
+    /// `sraa-shadow` (SRAA with a shadow test per subpixel in the weights); `ssaa16` (render
+    /// at 4x width and height, box-filter 4x4: the reference).
+    #[arg(long, value_enum, default_value_t = AaMode::None)]
+    pub aa: AaMode,
+    #[command(flatten)]
+    pub sraa: sraa::args::SraaArgs,
+}
+
+impl PostArgs {
+    /// Write the post stages' part of `config` from the options.
+    pub fn apply(&self, config: &mut RenderConfig) {
+        config.aa = AaConfig {
+            mode: self.aa,
+            sraa: self.sraa.config(),
+        };
+    }
 }

@@ -8,6 +8,9 @@
 //! locations or sample-rate shading), and the reconstruction reads plain images. The cost is
 //! four vertex passes; `sraa_geometry` times all four.
 
+pub mod args;
+pub mod config;
+
 use super::stage::{PostFrame, PostRegistration, PostStage};
 use crate::config::RenderConfig;
 use crate::effects::Recording;
