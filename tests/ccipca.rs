@@ -1,5 +1,5 @@
 //! CCIPCA filtering of indirect light (Chen, Lei & Chang 2012; `--indirect-filter ccipca`):
-//! the GPU filter against the CPU model (src/reference/ccipca.rs) on the same noisy frames,
+//! the GPU filter against the CPU model (src/effects/ccipca/model.rs) on the same noisy frames,
 //! what the filter does to the noise of a static view, the warp and orthogonalization, the
 //! per-pixel weighting; and the joint bilateral baselines against a CPU evaluation.
 
@@ -10,7 +10,7 @@ use ssgi::config::{Effects, IndirectConfig, IndirectFilter, RenderConfig, Tempor
 use ssgi::effects::ccipca::config::{
     CcipcaConfig, CcipcaOrthogonalize, CcipcaProject, CcipcaStages, CcipcaWeighting,
 };
-use ssgi::reference::ccipca::{abs_cos, dot, Ccipca};
+use ssgi::effects::ccipca::model::{abs_cos, dot, Ccipca};
 use ssgi::renderer::Renderer;
 use ssgi::resources::targets::Target;
 use ssgi::scene::cornell_box;

@@ -3,7 +3,6 @@
 //! world-space AO, direct light with exact visibility, one diffuse bounce with full
 //! visibility, and the composited final image.
 
-pub mod ccipca;
 pub mod compose;
 pub mod error_metrics;
 pub mod estimate;

@@ -28,7 +28,7 @@ pub struct CcipcaConfig {
     /// move (0 = `vpls`, as any other pixel).
     pub new_pixel_vpls: u32,
     /// Samples after which a pixel's step stops shrinking (see
-    /// src/reference/ccipca.rs): the filter's memory, in frames.
+    /// src/effects/ccipca/model.rs): the filter's memory, in frames.
     pub max_age: u32,
     /// How far a frame goes: everything, or (tests) only the warp and
     /// orthogonalization. Not on the command line and not in reports.

@@ -5,10 +5,11 @@
 //! the updates (`--ccipca-project`), then the bases smoothed for the next frame
 //! (`--ccipca-basis-filter`). When the camera moves, the bases are first warped along the
 //! reprojection and orthogonalized (section 3.4). The equations and the CPU model the passes
-//! are checked against are in src/reference/ccipca.rs.
+//! are checked against are in model.rs.
 
 pub mod args;
 pub mod config;
+pub mod model;
 
 use super::effect::{
     every_pixel, float_image, Effect, EffectId, FrameInfo, Recording, Registration, Setup, TermKind,
@@ -22,7 +23,6 @@ use crate::error::Result;
 use crate::passes::compute::{ComputePass, Dispatch, PassDecl};
 use crate::passes::decl::{Bind, Slot, Use};
 use crate::passes::{PassId, PassLayout};
-use crate::reference::ccipca::AMNESIC;
 use crate::resources::targets::{Target, Targets};
 use crate::resources::temporal_effect::TemporalEffect;
 use crate::shaders::{self, CcipcaPush};
@@ -30,6 +30,7 @@ use crate::vk::recorder::Recorder;
 use crate::vk::{Buffer, Context, DescriptorPool, Image, Tracker};
 use ash::vk;
 use gpu_allocator::MemoryLocation;
+use model::AMNESIC;
 use std::sync::Arc;
 
 /// The effect's passes (timing rows and the scene inputs each reads).

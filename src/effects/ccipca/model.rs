@@ -1,6 +1,6 @@
 //! Candid covariance-free incremental PCA (Weng, Zhang & Hwang 2003) as Chen, Lei & Chang 2012
-//! apply it to images, in f64 on the CPU: the model the GPU filter (src/effects/ccipca/) is
-//! checked against, frame by frame.
+//! apply it to images, in f64 on the CPU: the model the GPU filter (this folder's effect) is
+//! checked against, frame by frame (tests/ccipca.rs).
 //!
 //! Each frame is one sample: an image of `pixels` x `channels` values, i.e. one vector whose
 //! dimensions are pixel channels. No mean is subtracted: Chen et al.'s eq 1 writes the image
