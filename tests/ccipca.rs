@@ -23,10 +23,8 @@ fn config(size: u32, vpls: u32, bases: u32) -> RenderConfig {
         rsm_size: 64,
         pcf: Pcf::HARD,
         effects: Effects {
-            direct: false,
-            ao: false,
             indirect: true,
-            ssdo: false,
+            ..Effects::NONE
         },
         indirect: IndirectConfig {
             vpls,

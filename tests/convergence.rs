@@ -87,7 +87,7 @@ impl Effect {
             direct: matches!(self, Effect::Shadow),
             ao: matches!(self, Effect::Ao),
             indirect: matches!(self, Effect::Indirect),
-            ssdo: false,
+            ..Effects::NONE
         };
         RenderConfig {
             width: SIZE,

@@ -19,9 +19,7 @@ fn a_validation_error_names_the_image_and_the_pass() {
         rsm_size: 64,
         effects: Effects {
             direct: true,
-            ao: false,
-            indirect: false,
-            ssdo: false,
+            ..Effects::NONE
         },
         ..Default::default()
     };

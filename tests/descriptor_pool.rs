@@ -27,9 +27,9 @@ fn configs() -> Vec<(&'static str, RenderConfig)> {
     };
     let ssdo = Effects {
         direct: true,
-        ao: false,
         indirect: true,
         ssdo: true,
+        ..Effects::NONE
     };
     vec![
         ("default", base),

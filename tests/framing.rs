@@ -27,9 +27,7 @@ fn renderer(ctx: &Arc<Context>, scene: Scene) -> Renderer {
         pcf: Pcf::HARD,
         effects: Effects {
             direct: true,
-            ao: false,
-            indirect: false,
-            ssdo: false,
+            ..Effects::NONE
         },
         ..Default::default()
     };

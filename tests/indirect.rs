@@ -26,10 +26,8 @@ fn config(size: u32, rsm: u32, indirect: IndirectConfig, temporal: TemporalConfi
         rsm_size: rsm,
         pcf: Pcf::HARD,
         effects: Effects {
-            direct: false,
-            ao: false,
             indirect: true,
-            ssdo: false,
+            ..Effects::NONE
         },
         indirect,
         ssdo: Default::default(),

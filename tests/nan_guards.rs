@@ -24,10 +24,8 @@ fn config(filter: IndirectFilter) -> RenderConfig {
         rsm_size: 64,
         pcf: Pcf::HARD,
         effects: Effects {
-            direct: false,
-            ao: false,
             indirect: true,
-            ssdo: false,
+            ..Effects::NONE
         },
         indirect: IndirectConfig {
             vpls: 16,

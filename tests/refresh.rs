@@ -191,10 +191,8 @@ fn converged_view_does_not_flicker_while_refreshing() {
     drop(r);
     let reference_config = RenderConfig {
         effects: Effects {
-            direct: false,
             ao: true,
-            indirect: false,
-            ssdo: false,
+            ..Effects::NONE
         },
         ao: AoConfig {
             patterns: 32,
@@ -243,10 +241,8 @@ fn half_resolution_refresh_keeps_the_accumulated_estimator() {
     let size = 64u32;
     let c = RenderConfig {
         effects: Effects {
-            direct: false,
-            ao: false,
             indirect: true,
-            ssdo: false,
+            ..Effects::NONE
         },
         temporal: TemporalConfig {
             invalidate: false,

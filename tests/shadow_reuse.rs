@@ -25,9 +25,7 @@ fn config(pcf: Pcf, reuse: bool) -> RenderConfig {
         pcf,
         effects: Effects {
             direct: true,
-            ao: false,
-            indirect: false,
-            ssdo: false,
+            ..Effects::NONE
         },
         ssdo: Default::default(),
         temporal: TemporalConfig {

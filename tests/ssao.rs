@@ -23,10 +23,8 @@ fn config(size: u32, temporal: TemporalConfig, ao: AoConfig) -> RenderConfig {
         rsm_size: 128,
         pcf: Pcf::HARD,
         effects: Effects {
-            direct: false,
             ao: true,
-            indirect: false,
-            ssdo: false,
+            ..Effects::NONE
         },
         ao,
         temporal,
@@ -411,7 +409,7 @@ fn shared_reprojection_matches_each_effect_alone() {
         direct,
         ao,
         indirect,
-        ssdo: false,
+        ..Effects::NONE
     };
     let alone = [
         (

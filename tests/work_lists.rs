@@ -25,10 +25,8 @@ fn config(size: u32, indirect: IndirectConfig, temporal: TemporalConfig) -> Rend
         rsm_size: 32,
         pcf: Pcf::HARD,
         effects: Effects {
-            direct: false,
-            ao: false,
             indirect: true,
-            ssdo: false,
+            ..Effects::NONE
         },
         indirect,
         temporal,
@@ -175,8 +173,7 @@ fn pixel_lists_hold_exactly_the_working_pixels() {
         effects: Effects {
             direct: true,
             ao: true,
-            indirect: false,
-            ssdo: false,
+            ..Effects::NONE
         },
         temporal,
         skip_unchanged: false,

@@ -96,7 +96,7 @@ fn combinations(scene: &'static str, stem: &str, group: Group) -> Vec<Case> {
             direct: bits & 1 != 0,
             ao: bits & 2 != 0,
             indirect: bits & 4 != 0,
-            ssdo: false,
+            ..Effects::NONE
         };
         for reuse in [true, false] {
             let mode = if reuse { "reuse" } else { "noreuse" };

@@ -27,7 +27,6 @@ use crate::vk::{upload_image, Access, Context, Image, ImageDesc};
 use ash::vk;
 use std::sync::Arc;
 
-/// The effect's passes (timing rows and the scene inputs each reads).
 /// The effect's name (`Effect::id`).
 pub const ID: EffectId = EffectId::new("ao");
 
@@ -68,6 +67,7 @@ pub const KIND: EffectKind = EffectKind {
     reaccumulates: true,
 };
 
+/// The effect's passes (timing rows and the scene inputs each reads).
 pub mod pass {
     use crate::passes::pass_id::{Change, PassId};
 

@@ -33,10 +33,10 @@ use gpu_allocator::MemoryLocation;
 use model::AMNESIC;
 use std::sync::Arc;
 
-/// The effect's passes (timing rows and the scene inputs each reads).
 /// The effect's name (`Effect::id`).
 pub const ID: EffectId = EffectId::new("ccipca");
 
+/// The effect's passes (timing rows and the scene inputs each reads).
 pub mod pass {
     use crate::passes::pass_id::{Change, PassId};
 

@@ -26,7 +26,6 @@ use crate::vk::{Context, Image, ImageDesc};
 use ash::vk;
 use std::sync::Arc;
 
-/// The effect's passes (timing rows and the scene inputs each reads).
 /// The effect's name (`Effect::id`).
 pub const ID: EffectId = EffectId::new("direct");
 
@@ -66,6 +65,7 @@ pub const KIND: EffectKind = EffectKind {
     reaccumulates: true,
 };
 
+/// The effect's passes (timing rows and the scene inputs each reads).
 pub mod pass {
     use crate::passes::pass_id::{Change, PassId};
 

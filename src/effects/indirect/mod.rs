@@ -32,7 +32,6 @@ use gpu_allocator::MemoryLocation;
 use std::cell::Cell;
 use std::sync::Arc;
 
-/// The effect's passes (timing rows and the scene inputs each reads).
 /// The effect's name (`Effect::id`).
 pub const ID: EffectId = EffectId::new("indirect");
 
@@ -89,6 +88,7 @@ pub const KIND: EffectKind = EffectKind {
     reaccumulates: true,
 };
 
+/// The effect's passes (timing rows and the scene inputs each reads).
 pub mod pass {
     use crate::passes::pass_id::{Change, PassId};
 

@@ -34,7 +34,6 @@ use ash::vk;
 use config::SsdoForm;
 use std::sync::Arc;
 
-/// The effect's passes (timing rows and the scene inputs each reads).
 /// The effect's name (`Effect::id`).
 pub const ID: EffectId = EffectId::new("ssdo");
 
@@ -77,6 +76,7 @@ pub const KIND: EffectKind = EffectKind {
     reaccumulates: false,
 };
 
+/// The effect's passes (timing rows and the scene inputs each reads).
 pub mod pass {
     use crate::passes::pass_id::{Change, PassId};
 
