@@ -17,7 +17,7 @@ pub mod skip;
 
 pub use crate::config::{RenderConfig, FRAMES_IN_FLIGHT, MAX_SIZE};
 use crate::effects::resolve::shared;
-use crate::effects::{self, Effect, EffectId, FrameInfo, Recording, Setup};
+use crate::effects::{self, Effect, EffectId, FrameInfo, Recording, Setup, TermKind};
 use crate::error::{Error, Result};
 use crate::passes::composite::{CompositePass, Terms};
 use crate::passes::compute::FrameSet;
@@ -648,7 +648,18 @@ impl Renderer {
         read_buffer(&self.ctx, &mut self.tracker, buffer)
     }
 
-    /// Copy a target of the last rendered frame to the host (waits for the GPU).
+    /// Copy effect `id`'s composite term (the image `Effect::term` hands the composite) of the
+    /// last rendered frame to the host, with its kind (waits for the GPU): any effect's
+    /// contribution, without a debug target of its own.
+    pub fn read_term(&mut self, id: EffectId) -> Result<(TermKind, ImageData)> {
+        let parity = self.last_parity();
+        let effect = self.effects.iter().find(|e| e.id() == id);
+        let (kind, image) = effect
+            .map(|e| e.term(&self.targets, parity))
+            .ok_or_else(|| Error::Config(format!("{id:?} does not run in this configuration")))?;
+        Ok((kind, read_image(&self.ctx, &mut self.tracker, image)?))
+    }
+
     /// Test hook: the next recorded frame computes NaN for every indirect estimate of `pixel`
     /// (the noisy gather's sample and the cached gather's pattern) before the guards that keep
     /// NaN out of histories, bases and image-wide sums. No effect outside the image.
@@ -656,6 +667,7 @@ impl Renderer {
         self.planted_nan = Some(pixel);
     }
 
+    /// Copy a target of the last rendered frame to the host (waits for the GPU).
     pub fn read(&mut self, target: Target) -> Result<ImageData> {
         let parity = self.last_parity();
         let image = resolve_target(&self.targets, &self.effects, &self.config, target, parity);
