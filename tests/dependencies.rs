@@ -117,7 +117,7 @@ fn declared_inputs_match_what_the_compute_shaders_read() {
 
 /// What the table derives: raster passes read only what they draw from; an effect depends on
 /// the light exactly when one of its passes reads it or reads what the light view or another
-/// lit pass wrote (AO does not); everything an effect writes reaches the composite.
+/// lit pass wrote (AO and the normals debug effect do not); everything an effect writes reaches the composite.
 #[test]
 fn derived_changes_follow_the_resources() {
     let effects: Vec<_> = REGISTRY.iter().map(|r| (r.layouts)()).collect();
@@ -131,7 +131,9 @@ fn derived_changes_follow_the_resources() {
         set(&[Camera, Object])
     );
     for (r, changes) in REGISTRY.iter().zip(&d.effects) {
-        let lit = r.id != ssgi::effects::ao::ID;
+        // AO and the normals debug effect read nothing of the light, directly or through
+        // their sources.
+        let lit = r.id != ssgi::effects::ao::ID && r.id != ssgi::effects::normals::ID;
         assert_eq!(
             changes.contains(Light),
             lit,

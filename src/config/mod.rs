@@ -37,6 +37,8 @@ pub struct Effects {
     /// Screen-space directional occlusion and its near-field bounce (Szentandrasi); it darkens
     /// the ambient light as AO does, so the two are exclusive.
     pub ssdo: bool,
+    /// Debug: each pixel's shading normal as radiance (`effects/normals/`).
+    pub normals: bool,
 }
 
 impl Effects {
@@ -46,15 +48,18 @@ impl Effects {
         ao: true,
         indirect: true,
         ssdo: false,
+        normals: false,
     };
     pub const NONE: Effects = Effects {
         direct: false,
         ao: false,
         indirect: false,
         ssdo: false,
+        normals: false,
     };
 
-    /// Comma-separated list: `direct`, `ao`, `indirect`, `ssdo`, or `all` (the first three).
+    /// Comma-separated list: `direct`, `ao`, `indirect`, `ssdo`, `normals`, or `all` (the
+    /// first three).
     pub fn parse(s: &str) -> std::result::Result<Effects, String> {
         let mut e = Effects::NONE;
         for part in s.split(',').map(str::trim).filter(|p| !p.is_empty()) {
@@ -68,10 +73,11 @@ impl Effects {
                 "ao" => e.ao = true,
                 "indirect" => e.indirect = true,
                 "ssdo" => e.ssdo = true,
+                "normals" => e.normals = true,
                 other => {
                     return Err(format!(
                         "unknown effect {other:?} in --effects (known: direct, ao, indirect, \
-                         ssdo, all)"
+                         ssdo, normals, all)"
                     ))
                 }
             }
@@ -91,6 +97,7 @@ impl std::fmt::Display for Effects {
             ("ao", self.ao),
             ("indirect", self.indirect),
             ("ssdo", self.ssdo),
+            ("normals", self.normals),
         ];
         let on: Vec<&str> = names
             .iter()

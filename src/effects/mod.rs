@@ -10,6 +10,7 @@ pub mod direct;
 pub mod effect;
 pub mod indirect;
 pub mod jbf;
+pub mod normals;
 pub mod resolve;
 pub mod ssdo;
 
@@ -32,6 +33,7 @@ pub const REGISTRY: &[Registration] = &[
     ccipca::REGISTRATION,
     jbf::REGISTRATION,
     ssdo::REGISTRATION,
+    normals::REGISTRATION,
 ];
 
 /// Every effect the configuration turns on, in registry order.
