@@ -236,7 +236,7 @@ fn reflect(
     }
     bindings.sort();
     let file_name = file.file_name().unwrap().to_string_lossy();
-    // The module's name: its path under shaders/ (`ssdo/ssdo.comp` for an effect's pass).
+    // The module's name: its path under shaders/ (`ao/ssao_full.comp` for an effect's pass).
     let source_name = file
         .strip_prefix("shaders")
         .unwrap_or(file)

@@ -36,7 +36,8 @@ pub struct ReflectedBinding {
 /// A compiled module and what naga reflected from it.
 #[derive(Debug)]
 pub struct ShaderModuleInfo {
-    /// Source path under `shaders/` (`composite.comp`, or `ssdo/ssdo.comp` in an effect's folder).
+    /// Source path under `shaders/` (`composite.comp`; `ao/ssao_full.comp` in an effect's
+    /// folder).
     pub name: &'static str,
     /// Permutation suffix (`""` for the only/default build).
     pub permutation: &'static str,

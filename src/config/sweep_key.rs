@@ -8,7 +8,7 @@ use std::fmt;
 /// One sweepable parameter. Values use the command line's syntax and parsers, so a sweep
 /// accepts exactly what a single run accepts.
 pub struct SweepKey {
-    /// The name given to `--vary`: the field's path in `RenderConfig` (`ssdo.samples`).
+    /// The name given to `--vary`: the field's path in `RenderConfig` (`ao.samples`).
     pub name: &'static str,
     /// The values accepted, as shown in errors and `ssgi sweep --list-keys`.
     pub syntax: &'static str,
