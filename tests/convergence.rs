@@ -7,9 +7,9 @@ mod common;
 
 use ssgi::config::pcf::{Pcf, PcfKernel};
 use ssgi::config::{
-    Accumulate, AoConfig, Effects, IndirectConfig, Refresh, RenderConfig, TemporalConfig,
-    MAX_REFRESH_BUDGET,
+    Accumulate, Effects, IndirectConfig, Refresh, RenderConfig, TemporalConfig, MAX_REFRESH_BUDGET,
 };
+use ssgi::effects::ao::config::AoConfig;
 use ssgi::renderer::Renderer;
 use ssgi::resources::targets::Target;
 use ssgi::scene::{cornell_box, Camera, Scene};

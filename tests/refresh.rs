@@ -6,7 +6,8 @@ mod common;
 
 use glam::Vec3;
 use ssgi::config::pcf::Pcf;
-use ssgi::config::{AoConfig, Effects, RenderConfig, TemporalConfig, REFRESH_BUDGET};
+use ssgi::config::{Effects, RenderConfig, TemporalConfig, REFRESH_BUDGET};
+use ssgi::effects::ao::config::AoConfig;
 use ssgi::renderer::Renderer;
 use ssgi::resources::targets::Target;
 use ssgi::resources::temporal::{tile_evaluations, Sampling};

@@ -6,9 +6,8 @@ mod common;
 
 use glam::{Mat4, Vec3, Vec4};
 use ssgi::config::pcf::Pcf;
-use ssgi::config::{
-    Accumulate, AoConfig, AoEstimator, Effects, Refresh, RenderConfig, TemporalConfig,
-};
+use ssgi::config::{Accumulate, Effects, Refresh, RenderConfig, TemporalConfig};
+use ssgi::effects::ao::config::{AoConfig, AoEstimator};
 use ssgi::effects::EffectId;
 use ssgi::renderer::Renderer;
 use ssgi::resources::targets::Target;

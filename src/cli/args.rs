@@ -7,9 +7,10 @@ pub use crate::config::parse::{
     parse_pattern_count, parse_vpls, AccumulateMode,
 };
 use crate::config::{
-    Accumulate, AoConfig, AoEstimator, Effects, Epsilon, GBufferMode, HistoryResample,
-    IndirectConfig, IndirectFilter, Refresh, TemporalConfig,
+    Accumulate, Effects, Epsilon, GBufferMode, HistoryResample, IndirectConfig, IndirectFilter,
+    Refresh, TemporalConfig,
 };
+use crate::effects::ao::config::AoConfig;
 use crate::effects::EffectArgs;
 use crate::post::PostArgs;
 use crate::renderer::frame::Pcf;
@@ -119,16 +120,6 @@ pub struct SceneArgs {
     /// (fixed pattern every frame + 5x5 Gaussian blur).
     #[arg(long, default_value = "on", value_parser = parse_on_off, action = clap::ArgAction::Set)]
     pub reuse: bool,
-    /// SSAO estimator.
-    #[arg(long = "ao", value_enum, default_value = "thesis")]
-    pub ao_estimator: AoEstimator,
-    /// SSAO samples per pattern (thesis: 8 directions x 4 steps for 32).
-    #[arg(long, default_value_t = 32)]
-    pub ao_samples: u32,
-    /// Far SSAO taps read point-sampled levels of the G-buffer position, up to this level
-    /// (0 = off: every tap reads the full-resolution G-buffer, the estimator as published).
-    #[arg(long, default_value_t = AoConfig::default().position_mips, value_parser = clap::value_parser!(u32).range(0..=AoConfig::MAX_POSITION_MIPS as i64))]
-    pub ao_position_mips: u32,
     /// How fresh estimates merge into the history: gated (running mean of the patterns,
     /// restarted on a change beyond --gate standard deviations), confidence (eqs 4-5 as the
     /// thesis writes them), ema, mean.
@@ -244,12 +235,8 @@ impl SceneArgs {
             rsm_size: self.rsm_size,
             pcf: self.pcf,
             effects: self.effects,
-            ao: AoConfig {
-                estimator: self.ao_estimator,
-                samples: self.ao_samples,
-                position_mips: self.ao_position_mips,
-                ..AoConfig::default()
-            },
+            // Set from the effects' own options below.
+            ao: Default::default(),
             indirect: IndirectConfig {
                 vpls: self.vpls,
                 visibility: self.vpl_visibility,

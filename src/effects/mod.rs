@@ -73,6 +73,8 @@ pub fn effect_layouts() -> Vec<PassLayout> {
 #[derive(clap::Args, Debug, Clone)]
 pub struct EffectArgs {
     #[command(flatten)]
+    pub ao: ao::args::AoArgs,
+    #[command(flatten)]
     pub ccipca: ccipca::args::CcipcaArgs,
     #[command(flatten)]
     pub ssdo: ssdo::args::SsdoArgs,
@@ -81,6 +83,7 @@ pub struct EffectArgs {
 impl EffectArgs {
     /// Write each effect's part of `config` from its options.
     pub fn apply(&self, config: &mut RenderConfig) {
+        config.ao = self.ao.config();
         config.ccipca = self.ccipca.config();
         config.ssdo = self.ssdo.config();
     }

@@ -5,6 +5,8 @@
 //! `--ao-position-mips`, a pass first writes point-sampled levels of the G-buffer position that
 //! far taps read.
 
+pub mod args;
+pub mod config;
 pub mod sweep;
 
 use super::effect::{

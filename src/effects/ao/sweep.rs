@@ -1,8 +1,8 @@
 //! SSAO's keys for `ssgi sweep --vary` (the registry hands them to the sweep).
 
+use super::config::{AoConfig, AoEstimator};
 use crate::config::parse::{parse_count, parse_radius};
 use crate::config::sweep_key::SweepKey;
-use crate::config::{AoConfig, AoEstimator};
 use clap::ValueEnum;
 
 pub const SWEEP_KEYS: &[SweepKey] = &[
@@ -56,8 +56,8 @@ pub const SWEEP_KEYS: &[SweepKey] = &[
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::config::AoEstimator;
     use crate::config::RenderConfig;
+    use crate::effects::ao::config::AoEstimator;
 
     /// Sets the field a key should set, written out by hand.
     type SetByHand = fn(&mut RenderConfig);

@@ -1,0 +1,32 @@
+//! SSAO's command-line options (flattened into every subcommand that renders, through the
+//! registry's `EffectArgs`) and what they make of `AoConfig`.
+
+use super::config::{AoConfig, AoEstimator};
+use clap::Args;
+
+#[derive(Args, Debug, Clone)]
+pub struct AoArgs {
+    /// SSAO estimator.
+    #[arg(long = "ao", value_enum, default_value = "thesis")]
+    pub ao_estimator: AoEstimator,
+    /// SSAO samples per pattern (thesis: 8 directions x 4 steps for 32).
+    #[arg(long, default_value_t = 32)]
+    pub ao_samples: u32,
+    /// Far SSAO taps read point-sampled levels of the G-buffer position, up to this level
+    /// (0 = off: every tap reads the full-resolution G-buffer, the estimator as published).
+    #[arg(long, default_value_t = AoConfig::default().position_mips, value_parser = clap::value_parser!(u32).range(0..=AoConfig::MAX_POSITION_MIPS as i64))]
+    pub ao_position_mips: u32,
+}
+
+impl AoArgs {
+    /// The SSAO configuration these options describe (validated with the rest by
+    /// `RenderConfig::validate`).
+    pub fn config(&self) -> AoConfig {
+        AoConfig {
+            estimator: self.ao_estimator,
+            samples: self.ao_samples,
+            position_mips: self.ao_position_mips,
+            ..AoConfig::default()
+        }
+    }
+}

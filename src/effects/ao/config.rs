@@ -1,0 +1,111 @@
+//! SSAO's configuration (Lin 2013 eqs 6-8, Mittring's and Szentandrasi's estimators): its
+//! estimator, samples, radius, attenuation, nearest step, patterns and far-tap position
+//! levels, and their validation. Plain data: the bottom layer's `RenderConfig` holds it, so it
+//! uses nothing above `error`.
+
+use crate::error::{Error, Result};
+use serde::Serialize;
+
+/// The SSAO estimator.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, clap::ValueEnum)]
+#[serde(rename_all = "lowercase")]
+pub enum AoEstimator {
+    /// Lin 2013 eqs 6-8: normal-weighted, attenuated, log-spaced screen-space steps.
+    Thesis,
+    /// Mittring 2007: depth comparisons of points in a sphere (flat surfaces come out grey).
+    Crytek,
+    /// Szentandrasi section 3.1: Halton points in the normal's hemisphere, back-projected; the
+    /// fraction behind the visible surface.
+    Szentandrasi,
+}
+
+impl AoEstimator {
+    /// The `Frame` block's `ao_estimator`.
+    pub fn code(self) -> u32 {
+        match self {
+            AoEstimator::Thesis => 0,
+            AoEstimator::Crytek => 1,
+            AoEstimator::Szentandrasi => 2,
+        }
+    }
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct AoConfig {
+    pub estimator: AoEstimator,
+    /// Samples per pattern (thesis: directions x steps; 32 = 8 x 4).
+    pub samples: u32,
+    /// World-space sampling radius as a fraction of the scene's bounding radius (scale-free).
+    pub radius: f32,
+    /// Attenuation D(d) = 1 + a d + b d^2 (eq 7), d in units of the sampling radius.
+    pub attenuation: [f32; 2],
+    /// Nearest sample distance in pixels (eq 8's `near`).
+    pub near_px: f32,
+    /// Patterns evaluated at once (1 in normal runs; references use many).
+    pub patterns: u32,
+    /// Far taps read point-sampled levels of the G-buffer position, up to this level (0: every
+    /// tap reads the full-resolution G-buffer, the estimator as published).
+    pub position_mips: u32,
+}
+
+impl Default for AoConfig {
+    fn default() -> Self {
+        Self {
+            estimator: AoEstimator::Thesis,
+            samples: 32,
+            radius: 0.25,
+            attenuation: [0.0, 1.0],
+            near_px: 1.5,
+            patterns: 1,
+            position_mips: 0,
+        }
+    }
+}
+
+impl AoConfig {
+    /// Most point-sampled position levels (`ao_position_chain.comp` writes levels 1-3).
+    pub const MAX_POSITION_MIPS: u32 = 3;
+
+    /// Directions and steps per direction of the thesis estimator for `samples`.
+    pub fn directions_steps(&self) -> (u32, u32) {
+        let steps = if self.samples >= 16 { 4 } else { 2 };
+        ((self.samples / steps).max(1), steps)
+    }
+
+    /// Its rules: counts, radius, attenuation and nearest step within what the shaders take,
+    /// a clear error for each, never a clamp.
+    pub fn validate(&self) -> Result<()> {
+        let bad = |m: String| Err(Error::Config(m));
+        let ao = self;
+        if !(1..=4096).contains(&ao.samples) {
+            return bad(format!("AO samples {} outside 1..=4096", ao.samples));
+        }
+        if ao.position_mips > AoConfig::MAX_POSITION_MIPS {
+            return bad(format!(
+                "AO position levels {} outside 0..={}",
+                ao.position_mips,
+                AoConfig::MAX_POSITION_MIPS
+            ));
+        }
+        if !(1..=1024).contains(&ao.patterns) {
+            return bad(format!("AO patterns {} outside 1..=1024", ao.patterns));
+        }
+        if !(ao.radius.is_finite() && ao.radius > 0.0 && ao.radius <= 10.0) {
+            return bad(format!(
+                "AO radius {} must be in (0, 10] scene radii",
+                ao.radius
+            ));
+        }
+        if ao.attenuation.iter().any(|c| !c.is_finite() || *c < 0.0) {
+            return bad("AO attenuation coefficients must be finite and >= 0".into());
+        }
+        // A divisor in the step spacing (eq 8): positive, and well inside the image.
+        if !(ao.near_px.is_finite() && ao.near_px > 0.0 && ao.near_px <= 64.0) {
+            return bad(format!(
+                "AO nearest step {} px must be in (0, 64]",
+                ao.near_px
+            ));
+        }
+        Ok(())
+    }
+}
