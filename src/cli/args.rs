@@ -7,8 +7,7 @@ pub use crate::config::parse::{
     parse_pattern_count, parse_vpls, AccumulateMode,
 };
 use crate::config::{
-    Accumulate, Effects, Epsilon, GBufferMode, HistoryResample, IndirectConfig, IndirectFilter,
-    Refresh, TemporalConfig,
+    Accumulate, Effects, Epsilon, GBufferMode, HistoryResample, Refresh, TemporalConfig,
 };
 use crate::effects::ao::config::AoConfig;
 use crate::effects::EffectArgs;
@@ -145,32 +144,6 @@ pub struct SceneArgs {
     /// (scale-free, default 2), or abs:<world units> for the thesis's absolute epsilon.
     #[arg(long, default_value = "2", value_parser = parse_epsilon)]
     pub epsilon: Epsilon,
-    /// VPLs gathered per pixel and frame for indirect light (`all`: every RSM texel).
-    #[arg(long, default_value = "512", value_parser = parse_vpls)]
-    pub vpls: u32,
-    /// Screen-space visibility test of each VPL (Lin 2013 section 3.3.1; about halves speed).
-    #[arg(long)]
-    pub vpl_visibility: bool,
-    /// Interleaved VPL gather: the pixels of each NxN block gather disjoint VPL subsets and a
-    /// geometry-aware NxN filter combines them (1 = off, up to 8).
-    #[arg(long, default_value_t = IndirectConfig::default().interleave, value_parser = clap::value_parser!(u32).range(1..=IndirectConfig::MAX_INTERLEAVE as i64))]
-    pub interleave: u32,
-    /// Lanes that share each low-resolution sample's VPLs in the half-resolution gather (a
-    /// power of two, 1-64; more lanes hide a GPU's memory latency, fewer sum less).
-    #[arg(long, default_value_t = IndirectConfig::default().vpl_lanes)]
-    pub vpl_lanes: u32,
-    /// How indirect light is smoothed over time: `accumulate` (the thesis's cache) or `ccipca`
-    /// (Chen et al. 2012: a new noisy gather of --vpls per pixel each frame, projected on
-    /// incrementally estimated principal components).
-    #[arg(long, value_enum, default_value_t = IndirectFilter::Accumulate)]
-    pub indirect_filter: IndirectFilter,
-    /// The noisy gather of `ccipca` and `jbf*` at half resolution: one pixel of each 2x2 block
-    /// gathers (each in turn), the others take its sample where they lie on its surface.
-    #[arg(long, default_value = "off", value_parser = parse_on_off, action = clap::ArgAction::Set)]
-    pub noisy_half_res: bool,
-    /// Gather indirect light at half resolution with geometry-aware upsampling.
-    #[arg(long, default_value = "on", value_parser = parse_on_off, action = clap::ArgAction::Set)]
-    pub half_res: bool,
     /// Tiled refresh: one tile per frame recomputed from scratch (at most 64x64 for AO and
     /// shadows, 16x16 for indirect light, smaller where --refresh-budget requires);
     /// `feathered` (or `on`) blends it in along a quarter-tile ramp on a grid shifted by half a
@@ -237,16 +210,8 @@ impl SceneArgs {
             effects: self.effects,
             // Set from the effects' own options below.
             ao: Default::default(),
-            indirect: IndirectConfig {
-                vpls: self.vpls,
-                visibility: self.vpl_visibility,
-                half_res: self.half_res,
-                interleave: self.interleave,
-                vpl_lanes: self.vpl_lanes,
-                filter: self.indirect_filter,
-                noisy_half_res: self.noisy_half_res,
-                ..IndirectConfig::default()
-            },
+            // Set from the effects' own options below.
+            indirect: Default::default(),
             // Set from the effects' own options below.
             ccipca: Default::default(),
             ssdo: Default::default(),

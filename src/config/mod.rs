@@ -8,6 +8,7 @@ pub mod sweep_key;
 
 use crate::effects::ao::config::AoConfig;
 use crate::effects::ccipca::config::CcipcaConfig;
+pub use crate::effects::indirect::config::{IndirectConfig, IndirectFilter, IndirectInput};
 use crate::effects::ssdo::config::SsdoConfig;
 use crate::error::{Error, Result};
 pub use antialias::{AaConfig, AaMode};
@@ -109,53 +110,6 @@ impl std::fmt::Display for Effects {
     }
 }
 
-/// One-bounce indirect light (Lin 2013 section 3.3).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
-pub struct IndirectConfig {
-    /// VPLs gathered per pixel and pattern; 0 = every RSM texel (the full gather).
-    pub vpls: u32,
-    /// The screen-space visibility test of each VPL (about halves the speed, the thesis says).
-    pub visibility: bool,
-    /// Gather at half resolution, upsample geometry-aware, fix up discarded pixels.
-    pub half_res: bool,
-    /// Interleaved sampling (Keller & Heidrich 2001): the pixels of each N x N block gather
-    /// disjoint subsets of the VPLs (vpls / N^2 each) and a geometry-aware N x N filter puts
-    /// them back together. 1 = every pixel gathers every VPL.
-    pub interleave: u32,
-    /// Lanes that share one low-resolution sample's VPLs in the compacted half-resolution
-    /// gather (a power of two, 1-64): a GPU hides the RSM reads' latency only with enough lanes
-    /// in flight, and one lane looping over every VPL is one long dependency chain.
-    pub vpl_lanes: u32,
-    /// What becomes of the noisy per-frame gather: the thesis's accumulation, or CCIPCA.
-    pub filter: IndirectFilter,
-    /// The noisy gather of CCIPCA and the joint bilateral filters at half resolution: one
-    /// pixel of each 2x2 block gathers (each in turn), the others take its sample where they
-    /// lie on its surface.
-    pub noisy_half_res: bool,
-    /// What the passes compute per pixel: the gather, or a test ramp. Not on the command line
-    /// and not in reports.
-    #[serde(skip)]
-    pub input: IndirectInput,
-}
-
-/// How indirect light is made smooth over time.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, clap::ValueEnum)]
-#[serde(rename_all = "lowercase")]
-pub enum IndirectFilter {
-    /// The thesis: reverse-reprojected accumulation (eqs 4-5) with half resolution,
-    /// refresh and the rest of the cache.
-    #[default]
-    Accumulate,
-    /// Chen, Lei & Chang 2012: a new noisy gather every frame (--vpls per pixel) projected on
-    /// incrementally estimated principal components (CCIPCA).
-    Ccipca,
-    /// The same noisy gather, filtered within the frame by an 11x11 joint bilateral filter
-    /// (the article's baseline).
-    Jbf11,
-    /// The same with a 17x17 window.
-    Jbf17,
-}
-
 /// How the G-buffer is made (`--gbuffer`).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, clap::ValueEnum)]
 #[serde(rename_all = "lowercase")]
@@ -173,44 +127,6 @@ impl GBufferMode {
     /// Whether the G-buffer is a visibility buffer and its resolve.
     pub fn visibility(self) -> bool {
         self == GBufferMode::Visibility
-    }
-}
-
-/// The value the indirect passes compute for a pixel before upsampling and accumulation.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub enum IndirectInput {
-    /// Eq 9 from the reflective shadow map.
-    #[default]
-    Gather,
-    /// Test input: the world position of the G-buffer texel each gather reads, as rgb. A
-    /// linear function with a known value at every pixel, so the half-resolution sample
-    /// positions and upsampling weights can be checked for an exact reconstruction.
-    Ramp,
-}
-
-impl IndirectConfig {
-    /// Largest interleaving block side: the reconstruction window must fit in the 9x9
-    /// low-resolution tile of a block.
-    pub const MAX_INTERLEAVE: u32 = 8;
-
-    /// Nearest step of each VPL's screen-space visibility march [px]: eq 8's log spacing
-    /// starting one and a half pixels out, like SSAO's default, so the march leaves the
-    /// receiver's own pixel before testing depth.
-    pub const MARCH_NEAR_PX: f32 = 1.5;
-}
-
-impl Default for IndirectConfig {
-    fn default() -> Self {
-        Self {
-            vpls: 512,
-            visibility: false,
-            half_res: true,
-            interleave: 1,
-            vpl_lanes: 16,
-            filter: IndirectFilter::Accumulate,
-            noisy_half_res: false,
-            input: IndirectInput::Gather,
-        }
     }
 }
 
@@ -461,38 +377,7 @@ impl RenderConfig {
         self.ao.validate()?;
         self.ssdo
             .validate(self.effects.ssdo, self.effects.ao, self.temporal.reuse)?;
-        // Per-invocation loop lengths: llvmpipe stops loops after ~2^16 iterations per
-        // invocation (the result is then silently wrong) and GPU drivers reset the device on
-        // very long dispatches, so gathers are bounded.
-        if self.indirect.vpls > 16384 {
-            return bad(format!(
-                "{} VPLs per pixel is more than 16384 (accumulate frames instead)",
-                self.indirect.vpls
-            ));
-        }
-        let il = self.indirect.interleave;
-        if !(1..=IndirectConfig::MAX_INTERLEAVE).contains(&il) {
-            return bad(format!(
-                "interleaving block side {il} outside 1..={}",
-                IndirectConfig::MAX_INTERLEAVE
-            ));
-        }
-        let lanes = self.indirect.vpl_lanes;
-        if !(lanes.is_power_of_two() && lanes <= 64) {
-            return bad(format!(
-                "--vpl-lanes {lanes}: lanes sharing a sample's VPLs must be a power of two from 1 \
-                 to 64 (a workgroup's width)"
-            ));
-        }
-        if self.indirect.vpls != 0 && self.indirect.vpls < il * il {
-            return bad(format!(
-                "{} VPLs cannot be split among the {} pixels of a {il}x{il} interleaving block \
-                 (use at least {} VPLs or a smaller --interleave)",
-                self.indirect.vpls,
-                il * il,
-                il * il
-            ));
-        }
+        self.indirect.validate()?;
         self.ccipca.validate()?;
         if self.indirect.vpls == 0 && self.rsm_size > 128 {
             return bad(format!(

@@ -75,6 +75,8 @@ pub struct EffectArgs {
     #[command(flatten)]
     pub ao: ao::args::AoArgs,
     #[command(flatten)]
+    pub indirect: indirect::args::IndirectArgs,
+    #[command(flatten)]
     pub ccipca: ccipca::args::CcipcaArgs,
     #[command(flatten)]
     pub ssdo: ssdo::args::SsdoArgs,
@@ -84,6 +86,7 @@ impl EffectArgs {
     /// Write each effect's part of `config` from its options.
     pub fn apply(&self, config: &mut RenderConfig) {
         config.ao = self.ao.config();
+        config.indirect = self.indirect.config();
         config.ccipca = self.ccipca.config();
         config.ssdo = self.ssdo.config();
     }

@@ -9,6 +9,8 @@
 //! accumulation converges to. It always goes through the reprojection:
 //! without reuse every pixel is new and every block listed, with the fixed pattern 0.
 
+pub mod args;
+pub mod config;
 pub mod sweep;
 
 use super::effect::{
