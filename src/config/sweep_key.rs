@@ -39,3 +39,27 @@ impl fmt::Display for SweepKey {
         f.write_str(self.name)
     }
 }
+
+/// Sets the field a key should set, written out by hand (tests).
+#[cfg(test)]
+pub type SetByHand = fn(&mut RenderConfig);
+
+/// Test helper: every key of `keys` has a case, in the keys' order, and setting its value on
+/// the default configuration changes exactly what the case's hand-written setter changes.
+#[cfg(test)]
+pub fn assert_each_key_sets_its_field(keys: &[SweepKey], cases: Vec<(&str, &str, SetByHand)>) {
+    let base = RenderConfig::default();
+    assert_eq!(cases.len(), keys.len(), "a key without a test");
+    for (key, (name, value, by_hand)) in keys.iter().zip(cases) {
+        assert_eq!(key.name, name, "cases in the keys' order");
+        let mut expected = base;
+        by_hand(&mut expected);
+        assert_ne!(
+            expected, base,
+            "{name}={value} must differ from the default"
+        );
+        let mut got = base;
+        (key.set)(&mut got, value).unwrap();
+        assert_eq!(got, expected, "{name}={value}");
+    }
+}

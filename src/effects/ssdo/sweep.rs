@@ -56,14 +56,10 @@ pub const SWEEP_KEYS: &[SweepKey] = &[
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::config::RenderConfig;
-
-    /// Sets the field a key should set, written out by hand.
-    type SetByHand = fn(&mut RenderConfig);
+    use crate::config::sweep_key::{assert_each_key_sets_its_field, SetByHand};
 
     #[test]
     fn each_key_changes_exactly_its_field() {
-        let base = RenderConfig::default();
         let cases: Vec<(&str, &str, SetByHand)> = vec![
             ("ssdo.form", "two-step", |c| c.ssdo.form = SsdoForm::TwoStep),
             ("ssdo.samples", "50", |c| c.ssdo.samples = 50),
@@ -71,18 +67,6 @@ mod tests {
             ("ssdo.filter", "off", |c| c.ssdo.filter = 0),
             ("ssdo.scale", "0.5", |c| c.ssdo.scale = 2),
         ];
-        assert_eq!(cases.len(), SWEEP_KEYS.len(), "a key without a test");
-        for (key, (name, value, by_hand)) in SWEEP_KEYS.iter().zip(cases) {
-            assert_eq!(key.name, name, "cases in the keys' order");
-            let mut expected = base;
-            by_hand(&mut expected);
-            assert_ne!(
-                expected, base,
-                "{name}={value} must differ from the default"
-            );
-            let mut got = base;
-            (key.set)(&mut got, value).unwrap();
-            assert_eq!(got, expected, "{name}={value}");
-        }
+        assert_each_key_sets_its_field(SWEEP_KEYS, cases);
     }
 }
