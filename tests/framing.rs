@@ -166,7 +166,7 @@ fn path_background(
 fn table_paths_stay_inside_their_scenes() {
     let ctx = common::context();
     let dir = asset_dir_from_env().expect("SSGI_ASSETS is not set (tools/test sets it)");
-    let boxed = ssgi::bench::paths::BOX.parse().unwrap();
+    let boxed = ssgi::bench::tables::paths::BOX.parse().unwrap();
     let mut failures = Vec::new();
     for spec in ["cornell-box", "box:bunny"] {
         let scene = load_scene(spec, Some(&dir)).unwrap();
@@ -176,7 +176,7 @@ fn table_paths_stay_inside_their_scenes() {
             }
         }
     }
-    for w in &ssgi::bench::walkthrough::WALKTHROUGHS {
+    for w in &ssgi::bench::tables::walkthroughs::WALKTHROUGHS {
         let path = w.path.parse().unwrap();
         let scene = w.load(Some(&dir), &path).unwrap();
         for (t, bg) in path_background(&ctx, scene, &path, 1.0) {

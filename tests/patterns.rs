@@ -7,7 +7,7 @@ mod common;
 
 use ash::vk;
 use gpu_allocator::MemoryLocation;
-use ssgi::bench::reuse_rows::{REFERENCE_AO_PATTERNS, REFERENCE_PCF};
+use ssgi::bench::tables::reuse::rows::{REFERENCE_AO_PATTERNS, REFERENCE_PCF};
 use ssgi::config::pcf::Pcf;
 use ssgi::config::{TemporalConfig, MAX_PATTERNS};
 use ssgi::effects::ao::config::AoConfig;

@@ -6,8 +6,10 @@ use std::path::PathBuf;
 
 #[derive(Clone, Debug)]
 pub struct TableOptions {
-    /// Render size (width, height).
+    /// Render size (width, height): `--size`, else the table's default.
     pub size: (u32, u32),
+    /// The sizes whose rows a table measures (`TableDef::sizes`).
+    pub sizes: Vec<(u32, u32)>,
     /// Frames measured per row along the path, after the warmup (`warmup::before_path`).
     pub frames: u32,
     pub warmup: Warmup,

@@ -6,8 +6,8 @@
 use super::compare::{group_median, groups};
 use super::ground_truth::{self, reference_buffer, FrameError, TruthQuality};
 use super::measure::{held_at, last_camera, measure, Buffer, LastFrame, RunSpec};
-use super::reuse_rows::{RowKind, REFERENCE_FRAMES};
 use super::sweep_keys::{describe, Label};
+use super::tables::reuse::rows::{RowKind, REFERENCE_FRAMES};
 use crate::error::{Error, Result};
 use crate::frontend::sink::Offscreen;
 use crate::reference::compose::Terms;

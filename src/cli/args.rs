@@ -344,92 +344,19 @@ pub struct ViewArgs {
     pub capture: Option<PathBuf>,
 }
 
-#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
-pub enum TableName {
-    /// Venus, Dragon, Bunny, Buddha in a box: reuse vs no reuse (thesis Table 4.1).
-    #[value(name = "thesis-4.1")]
-    Thesis41,
-    /// Sponza, Sibenik, Conference walkthroughs, per-frame (thesis Tables 4.2-4.4, Fig. 4.10).
-    #[value(name = "thesis-walkthroughs")]
-    ThesisWalkthroughs,
-    /// Szentandrasi et al. Table 1: SSAO and SSDO rows on Pyramids, Cornell box, Dragon.
-    #[value(name = "szentandrasi-1")]
-    Szentandrasi1,
-    /// Chiu et al.'s SRAA Table 1 / Figure 3: no AA, SRAA, shadow-aware SRAA, SSAA 16x on
-    /// Sponza at 256-1024 (or --size): pass times and error against SSAA 16x.
-    #[value(name = "sraa")]
-    Sraa,
-    /// Chen et al.'s CCIPCA Table 1: reprojection, update and reconstruction ms at five sizes
-    /// (or --size) with 3, 5 and 7 bases, the Cornell box orbiting.
-    #[value(name = "chang-1")]
-    Chang1,
-    /// Chen et al.'s flicker comparison: CCIPCA, 11x11 and 17x17 joint bilateral filters and
-    /// accumulation from 1-64 VPLs per pixel, static and moving: flicker and error.
-    #[value(name = "chang-flicker")]
-    ChangFlicker,
-    /// The dynamic scene (scenes/cornell-ball.toml: a ball rolling across the Cornell box while
-    /// the spot swings), still camera: reuse vs no reuse, time and error per frame.
-    #[value(name = "dynamic")]
-    Dynamic,
-}
-
-impl TableName {
-    /// Size, frames and warmup when the command line leaves them out.
-    pub fn defaults(self) -> ((u32, u32), u32, Warmup) {
-        match self {
-            TableName::Thesis41 | TableName::ThesisWalkthroughs => {
-                ((512, 512), 120, Warmup::Frames(10))
-            }
-            TableName::Szentandrasi1 => (
-                crate::bench::szentandrasi::PAPER_SIZE,
-                20,
-                Warmup::Frames(2),
-            ),
-            TableName::Sraa => ((512, 512), 3, Warmup::Frames(1)),
-            TableName::Chang1 => ((512, 512), 8, Warmup::Frames(4)),
-            TableName::ChangFlicker => ((128, 128), 16, Warmup::Frames(64)),
-            // 4 s at 60 fps: the light's whole swing, the ball's way across.
-            TableName::Dynamic => ((256, 256), 240, Warmup::Frames(10)),
-        }
-    }
-
-    pub fn name(self) -> &'static str {
-        match self {
-            TableName::Thesis41 => "thesis-4.1",
-            TableName::ThesisWalkthroughs => "thesis-walkthroughs",
-            TableName::Szentandrasi1 => "szentandrasi-1",
-            TableName::Sraa => "sraa",
-            TableName::Chang1 => "chang-1",
-            TableName::ChangFlicker => "chang-flicker",
-            TableName::Dynamic => "dynamic",
-        }
-    }
-
-    /// The report heading.
-    pub fn title(self) -> &'static str {
-        match self {
-            TableName::Thesis41 => {
-                "Thesis Table 4.1: reuse vs no reuse (Venus, Dragon, Bunny, Buddha in a box)"
-            }
-            TableName::ThesisWalkthroughs => {
-                "Thesis Tables 4.2-4.4 and Figure 4.10: Sponza, Sibenik and Conference walkthroughs"
-            }
-            TableName::Szentandrasi1 => crate::bench::table_szentandrasi::TITLE,
-            TableName::Sraa => crate::bench::table_sraa::TITLE,
-            TableName::Chang1 => crate::bench::table_chang::TITLE,
-            TableName::ChangFlicker => crate::bench::table_chang_flicker::TITLE,
-            TableName::Dynamic => {
-                "Dynamic scene: a ball rolling across the Cornell box under a swinging light"
-            }
-        }
-    }
+/// The tables' names for clap, each with its one-line summary, from the tables' registry.
+fn table_names() -> clap::builder::PossibleValuesParser {
+    clap::builder::PossibleValuesParser::new(
+        crate::bench::tables::TABLES
+            .map(|t| clap::builder::PossibleValue::new(t.name).help(t.summary)),
+    )
 }
 
 #[derive(Args, Debug)]
 pub struct TableArgs {
     /// Which table.
-    #[arg(value_enum)]
-    pub table: TableName,
+    #[arg(value_parser = table_names())]
+    pub table: String,
     /// Output directory for report.md, report.json, CSV and PNG files (default out/<table>).
     #[arg(long, value_name = "DIR")]
     pub out: Option<PathBuf>,

@@ -5,6 +5,6 @@ pub mod args;
 pub mod jobs;
 
 pub use args::{
-    AccumulateMode, BenchArgs, Cli, Command, RenderArgs, SceneArgs, TableArgs, TableName, ViewArgs,
+    AccumulateMode, BenchArgs, Cli, Command, RenderArgs, SceneArgs, TableArgs, ViewArgs,
 };
 pub use jobs::{bench, reference, render, stress, sweep, table, view};

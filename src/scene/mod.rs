@@ -9,6 +9,7 @@
 pub mod accel;
 mod builder;
 mod camera;
+pub mod decimate;
 mod error;
 mod framing;
 mod light;

@@ -10,9 +10,13 @@
 //!
 //! JSON, version 1 (later versions only add fields): see docs/formats.md, "chang-1".
 
-use super::measure::{measure, RunSpec};
-use super::table_run::{fixed, pass_ms, warmup_frames, write_reports, TableRun};
-use super::{Report, TableOptions};
+use super::def::TableDef;
+use super::run::{fixed, pass_ms, warmup_frames, write_reports, TableRun};
+use crate::bench::measure::{measure, RunSpec};
+use crate::bench::sheet::{notes_section, Cell, Column, Sheet};
+use crate::bench::warmup::Warmup;
+use crate::bench::{Report, TableOptions};
+use crate::config::Effects;
 use crate::config::{IndirectConfig, IndirectFilter, RenderConfig};
 use crate::effects::ccipca::config::{CcipcaConfig, CcipcaProject};
 use crate::error::{Error, Result};
@@ -23,9 +27,21 @@ use serde::Serialize;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
-pub const TABLE: &str = "chang-1";
-pub const TITLE: &str =
-    "Chen et al. Table 1: CCIPCA's reprojection, update and reconstruction per frame (Cornell box orbit)";
+pub const TABLE: TableDef = TableDef {
+    name: "chang-1",
+    summary: "Chen et al.'s CCIPCA Table 1: reprojection, update and reconstruction ms at five \
+              sizes (or --size) with 3, 5 and 7 bases, the Cornell box orbiting.",
+    title: "Chen et al. Table 1: CCIPCA's reprojection, update and reconstruction per frame (Cornell box orbit)",
+    size: (512, 512),
+    frames: 8,
+    warmup: Warmup::Frames(4),
+    sizes: &SIZES,
+    effects: Some(Effects {
+        indirect: true,
+        ..Effects::NONE
+    }),
+    run,
+};
 
 /// The article's sizes.
 pub const SIZES: [(u32, u32); 5] = [
@@ -151,13 +167,12 @@ fn config(opts: &TableOptions, size: (u32, u32), bases: u32) -> RenderConfig {
     }
 }
 
-/// Run the rows at `sizes` (the article's five unless `--size` names one), 3, 5 and 7 bases
-/// each.
-pub fn run(
+/// Run the rows at `opts.sizes` (the article's five unless `--size` names one), 3, 5 and 7
+/// bases each.
+fn run(
     ctx: &Arc<Context>,
     sink: &mut dyn FrameSink,
     opts: &TableOptions,
-    sizes: &[(u32, u32)],
     out: &Path,
 ) -> Result<Vec<PathBuf>> {
     if !opts.effects.indirect {
@@ -172,7 +187,7 @@ pub fn run(
         .map_err(|e| Error::Config(format!("cannot create {}: {e}", out.display())))?;
     let warmup = warmup_frames(opts);
     let mut rows = Vec::new();
-    for &size in sizes {
+    for &size in &opts.sizes {
         for bases in BASES {
             let label = format!("{}x{} {bases} bases", size.0, size.1);
             let m = measure(
@@ -234,7 +249,12 @@ pub fn run(
             .into(),
     ];
     let report = TableReport {
-        run: TableRun::new(TABLE, opts.command.clone(), &ctx.info, sink.present_mode()),
+        run: TableRun::new(
+            TABLE.name,
+            opts.command.clone(),
+            &ctx.info,
+            sink.present_mode(),
+        ),
         scene: scene.name.clone(),
         path: path.name(),
         fps: opts.fps,
@@ -245,7 +265,7 @@ pub fn run(
         notes,
         rows,
     };
-    write_reports(out, TABLE, &report, markdown(&report), csv(&report))
+    write_reports(out, TABLE.name, &report, markdown(&report), csv(&report))
 }
 
 fn summary_line(r: &RowResult) -> String {
@@ -261,8 +281,55 @@ fn summary_line(r: &RowResult) -> String {
     )
 }
 
+fn sheet() -> Sheet<'static, RowResult> {
+    type Paper = fn(&PaperMs) -> f64;
+    let paper = |key: &'static str, value: Paper| {
+        Column::csv(key, move |r: &RowResult| {
+            Cell::num(r.paper.as_ref().map(value), 2)
+        })
+    };
+    Sheet::new(vec![
+        Column::md("Res. (bases)", |r: &RowResult| {
+            Cell::text(format!("{}x{} ({})", r.width, r.height, r.bases))
+        }),
+        Column::csv("width", |r: &RowResult| Cell::int(r.width)),
+        Column::csv("height", |r: &RowResult| Cell::int(r.height)),
+        Column::csv("bases", |r: &RowResult| Cell::int(r.bases)),
+        Column::new("reproject_ms", "Reproj. ms", |r: &RowResult| {
+            Cell::num(r.reproject_ms, 2)
+        }),
+        Column::new("ipca_ms", "IPCA ms", |r: &RowResult| {
+            Cell::num(r.ipca_ms, 2)
+        }),
+        Column::new("reconstruct_ms", "Recon. ms", |r: &RowResult| {
+            Cell::num(r.reconstruct_ms, 2)
+        }),
+        Column::new("total_ms", "Total ms", |r: &RowResult| {
+            Cell::num(r.total_ms, 2)
+        }),
+        Column::md(
+            "Article: Reproj. / IPCA / Recon. / Total ms",
+            |r: &RowResult| {
+                r.paper.map_or(Cell::Empty, |p| {
+                    Cell::text(format!(
+                        "{} / {} / {} / {}",
+                        p.reproject_ms, p.ipca_ms, p.reconstruct_ms, p.total_ms
+                    ))
+                })
+            },
+        ),
+        Column::new("input_ms", "Input gather ms", |r: &RowResult| {
+            Cell::num(r.input_ms, 2)
+        }),
+        paper("paper_reproject_ms", |p| p.reproject_ms),
+        paper("paper_ipca_ms", |p| p.ipca_ms),
+        paper("paper_reconstruct_ms", |p| p.reconstruct_ms),
+        paper("paper_total_ms", |p| p.total_ms),
+    ])
+}
+
 fn markdown(r: &TableReport) -> String {
-    let mut md = format!("# {TITLE}\n\nCommand: `{}`\n\n", r.run.command);
+    let mut md = format!("# {}\n\nCommand: `{}`\n\n", TABLE.title, r.run.command);
     md += &format!(
         "Device: {} ({}), scene {}, path {} at {} fps, {} VPLs per pixel, effects {}, {} \
          frames measured per row after {} warmup frames, ssgi {}.\n\n",
@@ -277,58 +344,10 @@ fn markdown(r: &TableReport) -> String {
         r.warmup,
         r.run.ssgi_version
     );
-    md += "| Res. (bases) | Reproj. ms | IPCA ms | Recon. ms | Total ms | Article: Reproj. / \
-           IPCA / Recon. / Total ms | Input gather ms |\n";
-    md += "|---|---|---|---|---|---|---|\n";
-    for row in &r.rows {
-        let paper = row.paper.map_or("-".into(), |p| {
-            format!(
-                "{} / {} / {} / {}",
-                p.reproject_ms, p.ipca_ms, p.reconstruct_ms, p.total_ms
-            )
-        });
-        md += &format!(
-            "| {}x{} ({}) | {} | {} | {} | {} | {} | {} |\n",
-            row.width,
-            row.height,
-            row.bases,
-            fixed(row.reproject_ms, 2),
-            fixed(row.ipca_ms, 2),
-            fixed(row.reconstruct_ms, 2),
-            fixed(row.total_ms, 2),
-            paper,
-            fixed(row.input_ms, 2),
-        );
-    }
-    md += "\n## Notes\n\n";
-    for n in &r.notes {
-        md += &format!("- {n}\n");
-    }
-    md
+    md += &sheet().markdown(&r.rows);
+    md + "\n" + &notes_section(&r.notes)
 }
 
 fn csv(r: &TableReport) -> String {
-    let mut out = String::from(
-        "width,height,bases,reproject_ms,ipca_ms,reconstruct_ms,total_ms,input_ms,\
-         paper_reproject_ms,paper_ipca_ms,paper_reconstruct_ms,paper_total_ms\n",
-    );
-    for row in &r.rows {
-        let p = |f: fn(&PaperMs) -> f64| row.paper.as_ref().map(f);
-        out += &format!(
-            "{},{},{},{},{},{},{},{},{},{},{},{}\n",
-            row.width,
-            row.height,
-            row.bases,
-            fixed(row.reproject_ms, 4),
-            fixed(row.ipca_ms, 4),
-            fixed(row.reconstruct_ms, 4),
-            fixed(row.total_ms, 4),
-            fixed(row.input_ms, 4),
-            fixed(p(|p| p.reproject_ms), 2),
-            fixed(p(|p| p.ipca_ms), 2),
-            fixed(p(|p| p.reconstruct_ms), 2),
-            fixed(p(|p| p.total_ms), 2),
-        );
-    }
-    out
+    sheet().csv(&r.rows)
 }

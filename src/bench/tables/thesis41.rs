@@ -2,18 +2,33 @@
 //! path; reuse vs no reuse + 5x5 blur vs the converged reference, with the thesis's Table 4.1
 //! beside ours.
 
-use super::decimate::decimate;
+use super::def::TableDef;
 use super::paths::EmbeddedPath;
-use super::reuse_tables::RowsTable;
-use super::table_report::{SceneResult, TableReport, COLUMN_NOTE};
-use super::thesis::table_4_1;
-use super::TableOptions;
+use super::reuse::report::{SceneResult, COLUMN_NOTE};
+use super::reuse::thesis::table_4_1;
+use super::reuse::{finish, RowsTable};
+use crate::bench::warmup::Warmup;
+use crate::bench::TableOptions;
+use crate::config::Effects;
 use crate::error::Result;
 use crate::frontend::sink::FrameSink;
+use crate::scene::decimate::decimate;
 use crate::scene::{box_room, load_model, load_scene, CameraPath, Scene};
 use crate::vk::Context;
-use std::path::Path;
+use std::path::{Path, PathBuf};
 use std::sync::Arc;
+
+pub const TABLE: TableDef = TableDef {
+    name: "thesis-4.1",
+    summary: "Venus, Dragon, Bunny, Buddha in a box: reuse vs no reuse (thesis Table 4.1).",
+    title: "Thesis Table 4.1: reuse vs no reuse (Venus, Dragon, Bunny, Buddha in a box)",
+    size: (512, 512),
+    frames: 120,
+    warmup: Warmup::Frames(10),
+    sizes: &[],
+    effects: Some(Effects::ALL),
+    run,
+};
 
 /// A model of Table 4.1, put in the box room.
 pub struct BoxScene {
@@ -72,11 +87,12 @@ pub fn load(s: &BoxScene, assets: Option<&Path>) -> Result<(Scene, Option<String
     Ok((box_room(&d.mesh, &name), Some(note)))
 }
 
-pub fn run(
+fn run(
     ctx: &Arc<Context>,
     sink: &mut dyn FrameSink,
     opts: &TableOptions,
-) -> Result<TableReport> {
+    out: &Path,
+) -> Result<Vec<PathBuf>> {
     let (path, path_spec) = match opts.path.as_deref() {
         Some(p) => (CameraPath::parse(p)?, p),
         None => (DEFAULT_PATH.parse()?, DEFAULT_PATH.file),
@@ -87,7 +103,7 @@ pub fn run(
         loaded.push((s, load(s, opts.assets.as_deref())?));
     }
     let (rows_table, mut report) =
-        RowsTable::start("thesis-4.1", ctx, sink, opts, vec![COLUMN_NOTE.to_string()]);
+        RowsTable::start(TABLE.name, ctx, sink, opts, vec![COLUMN_NOTE.to_string()]);
     for (s, (scene, note)) in loaded {
         let rows = rows_table.measure(ctx, sink, &scene, &path)?;
         let mut result = SceneResult::new(
@@ -102,5 +118,5 @@ pub fn run(
         eprintln!("{}", result.summary_line());
         report.scenes.push(result);
     }
-    Ok(report)
+    finish(out, report, TABLE.title, "")
 }

@@ -20,10 +20,10 @@
 //!                             "report": <bench report, see report.rs> } ] } ] }
 //! ```
 
-use super::compare::groups;
-use super::ground_truth::TruthQuality;
-use super::reuse_rows::{RowKind, RowResult};
+use super::rows::{RowKind, RowResult};
 use super::thesis::{Fps, Scene41};
+use crate::bench::compare::groups;
+use crate::bench::ground_truth::TruthQuality;
 use crate::renderer::RenderConfig;
 use crate::vk::DeviceInfo;
 use serde::Serialize;

@@ -4,23 +4,35 @@
 //! per-frame fraction of recomputed pixels (the thesis's Tables 4.2-4.4 and Figure 4.10), as
 //! CSV and PNG plots, plus the same summary rows and errors as Table 4.1.
 
+use super::def::TableDef;
 use super::paths::{self, EmbeddedPath};
-use super::plot::{
-    write_line_plot, LinePlot, Series, NO_REUSE_AO_COLOR, NO_REUSE_COLOR, NO_REUSE_INDIRECT_COLOR,
-    REUSE_AO_COLOR, REUSE_COLOR, REUSE_INDIRECT_COLOR,
-};
-use super::reuse_rows::{FrameSample, RowKind};
-use super::reuse_tables::RowsTable;
-use super::table_report::{SceneResult, TableReport, COLUMN_NOTE};
-use super::thesis::WALKTHROUGH_NUMBERS_MISSING;
-use super::TableOptions;
+use super::reuse::columns::WALKTHROUGH_LEGEND;
+use super::reuse::report::{SceneResult, COLUMN_NOTE};
+use super::reuse::series::write_series;
+use super::reuse::thesis::WALKTHROUGH_NUMBERS_MISSING;
+use super::reuse::{finish, RowsTable};
+use crate::bench::warmup::Warmup;
+use crate::bench::TableOptions;
+use crate::config::Effects;
 use crate::error::{Error, Result};
 use crate::frontend::sink::FrameSink;
 use crate::scene::{build_scene_file, CameraPath, Scene, SceneFile};
 use crate::vk::Context;
-use plotters::style::RGBColor;
-use std::path::Path;
+use std::path::{Path, PathBuf};
 use std::sync::Arc;
+
+pub const TABLE: TableDef = TableDef {
+    name: "thesis-walkthroughs",
+    summary: "Sponza, Sibenik, Conference walkthroughs, per-frame (thesis Tables 4.2-4.4, Fig. \
+              4.10).",
+    title: "Thesis Tables 4.2-4.4 and Figure 4.10: Sponza, Sibenik and Conference walkthroughs",
+    size: (512, 512),
+    frames: 120,
+    warmup: Warmup::Frames(10),
+    sizes: &[],
+    effects: Some(Effects::ALL),
+    run,
+};
 
 /// One walkthrough scene.
 pub struct Walkthrough {
@@ -46,7 +58,7 @@ pub const WALKTHROUGHS: [Walkthrough; 3] = [
         path: paths::SPONZA,
         scene: EmbeddedScene {
             file: "scenes/sponza.toml",
-            text: include_str!("../../scenes/sponza.toml"),
+            text: include_str!("../../../scenes/sponza.toml"),
         },
     },
     Walkthrough {
@@ -55,7 +67,7 @@ pub const WALKTHROUGHS: [Walkthrough; 3] = [
         path: paths::SIBENIK,
         scene: EmbeddedScene {
             file: "scenes/sibenik.toml",
-            text: include_str!("../../scenes/sibenik.toml"),
+            text: include_str!("../../../scenes/sibenik.toml"),
         },
     },
     Walkthrough {
@@ -64,7 +76,7 @@ pub const WALKTHROUGHS: [Walkthrough; 3] = [
         path: paths::CONFERENCE,
         scene: EmbeddedScene {
             file: "scenes/conference.toml",
-            text: include_str!("../../scenes/conference.toml"),
+            text: include_str!("../../../scenes/conference.toml"),
         },
     },
 ];
@@ -92,12 +104,12 @@ impl Walkthrough {
     }
 }
 
-pub fn run(
+fn run(
     ctx: &Arc<Context>,
     sink: &mut dyn FrameSink,
     opts: &TableOptions,
     out: &Path,
-) -> Result<TableReport> {
+) -> Result<Vec<PathBuf>> {
     let dir = opts.path.as_deref().map(Path::new);
     if let Some(d) = dir.filter(|d| !d.is_dir()) {
         return Err(Error::Config(format!(
@@ -113,7 +125,7 @@ pub fn run(
         loaded.push((w, path, path_name, scene));
     }
     let (rows_table, mut report) = RowsTable::start(
-        "thesis-walkthroughs",
+        TABLE.name,
         ctx,
         sink,
         opts,
@@ -140,84 +152,5 @@ pub fn run(
         eprintln!("{}", result.summary_line());
         report.scenes.push(result);
     }
-    Ok(report)
-}
-
-/// `<stem>.csv`, `<stem>-time.png` and `<stem>-recomputed.png` in `out` (the per-frame time
-/// and recomputed pixels with and without reuse); returns their names.
-pub(super) fn write_series(s: &SceneResult, stem: &str, out: &Path) -> Result<Vec<String>> {
-    let samples = |kind| s.row(kind).map(|r| r.samples()).unwrap_or_default();
-    let (reuse, no_reuse) = (samples(RowKind::Reuse), samples(RowKind::NoReuse));
-    let pixels = s
-        .row(RowKind::Reuse)
-        .map_or(1, |r| r.report.width as u64 * r.report.height as u64);
-    let csv_name = format!("{stem}.csv");
-    super::output::write_text(
-        &out.join(&csv_name),
-        &super::csv::frames(&reuse, &no_reuse, pixels),
-    )?;
-    let ms = |group: &'static str| move |f: &FrameSample| f.ms.get(group).copied();
-    let fraction = |f: &FrameSample| f.ssao_computed_pixels.map(|n| n as f64 / pixels as f64);
-    let time_name = format!("{stem}-time.png");
-    let title = format!("{}: GPU time per frame", s.name);
-    write_line_plot(
-        &LinePlot {
-            title: &title,
-            x_label: "frame",
-            y_label: "GPU ms",
-            series: vec![
-                series("total, reuse", REUSE_COLOR, &reuse, ms("total")),
-                series("total, no reuse", NO_REUSE_COLOR, &no_reuse, ms("total")),
-                series("AO, reuse", REUSE_AO_COLOR, &reuse, ms("ao")),
-                series("AO, no reuse", NO_REUSE_AO_COLOR, &no_reuse, ms("ao")),
-                series(
-                    "indirect, reuse",
-                    REUSE_INDIRECT_COLOR,
-                    &reuse,
-                    ms("indirect"),
-                ),
-                series(
-                    "indirect, no reuse",
-                    NO_REUSE_INDIRECT_COLOR,
-                    &no_reuse,
-                    ms("indirect"),
-                ),
-            ],
-            size: (900, 480),
-        },
-        &out.join(&time_name),
-    )?;
-    let recomputed_name = format!("{stem}-recomputed.png");
-    let title = format!("{}: recomputed pixels per frame", s.name);
-    write_line_plot(
-        &LinePlot {
-            title: &title,
-            x_label: "frame",
-            y_label: "fraction of pixels",
-            series: vec![
-                series("reuse", REUSE_COLOR, &reuse, fraction),
-                series("no reuse", NO_REUSE_COLOR, &no_reuse, fraction),
-            ],
-            size: (900, 480),
-        },
-        &out.join(&recomputed_name),
-    )?;
-    Ok(vec![csv_name, time_name, recomputed_name])
-}
-
-/// One plot line: `y` of every sample that has it, against the frame number.
-fn series<'a>(
-    name: &'a str,
-    color: RGBColor,
-    samples: &[FrameSample],
-    y: impl Fn(&FrameSample) -> Option<f64>,
-) -> Series<'a> {
-    Series {
-        name,
-        color,
-        points: samples
-            .iter()
-            .filter_map(|f| y(f).map(|v| (f.frame as f64, v)))
-            .collect(),
-    }
+    finish(out, report, TABLE.title, WALKTHROUGH_LEGEND)
 }

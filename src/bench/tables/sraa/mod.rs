@@ -7,27 +7,45 @@
 //!
 //! JSON, version 1 (later versions only add fields): see docs/formats.md, "sraa".
 
-use super::aa_edges::{edge_mask, rmse};
-use super::measure::{held_at, measure, Buffer, Measured, RunSpec};
-use super::table_run::{fixed, pass_ms, warmup_frames, write_reports, TableRun};
-use super::walkthrough::WALKTHROUGHS;
-use super::{Report, TableOptions};
+pub mod edges;
+
+use super::def::TableDef;
+use super::run::{fixed, pass_ms, warmup_frames, write_reports, TableRun};
+use super::walkthroughs::WALKTHROUGHS;
+use crate::bench::measure::{held_at, measure, Buffer, Measured, RunSpec};
+use crate::bench::sheet::{notes_section, Cell, Column, Sheet};
+use crate::bench::warmup::Warmup;
+use crate::bench::{Report, TableOptions};
 use crate::config::antialias::{AaConfig, AaMode};
 use crate::config::pcf::Pcf;
+use crate::config::Effects;
 use crate::config::RenderConfig;
 use crate::error::{Error, Result};
 use crate::frontend::sink::FrameSink;
 use crate::vk::{Context, ImageData};
+use edges::{edge_mask, rmse};
 use serde::Serialize;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
-pub const TABLE: &str = "sraa";
-pub const TITLE: &str =
-    "Chiu et al. Table 1 and Figure 3: subpixel reconstruction antialiasing against 16x supersampling (Sponza)";
+pub const TABLE: TableDef = TableDef {
+    name: "sraa",
+    summary: "Chiu et al.'s SRAA Table 1 / Figure 3: no AA, SRAA, shadow-aware SRAA, SSAA 16x on \
+              Sponza at 256-1024 (or --size): pass times and error against SSAA 16x.",
+    title: "Chiu et al. Table 1 and Figure 3: subpixel reconstruction antialiasing against 16x supersampling (Sponza)",
+    size: (512, 512),
+    frames: 3,
+    warmup: Warmup::Frames(1),
+    sizes: &SIZES,
+    effects: Some(Effects {
+        direct: true,
+        ..Effects::NONE
+    }),
+    run,
+};
 
 /// The report's output sizes (square).
-pub const SIZES: [u32; 4] = [256, 512, 768, 1024];
+pub const SIZES: [(u32, u32); 4] = [(256, 256), (512, 512), (768, 768), (1024, 1024)];
 
 /// The report's Table 1, ms on its machine: first pass (subpixel geometry; its number is the
 /// ray tracer's), second pass (antialiasing), total.
@@ -78,7 +96,7 @@ pub struct SizeResult {
     pub width: u32,
     pub height: u32,
     /// Output pixels whose 16 reference samples are not all on one surface
-    /// (`aa_edges::edge_mask`).
+    /// (`edges::edge_mask`).
     pub edge_pixels: usize,
     pub rows: Vec<RowResult>,
 }
@@ -209,12 +227,11 @@ fn run_size(
     })
 }
 
-/// Run the table at `sizes` (the report's four unless `--size` names one).
-pub fn run(
+/// Run the table at `opts.sizes` (the report's four unless `--size` names one).
+fn run(
     ctx: &Arc<Context>,
     sink: &mut dyn FrameSink,
     opts: &TableOptions,
-    sizes: &[(u32, u32)],
     out: &Path,
 ) -> Result<Vec<PathBuf>> {
     let sponza = &WALKTHROUGHS[0];
@@ -223,7 +240,7 @@ pub fn run(
     std::fs::create_dir_all(out)
         .map_err(|e| Error::Config(format!("cannot create {}: {e}", out.display())))?;
     let mut results = Vec::new();
-    for &size in sizes {
+    for &size in &opts.sizes {
         let r = run_size(ctx, sink, opts, &scene, size, out)?;
         eprintln!("{}", summary_line(&r));
         results.push(r);
@@ -242,11 +259,16 @@ pub fn run(
             "Error: RMSE of the encoded RGB output against the 16x supersampled output, over \
              all pixels and over edge pixels: those whose 16 supersampled samples do not all \
              lie on one surface (eye distances within {:.0}%, normals within 25 degrees).",
-            100.0 * super::aa_edges::SAME_SURFACE_DISTANCE
+            100.0 * edges::SAME_SURFACE_DISTANCE
         ),
     ];
     let report = TableReport {
-        run: TableRun::new(TABLE, opts.command.clone(), &ctx.info, sink.present_mode()),
+        run: TableRun::new(
+            TABLE.name,
+            opts.command.clone(),
+            &ctx.info,
+            sink.present_mode(),
+        ),
         scene: scene.name.clone(),
         triangles: scene.mesh.triangle_count(),
         effects: opts.effects.to_string(),
@@ -256,7 +278,7 @@ pub fn run(
         notes,
         sizes: results,
     };
-    write_reports(out, TABLE, &report, markdown(&report), csv(&report))
+    write_reports(out, TABLE.name, &report, markdown(&report), csv(&report))
 }
 
 fn summary_line(s: &SizeResult) -> String {
@@ -275,8 +297,69 @@ fn summary_line(s: &SizeResult) -> String {
     format!("{}x{}: {}", s.width, s.height, parts.join(", "))
 }
 
+/// A row of the sheet: one method at one size.
+struct Line<'a> {
+    size: &'a SizeResult,
+    row: &'a RowResult,
+}
+
+fn sheet<'r>() -> Sheet<'static, Line<'r>> {
+    Sheet::new(vec![
+        Column::md("Size", |l: &Line| {
+            let s = l.size;
+            Cell::text(format!(
+                "{}x{} ({} edge px)",
+                s.width, s.height, s.edge_pixels
+            ))
+        }),
+        Column::csv("width", |l: &Line| Cell::int(l.size.width)),
+        Column::csv("height", |l: &Line| Cell::int(l.size.height)),
+        Column::csv("edge_pixels", |l: &Line| Cell::int(l.size.edge_pixels)),
+        Column::new("method", "Method", |l: &Line| {
+            Cell::text(mode_name(l.row.mode))
+        }),
+        Column::new("geometry_ms", "Geometry pass ms", |l: &Line| {
+            Cell::num(l.row.geometry_ms, 2)
+        }),
+        Column::new("aa_ms", "AA pass ms", |l: &Line| Cell::num(l.row.aa_ms, 2)),
+        Column::new("total_ms", "Frame ms", |l: &Line| {
+            Cell::num(l.row.total_ms, 2)
+        }),
+        Column::md("Report: 1st / 2nd / total ms", |l: &Line| {
+            let r = l.row;
+            match (r.paper_geometry_ms, r.paper_aa_ms, r.paper_total_ms) {
+                (Some(a), Some(b), Some(c)) => Cell::text(format!("{a} / {b} / {c}")),
+                _ => Cell::Empty,
+            }
+        }),
+        Column::csv("paper_geometry_ms", |l: &Line| {
+            Cell::num(l.row.paper_geometry_ms, 0)
+        }),
+        Column::csv("paper_aa_ms", |l: &Line| Cell::num(l.row.paper_aa_ms, 0)),
+        Column::csv("paper_total_ms", |l: &Line| {
+            Cell::num(l.row.paper_total_ms, 0)
+        }),
+        Column::new("speedup_over_ssaa", "Speed-up over SSAA 16x", |l: &Line| {
+            Cell::num(l.row.speedup_over_ssaa, 2)
+        }),
+        Column::new("rmse_all", "RMSE, all pixels", |l: &Line| {
+            Cell::num(l.row.rmse_all, 4)
+        }),
+        Column::new("rmse_edges", "RMSE, edge pixels", |l: &Line| {
+            Cell::num(l.row.rmse_edges, 4)
+        }),
+    ])
+}
+
+fn lines(r: &TableReport) -> Vec<Line<'_>> {
+    r.sizes
+        .iter()
+        .flat_map(|size| size.rows.iter().map(move |row| Line { size, row }))
+        .collect()
+}
+
 fn markdown(r: &TableReport) -> String {
-    let mut md = format!("# {TITLE}\n\nCommand: `{}`\n\n", r.run.command);
+    let mut md = format!("# {}\n\nCommand: `{}`\n\n", TABLE.title, r.run.command);
     md += &format!(
         "Device: {} ({}), scene {} ({} triangles), effects {}, {} frames measured per row \
          after {} warmup frames, ssgi {}.\n\n",
@@ -289,65 +372,14 @@ fn markdown(r: &TableReport) -> String {
         r.warmup,
         r.run.ssgi_version
     );
-    md += "| Size | Method | Geometry pass ms | AA pass ms | Frame ms | Report: 1st / 2nd / total ms \
-           | Speed-up over SSAA 16x | RMSE, all pixels | RMSE, edge pixels |\n";
-    md += "|---|---|---|---|---|---|---|---|---|\n";
-    for s in &r.sizes {
-        for row in &s.rows {
-            let paper = match (row.paper_geometry_ms, row.paper_aa_ms, row.paper_total_ms) {
-                (Some(a), Some(b), Some(c)) => format!("{a} / {b} / {c}"),
-                _ => "-".into(),
-            };
-            md += &format!(
-                "| {}x{} ({} edge px) | {} | {} | {} | {} | {} | {} | {} | {} |\n",
-                s.width,
-                s.height,
-                s.edge_pixels,
-                mode_name(row.mode),
-                fixed(row.geometry_ms, 2),
-                fixed(row.aa_ms, 2),
-                fixed(row.total_ms, 2),
-                paper,
-                fixed(row.speedup_over_ssaa, 2),
-                fixed(row.rmse_all, 4),
-                fixed(row.rmse_edges, 4),
-            );
-        }
-    }
+    md += &sheet().markdown(&lines(r));
     md += &format!(
-        "\nThe report's speed-up of its method over 16x supersampling: about {}x.\n\n## Notes\n\n",
+        "\nThe report's speed-up of its method over 16x supersampling: about {}x.\n\n",
         r.paper_speedup
     );
-    for n in &r.notes {
-        md += &format!("- {n}\n");
-    }
-    md
+    md + &notes_section(&r.notes)
 }
 
 fn csv(r: &TableReport) -> String {
-    let mut out = String::from(
-        "width,height,edge_pixels,method,geometry_ms,aa_ms,total_ms,paper_geometry_ms,\
-         paper_aa_ms,paper_total_ms,speedup_over_ssaa,rmse_all,rmse_edges\n",
-    );
-    for s in &r.sizes {
-        for row in &s.rows {
-            out += &format!(
-                "{},{},{},{},{},{},{},{},{},{},{},{},{}\n",
-                s.width,
-                s.height,
-                s.edge_pixels,
-                mode_name(row.mode),
-                fixed(row.geometry_ms, 4),
-                fixed(row.aa_ms, 4),
-                fixed(row.total_ms, 4),
-                fixed(row.paper_geometry_ms, 0),
-                fixed(row.paper_aa_ms, 0),
-                fixed(row.paper_total_ms, 0),
-                fixed(row.speedup_over_ssaa, 4),
-                fixed(row.rmse_all, 5),
-                fixed(row.rmse_edges, 5),
-            );
-        }
-    }
-    out
+    sheet().csv(&lines(r))
 }

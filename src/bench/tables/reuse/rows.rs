@@ -2,12 +2,12 @@
 //! reference, each measured on one context along the same camera path, with the error of its
 //! last frame against the reference rendered from the same camera.
 
-use super::compare::{group_median, groups, in_group};
-use super::ground_truth::{self, FrameError, TruthQuality};
-use super::measure::{held_at, last_camera, measure, Buffer, LastFrame, Measured, RunSpec};
-use super::metrics::{image_error, ImageError};
-use super::report::FrameRow;
-use super::Report;
+use crate::bench::compare::{group_median, groups, in_group};
+use crate::bench::ground_truth::{self, FrameError, TruthQuality};
+use crate::bench::measure::{held_at, last_camera, measure, Buffer, LastFrame, Measured, RunSpec};
+use crate::bench::metrics::{image_error, ImageError};
+use crate::bench::report::FrameRow;
+use crate::bench::Report;
 use crate::config::pcf::{Pcf, PcfKernel};
 use crate::config::Effects;
 use crate::error::{Error, Result};

@@ -9,12 +9,16 @@
 //!
 //! JSON, version 1 (later versions only add fields): see docs/formats.md, "chang-flicker".
 
-use super::measure::{held_at, last_camera, measure, Flicker, RunSpec};
-use super::metrics::{image_error, Channels};
-use super::scatter::{write_scatter_plot, ScatterPlot, ScatterSeries};
-use super::table_run::{fixed, warmup_frames, write_reports, TableRun};
-use super::TableOptions;
+use super::def::TableDef;
+use super::run::{fixed, warmup_frames, write_reports, TableRun};
+use crate::bench::measure::{held_at, last_camera, measure, Flicker, RunSpec};
+use crate::bench::metrics::{image_error, Channels};
+use crate::bench::scatter::{write_scatter_plot, ScatterPlot, ScatterSeries};
+use crate::bench::sheet::{notes_section, Cell, Column, Sheet};
+use crate::bench::warmup::Warmup;
+use crate::bench::TableOptions;
 use crate::config::pcf::Pcf;
+use crate::config::Effects;
 use crate::config::{IndirectConfig, IndirectFilter, RenderConfig, TemporalConfig};
 use crate::error::{Error, Result};
 use crate::frontend::sink::FrameSink;
@@ -26,9 +30,22 @@ use serde::Serialize;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
-pub const TABLE: &str = "chang-flicker";
-pub const TITLE: &str =
-    "Chen et al. section 4.2: flicker and error of CCIPCA, joint bilateral filters and accumulation against VPLs per pixel (Cornell box)";
+pub const TABLE: TableDef = TableDef {
+    name: "chang-flicker",
+    summary: "Chen et al.'s flicker comparison: CCIPCA, 11x11 and 17x17 joint bilateral filters \
+              and accumulation from 1-64 VPLs per pixel, static and moving: flicker and error.",
+    title: "Chen et al. section 4.2: flicker and error of CCIPCA, joint bilateral filters and accumulation against VPLs per pixel (Cornell box)",
+    size: (128, 128),
+    frames: 16,
+    warmup: Warmup::Frames(64),
+    sizes: &[],
+    effects: Some(Effects {
+        direct: true,
+        indirect: true,
+        ..Effects::NONE
+    }),
+    run,
+};
 
 /// The article's sample counts.
 pub const VPLS: [u32; 5] = [1, 3, 10, 32, 64];
@@ -115,7 +132,7 @@ fn reference(
     let mut r = Renderer::new(ctx, scene.clone(), c)?;
     r.render_frame(camera)?;
     r.finish()?;
-    let mask = super::metrics::geometry_mask(&r.read(Target::GPosition)?);
+    let mask = crate::bench::metrics::geometry_mask(&r.read(Target::GPosition)?);
     Ok((r.read(Target::Indirect)?, r.read(Target::Output)?, mask))
 }
 
@@ -128,7 +145,7 @@ fn rms(image: &ImageData, mask: &[bool]) -> Result<Option<f64>> {
     Ok(image_error(image, &zero, Channels::Rgb, Some(mask))?.rmse)
 }
 
-pub fn run(
+fn run(
     ctx: &Arc<Context>,
     sink: &mut dyn FrameSink,
     opts: &TableOptions,
@@ -178,7 +195,7 @@ pub fn run(
                 )?;
                 let flicker = m.flicker.unwrap_or_default();
                 let final_msd = Flicker::mean(&flicker.final_msd);
-                let indirect = m.last.buffer(super::measure::Buffer::Indirect);
+                let indirect = m.last.buffer(crate::bench::measure::Buffer::Indirect);
                 let indirect_relative_rmse = match (indirect, exact_rms) {
                     (Some(i), Some(norm)) if norm > 0.0 => {
                         image_error(i, &exact, Channels::Rgb, Some(&mask))?
@@ -187,7 +204,7 @@ pub fn run(
                     }
                     _ => None,
                 };
-                let final_rmse = match m.last.buffer(super::measure::Buffer::Final) {
+                let final_rmse = match m.last.buffer(crate::bench::measure::Buffer::Final) {
                     Some(o) => image_error(o, &exact_output, Channels::Rgb, Some(&mask))?.rmse,
                     None => None,
                 };
@@ -232,7 +249,12 @@ pub fn run(
             .into(),
     ];
     let report = TableReport {
-        run: TableRun::new(TABLE, opts.command.clone(), &ctx.info, sink.present_mode()),
+        run: TableRun::new(
+            TABLE.name,
+            opts.command.clone(),
+            &ctx.info,
+            sink.present_mode(),
+        ),
         scene: scene.name.clone(),
         width: opts.size.0,
         height: opts.size.1,
@@ -246,7 +268,7 @@ pub fn run(
         notes,
         rows,
     };
-    let mut written = write_reports(out, TABLE, &report, markdown(&report), csv(&report))?;
+    let mut written = write_reports(out, TABLE.name, &report, markdown(&report), csv(&report))?;
     written.extend(plots(&report, out)?);
     Ok(written)
 }
@@ -320,55 +342,47 @@ fn summary_line(r: &RowResult) -> String {
     )
 }
 
+fn sheet() -> Sheet<'static, RowResult> {
+    Sheet::new(vec![
+        Column::new("motion", "Motion", |r: &RowResult| Cell::text(r.motion)),
+        Column::new("filter", "Filter", |r: &RowResult| {
+            Cell::text(filter_name(r.filter))
+        }),
+        Column::new("vpls", "VPLs", |r: &RowResult| Cell::int(r.vpls)),
+        Column::new("final_msd", "Flicker (output MSD)", |r: &RowResult| {
+            Cell::sci(r.final_msd)
+        }),
+        Column::new("below_threshold", "< 2.5e-5", |r: &RowResult| {
+            Cell::Flag(r.below_threshold)
+        }),
+        Column::new("indirect_msd", "Flicker (indirect MSD)", |r: &RowResult| {
+            Cell::sci(r.indirect_msd)
+        }),
+        Column::new(
+            "indirect_relative_rmse",
+            "Indirect relative RMSE",
+            |r: &RowResult| Cell::num(r.indirect_relative_rmse, 4),
+        ),
+        Column::new("final_rmse", "Output RMSE", |r: &RowResult| {
+            Cell::num(r.final_rmse, 4)
+        }),
+        Column::new("frame_ms", "Frame ms", |r: &RowResult| {
+            Cell::num(r.frame_ms, 2)
+        }),
+    ])
+}
+
 fn markdown(r: &TableReport) -> String {
-    let mut md = format!("# {TITLE}\n\nCommand: `{}`\n\n", r.run.command);
+    let mut md = format!("# {}\n\nCommand: `{}`\n\n", TABLE.title, r.run.command);
     md += &format!(
         "Device: {} ({}), {}x{}, {} frames measured per row after {} warmup frames, ssgi \
          {}.\n\n",
         r.run.device, r.run.driver, r.width, r.height, r.frames, r.warmup, r.run.ssgi_version
     );
-    md += "| Motion | Filter | VPLs | Flicker (output MSD) | < 2.5e-5 | Flicker (indirect MSD) \
-           | Indirect relative RMSE | Output RMSE | Frame ms |\n";
-    md += "|---|---|---|---|---|---|---|---|---|\n";
-    for row in &r.rows {
-        md += &format!(
-            "| {} | {} | {} | {} | {} | {} | {} | {} | {} |\n",
-            row.motion,
-            filter_name(row.filter),
-            row.vpls,
-            sci(row.final_msd),
-            if row.below_threshold { "yes" } else { "no" },
-            sci(row.indirect_msd),
-            fixed(row.indirect_relative_rmse, 4),
-            fixed(row.final_rmse, 4),
-            fixed(row.frame_ms, 2),
-        );
-    }
-    md += "\n## Notes\n\n";
-    for n in &r.notes {
-        md += &format!("- {n}\n");
-    }
-    md
+    md += &sheet().markdown(&r.rows);
+    md + "\n" + &notes_section(&r.notes)
 }
 
 fn csv(r: &TableReport) -> String {
-    let mut out = String::from(
-        "motion,filter,vpls,final_msd,below_threshold,indirect_msd,indirect_relative_rmse,\
-         final_rmse,frame_ms\n",
-    );
-    for row in &r.rows {
-        out += &format!(
-            "{},{},{},{},{},{},{},{},{}\n",
-            row.motion,
-            filter_name(row.filter),
-            row.vpls,
-            sci(row.final_msd),
-            row.below_threshold,
-            sci(row.indirect_msd),
-            fixed(row.indirect_relative_rmse, 5),
-            fixed(row.final_rmse, 5),
-            fixed(row.frame_ms, 4),
-        );
-    }
-    out
+    sheet().csv(&r.rows)
 }

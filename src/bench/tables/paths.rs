@@ -15,19 +15,19 @@ pub struct EmbeddedPath {
 /// Table 4.1's path: around the model inside the box room, from the open side.
 pub const BOX: EmbeddedPath = EmbeddedPath {
     file: "paths/box.json",
-    text: include_str!("../../paths/box.json"),
+    text: include_str!("../../../paths/box.json"),
 };
 pub const SPONZA: EmbeddedPath = EmbeddedPath {
     file: "paths/sponza.json",
-    text: include_str!("../../paths/sponza.json"),
+    text: include_str!("../../../paths/sponza.json"),
 };
 pub const SIBENIK: EmbeddedPath = EmbeddedPath {
     file: "paths/sibenik.json",
-    text: include_str!("../../paths/sibenik.json"),
+    text: include_str!("../../../paths/sibenik.json"),
 };
 pub const CONFERENCE: EmbeddedPath = EmbeddedPath {
     file: "paths/conference.json",
-    text: include_str!("../../paths/conference.json"),
+    text: include_str!("../../../paths/conference.json"),
 };
 
 #[derive(serde::Deserialize)]

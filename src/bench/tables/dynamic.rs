@@ -5,29 +5,49 @@
 //! that moment. The thesis leaves dynamic scenes open (section 5); this measures what the
 //! motion-aware reprojection and `--invalidate` keep of the cache.
 
-use super::reuse_tables::RowsTable;
-use super::table_report::{SceneResult, TableReport, COLUMN_NOTE};
-use super::walkthrough::{write_series, EmbeddedScene};
-use super::TableOptions;
+use super::def::TableDef;
+use super::reuse::columns::WALKTHROUGH_LEGEND;
+use super::reuse::report::{SceneResult, COLUMN_NOTE};
+use super::reuse::series::write_series;
+use super::reuse::{finish, RowsTable};
+use super::walkthroughs::EmbeddedScene;
+use crate::bench::warmup::Warmup;
+use crate::bench::TableOptions;
+use crate::config::Effects;
 use crate::error::Result;
 use crate::frontend::sink::FrameSink;
 use crate::scene::{build_scene_file, CameraPath, SceneFile};
 use crate::vk::Context;
-use std::path::Path;
+use std::path::{Path, PathBuf};
 use std::sync::Arc;
+
+pub const TABLE: TableDef = TableDef {
+    name: "dynamic",
+    summary: "The dynamic scene (scenes/cornell-ball.toml: a ball rolling across the Cornell \
+              box while the spot swings), still camera: reuse vs no reuse, time and error per \
+              frame.",
+    title: "Dynamic scene: a ball rolling across the Cornell box under a swinging light",
+    // 4 s at 60 fps: the light's whole swing, the ball's way across.
+    size: (256, 256),
+    frames: 240,
+    warmup: Warmup::Frames(10),
+    sizes: &[],
+    effects: Some(Effects::ALL),
+    run,
+};
 
 /// The scene file, compiled in.
 pub const DYNAMIC: EmbeddedScene = EmbeddedScene {
     file: "scenes/cornell-ball.toml",
-    text: include_str!("../../scenes/cornell-ball.toml"),
+    text: include_str!("../../../scenes/cornell-ball.toml"),
 };
 
-pub fn run(
+fn run(
     ctx: &Arc<Context>,
     sink: &mut dyn FrameSink,
     opts: &TableOptions,
     out: &Path,
-) -> Result<TableReport> {
+) -> Result<Vec<PathBuf>> {
     let origin = Path::new(DYNAMIC.file);
     let file = SceneFile::parse(origin, DYNAMIC.text)?;
     let swinging = build_scene_file(&file, origin, opts.assets.as_deref())?.scene;
@@ -41,7 +61,7 @@ pub fn run(
         None => CameraPath::Static,
     };
     let (rows_table, mut report) = RowsTable::start(
-        "dynamic",
+        TABLE.name,
         ctx,
         sink,
         opts,
@@ -82,5 +102,5 @@ pub fn run(
         eprintln!("{}", result.summary_line());
         report.scenes.push(result);
     }
-    Ok(report)
+    finish(out, report, TABLE.title, WALKTHROUGH_LEGEND)
 }

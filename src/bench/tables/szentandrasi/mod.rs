@@ -18,28 +18,41 @@
 //!                               "ours_ssdo", "paper" } ] } ] }
 //! ```
 
-use super::compare::groups;
-use super::measure::{held_at, last_camera, measure, Buffer, RunSpec};
-use super::metrics::{image_error, Channels};
-use super::output::file_stem;
-use super::reuse_rows::group_ms;
-use super::stats::summarize;
-use super::szentandrasi::{PaperRow, PaperScene, RATIOS, REFERENCE_SAMPLES, ROWS, SCENES};
-use super::table_run::{fixed, write_reports, TableRun};
-use super::warmup::before_path;
-use super::{Report, TableOptions};
+pub mod paper;
+
+use super::def::TableDef;
+use super::reuse::rows::group_ms;
+use super::run::{write_reports, TableRun};
+use crate::bench::compare::groups;
+use crate::bench::measure::{held_at, last_camera, measure, Buffer, RunSpec};
+use crate::bench::metrics::{image_error, Channels};
+use crate::bench::output::file_stem;
+use crate::bench::sheet::{notes_section, Cell, Column, Sheet};
+use crate::bench::stats::summarize;
+use crate::bench::warmup::{before_path, Warmup};
+use crate::bench::{Report, TableOptions};
 use crate::effects::ssdo::config::SsdoForm;
 use crate::error::{Error, Result};
 use crate::frontend::sink::FrameSink;
 use crate::scene::{load_scene, CameraPath, Scene};
 use crate::vk::{Context, ImageData};
+use paper::{PaperRow, PaperScene, RATIOS, REFERENCE_SAMPLES, ROWS, SCENES};
 use serde::Serialize;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
-pub const TABLE: &str = "szentandrasi-1";
-pub const TITLE: &str =
-    "Szentandrási et al. Table 1: SSAO and SSDO frame rates (Pyramids, Cornell box, Dragon)";
+pub const TABLE: TableDef = TableDef {
+    name: "szentandrasi-1",
+    summary: "Szentandrasi et al. Table 1: SSAO and SSDO rows on Pyramids, Cornell box, Dragon.",
+    title: "Szentandrási et al. Table 1: SSAO and SSDO frame rates (Pyramids, Cornell box, Dragon)",
+    size: paper::PAPER_SIZE,
+    frames: 20,
+    warmup: Warmup::Frames(2),
+    sizes: &[],
+    // The rows choose theirs: direct light and SSDO.
+    effects: None,
+    run,
+};
 
 #[derive(Clone, Debug, Serialize)]
 pub struct RowResult {
@@ -123,7 +136,7 @@ fn ratio(a: Option<f64>, b: Option<f64>) -> Option<f64> {
     }
 }
 
-fn final_image(m: &super::measure::Measured) -> Result<&ImageData> {
+fn final_image(m: &crate::bench::measure::Measured) -> Result<&ImageData> {
     m.last
         .buffer(Buffer::Final)
         .ok_or_else(|| Error::Config("the run read back no output image".into()))
@@ -265,7 +278,7 @@ fn run_scene(
 }
 
 /// Measure the table and write its files into `out`; returns the paths written.
-pub fn run(
+fn run(
     ctx: &Arc<Context>,
     sink: &mut dyn FrameSink,
     opts: &TableOptions,
@@ -306,7 +319,7 @@ pub fn run(
             .into(),
         "Every row has the 11x11 bilateral filter; rows with subsampling run SSAO/SSDO and the \
          filter at half width and height and upsample with a 3x3 joint bilateral kernel. \
-         \"SSDO 2 steps\" runs at full resolution (see src/bench/szentandrasi.rs for why)."
+         \"SSDO 2 steps\" runs at full resolution (see src/bench/tables/szentandrasi/paper.rs for why)."
             .into(),
         format!(
             "Error: RMSE of the final image (RGB in 0..1 over geometry pixels) against a \
@@ -318,7 +331,12 @@ pub fn run(
     ];
     notes.extend(SCENES.iter().filter_map(|s| s.note).map(str::to_string));
     let report = TableReport {
-        run: TableRun::new(TABLE, opts.command.clone(), &ctx.info, sink.present_mode()),
+        run: TableRun::new(
+            TABLE.name,
+            opts.command.clone(),
+            &ctx.info,
+            sink.present_mode(),
+        ),
         width: opts.size.0,
         height: opts.size.1,
         frames: opts.frames,
@@ -329,7 +347,7 @@ pub fn run(
         notes,
         scenes: results,
     };
-    write_reports(out, TABLE, &report, markdown(&report), csv(&report))
+    write_reports(out, TABLE.name, &report, markdown(&report), csv(&report))
 }
 
 fn summary_line(s: &SceneResult) -> String {
@@ -341,9 +359,77 @@ fn summary_line(s: &SceneResult) -> String {
     format!("{}: fps per row {}", s.name, fps.join(" / "))
 }
 
+/// A row of the sheet: one row of one scene.
+struct Line<'a> {
+    scene: &'a SceneResult,
+    index: usize,
+    row: &'a RowResult,
+}
+
+fn sheet<'r>() -> Sheet<'static, Line<'r>> {
+    Sheet::new(vec![
+        Column::csv("scene", |l: &Line| Cell::text(l.scene.spec)),
+        Column::csv("row", |l: &Line| Cell::int(l.index + 1)),
+        Column::new("label", "Row", |l: &Line| Cell::text(l.row.row.label)),
+        Column::new("paper_samples", "Samples (paper)", |l: &Line| {
+            Cell::text(l.row.row.paper_samples)
+        }),
+        Column::new("samples_per_pixel", "Mean samples/px", |l: &Line| {
+            Cell::num(l.row.samples_per_pixel, 1)
+        }),
+        Column::new("subsampling", "Subsampling", |l: &Line| {
+            Cell::text(if l.row.row.subsampling { "2x" } else { "no" })
+        }),
+        Column::csv("form", |l: &Line| {
+            Cell::text(format!("{:?}", l.row.row.form))
+        }),
+        Column::new("ssdo_ms", "SSDO passes ms", |l: &Line| {
+            Cell::num(l.row.ssdo_ms, 2)
+        }),
+        Column::new("total_ms", "Frame ms", |l: &Line| {
+            Cell::num(l.row.total_ms, 2)
+        }),
+        Column::new("fps", "fps", |l: &Line| Cell::num(l.row.fps, 1)),
+        Column::new("paper_fps", "Paper fps", |l: &Line| {
+            Cell::Num(l.row.paper_fps, 1)
+        }),
+        Column::new("time_over_first", "Time / first row", |l: &Line| {
+            Cell::num(l.row.time_over_first, 2)
+        }),
+        Column::new("paper_time_over_first", "Paper", |l: &Line| {
+            Cell::Num(l.row.paper_time_over_first, 2)
+        }),
+        Column::new("final_rmse", "Final RMSE", |l: &Line| {
+            Cell::num(l.row.final_rmse, 4)
+        }),
+    ])
+}
+
+fn lines(s: &SceneResult) -> Vec<Line<'_>> {
+    s.rows
+        .iter()
+        .enumerate()
+        .map(|(index, row)| Line {
+            scene: s,
+            index,
+            row,
+        })
+        .collect()
+}
+
+fn ratio_sheet() -> Sheet<'static, RatioResult> {
+    Sheet::new(vec![
+        Column::md("Frame time ratio", |q: &RatioResult| Cell::text(q.what)),
+        Column::md("Ours (frame)", |q: &RatioResult| Cell::num(q.ours_total, 2)),
+        Column::md("Ours (SSDO passes)", |q: &RatioResult| {
+            Cell::num(q.ours_ssdo, 2)
+        }),
+        Column::md("Paper", |q: &RatioResult| Cell::Num(q.paper, 2)),
+    ])
+}
+
 fn markdown(r: &TableReport) -> String {
-    let mut md = format!("# {TITLE}\n\n");
-    md += &format!("Command: `{}`\n\n", r.run.command);
+    let mut md = format!("# {}\n\nCommand: `{}`\n\n", TABLE.title, r.run.command);
     md += &format!(
         "Device: {} ({}), {}x{}, {} frames measured per row after {} warmup frames, camera path \
          `{}` at {} fps, ssgi {}.\n\n",
@@ -366,71 +452,16 @@ fn markdown(r: &TableReport) -> String {
             "## {} ({} triangles; the paper's: {} faces)\n\n",
             s.name, s.triangles, s.paper_faces
         );
-        md +=
-            "| Row | Samples (paper) | Mean samples/px | Subsampling | SSDO passes ms | Frame ms \
-               | fps | Paper fps | Time / first row | Paper | Final RMSE |\n";
-        md += "|---|---|---|---|---|---|---|---|---|---|---|\n";
-        for row in &s.rows {
-            md += &format!(
-                "| {} | {} | {} | {} | {} | {} | {} | {} | {} | {:.2} | {} |\n",
-                row.row.label,
-                row.row.paper_samples,
-                fixed(row.samples_per_pixel, 1),
-                if row.row.subsampling { "2x" } else { "no" },
-                fixed(row.ssdo_ms, 2),
-                fixed(row.total_ms, 2),
-                fixed(row.fps, 1),
-                row.paper_fps,
-                fixed(row.time_over_first, 2),
-                row.paper_time_over_first,
-                fixed(row.final_rmse, 4),
-            );
-        }
-        md += "\n| Frame time ratio | Ours (frame) | Ours (SSDO passes) | Paper |\n|---|---|---|---|\n";
-        for q in &s.ratios {
-            md += &format!(
-                "| {} | {} | {} | {:.2} |\n",
-                q.what,
-                fixed(q.ours_total, 2),
-                fixed(q.ours_ssdo, 2),
-                q.paper
-            );
-        }
+        md += &sheet().markdown(&lines(s));
+        md += "\n";
+        md += &ratio_sheet().markdown(&s.ratios);
         let images: Vec<String> = s.rows.iter().map(|r| format!("`{}`", r.image)).collect();
         md += &format!("\nLast frames: {}.\n\n", images.join(", "));
     }
-    md += "## Notes\n\n";
-    for n in &r.notes {
-        md += &format!("- {n}\n");
-    }
-    md
+    md + &notes_section(&r.notes)
 }
 
 fn csv(r: &TableReport) -> String {
-    let mut out = String::from(
-        "scene,row,label,paper_samples,samples_per_pixel,subsampling,form,ssdo_ms,total_ms,fps,\
-         paper_fps,time_over_first,paper_time_over_first,final_rmse\n",
-    );
-    for s in &r.scenes {
-        for (i, row) in s.rows.iter().enumerate() {
-            out += &format!(
-                "{},{},{},{},{},{},{:?},{},{},{},{},{},{:.4},{}\n",
-                s.spec,
-                i + 1,
-                row.row.label,
-                row.row.paper_samples,
-                fixed(row.samples_per_pixel, 3),
-                row.row.subsampling,
-                row.row.form,
-                fixed(row.ssdo_ms, 4),
-                fixed(row.total_ms, 4),
-                fixed(row.fps, 3),
-                row.paper_fps,
-                fixed(row.time_over_first, 4),
-                row.paper_time_over_first,
-                fixed(row.final_rmse, 5),
-            );
-        }
-    }
-    out
+    let lines: Vec<Line> = r.scenes.iter().flat_map(lines).collect();
+    sheet().csv(&lines)
 }

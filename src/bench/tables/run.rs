@@ -1,6 +1,6 @@
-//! What every table report of its own format (Szentandrási's Table 1, the SRAA table) opens
-//! with: the format version, the table, the command, the program and the device, and whether
-//! the frames were presented.
+//! What the tables share: the facts a report of its own format opens with (format version,
+//! table, command, program, device, whether frames were presented), a pass's median, the
+//! warmup count, and the one writer of `report.json`, `report.md` and `<table>.csv`.
 
 use crate::vk::DeviceInfo;
 use serde::Serialize;
@@ -42,7 +42,7 @@ impl TableRun {
 }
 
 /// Median ms of `pass` in `report` (`None` when it never ran).
-pub fn pass_ms(report: &super::Report, pass: crate::passes::PassId) -> Option<f64> {
+pub fn pass_ms(report: &crate::bench::Report, pass: crate::passes::PassId) -> Option<f64> {
     report
         .passes
         .iter()
@@ -56,10 +56,10 @@ pub fn fixed(v: Option<f64>, digits: usize) -> String {
 }
 
 /// Warmup frames of a table whose rows take `--warmup` as a count (`converged`: none).
-pub fn warmup_frames(opts: &super::TableOptions) -> u32 {
+pub fn warmup_frames(opts: &crate::bench::TableOptions) -> u32 {
     match opts.warmup {
-        super::warmup::Warmup::Frames(n) => n,
-        super::warmup::Warmup::Converged => 0,
+        crate::bench::warmup::Warmup::Frames(n) => n,
+        crate::bench::warmup::Warmup::Converged => 0,
     }
 }
 
@@ -80,7 +80,7 @@ pub fn write_reports<R: Serialize>(
     ];
     let mut written = Vec::new();
     for (path, text) in files {
-        super::output::write_text(&path, &text)?;
+        crate::bench::output::write_text(&path, &text)?;
         written.push(path);
     }
     Ok(written)
