@@ -10,12 +10,15 @@ pub mod files;
 pub mod frontend;
 pub mod interrupt;
 pub mod passes;
+pub mod plot;
 pub mod post;
 pub mod reference;
 pub mod renderer;
 pub mod resources;
 pub mod scene;
 pub mod shaders;
+pub mod stress;
+pub mod sweep;
 pub mod vk;
 
 pub use error::{Error, Result};

@@ -164,8 +164,8 @@ fn paths_resolve_to_modules() {
 }
 
 /// The layers of docs/ARCHITECTURE.md, lowest first: a module may use its own layer and the
-/// ones below. `scene`, `reference`, `config` (with each effect's `config.rs`), `shaders`
-/// (generated), `error`, `files` and `interrupt` are beside the stack: anyone may use them,
+/// ones below. `scene`, `reference`, `config` (with each effect's `config.rs`),
+/// `shaders` (generated), `error`, `files` and `interrupt` are beside the stack: anyone may use them,
 /// and they use only `vk` and each other.
 fn layer(module: &str) -> usize {
     // An effect's or post stage's configuration (`effects::<effect>::config`: its parameters, their
@@ -181,7 +181,7 @@ fn layer(module: &str) -> usize {
         "passes" => 2,
         "effects" | "post" => 3,
         "renderer" => 4,
-        "frontend" | "bench" => 5,
+        "frontend" | "plot" | "bench" | "stress" | "sweep" => 5,
         "cli" | "" => 6,
         other => panic!("module {other} has no layer: add it to tests/module_graph.rs"),
     }
@@ -201,7 +201,7 @@ fn layers_are_used_downwards_only() {
     assert!(
         upward.is_empty(),
         "uses up the layers (vk, scene, reference, config < resources < passes < effects, post < \
-         renderer < frontend, bench < cli):\n{}",
+         renderer < frontend, plot, bench, sweep, stress < cli):\n{}",
         upward.join("\n")
     );
 }

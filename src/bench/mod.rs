@@ -7,16 +7,9 @@ pub mod measure;
 pub mod metrics;
 pub mod options;
 pub mod output;
-pub mod pareto;
-pub mod plot;
 pub mod report;
-pub mod scatter;
 pub mod sheet;
 pub mod stats;
-pub mod stress;
-pub mod sweep;
-pub mod sweep_keys;
-pub mod sweep_report;
 pub mod tables;
 pub mod warmup;
 

@@ -1,5 +1,5 @@
 //! The option values' parsers (strings to validated values), shared by the command line
-//! (`cli::args`) and the sweep's keys (`bench::sweep_keys`), and `--accumulate`'s choices.
+//! (`cli::args`) and the sweep's keys (`sweep::keys`), and `--accumulate`'s choices.
 
 use super::Epsilon;
 

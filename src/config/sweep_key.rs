@@ -1,5 +1,5 @@
 //! A parameter `ssgi sweep --vary KEY=V1,V2,...` can vary: declared as data where the
-//! parameter lives (frame-wide ones in `bench::sweep_keys`, an effect's in its folder's
+//! parameter lives (frame-wide ones in `sweep::keys`, an effect's in its folder's
 //! `sweep.rs`), so the sweep learns an effect's keys from the registry.
 
 use super::RenderConfig;

@@ -2,11 +2,11 @@
 //! a line per case and the table, writes stress.json and stress.md, and fails when any case did.
 
 use super::common::context_options;
-use crate::bench::stress::{run_plan, StressOptions, StressReport};
 use crate::cli::args::{Cli, StressArgs};
 use crate::error::{Error, Result};
 use crate::files::write_atomic;
 use crate::renderer::MAX_SIZE;
+use crate::stress::{run_plan, StressOptions, StressReport};
 use crate::vk::Context;
 
 /// Long-run frames without `--long-frames`: the 100,000, or 2,000 for the quick subset.

@@ -2,9 +2,6 @@
 
 use super::common::{context_options, finish, load};
 use crate::bench::measure::last_camera;
-use crate::bench::sweep::{run, SweepSpec};
-use crate::bench::sweep_keys::{combinations, help_table, parse_vary};
-use crate::bench::sweep_report::{maps_readme_text, write, SweepHeader};
 use crate::bench::warmup::{before_path, Warmup};
 use crate::cli::args::{Cli, SweepArgs};
 use crate::error::Result;
@@ -12,6 +9,9 @@ use crate::reference::run::Session;
 use crate::reference::store::default_dir;
 use crate::reference::trace::{DEFAULT_AO_SAMPLES, DEFAULT_INDIRECT_SAMPLES};
 use crate::reference::{RefBuffer, Settings};
+use crate::sweep::keys::{combinations, help_table, parse_vary};
+use crate::sweep::report::{maps_readme_text, write, SweepHeader};
+use crate::sweep::{run, SweepSpec};
 use crate::vk::Context;
 
 pub fn sweep(cli: &Cli, args: &SweepArgs) -> Result<()> {

@@ -4,12 +4,12 @@
 use super::report::SceneResult;
 use super::rows::{FrameSample, RowKind};
 use crate::bench::compare::groups;
-use crate::bench::plot::{
+use crate::bench::sheet::{Cell, Column, Sheet};
+use crate::error::Result;
+use crate::plot::line::{
     write_line_plot, LinePlot, Series, NO_REUSE_AO_COLOR, NO_REUSE_COLOR, NO_REUSE_INDIRECT_COLOR,
     REUSE_AO_COLOR, REUSE_COLOR, REUSE_INDIRECT_COLOR,
 };
-use crate::bench::sheet::{Cell, Column, Sheet};
-use crate::error::Result;
 use plotters::style::RGBColor;
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::Path;

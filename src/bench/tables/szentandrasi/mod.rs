@@ -21,14 +21,12 @@
 pub mod paper;
 
 use super::def::TableDef;
-use super::reuse::rows::group_ms;
 use super::run::{write_reports, TableRun};
-use crate::bench::compare::groups;
+use crate::bench::compare::group_median;
 use crate::bench::measure::{held_at, last_camera, measure, Buffer, RunSpec};
 use crate::bench::metrics::{image_error, Channels};
 use crate::bench::output::file_stem;
 use crate::bench::sheet::{notes_section, Cell, Column, Sheet};
-use crate::bench::stats::summarize;
 use crate::bench::warmup::{before_path, Warmup};
 use crate::bench::{Report, TableOptions};
 use crate::effects::ssdo::config::SsdoForm;
@@ -115,18 +113,6 @@ pub struct TableReport {
     pub reference_samples: u32,
     pub notes: Vec<String>,
     pub scenes: Vec<SceneResult>,
-}
-
-/// Median of a group's per-frame time over the measured frames.
-fn group_median(report: &Report, group: &str) -> Option<f64> {
-    let passes = groups().iter().find(|(g, _)| *g == group)?.1;
-    let times: Vec<f64> = report
-        .frames
-        .iter()
-        .filter(|f| !f.warmup)
-        .filter_map(|f| group_ms(f, passes))
-        .collect();
-    summarize(&times).map(|s| s.median)
 }
 
 fn ratio(a: Option<f64>, b: Option<f64>) -> Option<f64> {
@@ -237,7 +223,7 @@ fn run_scene(
             filter: config.ssdo.filter,
             paper_fps: row.paper_fps[index],
             total_ms,
-            ssdo_ms: group_median(&m.report, "ssdo"),
+            ssdo_ms: group_median(&m.report, crate::effects::ssdo::pass::ALL),
             fps: total_ms.filter(|t| *t > 0.0).map(|t| 1000.0 / t),
             time_over_first: ratio(total_ms, first_ms),
             paper_time_over_first: row.paper_time_over(&ROWS[0], index),

@@ -3,11 +3,13 @@
 //! with its median GPU time per pass group and the error of its last frame against the CPU
 //! ground truth and against the converged estimator of the same technique.
 
-use super::compare::{group_median, groups};
-use super::ground_truth::{self, reference_buffer, FrameError, TruthQuality};
-use super::measure::{held_at, last_camera, measure, Buffer, LastFrame, RunSpec};
-use super::sweep_keys::{describe, Label};
-use super::tables::reuse::rows::{RowKind, REFERENCE_FRAMES};
+pub mod keys;
+pub mod report;
+
+use crate::bench::compare::{group_median, groups};
+use crate::bench::ground_truth::{self, reference_buffer, FrameError, TruthQuality};
+use crate::bench::measure::{held_at, last_camera, measure, Buffer, LastFrame, RunSpec};
+use crate::bench::tables::reuse::rows::{RowKind, REFERENCE_FRAMES};
 use crate::error::{Error, Result};
 use crate::frontend::sink::Offscreen;
 use crate::reference::compose::Terms;
@@ -16,6 +18,7 @@ use crate::renderer::RenderConfig;
 use crate::scene::{CameraPath, Scene};
 use crate::vk::Context;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
+use keys::{describe, Label};
 use serde::Serialize;
 use std::collections::BTreeMap;
 use std::rc::Rc;
@@ -270,7 +273,7 @@ pub fn points(rows: &[SweepRow], b: Buffer) -> Vec<(f64, f64)> {
 pub fn mark_pareto(rows: &mut [SweepRow]) {
     for b in Buffer::ALL {
         let points = points(rows, b);
-        let front = super::pareto::pareto_front(&points);
+        let front = crate::plot::pareto::pareto_front(&points);
         for (row, (on, p)) in rows.iter_mut().zip(front.into_iter().zip(&points)) {
             if p.0.is_finite() && p.1.is_finite() {
                 row.pareto.insert(b.name().to_string(), on);

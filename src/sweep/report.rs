@@ -2,13 +2,14 @@
 //! sweep.md (tables with Pareto-optimal rows marked, per buffer), and one scatter plot per
 //! buffer (time on x, ground-truth error on y, one series per technique, the front drawn).
 
-use super::ground_truth::TruthQuality;
-use super::measure::Buffer;
-use super::output::write_text;
-use super::pareto::front_polyline;
-use super::scatter::{write_scatter_plot, ScatterPlot, ScatterSeries};
-use super::sweep::{error_of, points, time_label, time_of, SweepRow};
+use super::{error_of, points, time_label, time_of, SweepRow};
+use crate::bench::ground_truth::TruthQuality;
+use crate::bench::measure::Buffer;
+use crate::bench::output::write_text;
+use crate::bench::sheet::{Cell, Column, Sheet};
 use crate::error::Result;
+use crate::plot::pareto::front_polyline;
+use crate::plot::scatter::{write_scatter_plot, ScatterPlot, ScatterSeries};
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
@@ -38,66 +39,103 @@ fn buffers_in(rows: &[SweepRow]) -> Vec<Buffer> {
         .collect()
 }
 
-fn fmt(v: Option<f64>) -> String {
-    v.map_or(String::new(), |v| format!("{v:.6}"))
+/// The sheet of a sweep: per row its keys (CSV) or configuration (Markdown), the groups'
+/// times (CSV), and per buffer, one Markdown table each, the time on its axis and the errors
+/// against the ground truth and the converged estimator, Pareto-optimal rows marked ★.
+fn sheet<'r>(rows: &[SweepRow]) -> Sheet<'static, &'r SweepRow> {
+    let buffers = buffers_in(rows);
+    let mut sheet = Sheet::new(Vec::new());
+    for &b in &buffers {
+        let n = b.name();
+        sheet.extend([Column::md("", move |r: &&SweepRow| {
+            Cell::text(if r.pareto.get(n) == Some(&true) {
+                "★"
+            } else {
+                ""
+            })
+        })
+        .part(n)]);
+    }
+    sheet.extend([Column::md("configuration", |r: &&SweepRow| {
+        Cell::text(row_label(r, "base"))
+    })]);
+    let first = rows.first();
+    for (i, (k, _)) in first.map_or(&[][..], |r| &r.label[..]).iter().enumerate() {
+        sheet.extend([Column::csv(k.clone(), move |r: &&SweepRow| {
+            // A comma inside a value would read as two keys' worth of fields elsewhere.
+            Cell::text(
+                r.label
+                    .get(i)
+                    .map_or(String::new(), |(_, v)| v.replace(',', ";")),
+            )
+        })]);
+    }
+    for g in first.map_or(Vec::new(), |r| r.ms.keys().cloned().collect()) {
+        let key = format!("{g}_ms");
+        sheet.extend([Column::csv(key, move |r: &&SweepRow| {
+            Cell::num(r.ms.get(&g).copied().flatten(), 6)
+        })]);
+    }
+    for &b in &buffers {
+        let n = b.name();
+        let truth = move |r: &SweepRow| r.truth.get(n).cloned();
+        let converged = move |r: &SweepRow| r.converged.get(n).cloned();
+        let metric = if b == Buffer::Final { "FLIP" } else { "RMSE" };
+        let mut columns = vec![
+            Column::md("ms", move |r: &&SweepRow| Cell::num(time_of(r, b), 3)),
+            Column::md(format!("{metric} vs truth"), move |r: &&SweepRow| {
+                Cell::num(error_of(r, b), 5)
+            }),
+            Column::csv(format!("{n}_rmse"), move |r: &&SweepRow| {
+                Cell::num(truth(r).map(|t| t.error.rmse), 6)
+            }),
+            Column::new(format!("{n}_rel_mse"), "rel. MSE", move |r: &&SweepRow| {
+                Cell::num(truth(r).map(|t| t.error.rel_mse), 4)
+            }),
+            Column::csv(format!("{n}_max_abs"), move |r: &&SweepRow| {
+                Cell::num(truth(r).map(|t| t.error.max_abs), 6)
+            }),
+            Column::csv(format!("{n}_psnr"), move |r: &&SweepRow| {
+                Cell::num(truth(r).map(|t| t.error.psnr).filter(|p| p.is_finite()), 6)
+            }),
+            Column::md("PSNR", move |r: &&SweepRow| {
+                match truth(r).map(|t| t.error.psnr) {
+                    Some(p) if !p.is_finite() => Cell::text("∞"),
+                    p => Cell::num(p, 1),
+                }
+            }),
+            Column::new(
+                format!("{n}_rmse_vs_converged"),
+                "RMSE vs converged",
+                move |r: &&SweepRow| Cell::num(converged(r).map(|c| c.error.rmse), 5),
+            ),
+            Column::csv(format!("{n}_pareto"), move |r: &&SweepRow| {
+                r.pareto
+                    .get(n)
+                    .map_or(Cell::Empty, |p| Cell::text(p.to_string()))
+            }),
+        ];
+        if b == Buffer::Final {
+            columns.extend([
+                Column::csv("final_flip", move |r: &&SweepRow| {
+                    Cell::num(truth(r).and_then(|t| t.flip), 6)
+                }),
+                Column::new(
+                    "final_flip_vs_converged",
+                    "FLIP vs converged",
+                    move |r: &&SweepRow| Cell::num(converged(r).and_then(|c| c.flip), 5),
+                ),
+            ]);
+        }
+        sheet.extend(columns.into_iter().map(|c| c.part(n)));
+    }
+    sheet
 }
 
 /// sweep.csv: keys, group times, and per buffer the ground-truth and converged errors.
 pub fn csv(rows: &[SweepRow]) -> String {
-    let keys: Vec<String> = rows.first().map_or(Vec::new(), |r| {
-        r.label.iter().map(|(k, _)| k.clone()).collect()
-    });
-    let groups: Vec<String> = rows
-        .first()
-        .map_or(Vec::new(), |r| r.ms.keys().cloned().collect());
-    let buffers = buffers_in(rows);
-    let mut head: Vec<String> = keys.clone();
-    head.extend(groups.iter().map(|g| format!("{g}_ms")));
-    for b in &buffers {
-        let n = b.name();
-        head.extend([
-            format!("{n}_rmse"),
-            format!("{n}_rel_mse"),
-            format!("{n}_max_abs"),
-            format!("{n}_psnr"),
-            format!("{n}_rmse_vs_converged"),
-            format!("{n}_pareto"),
-        ]);
-        if *b == Buffer::Final {
-            head.push("final_flip".into());
-            head.push("final_flip_vs_converged".into());
-        }
-    }
-    let mut out = head.join(",") + "\n";
-    for r in rows {
-        let mut cells: Vec<String> = r.label.iter().map(|(_, v)| v.replace(',', ";")).collect();
-        cells.extend(groups.iter().map(|g| fmt(r.ms.get(g).copied().flatten())));
-        for b in &buffers {
-            let t = r.truth.get(b.name());
-            cells.push(fmt(t.map(|t| t.error.rmse)));
-            cells.push(fmt(t.map(|t| t.error.rel_mse)));
-            cells.push(fmt(t.map(|t| t.error.max_abs)));
-            cells.push(fmt(t.map(|t| t.error.psnr).filter(|p| p.is_finite())));
-            let c = r.converged.get(b.name());
-            cells.push(fmt(c.map(|c| c.error.rmse)));
-            cells.push(
-                r.pareto
-                    .get(b.name())
-                    .map_or(String::new(), |p| p.to_string()),
-            );
-            if *b == Buffer::Final {
-                cells.push(fmt(t.and_then(|t| t.flip)));
-                cells.push(fmt(c.and_then(|c| c.flip)));
-            }
-        }
-        out += &(cells.join(",") + "\n");
-    }
-    out
-}
-
-/// An error in sweep.md: five decimals, "-" where there is none.
-fn error_cell(v: Option<f64>) -> String {
-    v.map_or("-".into(), |v| format!("{v:.5}"))
+    let refs: Vec<&SweepRow> = rows.iter().collect();
+    sheet(rows).csv(&refs)
 }
 
 /// sweep.md: one table per buffer, rows sorted by time, Pareto-optimal rows marked ★.
@@ -158,54 +196,19 @@ pub fn markdown(
         "\nReference tracing: {:.2} Mrays/s.\n",
         header.reference_rays_per_second / 1e6
     );
+    let sheet = sheet(rows);
     for b in buffers_in(rows) {
-        let metric = if b == Buffer::Final { "FLIP" } else { "RMSE" };
-        // The final image is also scored in FLIP against its converged estimator.
-        let (flip_head, flip_rule) = if b == Buffer::Final {
-            (" FLIP vs converged |", "---|")
-        } else {
-            ("", "")
-        };
-        s += &format!(
-            "\n## {} (time: {})\n\n| | configuration | ms | {metric} vs truth | rel. MSE | PSNR | RMSE vs converged |{flip_head}\n|---|---|---|---|---|---|---|{flip_rule}\n",
-            b.name(),
-            time_label(b)
-        );
-        let mut order: Vec<&SweepRow> = rows.iter().collect();
+        s += &format!("\n## {} (time: {})\n\n", b.name(), time_label(b));
+        let mut order: Vec<&SweepRow> = rows
+            .iter()
+            .filter(|r| r.truth.contains_key(b.name()))
+            .collect();
         order.sort_by(|a, c| {
             time_of(a, b)
                 .unwrap_or(f64::INFINITY)
                 .total_cmp(&time_of(c, b).unwrap_or(f64::INFINITY))
         });
-        for r in order {
-            let Some(t) = r.truth.get(b.name()) else {
-                continue;
-            };
-            let star = if r.pareto.get(b.name()) == Some(&true) {
-                "★"
-            } else {
-                ""
-            };
-            let c = r.converged.get(b.name());
-            let flip_cell = if b == Buffer::Final {
-                format!(" {} |", error_cell(c.and_then(|c| c.flip)))
-            } else {
-                String::new()
-            };
-            s += &format!(
-                "| {star} | {} | {} | {} | {:.4} | {} | {} |{flip_cell}\n",
-                row_label(r, "base"),
-                time_of(r, b).map_or("-".into(), |v| format!("{v:.3}")),
-                error_cell(error_of(r, b)),
-                t.error.rel_mse,
-                if t.error.psnr.is_finite() {
-                    format!("{:.1}", t.error.psnr)
-                } else {
-                    "∞".into()
-                },
-                error_cell(c.map(|e| e.error.rmse)),
-            );
-        }
+        s += &sheet.markdown_part(&order, b.name());
     }
     s
 }

@@ -2,6 +2,7 @@
 //! the end, and `stress.json` / `stress.md`.
 
 use super::cases::{Case, Variant, DRIFT_TOLERANCE};
+use crate::bench::sheet::{Cell, Column, Sheet};
 use crate::renderer::RenderConfig;
 use crate::vk::DeviceInfo;
 use serde::Serialize;
@@ -83,6 +84,36 @@ impl CaseResult {
     }
 }
 
+/// The table of `stress.md`, one row per case and variant.
+fn sheet() -> Sheet<'static, CaseResult> {
+    type Of = fn(&CaseResult) -> Cell;
+    let columns: [(&str, Of); 14] = [
+        ("case", |r| Cell::text(&r.case)),
+        ("variant", |r| Cell::text(r.variant())),
+        ("size", |r| {
+            Cell::text(format!("{}x{}", r.size[0], r.size[1]))
+        }),
+        ("frames", |r| Cell::int(r.frames)),
+        ("values", |r| Cell::int(r.values_checked)),
+        ("NaN", |r| Cell::int(r.nan)),
+        ("Inf", |r| Cell::int(r.inf)),
+        ("neg", |r| Cell::int(r.negative)),
+        ("max history", |r| Cell::Sci(r.max_history_value.into())),
+        ("max count", |r| Cell::text(r.max_history_count.to_string())),
+        ("drift RMSE", |r| Cell::num(r.drift_rmse.map(f64::from), 4)),
+        ("validation", |r| Cell::int(r.validation_messages)),
+        ("s", |r| Cell::Num(r.seconds, 1)),
+        ("result", |r| {
+            Cell::text(if r.passed() {
+                "ok".to_string()
+            } else {
+                format!("FAIL: {}", r.failures.join("; "))
+            })
+        }),
+    ];
+    Sheet::new(columns.map(|(h, of)| Column::md(h, of)).into())
+}
+
 /// Sums over every row.
 #[derive(Clone, Debug, Default, Serialize)]
 pub struct Totals {
@@ -134,41 +165,7 @@ impl StressReport {
             "{} cases, {} frames, {} values checked, {} failed.\n",
             t.cases, t.frames, t.values_checked, t.failures
         );
-        let _ = writeln!(
-            s,
-            "| case | variant | size | frames | values | NaN | Inf | neg | max history | max count | drift RMSE | validation | s | result |"
-        );
-        let _ = writeln!(
-            s,
-            "|---|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|"
-        );
-        for r in &self.results {
-            let drift = r.drift_rmse.map_or("-".into(), |d| format!("{d:.4}"));
-            let result = if r.passed() {
-                "ok".to_string()
-            } else {
-                format!("FAIL: {}", r.failures.join("; "))
-            };
-            let _ = writeln!(
-                s,
-                "| {} | {} | {}x{} | {} | {} | {} | {} | {} | {:.3e} | {} | {} | {} | {:.1} | {} |",
-                r.case,
-                r.variant(),
-                r.size[0],
-                r.size[1],
-                r.frames,
-                r.values_checked,
-                r.nan,
-                r.inf,
-                r.negative,
-                r.max_history_value,
-                r.max_history_count,
-                drift,
-                r.validation_messages,
-                r.seconds,
-                result.replace('|', "/")
-            );
-        }
+        s += &sheet().markdown(&self.results);
         let _ = writeln!(
             s,
             "\nValues: every channel of every float target and history, counted on the GPU \

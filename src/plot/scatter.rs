@@ -1,8 +1,8 @@
 //! PNG scatter plots with `plotters` for `ssgi sweep`: one marker per renderer configuration
 //! (GPU time against error), one colour and marker shape per series, and the Pareto front as
-//! a staircase. Text uses the embedded font from [`super::plot`], so no system fonts are needed.
+//! a staircase. Text uses the embedded font from [`super::line`], so no system fonts are needed.
 
-use super::plot::{font_ready, FONT};
+use super::line::{font_ready, FONT};
 use crate::error::{Error, Result};
 use plotters::coord::ranged1d::{Ranged, ValueFormatter};
 use plotters::coord::types::RangedCoordf64;
@@ -22,7 +22,7 @@ pub struct ScatterPlot<'a> {
     pub x_label: &'a str,
     pub y_label: &'a str,
     pub series: Vec<ScatterSeries<'a>>,
-    /// Vertices of the Pareto front (e.g. from [`super::pareto::front_polyline`]), drawn as a
+    /// Vertices of the Pareto front (e.g. from `pareto::front_polyline`), drawn as a
     /// staircase; any order, NaNs skipped.
     pub front: Vec<(f64, f64)>,
     /// Logarithmic y axis. Errors span decades, but a configuration can also reach zero error
@@ -398,7 +398,7 @@ where
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::bench::pareto::{front_polyline, pareto_front};
+    use crate::plot::pareto::{front_polyline, pareto_front};
 
     fn temp_png(name: &str) -> std::path::PathBuf {
         std::env::temp_dir()
