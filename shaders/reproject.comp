@@ -62,6 +62,8 @@ layout(push_constant) uniform Reproject {
     uvec4 reaccumulate;   // x: bit k set = lane k starts re-accumulating this frame; y: bit k
                           //    set = a change (the light, a moving object) reached lane k's
                           //    values this frame: its re-accumulation ends
+    vec4 reach_radius;    // lane k's sampling radius for MOVED_SCREEN, relative to the scene's
+                          // bounding radius (frame.scene_radius)
 } lanes;
 
 // Beyond eq 3: a history texel must also face the pixel's way, within 60 degrees. The back of
@@ -140,10 +142,9 @@ shared uint group_list_base[LANES];
 
 // Where a moving object changes a lane's value (EffectKind::moved, src/renderer/effect.rs),
 // tested against the box around every object that moved, at its last and its new place.
-const uint MOVED_AO = 1u;         // AO's taps can see it on the screen
-const uint MOVED_SSDO = 2u;       // SSDO's samples can
-const uint MOVED_SHADOW = 3u;     // in the box, or on its footprint on the shadow map
-const uint MOVED_INSIDE = 4u;     // in the box (what the gather receives on moved)
+const uint MOVED_SCREEN = 1u;     // a screen-space estimate's taps can see it on the screen
+const uint MOVED_SHADOW = 2u;     // in the box, or on its footprint on the shadow map
+const uint MOVED_INSIDE = 3u;     // in the box (what the gather receives on moved)
 
 // Distance from p to the moved box (0 inside).
 float moved_distance(vec3 p) {
@@ -168,15 +169,17 @@ bool moved_on_screen(vec3 p, float radius) {
     return all(greaterThanEqual(c, r.xy - grow)) && all(lessThanEqual(c, r.zw + grow));
 }
 
-// Whether what moved this frame reaches the value of a lane with reach `mode` at p. The
+// Whether what moved this frame reaches the value of a lane with reach `mode` (and, for
+// MOVED_SCREEN, sampling radius `reach_radius` relative to the scene's) at p. The
 // shadow footprint is widened by the PCF kernel (pcf_radius texels, and two for the tap's
 // bilinear reach and rounding): a shadow test there may meet the moved object, one outside it
 // cannot.
-bool moved_reaches(uint mode, vec3 p) {
+bool moved_reaches(uint mode, float reach_radius, vec3 p) {
     if (frame.moved_count == 0u || mode == 0u) return false;
     float d = moved_distance(p);
-    if (mode == MOVED_AO) return d <= 0.0 || moved_on_screen(p, frame.ao_radius);
-    if (mode == MOVED_SSDO) return d <= 0.0 || moved_on_screen(p, frame.ssdo_radius);
+    if (mode == MOVED_SCREEN) {
+        return d <= 0.0 || moved_on_screen(p, reach_radius * frame.scene_radius);
+    }
     if (d <= 0.0) return true;
     if (mode != MOVED_SHADOW) return false;
     vec4 c = frame.light_view_proj * vec4(p, 1.0);
@@ -397,8 +400,8 @@ bool in_rect(ivec2 pixel, uvec4 rect) {
 // has been magnified or displaced (at least one estimate stays: the value is not thrown
 // away). A pixel in the refresh tile (`refreshed`) is recomputed at its own point this frame,
 // as is a new one: their registration restarts.
-uint lane_state(Reprojected r, uvec4 lane, bool refreshed, bool start, bool stop,
-                texture2D history_prev,
+uint lane_state(Reprojected r, uvec4 lane, float reach_radius, bool refreshed, bool start,
+                bool stop, texture2D history_prev,
                 texture2D moments_prev, texture2D registration_prev, out vec4 history,
                 out vec4 moments, out vec4 registration, out bool invalidated) {
     history = vec4(0.0);
@@ -407,7 +410,7 @@ uint lane_state(Reprojected r, uvec4 lane, bool refreshed, bool start, bool stop
     invalidated = false;
     if (!r.geometry) return STATE_BACKGROUND;
     uint state = STATE_NEW;
-    invalidated = lane.y != 0u && r.found && moved_reaches(lane.w, r.p);
+    invalidated = lane.y != 0u && r.found && moved_reaches(lane.w, reach_radius, r.p);
     if (lane.y != 0u && r.found && !invalidated) {
         r = pick_registered(r, registration_prev);
         // An unmoved eye on an unmoved surface: the texel itself, as it is.
@@ -488,9 +491,10 @@ bool needs_work(uint state) {
         bool refreshed = r.geometry && in_rect(pixel, lanes.refresh_rect_##k);                 \
         bool start = (lanes.reaccumulate.x >> k & 1u) != 0u;                                   \
         bool stop = (lanes.reaccumulate.y >> k & 1u) != 0u;                                    \
-        uint state = lane_state(r, lanes.lane_##k, refreshed, start, stop, history_prev_##k,   \
-                                moments_prev_##k, registration_prev_##k, history, moments,     \
-                                registration, invalidated);                                    \
+        uint state = lane_state(r, lanes.lane_##k, lanes.reach_radius[k], refreshed, start,    \
+                                stop, history_prev_##k, moments_prev_##k,                      \
+                                registration_prev_##k, history, moments, registration,         \
+                                invalidated);                                                  \
         if (invalidated) atomicAdd(group_invalidated[k], 1u);                                  \
         else if (state == STATE_NEW) atomicAdd(group_disoccluded[k], 1u);                      \
         if (refreshed) state = STATE_REFRESH;                                                  \

@@ -31,6 +31,7 @@ layout(set = 0, binding = 0, std430) readonly buffer Frame {
     uvec2 size;                // render width, height [px]
     uint frame_index;
     uint rotation_limit;       // patterns per pixel until it counts as converged
+    float scene_radius;        // the scene's bounding radius: effects' radii are relative to it
     float light_tan_half_fov;  // tan(half fov of the shadow frustum)
     float shadow_map_size;     // side of the shadow map / RSM [texels]
     float pcf_radius;          // PCF kernel radius [texels]

@@ -85,6 +85,8 @@ pub struct LaneFrame {
     pub refresh_rect: [u32; 4],
     /// Which pixels a moving object takes the history from (`MovedReach` code, 0 = none).
     pub moved: u32,
+    /// The screen-space reach's sampling radius, relative to the scene's bounding radius.
+    pub reach_radius: f32,
     /// The camera came to rest: the lane's histories start re-accumulating
     /// (`TemporalConfig::reaccumulate`).
     pub reaccumulate: bool,
@@ -123,6 +125,7 @@ pub fn push(lanes: &[LaneFrame]) -> ReprojectPush {
         lane_1: lane(1),
         lane_2: lane(2),
         reaccumulate: [starts, stops, 0, 0],
+        reach_radius: std::array::from_fn(|k| lanes.get(k).map_or(0.0, |l| l.reach_radius)),
     }
 }
 
@@ -226,11 +229,13 @@ mod tests {
             history_valid: true,
             block_shift: 4,
             refresh_rect: [1, 2, 3, 4],
-            moved: 3,
+            moved: 1,
+            reach_radius: 0.25,
             reaccumulate: false,
             stop_reaccumulating: false,
         }]);
-        assert_eq!(p.lane_0, [1, 1, 4, 3]);
+        assert_eq!(p.lane_0, [1, 1, 4, 1]);
+        assert_eq!(p.reach_radius, [0.25, 0.0, 0.0, 0.0]);
         assert_eq!(p.refresh_rect_0, [1, 2, 3, 4]);
         assert_eq!(p.lane_1, [0; 4]);
         assert_eq!(p.lane_2, [0; 4]);

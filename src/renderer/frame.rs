@@ -69,6 +69,8 @@ pub fn frame_block(config: &RenderConfig, f: &FrameInputs<'_>) -> FrameBlock {
         size: [config.width, config.height],
         frame_index: f.frame as u32,
         rotation_limit: t.rotation_limit,
+        // Floored: relative radii multiply it, and a point scene must not give them zero.
+        scene_radius: f.scene_radius.max(f32::MIN_POSITIVE),
         light_tan_half_fov: (0.5 * light.frustum_fov_deg()).to_radians().tan(),
         shadow_map_size: config.rsm_size as f32,
         pcf_radius: config.pcf.radius_texels,

@@ -120,10 +120,11 @@ impl Reprojection {
                 block_shift: t.kind.block_shift,
                 refresh_rect: push.refresh_rect,
                 moved: if info.config.temporal.invalidate {
-                    t.kind.moved as u32
+                    t.kind.moved.code()
                 } else {
                     0
                 },
+                reach_radius: t.kind.moved.radius(info.config),
                 // The shader starts only lanes whose history is valid.
                 reaccumulate: info.starts_reaccumulating(&t.kind),
                 stop_reaccumulating: info.changes_reach(&t.kind),

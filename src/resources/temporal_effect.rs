@@ -33,29 +33,47 @@ pub struct EffectKind {
     /// Whether its values depend on the spot light (a light change reaches them).
     pub lit: bool,
     /// Whether its histories re-accumulate when the camera stops (`--reaccumulate`): the
-    /// value alone is merged with the running mean's weight. SSDO's cache also carries its
-    /// factor's mean in the moments, which the re-accumulation has no room to fade out.
+    /// value alone is merged with the running mean's weight (not for a cache that carries
+    /// more in its moments than the re-accumulation can fade out).
     pub reaccumulates: bool,
 }
 
 /// Where a moving object changes an effect's value, so that its history there is dropped (the
 /// lane's `w` in shaders/reproject.comp, which tests each pixel's surface point against the box
 /// around what moved). Disocclusion is separate: the reprojection follows moving surfaces.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug)]
 pub enum MovedReach {
-    /// Where AO's taps can read the box's screen footprint: within the AO radius projected
-    /// near the pixel's depth (the taps read whatever the G-buffer shows there, attenuated,
-    /// not cut, beyond the radius in world space).
-    AoRadius = 1,
-    /// The same for SSDO's hemisphere radius.
-    SsdoRadius = 2,
+    /// Where a screen-space estimate's taps can read the box's screen footprint: within its
+    /// sampling radius (relative to the scene's bounding radius, from the configuration)
+    /// projected near the pixel's depth (taps read whatever the G-buffer shows there,
+    /// attenuated, not cut, beyond the radius in world space).
+    ScreenRadius(fn(&RenderConfig) -> f32),
     /// In the box, or where it falls on the shadow map (widened by the PCF kernel): the
     /// only pixels whose shadow test can meet it.
-    ShadowFootprint = 3,
+    ShadowFootprint,
     /// In the box: the gather sums every VPL, so a moved object that the light sees changes
     /// every pixel and the whole history restarts (`Effect::prepare`); this is for one the
     /// light does not see.
-    Inside = 4,
+    Inside,
+}
+
+impl MovedReach {
+    /// The lane's mode in shaders/reproject.comp (`MOVED_*`; 0 there = none).
+    pub fn code(self) -> u32 {
+        match self {
+            MovedReach::ScreenRadius(_) => 1,
+            MovedReach::ShadowFootprint => 2,
+            MovedReach::Inside => 3,
+        }
+    }
+
+    /// The sampling radius relative to the scene's bounding radius (0 for the other reaches).
+    pub fn radius(self, config: &RenderConfig) -> f32 {
+        match self {
+            MovedReach::ScreenRadius(radius) => radius(config),
+            _ => 0.0,
+        }
+    }
 }
 
 const STORAGE_READ: vk::ImageUsageFlags = vk::ImageUsageFlags::from_raw(

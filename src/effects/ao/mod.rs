@@ -64,7 +64,7 @@ pub const KIND: EffectKind = EffectKind {
         ),
     ],
     fixups: false,
-    moved: MovedReach::AoRadius,
+    moved: MovedReach::ScreenRadius(|c| c.ao.radius),
     lit: false,
     reaccumulates: true,
 };

@@ -71,7 +71,7 @@ pub const KIND: EffectKind = EffectKind {
         ),
     ],
     fixups: false,
-    moved: MovedReach::SsdoRadius,
+    moved: MovedReach::ScreenRadius(|c| c.ssdo.radius),
     lit: true,
     reaccumulates: false,
 };

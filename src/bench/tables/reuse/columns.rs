@@ -75,7 +75,7 @@ fn sheet<'r>(r: &TableReport) -> Sheet<'static, Line<'r>> {
     ]);
     for (g, _) in groups()
         .into_iter()
-        .filter(|(g, _)| group_present(g, &effects))
+        .filter(|(g, _)| group_present(g, &r.base_config))
     {
         let shown = COLUMNS.contains(&g) && measured(g);
         let ms = move |l: &Line| Cell::num(l.row.ms.get(g).copied().flatten(), 3);
@@ -245,13 +245,12 @@ fn header(r: &TableReport) -> String {
 
 /// Per scene: no-reuse ms / reuse ms beside the thesis's fps ratio, for its columns.
 fn speedups(r: &TableReport) -> String {
-    let effects = r.base_config.effects;
     let mut sheet = Sheet::new(vec![Column::md("Scene", |s: &&SceneResult| {
         Cell::text(&s.name)
     })]);
     for (g, _, name, thesis) in THESIS_COLUMNS
         .into_iter()
-        .filter(|c| group_present(c.0, &effects))
+        .filter(|c| group_present(c.0, &r.base_config))
     {
         sheet.extend([
             Column::md(format!("ours {name}"), move |s: &&SceneResult| {

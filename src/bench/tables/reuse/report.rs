@@ -123,16 +123,14 @@ impl SceneResult {
     }
 }
 
-/// Whether a timing group (`compare::groups`) belongs to a run with `effects`: columns of
-/// effects a table left out are dropped, not printed empty.
-pub fn group_present(group: &str, effects: &crate::config::Effects) -> bool {
-    match group {
-        "ao" => effects.ao,
-        "indirect" => effects.indirect,
-        "ssdo" => effects.ssdo,
-        "shadow" | "direct" => effects.direct,
-        _ => true,
-    }
+/// Whether a timing group (`compare::groups`) belongs to a run with `config`: the group of an
+/// effect the run leaves out is dropped, not printed empty (reprojection and total belong to
+/// every run).
+pub fn group_present(group: &str, config: &RenderConfig) -> bool {
+    crate::effects::REGISTRY
+        .iter()
+        .find(|r| r.timing_groups.iter().any(|(g, _)| *g == group))
+        .is_none_or(|r| (r.enabled)(config))
 }
 
 #[derive(Clone, Debug, Serialize)]
