@@ -11,6 +11,7 @@ use std::fmt::Write as _;
 pub const GENERATED: &[(&str, &str)] = &[
     ("Frame", "FrameBlock"),
     ("Ccipca", "CcipcaPush"),
+    ("Ssdo", "SsdoParams"),
     ("Effect", "EffectPush"),
     ("Counters", "CountersHeader"),
     ("Material", "MaterialPush"),

@@ -98,7 +98,7 @@ mod block_layout;
 
 use ssgi::shaders::{
     BlockMember, CcipcaPush, CountersHeader, EffectPush, FrameBlock, GBufferResolvePush,
-    ImageStatsPush, MaterialPush, ProbePush, ReprojectPush, PROBES,
+    ImageStatsPush, MaterialPush, ProbePush, ReprojectPush, SsdoParams, PROBES,
 };
 
 /// The generated struct of a GLSL block: its members and size.
@@ -107,6 +107,7 @@ fn generated(name: &str) -> (&'static [BlockMember], usize) {
         "Frame" => (FrameBlock::MEMBERS, FrameBlock::SIZE),
         "Effect" => (EffectPush::MEMBERS, EffectPush::SIZE),
         "Ccipca" => (CcipcaPush::MEMBERS, CcipcaPush::SIZE),
+        "Ssdo" => (SsdoParams::MEMBERS, SsdoParams::SIZE),
         "Counters" => (CountersHeader::MEMBERS, CountersHeader::SIZE),
         "Material" => (MaterialPush::MEMBERS, MaterialPush::SIZE),
         "Probe" => (ProbePush::MEMBERS, ProbePush::SIZE),

@@ -57,15 +57,6 @@ layout(set = 0, binding = 0, std430) readonly buffer Frame {
     float vpl_march_near_px;   // nearest step of that visibility march [px]
     uint vpl_interleave;       // interleaved gather: block side N, one VPL subset per pixel (1 = off)
     uint vpl_lanes;            // lanes sharing a low-resolution sample's VPLs (compacted gather)
-    uint ssdo_samples;         // SSDO hemisphere samples per pixel (K), without the pre-pass
-    uint ssdo_min_samples;     // with the pre-pass: a flat block's samples (whole Halton periods)
-    uint ssdo_prepass_scale;   // with the pre-pass: its resolution divisor
-    uint ssdo_threshold_count; // thresholds in use: 0 = fixed count, no pre-pass
-    vec4 ssdo_thresholds;      // change measure above which a block takes one Halton period more
-    float ssdo_radius;         // SSDO hemisphere radius r_max, world units
-    uint ssdo_filter_radius;   // half side of SSDO's separable bilateral filter (0 = off)
-    uint ssdo_scale;           // SSDO's resolution divisor: its texel t samples pixel t * scale
-    uint direct_enabled;       // 1 when the direct effect runs (SSDO's senders add its light)
     uint camera_static;        // 1 when prev_view_proj equals view_proj exactly (CPU test)
     uint indirect_input;       // test input: 0 the gather, 1 world position (IndirectInput::Ramp), 2 + i NaN at pixel index i (Renderer::plant_nan)
     vec3 prev_camera_pos;      // last frame's eye: the history's footprint on each surface

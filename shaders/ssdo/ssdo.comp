@@ -16,6 +16,7 @@
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_samplerless_texture_functions : require
 #include "frame.glsl"
+#include "ssdo_params.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
 
@@ -26,10 +27,10 @@ layout(set = 1, binding = 2) uniform texture2D g_albedo;
 // The directional step's output: the senders' radiance, a = the pixel's modulation factor.
 layout(set = 1, binding = 4) uniform texture2D lit;
 #else
-// The direct effect's outgoing radiance (read when frame.direct_enabled).
+// The direct effect's outgoing radiance (read when ssdo.direct_enabled).
 layout(set = 1, binding = 3) uniform texture2D direct_light;
 #endif
-// The pre-pass's samples per block (read when frame.ssdo_threshold_count > 0).
+// The pre-pass's samples per block (read when ssdo.threshold_count > 0).
 layout(set = 1, binding = 6) uniform utexture2D block_samples;
 #ifdef DIRECTIONAL
 layout(set = 1, binding = 4, rgba16f) uniform writeonly image2D lit_out;
@@ -46,13 +47,13 @@ shared uint group_samples;
 #ifdef BOUNCE
 // `lit` is at SSDO's resolution: the texel covering full-resolution pixel q.
 vec3 sender_radiance(ivec2 q) {
-    return texelFetch(lit, q / int(frame.ssdo_scale), 0).rgb;
+    return texelFetch(lit, q / int(ssdo.scale), 0).rgb;
 }
 #else
 // The pixel lit as the frame is without SSDO: the direct light and the ambient it reflects.
 vec3 sender_radiance(ivec2 q) {
     vec3 l = frame.ambient * texelFetch(g_albedo, q, 0).rgb;
-    if (frame.direct_enabled != 0u) l += texelFetch(direct_light, q, 0).rgb;
+    if (ssdo.direct_enabled != 0u) l += texelFetch(direct_light, q, 0).rgb;
     return l;
 }
 #endif
@@ -67,15 +68,15 @@ vec3 sender_radiance(ivec2 q) {
 
 // Shades one texel; returns the samples it took (0 for background).
 uint shade(ivec2 texel) {
-    ivec2 pixel = texel * int(frame.ssdo_scale);
+    ivec2 pixel = texel * int(ssdo.scale);
     vec4 position = texelFetch(g_position, pixel, 0);
     vec4 result = vec4(0.0, 0.0, 0.0, 1.0);
     uint count = 0u;
     if (position.w != 0.0) {
         vec3 n = texelFetch(g_normal, pixel, 0).xyz;
-        count = frame.ssdo_samples;
-        if (frame.ssdo_threshold_count > 0u)
-            count = texelFetch(block_samples, pixel / int(frame.ssdo_prepass_scale), 0).r;
+        count = ssdo.samples;
+        if (ssdo.threshold_count > 0u)
+            count = texelFetch(block_samples, pixel / int(ssdo.prepass_scale), 0).r;
         // The same K samples every frame (Halton indices 0 .. K - 1, shifted per pixel).
         uint first = 0u;
 #ifdef DIRECTIONAL

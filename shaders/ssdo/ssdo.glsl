@@ -5,6 +5,7 @@
 #define SSDO_GLSL
 
 #include "frame.glsl"
+#include "ssdo_params.glsl"
 #include "hemisphere.glsl"
 
 // Exponent of the lobe the spot light's radiance is spread over (see ssdo_incident): a cosine
@@ -47,7 +48,7 @@ float ssdo_incident(vec3 p, vec3 omega) {
 // `texel` (SSDO's grid) picks the Halton shift. Returns (bounce rgb, modulation).
 vec4 ssdo_pixel(ivec2 texel, vec3 p, vec3 n, uint first_sample, uint count, uint floor_count,
                 bool bounce) {
-    float r_max = frame.ssdo_radius;
+    float r_max = ssdo.radius * frame.scene_radius;
     float area = PI * r_max * r_max / float(max(count, 1u));
     float d2_floor = PI * r_max * r_max / float(max(floor_count, 1u)) / TWO_PI;
     float lit = 0.0;
@@ -78,7 +79,7 @@ vec4 ssdo_pixel(ivec2 texel, vec3 p, vec3 n, uint first_sample, uint count, uint
 // Section 3.1's SSAO with the same samples: the fraction of the `count` points from Halton index
 // `first_sample` that are not occluded.
 float ssao_pixel(ivec2 texel, vec3 p, vec3 n, uint first_sample, uint count) {
-    float r_max = frame.ssdo_radius;
+    float r_max = ssdo.radius * frame.scene_radius;
     float occluded = 0.0;
     for (uint k = 0u; k < count; ++k) {
         vec4 w = hemisphere_sample(first_sample + k, texel, n, r_max);

@@ -23,6 +23,7 @@
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_samplerless_texture_functions : require
 #include "frame.glsl"
+#include "ssdo_params.glsl"
 
 layout(set = 1, binding = 0) uniform texture2D g_position;
 
@@ -55,27 +56,27 @@ void main() {
 
 layout(set = 1, binding = 1) uniform texture2D g_normal;
 layout(set = 1, binding = 2) uniform texture2D g_albedo;
-// The direct effect's outgoing radiance (read when frame.direct_enabled).
+// The direct effect's outgoing radiance (read when ssdo.direct_enabled).
 layout(set = 1, binding = 3) uniform texture2D direct_light;
 layout(set = 1, binding = 4, r32ui) uniform readonly uimage2D state_in;
 layout(set = 1, binding = 5, rgba32f) uniform image2D history;
 layout(set = 1, binding = 7, rgba32f) uniform image2D moments;
-// The pre-pass's samples per block (read when frame.ssdo_threshold_count > 0).
+// The pre-pass's samples per block (read when ssdo.threshold_count > 0).
 layout(set = 1, binding = 8) uniform utexture2D block_samples;
 
 // Senders lit as the frame is without SSDO (the one-step form): direct light + ambient.
 vec3 sender_radiance(ivec2 q) {
     vec3 l = frame.ambient * texelFetch(g_albedo, q, 0).rgb;
-    if (frame.direct_enabled != 0u) l += texelFetch(direct_light, q, 0).rgb;
+    if (ssdo.direct_enabled != 0u) l += texelFetch(direct_light, q, 0).rgb;
     return l;
 }
 
 #include "ssdo.glsl"
 
 uint sample_count(ivec2 pixel) {
-    if (frame.ssdo_threshold_count > 0u)
-        return texelFetch(block_samples, pixel / int(frame.ssdo_prepass_scale), 0).r;
-    return frame.ssdo_samples;
+    if (ssdo.threshold_count > 0u)
+        return texelFetch(block_samples, pixel / int(ssdo.prepass_scale), 0).r;
+    return ssdo.samples;
 }
 
 // Pattern `pattern`'s estimate: (bounce, modulation factor), the bounce not yet darkened by

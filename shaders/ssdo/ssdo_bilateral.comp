@@ -14,6 +14,7 @@
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_samplerless_texture_functions : require
 #include "frame.glsl"
+#include "ssdo_params.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
 
@@ -32,10 +33,10 @@ void main() {
     ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
     ivec2 grid = imageSize(dst);
     if (any(greaterThanEqual(pixel, grid))) return;
-    int scale = int(frame.ssdo_scale);
+    int scale = int(ssdo.scale);
     vec4 centre = texelFetch(src, pixel, 0);
     vec4 position = texelFetch(g_position, pixel * scale, 0);
-    int radius = int(frame.ssdo_filter_radius);
+    int radius = int(ssdo.filter_radius);
     if (position.w == 0.0 || radius == 0) {
         imageStore(dst, pixel, centre);
         return;

@@ -13,6 +13,7 @@
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_samplerless_texture_functions : require
 #include "frame.glsl"
+#include "ssdo_params.glsl"
 #include "halton.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
@@ -48,9 +49,9 @@ float block_change(ivec2 t, int scale) {
 void main() {
     ivec2 t = ivec2(gl_GlobalInvocationID.xy);
     if (any(greaterThanEqual(t, imageSize(samples_out)))) return;
-    float change = block_change(t, int(frame.ssdo_prepass_scale));
+    float change = block_change(t, int(ssdo.prepass_scale));
     uint periods = 0u;
     for (uint i = 0u; i < 4u; ++i)
-        periods += uint(i < frame.ssdo_threshold_count && change > frame.ssdo_thresholds[i]);
-    imageStore(samples_out, t, uvec4(frame.ssdo_min_samples + HALTON_PERIOD * periods));
+        periods += uint(i < ssdo.threshold_count && change > ssdo.thresholds[i]);
+    imageStore(samples_out, t, uvec4(ssdo.min_samples + HALTON_PERIOD * periods));
 }

@@ -11,6 +11,7 @@
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_samplerless_texture_functions : require
 #include "frame.glsl"
+#include "ssdo_params.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
 
@@ -31,7 +32,7 @@ void main() {
         imageStore(dst, pixel, vec4(0.0, 0.0, 0.0, 1.0));
         return;
     }
-    int scale = int(frame.ssdo_scale);
+    int scale = int(ssdo.scale);
     ivec2 low_size = textureSize(src, 0);
     vec3 p = position.xyz;
     vec3 n = texelFetch(g_normal, pixel, 0).xyz;

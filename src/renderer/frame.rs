@@ -97,15 +97,6 @@ pub fn frame_block(config: &RenderConfig, f: &FrameInputs<'_>) -> FrameBlock {
         vpl_march_near_px: IndirectConfig::MARCH_NEAR_PX,
         vpl_interleave: ind.interleave,
         vpl_lanes: ind.vpl_lanes,
-        ssdo_samples: config.ssdo.samples,
-        ssdo_min_samples: config.ssdo.adaptive.map_or(0, |a| a.min),
-        ssdo_prepass_scale: config.ssdo.adaptive.map_or(1, |a| a.scale),
-        ssdo_threshold_count: config.ssdo.adaptive.map_or(0, |a| a.threshold_count),
-        ssdo_thresholds: config.ssdo.adaptive.map_or([0.0; 4], |a| a.thresholds),
-        ssdo_radius: config.ssdo.radius * f.scene_radius.max(f32::MIN_POSITIVE),
-        ssdo_filter_radius: config.ssdo.filter / 2,
-        ssdo_scale: config.ssdo.scale,
-        direct_enabled: config.effects.direct as u32,
         // Exact equality: an unmoved camera reuses each history texel as is, decided here
         // rather than by a pixel threshold on eq 1, whose fp32 error grows with coordinates.
         camera_static: (view_proj == f.prev_view_proj) as u32,

@@ -10,6 +10,7 @@
 
 pub mod args;
 pub mod config;
+mod params;
 pub mod sweep;
 
 use super::effect::TermKind;
@@ -136,6 +137,9 @@ const BLOCK_SAMPLES: Slot = Slot::Own("block_samples");
 const UPSAMPLED: Slot = Slot::Own("upsampled");
 /// Pixels computed and samples taken this frame (the counters header, no work lists).
 const COUNTERS: Slot = Slot::OwnBuffer("counters");
+/// Its parameters (params.rs), bound at 15 in every pass.
+const PARAMS: Slot = Slot::OwnBuffer("params");
+const PARAMS_BIND: Bind = Bind::new(15, PARAMS, Use::BufferRead);
 
 /// Report names of the counters the finishing pass (one step, or the bounce) fills; the mean
 /// sample count per pixel is their ratio (`ssdo_samples_per_pixel` in the report).
@@ -152,6 +156,7 @@ const ONE_STEP: &[Bind] = &[
     Bind::new(5, RAW, Use::StorageWrite),
     Bind::new(6, BLOCK_SAMPLES, Use::Sampled),
     Bind::new(7, COUNTERS, Use::BufferReadWrite),
+    PARAMS_BIND,
 ];
 
 const DIRECTIONAL: &[Bind] = &[
@@ -161,6 +166,7 @@ const DIRECTIONAL: &[Bind] = &[
     Bind::new(3, Slot::DirectLight, Use::Sampled),
     Bind::new(4, LIT, Use::StorageWrite),
     Bind::new(6, BLOCK_SAMPLES, Use::Sampled),
+    PARAMS_BIND,
 ];
 
 const BOUNCE: &[Bind] = &[
@@ -171,12 +177,14 @@ const BOUNCE: &[Bind] = &[
     Bind::new(5, RAW, Use::StorageWrite),
     Bind::new(6, BLOCK_SAMPLES, Use::Sampled),
     Bind::new(7, COUNTERS, Use::BufferReadWrite),
+    PARAMS_BIND,
 ];
 
 const PREPASS: &[Bind] = &[
     Bind::new(0, Slot::GPosition, Use::Sampled),
     Bind::new(1, Slot::GNormal, Use::Sampled),
     Bind::new(2, BLOCK_SAMPLES, Use::StorageWrite),
+    PARAMS_BIND,
 ];
 
 const FILTER_H: &[Bind] = &[
@@ -184,6 +192,7 @@ const FILTER_H: &[Bind] = &[
     Bind::new(1, Slot::GNormal, Use::Sampled),
     Bind::new(2, RAW, Use::Sampled),
     Bind::new(3, HALF_FILTERED, Use::StorageWrite),
+    PARAMS_BIND,
 ];
 
 const FILTER_V: &[Bind] = &[
@@ -191,6 +200,7 @@ const FILTER_V: &[Bind] = &[
     Bind::new(1, Slot::GNormal, Use::Sampled),
     Bind::new(2, HALF_FILTERED, Use::Sampled),
     Bind::new(3, FILTERED, Use::StorageWrite),
+    PARAMS_BIND,
 ];
 
 /// With the cache: one pattern per listed pixel merged into the history (and the refresh tile).
@@ -204,6 +214,7 @@ const ACCUMULATE: &[Bind] = &[
     Bind::new(6, Slot::Counters, Use::WorkList),
     Bind::new(7, Slot::Moments, Use::StorageReadWrite),
     Bind::new(8, BLOCK_SAMPLES, Use::Sampled),
+    PARAMS_BIND,
 ];
 
 /// With the cache: history and moments into the image the filter and composite read.
@@ -212,14 +223,16 @@ const RESOLVE: &[Bind] = &[
     Bind::new(1, Slot::History, Use::Sampled),
     Bind::new(2, Slot::Moments, Use::Sampled),
     Bind::new(3, RAW, Use::StorageWrite),
+    PARAMS_BIND,
 ];
 
-const fn upsample(src: Slot) -> [Bind; 4] {
+const fn upsample(src: Slot) -> [Bind; 5] {
     [
         Bind::new(0, Slot::GPosition, Use::Sampled),
         Bind::new(1, Slot::GNormal, Use::Sampled),
         Bind::new(2, src, Use::Sampled),
         Bind::new(3, UPSAMPLED, Use::StorageWrite),
+        PARAMS_BIND,
     ]
 }
 const UPSAMPLE_FILTERED: &[Bind] = &upsample(FILTERED);
@@ -357,6 +370,7 @@ pub struct SsdoEffect {
     ssao: bool,
     /// Without the cache, SSDO's own counters (with it, its `TemporalEffect`'s).
     own_counters: Option<OwnCounters>,
+    params: Buffer,
     sized: Sized,
     push: EffectPush,
 }
@@ -430,6 +444,7 @@ impl SsdoEffect {
                     readback: CounterReadback::new(s.ctx, FRAMES_IN_FLIGHT)?,
                 })
             },
+            params: params::buffer(s.ctx, s.config)?,
             sized: Self::create_sized(s.ctx, s.config)?,
             push: EffectPush::default(),
         })
@@ -510,9 +525,13 @@ impl SsdoEffect {
         }
     }
 
-    /// `Slot::OwnBuffer` bindings: the counters, when SSDO keeps its own.
-    fn own_buffers(&self) -> Option<[(Slot, &Buffer); 1]> {
-        self.own_counters.as_ref().map(|c| [(COUNTERS, &c.gpu)])
+    /// `Slot::OwnBuffer` bindings: the parameters, and the counters when SSDO keeps its own.
+    fn own_buffers(&self) -> Vec<(Slot, &Buffer)> {
+        let counters = self.own_counters.as_ref().map(|c| (COUNTERS, &c.gpu));
+        [(PARAMS, &self.params)]
+            .into_iter()
+            .chain(counters)
+            .collect()
     }
 
     /// The image the composite reads: upsampled, filtered, or the raw result.
@@ -555,7 +574,7 @@ impl Effect for SsdoEffect {
     fn bind(&self, ctx: &Context, targets: &Targets) -> Result<()> {
         let own = self.own();
         let buffers = self.own_buffers();
-        let res = self.resources(targets, &own, buffers.as_ref().map_or(&[], |b| b));
+        let res = self.resources(targets, &own, &buffers);
         match &self.form {
             Form::Single(p) => p.bind(ctx, &res)?,
             Form::TwoStep {
@@ -642,7 +661,7 @@ impl Effect for SsdoEffect {
     fn record(&self, info: &FrameInfo<'_>, r: &mut Recording<'_>) {
         let own = self.own();
         let buffers = self.own_buffers();
-        let res = self.resources(info.targets, &own, buffers.as_ref().map_or(&[], |b| b));
+        let res = self.resources(info.targets, &own, &buffers);
         let grid = &self.sized.images[1].desc;
         // With the cache the reprojection resets the temporal counters.
         if let Some(c) = &self.own_counters {
