@@ -12,6 +12,7 @@ pub const GENERATED: &[(&str, &str)] = &[
     ("Frame", "FrameBlock"),
     ("Ccipca", "CcipcaPush"),
     ("Ssdo", "SsdoParams"),
+    ("Ao", "AoParams"),
     ("Effect", "EffectPush"),
     ("Counters", "CountersHeader"),
     ("Material", "MaterialPush"),

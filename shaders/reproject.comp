@@ -56,7 +56,8 @@ layout(push_constant) uniform Reproject {
     uvec4 refresh_rect_2;
     uvec4 lane_0;         // lane k: (active, history_valid, log2 of the work-block side (0: a
                           //          list of single pixels), moving objects' reach: MOVED_*
-                          //          below, 0 = none)
+                          //          below in bits 0-7, 0 = none; MOVED_SCREEN's extra
+                          //          pixels above)
     uvec4 lane_1;
     uvec4 lane_2;
     uvec4 reaccumulate;   // x: bit k set = lane k starts re-accumulating this frame; y: bit k
@@ -151,34 +152,38 @@ float moved_distance(vec3 p) {
     return length(max(max(frame.moved_min - p, p - frame.moved_max), vec3(0.0)));
 }
 
-// Whether a screen-space estimate with world radius `radius` at p can read a pixel of the
-// moved box's screen footprint. Its taps read the G-buffer wherever points within the radius
+// Whether a screen-space estimate with world radius `radius` at p, whose taps reach `pad_px`
+// pixels further (coarse position levels' blocks), can read a pixel of the moved box's screen
+// footprint. Its taps read the G-buffer wherever points within the radius
 // of p project (the thesis's steps go as far as the radius projected at p's depth, Mittring's
 // and Szentandrasi's points are nearer the eye by up to the radius): so within the radius
 // projected at (depth - radius), with a floor of a tenth of the depth (a closer eye grows the
 // reach to most of the screen), plus the coarsest position level's block (far taps) and a
 // pixel. No hard cut at the radius in world space: a tap that lands on the moved object in
 // front counts, only attenuated.
-bool moved_on_screen(vec3 p, float radius) {
+bool moved_on_screen(vec3 p, float radius, float pad_px) {
     float depth = max((frame.view_proj * vec4(p, 1.0)).w, 1e-30);
     float near = max(depth - radius, 0.1 * depth);
     float grow = radius * float(frame.size.y) / (2.0 * frame.tan_half_fov * near) +
-                 float(1u << frame.ao_position_mips) + 1.0;
+                 pad_px + 1.0;
     vec2 c = vec2(gl_GlobalInvocationID.xy) + 0.5;
     vec4 r = frame.moved_screen_rect;
     return all(greaterThanEqual(c, r.xy - grow)) && all(lessThanEqual(c, r.zw + grow));
 }
 
-// Whether what moved this frame reaches the value of a lane with reach `mode` (and, for
-// MOVED_SCREEN, sampling radius `reach_radius` relative to the scene's) at p. The
+// Whether what moved this frame reaches the value of a lane with reach `reach` (MOVED_* in its
+// low 8 bits; for MOVED_SCREEN, the taps' extra pixels above them, and sampling radius
+// `reach_radius` relative to the scene's) at p. The
 // shadow footprint is widened by the PCF kernel (pcf_radius texels, and two for the tap's
 // bilinear reach and rounding): a shadow test there may meet the moved object, one outside it
 // cannot.
-bool moved_reaches(uint mode, float reach_radius, vec3 p) {
+bool moved_reaches(uint reach, float reach_radius, vec3 p) {
+    uint mode = reach & 0xffu;
     if (frame.moved_count == 0u || mode == 0u) return false;
     float d = moved_distance(p);
     if (mode == MOVED_SCREEN) {
-        return d <= 0.0 || moved_on_screen(p, reach_radius * frame.scene_radius);
+        float pad_px = float(reach >> 8);
+        return d <= 0.0 || moved_on_screen(p, reach_radius * frame.scene_radius, pad_px);
     }
     if (d <= 0.0) return true;
     if (mode != MOVED_SHADOW) return false;

@@ -11,7 +11,7 @@ use ssgi::bench::tables::reuse::rows::{REFERENCE_AO_PATTERNS, REFERENCE_PCF};
 use ssgi::config::pcf::Pcf;
 use ssgi::config::{TemporalConfig, MAX_PATTERNS};
 use ssgi::effects::ao::config::AoConfig;
-use ssgi::renderer::frame::REFERENCE_PATTERN_BASE;
+use ssgi::effects::ao::params::REFERENCE_PATTERN_BASE;
 use ssgi::shaders::{DescriptorKind, ProbePush, ReflectedBinding, PATTERN_OFFSETS_COMP};
 use ssgi::vk::recorder::Recorder;
 use ssgi::vk::{one_shot, Access, Buffer, Context, DescriptorPool, Pipeline, SetWriter, Tracker};

@@ -97,7 +97,7 @@ fn compute_modules_have_workgroups_and_graphics_do_not() {
 mod block_layout;
 
 use ssgi::shaders::{
-    BlockMember, CcipcaPush, CountersHeader, EffectPush, FrameBlock, GBufferResolvePush,
+    AoParams, BlockMember, CcipcaPush, CountersHeader, EffectPush, FrameBlock, GBufferResolvePush,
     ImageStatsPush, MaterialPush, ProbePush, ReprojectPush, SsdoParams, PROBES,
 };
 
@@ -108,6 +108,7 @@ fn generated(name: &str) -> (&'static [BlockMember], usize) {
         "Effect" => (EffectPush::MEMBERS, EffectPush::SIZE),
         "Ccipca" => (CcipcaPush::MEMBERS, CcipcaPush::SIZE),
         "Ssdo" => (SsdoParams::MEMBERS, SsdoParams::SIZE),
+        "Ao" => (AoParams::MEMBERS, AoParams::SIZE),
         "Counters" => (CountersHeader::MEMBERS, CountersHeader::SIZE),
         "Material" => (MaterialPush::MEMBERS, MaterialPush::SIZE),
         "Probe" => (ProbePush::MEMBERS, ProbePush::SIZE),

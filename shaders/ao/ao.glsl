@@ -6,6 +6,7 @@
 #define AO_GLSL
 
 #include "frame.glsl"
+#include "ao_params.glsl"
 #include "patterns.glsl"
 #include "hemisphere.glsl"
 
@@ -23,7 +24,7 @@ const uint AO_MAX_STEPS = 4u;
 // the full-resolution image, or with --ao-position-mips a point-sampled level for far taps,
 // which keeps far taps of neighbouring pixels in a few cache lines.
 vec4 ao_tap_position(ivec2 q_pixel, float dist_px) {
-    uint mips = frame.ao_position_mips;
+    uint mips = ao.position_mips;
     if (mips == 0u || dist_px < exp2(AO_MIP_OFFSET + 1.0))
         return texelFetch(g_position, q_pixel, 0);
     uint level = min(uint(log2(dist_px) - AO_MIP_OFFSET), mips);
@@ -47,16 +48,16 @@ vec2 rotate2(vec2 v, vec2 cs) {
 // over every tap, divided by their count, the estimate. Spread passes split a pattern's taps
 // over lanes with it.
 float ao_thesis_taps(ivec2 pixel, vec3 p, vec3 n, uint pattern, uint first, uint end) {
-    uint dirs = frame.ao_directions;
-    uint steps = frame.ao_steps;
-    float radius = frame.ao_radius;
+    uint dirs = ao.directions;
+    uint steps = ao.steps;
+    float radius = ao.radius * frame.scene_radius;
     float inv_radius = 1.0 / radius;
     // View depth (clip w of a perspective projection): a sphere's projected size follows the
     // depth along the view axis, not the distance, which is larger towards the image corners.
     float depth = max((frame.view_proj * vec4(p, 1.0)).w, 1e-30);
     // The world radius projected to pixels at this depth; eq 8's far.
     float px_per_world = float(frame.size.y) / (2.0 * frame.tan_half_fov * depth);
-    float near_px = frame.ao_near_px;
+    float near_px = ao.near_px;
     // At most a quarter of the image, at least 1.5 near steps; on images under 9 px the lower
     // bound wins (clamp with min > max is undefined in GLSL).
     float far_px = max(min(radius * px_per_world, 0.25 * float(frame.size.y)), near_px * 1.5);
@@ -98,14 +99,14 @@ float ao_thesis_taps(ivec2 pixel, vec3 p, vec3 n, uint pattern, uint first, uint
             float len = sqrt(d2);
             float x = len * inv_radius;
             // max(n . v/|v|, 0) / D(x), with one division.
-            sum += max(dot(n, v), 0.0) / (len * (1.0 + frame.ao_atten_a * x + frame.ao_atten_b * x * x));
+            sum += max(dot(n, v), 0.0) / (len * (1.0 + ao.atten_a * x + ao.atten_b * x * x));
         }
     }
     return sum;
 }
 
 float ao_thesis(ivec2 pixel, vec3 p, vec3 n, uint pattern) {
-    uint taps = frame.ao_directions * frame.ao_steps;
+    uint taps = ao.directions * ao.steps;
     return ao_thesis_taps(pixel, p, n, pattern, 0u, taps) / float(taps);
 }
 
@@ -115,8 +116,8 @@ float ao_thesis(ivec2 pixel, vec3 p, vec3 n, uint pattern) {
 // scaled per pattern: their radii already vary continuously.
 // Occluded points among points [first, end) of the pattern.
 float ao_crytek_taps(ivec2 pixel, vec3 p, uint pattern, uint first, uint end) {
-    uint count = frame.ao_samples;
-    float radius = frame.ao_radius;
+    uint count = ao.samples;
+    float radius = ao.radius * frame.scene_radius;
     vec3 view_dir = safe_normalize(p - frame.camera_pos, vec3(0.0, 0.0, -1.0));
     vec3 t = safe_normalize(cross(view_dir, abs(view_dir.y) < 0.99 ? vec3(0, 1, 0) : vec3(1, 0, 0)), vec3(1, 0, 0));
     vec3 b = cross(view_dir, t);
@@ -146,7 +147,7 @@ float ao_crytek_taps(ivec2 pixel, vec3 p, uint pattern, uint first, uint end) {
 }
 
 float ao_crytek(ivec2 pixel, vec3 p, uint pattern) {
-    return ao_crytek_taps(pixel, p, pattern, 0u, frame.ao_samples) / float(frame.ao_samples);
+    return ao_crytek_taps(pixel, p, pattern, 0u, ao.samples) / float(ao.samples);
 }
 
 // Szentandrasi section 3.1: K points p + r omega in the hemisphere around the normal (Halton
@@ -154,8 +155,8 @@ float ao_crytek(ivec2 pixel, vec3 p, uint pattern) {
 // is the fraction that lie behind the visible surface (hemisphere.glsl). Pattern j takes
 // Halton indices j K .. j K + K - 1, so accumulated patterns continue one sequence.
 float ao_szentandrasi_taps(ivec2 pixel, vec3 p, vec3 n, uint pattern, uint first, uint end) {
-    uint count = frame.ao_samples;
-    float r_max = frame.ao_radius;
+    uint count = ao.samples;
+    float r_max = ao.radius * frame.scene_radius;
     float occluded = 0.0;
     for (uint k = first; k < end; ++k) {
         vec4 w = hemisphere_sample(pattern * count + k, pixel, n, r_max);
@@ -165,7 +166,7 @@ float ao_szentandrasi_taps(ivec2 pixel, vec3 p, vec3 n, uint pattern, uint first
 }
 
 float ao_szentandrasi(ivec2 pixel, vec3 p, vec3 n, uint pattern) {
-    uint count = frame.ao_samples;
+    uint count = ao.samples;
     return ao_szentandrasi_taps(pixel, p, n, pattern, 0u, count) / float(max(count, 1u));
 }
 
@@ -173,14 +174,14 @@ float ao_szentandrasi(ivec2 pixel, vec3 p, vec3 n, uint pattern) {
 // pattern indices arrive as floats from the history's count channel, exact below 2^24).
 // Taps one pattern of the configured estimator reads (the work counters' evaluations).
 uint ao_taps() {
-    return frame.ao_estimator == 0u ? frame.ao_directions * frame.ao_steps : frame.ao_samples;
+    return ao.estimator == 0u ? ao.directions * ao.steps : ao.samples;
 }
 
 // The sum of taps [first, end) of pattern `pattern` of the configured estimator: over every
 // tap (ao_taps()), divided by their count, that pattern's occlusion.
 float ao_taps_sum(ivec2 pixel, vec3 p, vec3 n, uint pattern, uint first, uint end) {
-    if (frame.ao_estimator == 1u) return ao_crytek_taps(pixel, p, pattern, first, end);
-    if (frame.ao_estimator == 2u) return ao_szentandrasi_taps(pixel, p, n, pattern, first, end);
+    if (ao.estimator == 1u) return ao_crytek_taps(pixel, p, pattern, first, end);
+    if (ao.estimator == 2u) return ao_szentandrasi_taps(pixel, p, n, pattern, first, end);
     return ao_thesis_taps(pixel, p, n, pattern, first, end);
 }
 
@@ -188,8 +189,8 @@ float ao_estimate(ivec2 pixel, vec3 p, vec3 n, float first, uint patterns) {
     float sum = 0.0;
     for (uint j = 0u; j < patterns; ++j) {
         uint pattern = uint(first) + j;
-        if (frame.ao_estimator == 1u) sum += ao_crytek(pixel, p, pattern);
-        else if (frame.ao_estimator == 2u) sum += ao_szentandrasi(pixel, p, n, pattern);
+        if (ao.estimator == 1u) sum += ao_crytek(pixel, p, pattern);
+        else if (ao.estimator == 2u) sum += ao_szentandrasi(pixel, p, n, pattern);
         else sum += ao_thesis(pixel, p, n, pattern);
     }
     return sum / float(max(patterns, 1u));

@@ -32,10 +32,10 @@ void main() {
         float visibility = 1.0;
         if (position.w != 0.0) {
             vec3 n = texelFetch(g_normal, pixel, 0).xyz;
-            visibility = 1.0 - ao_estimate(pixel, position.xyz, n, float(frame.pattern_base), frame.ao_patterns);
+            visibility = 1.0 - ao_estimate(pixel, position.xyz, n, float(ao.pattern_base), ao.patterns);
             atomicAdd(block_computed, 1u);
         }
-        imageStore(ao_out, pixel, vec4(visibility, 0.0, 0.0, float(frame.ao_patterns)));
+        imageStore(ao_out, pixel, vec4(visibility, 0.0, 0.0, float(ao.patterns)));
     }
     barrier();
     if (gl_LocalInvocationIndex == 0u && block_computed > 0u)

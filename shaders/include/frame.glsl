@@ -41,17 +41,6 @@ layout(set = 0, binding = 0, std430) readonly buffer Frame {
     float accumulate_param;    // confidence bias / EMA alpha / mean cap / gate [sigmas]
     float epsilon;             // eq 3 threshold: texel footprints (relative) or world units
     uint epsilon_absolute;     // 0 relative, 1 absolute
-    uint pattern_base;         // first pattern without reuse (0, or an independent range for references)
-    float ao_radius;           // world-space sampling radius
-    float ao_atten_a;          // eq 7: D(d) = 1 + a d + b d^2, d in units of the radius
-    float ao_atten_b;
-    float ao_near_px;          // nearest AO step [px] (eq 8)
-    uint ao_directions;        // thesis estimator: directions
-    uint ao_steps;             // thesis estimator: steps per direction
-    uint ao_samples;           // crytek estimator: samples in the sphere
-    uint ao_patterns;          // patterns per evaluation (1, or many for references)
-    uint ao_estimator;         // 0 thesis, 1 crytek, 2 szentandrasi
-    uint ao_position_mips;     // far AO taps read point-sampled position levels up to this (0 = off)
     uint vpl_count;            // VPLs per gather (0 = every RSM texel)
     uint vpl_visibility;       // screen-space visibility test of each VPL (0/1)
     float vpl_march_near_px;   // nearest step of that visibility march [px]

@@ -8,15 +8,6 @@ pub use crate::shaders::FrameBlock;
 pub use crate::config::pcf::{Pcf, PcfKernel};
 use glam::{Mat4, Vec3};
 
-/// First pattern of multi-pattern evaluations without reuse (references): an index range no
-/// accumulation reaches (rotation limits stay at most `MAX_PATTERNS`), so a reference is drawn
-/// from points independent of the ones it judges instead of repeating them (shaders/include/
-/// patterns.glsl: the golden sequence is shifted by a generic fraction, and the index has
-/// nonzero low digits in bases 2 and 3, so its radical inverses are not the accumulated
-/// patterns' own strata). Below 2^20, so the index converts exactly to a float in the shaders,
-/// and times 4096 AO samples it stays below 2^32.
-pub const REFERENCE_PATTERN_BASE: u32 = 1_000_003;
-
 /// Everything that changes per frame, besides the configuration.
 pub struct FrameInputs<'a> {
     pub camera: &'a Camera,
@@ -40,10 +31,8 @@ pub fn frame_block(config: &RenderConfig, f: &FrameInputs<'_>) -> FrameBlock {
     let aspect = config.width as f32 / config.height as f32;
     let light = f.light;
     let t = &config.temporal;
-    let ao = &config.ao;
     let (pcf_kernel, pcf_count) = config.pcf.shader_params();
     let (epsilon, epsilon_absolute) = t.epsilon.shader_params();
-    let (ao_directions, ao_steps) = ao.directions_steps();
     let ind = &config.indirect;
     let view_proj = f.camera.view_proj(aspect);
     FrameBlock {
@@ -80,18 +69,6 @@ pub fn frame_block(config: &RenderConfig, f: &FrameInputs<'_>) -> FrameBlock {
         accumulate_param: t.accumulate.parameter(),
         epsilon,
         epsilon_absolute,
-        pattern_base: pattern_base(ao.patterns),
-        // The radius is relative to the scene's bounding radius (scale-free AO).
-        ao_radius: ao.radius * f.scene_radius.max(f32::MIN_POSITIVE),
-        ao_atten_a: ao.attenuation[0],
-        ao_atten_b: ao.attenuation[1],
-        ao_near_px: ao.near_px,
-        ao_directions,
-        ao_steps,
-        ao_samples: ao.samples,
-        ao_patterns: ao.patterns,
-        ao_position_mips: ao.position_mips,
-        ao_estimator: ao.estimator.code(),
         vpl_count: ind.vpls,
         vpl_visibility: ind.visibility as u32,
         vpl_march_near_px: IndirectConfig::MARCH_NEAR_PX,
@@ -106,15 +83,6 @@ pub fn frame_block(config: &RenderConfig, f: &FrameInputs<'_>) -> FrameBlock {
         moved_min: f.moved.map_or([0.0; 3], |m| m.bounds.min.to_array()),
         moved_count: f.moved.map_or(0, |m| m.count),
         moved_max: f.moved.map_or([0.0; 3], |m| m.bounds.max.to_array()),
-    }
-}
-
-/// Where multi-pattern evaluations start: references draw from `REFERENCE_PATTERN_BASE`.
-fn pattern_base(patterns: u32) -> u32 {
-    if patterns > 1 {
-        REFERENCE_PATTERN_BASE
-    } else {
-        0
     }
 }
 

@@ -120,7 +120,7 @@ impl Reprojection {
                 block_shift: t.kind.block_shift,
                 refresh_rect: push.refresh_rect,
                 moved: if info.config.temporal.invalidate {
-                    t.kind.moved.code()
+                    t.kind.moved.code(info.config)
                 } else {
                     0
                 },

@@ -44,10 +44,10 @@ pub struct EffectKind {
 #[derive(Clone, Copy, Debug)]
 pub enum MovedReach {
     /// Where a screen-space estimate's taps can read the box's screen footprint: within its
-    /// sampling radius (relative to the scene's bounding radius, from the configuration)
-    /// projected near the pixel's depth (taps read whatever the G-buffer shows there,
-    /// attenuated, not cut, beyond the radius in world space).
-    ScreenRadius(fn(&RenderConfig) -> f32),
+    /// sampling radius projected near the pixel's depth (taps read whatever the G-buffer shows
+    /// there, attenuated, not cut, beyond the radius in world space), plus the pixels its
+    /// taps reach beyond that (coarse position levels' blocks); both from the configuration.
+    ScreenRadius(fn(&RenderConfig) -> ScreenReach),
     /// In the box, or where it falls on the shadow map (widened by the PCF kernel): the
     /// only pixels whose shadow test can meet it.
     ShadowFootprint,
@@ -57,11 +57,21 @@ pub enum MovedReach {
     Inside,
 }
 
+/// A screen-space estimate's reach (`MovedReach::ScreenRadius`).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct ScreenReach {
+    /// Sampling radius, relative to the scene's bounding radius.
+    pub radius: f32,
+    /// Pixels the taps reach beyond the projected radius.
+    pub pad_px: u32,
+}
+
 impl MovedReach {
-    /// The lane's mode in shaders/reproject.comp (`MOVED_*`; 0 there = none).
-    pub fn code(self) -> u32 {
+    /// The lane's reach in shaders/reproject.comp: `MOVED_*` in bits 0-7 (0 there = none),
+    /// the screen reach's extra pixels above.
+    pub fn code(self, config: &RenderConfig) -> u32 {
         match self {
-            MovedReach::ScreenRadius(_) => 1,
+            MovedReach::ScreenRadius(reach) => 1 | reach(config).pad_px.min(1 << 16) << 8,
             MovedReach::ShadowFootprint => 2,
             MovedReach::Inside => 3,
         }
@@ -70,7 +80,7 @@ impl MovedReach {
     /// The sampling radius relative to the scene's bounding radius (0 for the other reaches).
     pub fn radius(self, config: &RenderConfig) -> f32 {
         match self {
-            MovedReach::ScreenRadius(radius) => radius(config),
+            MovedReach::ScreenRadius(reach) => reach(config).radius,
             _ => 0.0,
         }
     }

@@ -7,6 +7,7 @@
 
 pub mod args;
 pub mod config;
+pub mod params;
 pub mod sweep;
 
 use super::effect::{
@@ -23,9 +24,9 @@ use crate::resources::counters::{Counter, Role};
 use crate::resources::targets::{Target, Targets, AO_FORMAT, GBUFFER_COLOR_FORMATS};
 use crate::resources::temporal::random_vectors;
 use crate::resources::temporal::Sampling;
-use crate::resources::temporal_effect::{EffectKind, MovedReach, TemporalEffect};
+use crate::resources::temporal_effect::{EffectKind, MovedReach, ScreenReach, TemporalEffect};
 use crate::shaders::{self, EffectPush};
-use crate::vk::{upload_image, Access, Context, Image, ImageDesc};
+use crate::vk::{upload_image, Access, Buffer, Context, Image, ImageDesc};
 use ash::vk;
 use std::sync::Arc;
 
@@ -64,7 +65,11 @@ pub const KIND: EffectKind = EffectKind {
         ),
     ],
     fixups: false,
-    moved: MovedReach::ScreenRadius(|c| c.ao.radius),
+    // Far taps read position levels up to `position_mips`: a block of that level's side.
+    moved: MovedReach::ScreenRadius(|c| ScreenReach {
+        radius: c.ao.radius,
+        pad_px: 1 << c.ao.position_mips,
+    }),
     lit: false,
     reaccumulates: true,
 };
@@ -98,6 +103,8 @@ const BLURRED: Slot = Slot::Own("blurred");
 const LEVEL1: Slot = Slot::Own("position_level1");
 const LEVEL2: Slot = Slot::Own("position_level2");
 const LEVEL3: Slot = Slot::Own("position_level3");
+/// Its parameters (params.rs), bound at 15 in the estimating passes.
+const PARAMS: Slot = Slot::OwnBuffer("params");
 
 const ACCUMULATE: &[Bind] = &[
     Bind::new(0, Slot::GPosition, Use::Sampled),
@@ -110,6 +117,7 @@ const ACCUMULATE: &[Bind] = &[
     Bind::new(7, LEVEL1, Use::Sampled),
     Bind::new(8, LEVEL2, Use::Sampled),
     Bind::new(9, LEVEL3, Use::Sampled),
+    Bind::new(15, PARAMS, Use::BufferRead),
 ];
 
 const FULL: &[Bind] = &[
@@ -121,6 +129,7 @@ const FULL: &[Bind] = &[
     Bind::new(7, LEVEL1, Use::Sampled),
     Bind::new(8, LEVEL2, Use::Sampled),
     Bind::new(9, LEVEL3, Use::Sampled),
+    Bind::new(15, PARAMS, Use::BufferRead),
 ];
 
 const CHAIN: &[Bind] = &[
@@ -195,6 +204,7 @@ pub struct AoEffect {
     /// Writes the position levels (`--ao-position-mips` above 0).
     chain: Option<ComputePass>,
     random: Image,
+    params: Buffer,
     sized: Sized,
     push: EffectPush,
 }
@@ -250,6 +260,7 @@ impl AoEffect {
             blur,
             chain,
             random,
+            params: params::buffer(s.ctx, s.config)?,
             sized: Self::create_sized(s.ctx, s.config)?,
             push: EffectPush::default(),
         })
@@ -297,12 +308,13 @@ impl AoEffect {
         &'a self,
         targets: &'a Targets,
         own: &'a [(Slot, [&'a Image; 2]); 6],
+        buffers: &'a [(Slot, &'a Buffer); 1],
     ) -> EffectResources<'a> {
         EffectResources {
             targets,
             temporal: Some(&self.sized.temporal),
             own,
-            own_buffers: &[],
+            own_buffers: buffers,
         }
     }
 
@@ -352,7 +364,8 @@ impl Effect for AoEffect {
 
     fn bind(&self, ctx: &Context, targets: &Targets) -> Result<()> {
         let own = self.own();
-        let res = self.resources(targets, &own);
+        let buffers = [(PARAMS, &self.params)];
+        let res = self.resources(targets, &own, &buffers);
         self.ssao.bind(ctx, &res)?;
         if let Some(p) = &self.refresh {
             p.bind(ctx, &res)?;
@@ -395,7 +408,8 @@ impl Effect for AoEffect {
 
     fn record(&self, info: &FrameInfo<'_>, r: &mut Recording<'_>) {
         let own = self.own();
-        let res = self.resources(info.targets, &own);
+        let buffers = [(PARAMS, &self.params)];
+        let res = self.resources(info.targets, &own, &buffers);
         let push = self.push.to_bytes();
         // The every-pixel baseline has no work list and no push constants.
         let (push, dispatch): (&[u8], _) = if self.reuse {

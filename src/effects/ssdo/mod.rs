@@ -27,7 +27,7 @@ use crate::passes::{PassId, PassLayout};
 use crate::resources::counters::{self, Counter, CounterReadback, Role};
 use crate::resources::targets::{Target, Targets, AO_FORMAT};
 use crate::resources::temporal::Sampling;
-use crate::resources::temporal_effect::{EffectKind, MovedReach, TemporalEffect};
+use crate::resources::temporal_effect::{EffectKind, MovedReach, ScreenReach, TemporalEffect};
 use crate::shaders::{self, EffectPush};
 use crate::vk::recorder::Recorder;
 use crate::vk::{Buffer, Context, Image, ImageDesc, Tracker};
@@ -72,7 +72,11 @@ pub const KIND: EffectKind = EffectKind {
         ),
     ],
     fixups: false,
-    moved: MovedReach::ScreenRadius(|c| c.ssdo.radius),
+    // Its samples read the full-resolution G-buffer: no pixels beyond the radius.
+    moved: MovedReach::ScreenRadius(|c| ScreenReach {
+        radius: c.ssdo.radius,
+        pad_px: 0,
+    }),
     lit: true,
     reaccumulates: false,
 };

@@ -28,7 +28,7 @@ use std::sync::Arc;
 pub const COLUMNS: [&str; 4] = ["ao", "indirect", "reproject", "total"];
 
 /// AO patterns of the reference: 32 x 32 samples = 1024 per pixel, no blur, drawn from
-/// `REFERENCE_PATTERN_BASE` on (renderer::frame): points of the same uniform kernel that no
+/// `REFERENCE_PATTERN_BASE` on (effects::ao::params): points of the same uniform kernel that no
 /// accumulation uses, so an accumulation that misses part of the kernel shows as error.
 pub const REFERENCE_AO_PATTERNS: u32 = 32;
 /// PCF of the reference: the reuse row's disc (Vogel spiral over the same radius) with 1024
