@@ -13,6 +13,7 @@ pub const GENERATED: &[(&str, &str)] = &[
     ("Ccipca", "CcipcaPush"),
     ("Ssdo", "SsdoParams"),
     ("Ao", "AoParams"),
+    ("Sraa", "SraaPush"),
     ("Effect", "EffectPush"),
     ("Counters", "CountersHeader"),
     ("Material", "MaterialPush"),

@@ -98,7 +98,7 @@ mod block_layout;
 
 use ssgi::shaders::{
     AoParams, BlockMember, CcipcaPush, CountersHeader, EffectPush, FrameBlock, GBufferResolvePush,
-    ImageStatsPush, MaterialPush, ProbePush, ReprojectPush, SsdoParams, PROBES,
+    ImageStatsPush, MaterialPush, ProbePush, ReprojectPush, SraaPush, SsdoParams, PROBES,
 };
 
 /// The generated struct of a GLSL block: its members and size.
@@ -109,6 +109,7 @@ fn generated(name: &str) -> (&'static [BlockMember], usize) {
         "Ccipca" => (CcipcaPush::MEMBERS, CcipcaPush::SIZE),
         "Ssdo" => (SsdoParams::MEMBERS, SsdoParams::SIZE),
         "Ao" => (AoParams::MEMBERS, AoParams::SIZE),
+        "Sraa" => (SraaPush::MEMBERS, SraaPush::SIZE),
         "Counters" => (CountersHeader::MEMBERS, CountersHeader::SIZE),
         "Material" => (MaterialPush::MEMBERS, MaterialPush::SIZE),
         "Probe" => (ProbePush::MEMBERS, ProbePush::SIZE),

@@ -50,9 +50,6 @@ layout(set = 0, binding = 0, std430) readonly buffer Frame {
     uint indirect_input;       // test input: 0 the gather, 1 world position (IndirectInput::Ramp), 2 + i NaN at pixel index i (Renderer::plant_nan)
     vec3 prev_camera_pos;      // last frame's eye: the history's footprint on each surface
     uint history_resample;     // moving camera: 0 best-registered tap, 1 bilinear blend
-    float aa_sigma_z;          // SRAA eq 1: scale on the relative eye-distance difference
-    float aa_sigma_n;          // SRAA eq 1: scale on 1 - sat(n_j . n_i)
-    float aa_sigma_shadow;     // SRAA: scale on the shadow tests' difference (0 = no term)
     uint noisy_half_res;       // the noisy gather (CCIPCA, joint bilateral): one pixel per 2x2 block gathers (0/1)
     vec4 moved_light_rect;     // the moved box's footprint on the shadow map (x0, y0, x1, y1) [texels]
     vec4 moved_screen_rect;    // its footprint on the screen (x0, y0, x1, y1) [px]

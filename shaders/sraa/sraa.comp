@@ -3,7 +3,7 @@
 // pixel was shaded once (the composite, at the G-buffer's pixel centre); its four subpixels
 // (the rotated grid of subpixel.glsl, rendered geometry only) each rebuild their shading from
 // the shaded pixels around them with eq 1's bilateral weights, and the pixel is the box
-// filter of its four subpixels. With `frame.aa_sigma_shadow` > 0 a hard shadow-map test at
+// filter of its four subpixels. With `sraa.sigma_shadow` > 0 a hard shadow-map test at
 // every sample joins the weight (the report's section 3.2), so shading does not cross shadow
 // edges, which the eye's geometry cannot see.
 #extension GL_GOOGLE_include_directive : require
@@ -13,6 +13,13 @@
 #include "subpixel.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
+
+// Eq 1's weights (post/sraa/config.rs). build.rs generates the Rust struct `SraaPush`.
+layout(push_constant) uniform Sraa {
+    float sigma_z;      // scale on the relative eye-distance difference
+    float sigma_n;      // scale on 1 - sat(n_j . n_i)
+    float sigma_shadow; // scale on the shadow tests' difference (0 = no term)
+} sraa;
 
 layout(set = 1, binding = 0) uniform texture2D g_position;
 layout(set = 1, binding = 1) uniform texture2D g_normal;
@@ -59,7 +66,7 @@ Sample sample_at(vec4 position, vec4 normal) {
     s.n = normal.xyz;
     s.dist = position.w != 0.0 ? max(length(position.xyz - frame.camera_pos), 1e-30) : 0.0;
     s.lit = 1.0;
-    if (position.w != 0.0 && frame.aa_sigma_shadow > 0.0) {
+    if (position.w != 0.0 && sraa.sigma_shadow > 0.0) {
         vec3 l = safe_normalize(frame.light_pos - position.xyz, -frame.light_dir);
         float cos_surface = dot(s.n, l);
         s.lit = cos_surface > 0.0
@@ -80,9 +87,9 @@ float weight(Sample i, Sample j) {
     if (gi != gj) return 0.0;
     if (!gi) return 1.0;
     float dz = (j.dist - i.dist) / max(i.dist, j.dist);
-    float w = gauss(frame.aa_sigma_z * dz)
-        * gauss(frame.aa_sigma_n * (1.0 - clamp(dot(j.n, i.n), 0.0, 1.0)));
-    if (frame.aa_sigma_shadow > 0.0) w *= gauss(frame.aa_sigma_shadow * (j.lit - i.lit));
+    float w = gauss(sraa.sigma_z * dz)
+        * gauss(sraa.sigma_n * (1.0 - clamp(dot(j.n, i.n), 0.0, 1.0)));
+    if (sraa.sigma_shadow > 0.0) w *= gauss(sraa.sigma_shadow * (j.lit - i.lit));
     return w;
 }
 

@@ -28,7 +28,7 @@ pub fn create(
     REGISTRY
         .iter()
         .filter(|r| (r.enabled)(config))
-        .map(|r| (r.create)(ctx, pool))
+        .map(|r| (r.create)(ctx, pool, config))
         .collect()
 }
 

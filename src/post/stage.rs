@@ -34,7 +34,8 @@ pub trait PostStage {
 }
 
 /// Creates a post stage's pipelines and descriptor sets.
-pub type CreateStage = fn(&Arc<Context>, &DescriptorPool) -> Result<Box<dyn PostStage>>;
+pub type CreateStage =
+    fn(&Arc<Context>, &DescriptorPool, &RenderConfig) -> Result<Box<dyn PostStage>>;
 
 /// How a post stage plugs in: when the configuration turns it on, how to create it, its
 /// pipelines for the reflection check, and its passes.

@@ -21,7 +21,7 @@ use crate::passes::layout::PassLayout;
 use crate::passes::raster::{begin_attachments, FLAT_BINDINGS, VERTEX_ATTRIBUTES, VERTEX_BINDINGS};
 use crate::resources::scene_gpu::SceneGpu;
 use crate::resources::targets::{DEPTH_FORMAT, GBUFFER_COLOR_FORMATS};
-use crate::shaders;
+use crate::shaders::{self, SraaPush};
 use crate::vk::recorder::Recorder;
 use crate::vk::{Context, DescriptorPool, GraphicsDesc, Pipeline, Tracker};
 use std::sync::Arc;
@@ -42,7 +42,7 @@ pub mod pass {
 
 pub const REGISTRATION: PostRegistration = PostRegistration {
     enabled: |c: &RenderConfig| c.aa.mode.subpixel(),
-    create: |ctx, pool| Ok(Box::new(SraaPass::new(ctx, pool)?)),
+    create: |ctx, pool, config| Ok(Box::new(SraaPass::new(ctx, pool, config)?)),
     layouts,
     passes: pass::ALL,
     geometry_passes: &[pass::SRAA_GEOMETRY],
@@ -97,10 +97,12 @@ pub fn layouts() -> Vec<PassLayout> {
 pub struct SraaPass {
     geometry: Pipeline,
     reconstruct: ComputePass,
+    /// Eq 1's weights, constant for the configuration.
+    push: SraaPush,
 }
 
 impl SraaPass {
-    pub fn new(ctx: &Arc<Context>, pool: &DescriptorPool) -> Result<Self> {
+    pub fn new(ctx: &Arc<Context>, pool: &DescriptorPool, config: &RenderConfig) -> Result<Self> {
         let desc = GraphicsDesc {
             vertex: &shaders::MESH_VERT_SUBPIXEL,
             fragment: &shaders::SUBPIXEL_FRAG,
@@ -113,6 +115,11 @@ impl SraaPass {
         Ok(Self {
             geometry: Pipeline::graphics(ctx, name, &desc, FLAT_BINDINGS)?,
             reconstruct: ComputePass::new(ctx, pool, pass::SRAA, &shaders::SRAA_COMP, RECONSTRUCT)?,
+            push: SraaPush {
+                sigma_z: config.aa.sraa.sigma_z,
+                sigma_n: config.aa.sraa.sigma_n,
+                sigma_shadow: config.aa.shadow_scale(),
+            },
         })
     }
 
@@ -153,7 +160,7 @@ impl SraaPass {
             tracker,
             frame,
             res,
-            &[],
+            &self.push.to_bytes(),
             Dispatch::Pixels { width, height },
         );
     }

@@ -26,7 +26,7 @@ pub mod pass {
 
 pub const REGISTRATION: PostRegistration = PostRegistration {
     enabled: |c: &RenderConfig| c.aa.mode.supersampling() > 1,
-    create: |ctx, pool| Ok(Box::new(SsaaPass::new(ctx, pool)?)),
+    create: |ctx, pool, _| Ok(Box::new(SsaaPass::new(ctx, pool)?)),
     layouts: || vec![layout()],
     passes: pass::ALL,
     geometry_passes: &[],
