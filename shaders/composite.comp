@@ -1,8 +1,9 @@
 #version 460
 // Composite and tonemap: ambient x albedo x the product of the visibility terms, plus the
-// radiance terms, Reinhard tonemap, sRGB encode. An SSDO term's modulation factor (a) darkens
-// the ambient light and the direct radiance; its bounce (rgb) adds as irradiance. The effects' images arrive as numbered terms
-// with a kind each (src/effects/effect.rs `TermKind`), so no effect combination needs a variant.
+// radiance terms, Reinhard tonemap, sRGB encode. A bounce-and-modulation term's factor (a)
+// darkens the ambient light and the direct radiance; its bounce (rgb) adds as irradiance. The
+// effects' images arrive as numbered terms with a kind each (src/effects/effect.rs
+// `TermKind`), so no effect combination needs a variant.
 // With antialiasing (the `linear` permutation) the tonemapped colour is written display-linear
 // to an fp32 image, which the antialiasing pass filters and encodes.
 // @permutation srgb:
@@ -44,7 +45,7 @@ float visibility_of(uint kind, vec4 t) {
     return kind == TERM_AMBIENT_VISIBILITY ? t.r : 1.0;
 }
 
-// A bounce-and-modulation term's modulation factor (1 for other kinds): SSDO's.
+// A bounce-and-modulation term's modulation factor (1 for other kinds).
 float modulation_of(uint kind, vec4 t) {
     return kind == TERM_BOUNCE_MODULATION ? t.a : 1.0;
 }

@@ -10,7 +10,7 @@
 //   max_blocks                size of the block list; the fix-up list follows it in `data`
 //   fixup_dispatch_x, _y, _z  ceil(fixup_pixels / 64), y = z = 1
 //   refresh_evaluations       pattern evaluations of the refresh tile (every pattern counts)
-//   samples                   hemisphere samples taken (SSDO: their sum over computed_pixels)
+//   samples                   samples taken, summed over computed_pixels (a per-pixel count)
 //   invalidated_pixels        pixels whose history held but a moving object's reach dropped it
 //   lowres_samples            low-resolution samples listed for the gather (half-res indirect)
 //   lowres_dispatch_x, _y, _z the spread gather's workgroups (classify), y = z = 1

@@ -11,7 +11,8 @@
 //!                                                     // over the measured frames that did work
 //!   "skipped_frames": n,  // measured frames that recorded no pass (`--skip-unchanged`)
 //!   "counter_means": { name: mean },  // each counter's mean over measured frames, and
-//!                                     // ssdo_samples_per_pixel = ssdo_samples / ssdo_computed_pixels,
+//!                                     // <effect>_samples_per_pixel = sum of <effect>_samples
+//!                                     //   / sum of <effect>_computed_pixels,
 //!                                     // <pass>_lane_efficiency = sum of <pass>_active_invocations
 //!                                     //   / sum of <pass>_invocations
 //!   "frames": [ { "index", "warmup", "passes": { name: ms }, "skipped": [name],
@@ -103,8 +104,9 @@ pub struct Report {
     pub flicker: Option<FlickerSummary>,
 }
 
-/// Each counter's mean over the measured frames that report it, and the derived mean SSDO
-/// sample count per computed pixel (a ratio of sums: frames weigh by their pixels).
+/// Each counter's mean over the measured frames that report it, and for an effect that counts
+/// both `<effect>_samples` and `<effect>_computed_pixels`, its mean sample count per computed
+/// pixel, `<effect>_samples_per_pixel` (a ratio of sums: frames weigh by their pixels).
 fn counter_means(measured: &[&FrameTiming]) -> BTreeMap<String, f64> {
     let mut sums: BTreeMap<String, (f64, usize)> = BTreeMap::new();
     for t in measured {
@@ -118,11 +120,15 @@ fn counter_means(measured: &[&FrameTiming]) -> BTreeMap<String, f64> {
         .iter()
         .map(|(n, (sum, count))| (n.clone(), sum / *count as f64))
         .collect();
-    if let (Some((samples, _)), Some((pixels, _))) =
-        (sums.get("ssdo_samples"), sums.get("ssdo_computed_pixels"))
-    {
-        if *pixels > 0.0 {
-            means.insert("ssdo_samples_per_pixel".into(), samples / pixels);
+    for (name, (samples, _)) in &sums {
+        let Some(effect) = name.strip_suffix("_samples") else {
+            continue;
+        };
+        match sums.get(&format!("{effect}_computed_pixels")) {
+            Some((pixels, _)) if *pixels > 0.0 => {
+                means.insert(format!("{effect}_samples_per_pixel"), samples / pixels);
+            }
+            _ => {}
         }
     }
     for (pass, efficiency) in lane_efficiencies(&sums) {
@@ -355,7 +361,7 @@ mod tests {
     }
 
     #[test]
-    fn counter_means_average_and_ssdo_ratio_weighs_by_pixels() {
+    fn counter_means_average_and_samples_per_pixel_weighs_by_pixels() {
         let a = frame(vec![("ssdo_computed_pixels", 100), ("ssdo_samples", 1000)]);
         let b = frame(vec![("ssdo_computed_pixels", 300), ("ssdo_samples", 15000)]);
         let m = counter_means(&[&a, &b]);

@@ -56,7 +56,7 @@ pub enum Slot {
     SubNormal(u8),
     /// SRAA: the depth buffer the four subpixel renders share.
     SubDepth,
-    /// The direct effect's outgoing radiance (written by it, read by SSDO's bounce).
+    /// The direct effect's outgoing radiance (written by it, read by effects that bounce it).
     DirectLight,
     /// The temporal effect's history written this frame (rgb value, a = estimates).
     History,

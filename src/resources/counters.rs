@@ -21,7 +21,7 @@ pub const LOWRES_DISPATCH_OFFSET: u64 = CountersHeader::OFFSET_LOWRES_DISPATCH_X
 /// An estimating pass whose work efficiency the header counts (`COUNT_WORK` in counters.glsl).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Role {
-    /// The effect's main estimate over its list (the gather, SSAO, shadow, SSDO).
+    /// The effect's main estimate over its list (the pixels whose value it computed).
     Gather,
     /// The full-resolution fix-up of discarded pixels.
     Fixup,
@@ -41,7 +41,7 @@ pub enum Counter {
     /// Pattern evaluations spent on the refresh tile (each refreshed evaluation counts every
     /// pattern it averages).
     Refresh,
-    /// Hemisphere samples taken over the computed pixels (SSDO).
+    /// Samples taken over the computed pixels (an effect with a per-pixel sample count).
     Samples,
     /// Pixels whose history held but lay within a moving object's reach (`--invalidate`).
     Invalidated,
