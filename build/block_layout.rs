@@ -14,6 +14,7 @@ pub const GENERATED: &[(&str, &str)] = &[
     ("Ssdo", "SsdoParams"),
     ("Ao", "AoParams"),
     ("Sraa", "SraaPush"),
+    ("Vpl", "VplParams"),
     ("Effect", "EffectPush"),
     ("Counters", "CountersHeader"),
     ("Material", "MaterialPush"),

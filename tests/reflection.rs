@@ -98,7 +98,8 @@ mod block_layout;
 
 use ssgi::shaders::{
     AoParams, BlockMember, CcipcaPush, CountersHeader, EffectPush, FrameBlock, GBufferResolvePush,
-    ImageStatsPush, MaterialPush, ProbePush, ReprojectPush, SraaPush, SsdoParams, PROBES,
+    ImageStatsPush, MaterialPush, ProbePush, ReprojectPush, SraaPush, SsdoParams, VplParams,
+    PROBES,
 };
 
 /// The generated struct of a GLSL block: its members and size.
@@ -110,6 +111,7 @@ fn generated(name: &str) -> (&'static [BlockMember], usize) {
         "Ssdo" => (SsdoParams::MEMBERS, SsdoParams::SIZE),
         "Ao" => (AoParams::MEMBERS, AoParams::SIZE),
         "Sraa" => (SraaPush::MEMBERS, SraaPush::SIZE),
+        "Vpl" => (VplParams::MEMBERS, VplParams::SIZE),
         "Counters" => (CountersHeader::MEMBERS, CountersHeader::SIZE),
         "Material" => (MaterialPush::MEMBERS, MaterialPush::SIZE),
         "Probe" => (ProbePush::MEMBERS, ProbePush::SIZE),

@@ -63,17 +63,17 @@ void main() {
     float weight = 1.0;
     vec4 g = inside ? texelFetch(g_position, pixel, 0) : vec4(0.0);
     vec3 n = inside ? texelFetch(g_normal, pixel, 0).xyz : vec3(0.0);
-    bool half_res = frame.noisy_half_res != 0u;
+    bool half_res = vpl_params.noisy_half_res != 0u;
     ivec2 gatherer = block_gatherer(pixel);
     bool own = g.w != 0.0 && (!half_res || pixel == gatherer);
-    uint count = frame.vpl_count;
+    uint count = vpl_params.count;
 #ifdef CCIPCA
     // Adaptive sampling (Chen et al. Figure 6d): a pixel the warp found no history for (no
     // samples, after a camera move) starts from more VPLs.
     if (inside && ccipca.restart == 0u && ccipca.new_pixel_vpls != 0u &&
         bases[pixel_index(pixel)].a == 0.0) {
         count = ccipca.new_pixel_vpls;
-        weight = float(count) / float(max(frame.vpl_count, 1u));
+        weight = float(count) / float(max(vpl_params.count, 1u));
     }
 #endif
     if (own) {

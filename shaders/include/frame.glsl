@@ -41,16 +41,10 @@ layout(set = 0, binding = 0, std430) readonly buffer Frame {
     float accumulate_param;    // confidence bias / EMA alpha / mean cap / gate [sigmas]
     float epsilon;             // eq 3 threshold: texel footprints (relative) or world units
     uint epsilon_absolute;     // 0 relative, 1 absolute
-    uint vpl_count;            // VPLs per gather (0 = every RSM texel)
-    uint vpl_visibility;       // screen-space visibility test of each VPL (0/1)
-    float vpl_march_near_px;   // nearest step of that visibility march [px]
-    uint vpl_interleave;       // interleaved gather: block side N, one VPL subset per pixel (1 = off)
-    uint vpl_lanes;            // lanes sharing a low-resolution sample's VPLs (compacted gather)
     uint camera_static;        // 1 when prev_view_proj equals view_proj exactly (CPU test)
     uint indirect_input;       // test input: 0 the gather, 1 world position (IndirectInput::Ramp), 2 + i NaN at pixel index i (Renderer::plant_nan)
     vec3 prev_camera_pos;      // last frame's eye: the history's footprint on each surface
     uint history_resample;     // moving camera: 0 best-registered tap, 1 bilinear blend
-    uint noisy_half_res;       // the noisy gather (CCIPCA, joint bilateral): one pixel per 2x2 block gathers (0/1)
     vec4 moved_light_rect;     // the moved box's footprint on the shadow map (x0, y0, x1, y1) [texels]
     vec4 moved_screen_rect;    // its footprint on the screen (x0, y0, x1, y1) [px]
     vec3 moved_min;            // box around what moved since last frame, at both places (world)

@@ -62,7 +62,7 @@ bool vpl_visible(vec3 p, vec3 q) {
     if (cp.w <= 0.0 || cq.w <= 0.0) return true;
     vec2 size = vec2(frame.size);
     float len = length((cq.xy / cq.w - cp.xy / cp.w) * 0.5 * size);
-    float near_px = frame.vpl_march_near_px;
+    float near_px = vpl_params.march_near_px;
     if (len <= near_px) return true;
     float ratio = len / near_px;
     #define STEP(i) march_point_visible(p, q, min(near_px * pow(ratio, float(i) / 8.0) / len, 0.95))
@@ -72,7 +72,7 @@ bool vpl_visible(vec3 p, vec3 q) {
 
 vec3 vpl_term(vec3 p, vec3 n, ivec2 texel) {
     vec3 c = vpl_contribution(p, n, texel);
-    if (frame.vpl_visibility != 0u && any(greaterThan(c, vec3(0.0)))) {
+    if (vpl_params.visibility != 0u && any(greaterThan(c, vec3(0.0)))) {
         if (!vpl_visible(p, texelFetch(rsm_position, texel, 0).xyz)) return vec3(0.0);
     }
     return c;
@@ -185,7 +185,7 @@ vec3 rsm_gather(vec3 p, vec3 n, uint pattern, ivec2 pixel, uint interleave) {
     uint shares = interleave * interleave;
     uvec2 slot = uvec2(pixel) % interleave;
     uint share = (slot.x + interleave * slot.y + pattern % shares) % shares;
-    uint vpls = frame.vpl_count;
+    uint vpls = vpl_params.count;
     if (vpls == 0u) return rsm_gather_all(p, n, uvec2(share % interleave, share / interleave), interleave);
     // Per-block rotation: interleaved gradient noise (Jimenez 2014), stable per block.
     float seed = interleaved_gradient_noise(pixel / int(interleave));
@@ -197,7 +197,7 @@ vec3 rsm_gather(vec3 p, vec3 n, uint pattern, ivec2 pixel, uint interleave) {
 // interleave 1): the lanes' parts sum to it, each lane evaluating every lanes-th VPL, so a
 // workgroup gathers one pixel in 1 / lanes of one thread's time.
 vec3 rsm_gather_part(vec3 p, vec3 n, uint pattern, ivec2 pixel, uint lane, uint lanes) {
-    uint vpls = frame.vpl_count;
+    uint vpls = vpl_params.count;
     if (vpls == 0u) return rsm_gather_all_part(p, n, lane, lanes);
     float seed = interleaved_gradient_noise(pixel);
     return rsm_sampled_sum(p, n, pattern, lane, vpls, lanes, seed) / float(vpls);

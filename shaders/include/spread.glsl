@@ -4,6 +4,7 @@
 #define SPREAD_GLSL
 
 #include "frame.glsl"
+#include "vpl_params.glsl"
 
 // Workgroup width of indirect_spread.comp.
 #define SPREAD_LANES 64u
@@ -11,7 +12,7 @@
 // Evaluations of eq 9 in one pattern's every-VPL gather (interleave 1).
 uint rsm_gather_evaluations() {
     uint size = uint(frame.shadow_map_size);
-    return frame.vpl_count == 0u ? size * size : frame.vpl_count;
+    return vpl_params.count == 0u ? size * size : vpl_params.count;
 }
 
 // Lanes that share one estimate: `most` (a power of two up to SPREAD_LANES), or for fewer

@@ -30,9 +30,9 @@ vec4 indirect_value(vec3 p, vec3 n, ivec2 pixel) {
 }
 
 // This frame's estimate for a pixel at p from its interleaved share of the VPLs
-// (frame.vpl_interleave).
+// (vpl_params.interleave).
 vec4 indirect_share(vec3 p, vec3 n, ivec2 pixel) {
-    return indirect_pattern(p, n, effect.pattern, pixel, frame.vpl_interleave);
+    return indirect_pattern(p, n, effect.pattern, pixel, vpl_params.interleave);
 }
 
 // One lane's part of pattern `pattern`'s every-VPL estimate (rgb only): the parts of lanes

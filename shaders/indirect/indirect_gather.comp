@@ -54,6 +54,6 @@ void main() {
     if (group_computed > 0u) atomicAdd(counters.computed_pixels, group_computed);
     uint vpls = rsm_gather_evaluations();
     COUNT_WORK(gather, INTERLEAVE_PIXELS, group_computed,
-               group_computed > 0u ? (vpls + frame.vpl_interleave * frame.vpl_interleave - 1u) /
-                                         (frame.vpl_interleave * frame.vpl_interleave) : 0u)
+               group_computed > 0u ? (vpls + vpl_params.interleave * vpl_params.interleave - 1u) /
+                                         (vpl_params.interleave * vpl_params.interleave) : 0u)
 }

@@ -62,7 +62,7 @@ void main() {
     barrier();
     if (gl_LocalInvocationIndex != 0u) return;
     if (group_computed > 0u) atomicAdd(counters.computed_pixels, group_computed);
-    uint shares = frame.vpl_interleave * frame.vpl_interleave;
+    uint shares = vpl_params.interleave * vpl_params.interleave;
     COUNT_WORK(gather, INTERLEAVE_PIXELS, group_computed,
                group_computed > 0u ? (rsm_gather_evaluations() + shares - 1u) / shares : 0u)
 }

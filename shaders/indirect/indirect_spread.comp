@@ -66,7 +66,7 @@ void refresh_samples(out ivec2 origin, out ivec2 count) {
 #endif
 
 #ifdef GATHER
-#define MOST_LANES frame.vpl_lanes
+#define MOST_LANES vpl_params.lanes
 #else
 #define MOST_LANES SPREAD_LANES
 #endif

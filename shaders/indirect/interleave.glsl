@@ -21,7 +21,7 @@ shared vec4 interleave_normal[INTERLEAVE_PIXELS];
 // the workgroup calls it (it synchronises the workgroup); only `computed` pixels contribute,
 // and only theirs is meaningful.
 vec4 interleave_reconstruct(uvec2 local, bool computed, bool is_new, vec3 p, vec3 n, float footprint, vec4 own) {
-    int side = int(frame.vpl_interleave);
+    int side = int(vpl_params.interleave);
     if (side <= 1) return own; // uniform: the whole dispatch takes the same branch
     uint me = local.y * INTERLEAVE_TILE + local.x;
     interleave_share[me] = vec4(own.rgb, computed ? 1.0 : 0.0);

@@ -1,7 +1,7 @@
 //! Per-frame constants: the `Frame` block (shaders/include/frame.glsl) filled member by
 //! member through the struct build.rs generates from it.
 
-use crate::config::{IndirectConfig, IndirectInput, RenderConfig};
+use crate::config::{IndirectInput, RenderConfig};
 use crate::scene::{Camera, SpotLight};
 pub use crate::shaders::FrameBlock;
 // Old path of the PCF types, until every user imports them from `config::pcf`.
@@ -42,7 +42,6 @@ pub fn frame_block(config: &RenderConfig, f: &FrameInputs<'_>) -> FrameBlock {
         camera_pos: f.camera.position.to_array(),
         prev_camera_pos: f.prev_camera_pos.to_array(),
         history_resample: t.resample.code(),
-        noisy_half_res: config.indirect.noisy_half_res as u32,
         tan_half_fov: (0.5 * f.camera.vfov_deg).to_radians().tan(),
         light_pos: light.position.to_array(),
         light_cos_outer: light.outer_deg.to_radians().cos(),
@@ -66,11 +65,6 @@ pub fn frame_block(config: &RenderConfig, f: &FrameInputs<'_>) -> FrameBlock {
         accumulate_param: t.accumulate.parameter(),
         epsilon,
         epsilon_absolute,
-        vpl_count: ind.vpls,
-        vpl_visibility: ind.visibility as u32,
-        vpl_march_near_px: IndirectConfig::MARCH_NEAR_PX,
-        vpl_interleave: ind.interleave,
-        vpl_lanes: ind.vpl_lanes,
         // Exact equality: an unmoved camera reuses each history texel as is, decided here
         // rather than by a pixel threshold on eq 1, whose fp32 error grows with coordinates.
         camera_static: (view_proj == f.prev_view_proj) as u32,

@@ -19,6 +19,7 @@ use crate::config::{IndirectFilter, RenderConfig};
 use crate::effects::ccipca::config::{
     CcipcaOrthogonalize, CcipcaProject, CcipcaStages, CcipcaWeighting,
 };
+use crate::effects::indirect::{params, VPL_PARAMS};
 use crate::error::Result;
 use crate::passes::compute::{ComputePass, Dispatch, PassDecl};
 use crate::passes::decl::{Bind, Slot, Use};
@@ -122,6 +123,7 @@ const NOISY_GATHER: &[Bind] = &[
     Bind::new(6, BASES, Use::BufferReadWrite),
     Bind::new(7, RESIDUAL, Use::BufferReadWrite),
     Bind::new(8, PARTIALS, Use::BufferWrite),
+    Bind::new(params::BINDING, VPL_PARAMS, Use::BufferRead),
 ];
 
 const SUMS: &[Bind] = &[
@@ -322,6 +324,8 @@ pub struct CcipcaEffect {
     push: CcipcaPush,
     /// Frames since the bases last restarted, up to the memory (`max_age`).
     age: u32,
+    /// The noisy gather's parameters.
+    vpl_params: Buffer,
 }
 
 impl CcipcaEffect {
@@ -336,6 +340,7 @@ impl CcipcaEffect {
             warp: false,
             push: CcipcaPush::default(),
             age: 0,
+            vpl_params: params::buffer(s.ctx, "ccipca.vpl_params", s.config)?,
         })
     }
 
@@ -380,7 +385,7 @@ impl CcipcaEffect {
     }
 
     /// The buffers with `bases[current]` as this frame's.
-    fn buffers(&self, current: usize) -> [(Slot, &Buffer); 5] {
+    fn buffers(&self, current: usize) -> [(Slot, &Buffer); 6] {
         let s = &self.sized;
         [
             (BASES, &s.bases[current]),
@@ -388,6 +393,7 @@ impl CcipcaEffect {
             (PARTIALS, &s.partials),
             (TOTALS, &s.totals),
             (BASES_PREV, &s.bases[1 - current]),
+            (VPL_PARAMS, &self.vpl_params),
         ]
     }
 

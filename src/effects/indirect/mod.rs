@@ -11,6 +11,7 @@
 
 pub mod args;
 pub mod config;
+pub mod params;
 pub mod sweep;
 
 use super::effect::{
@@ -174,14 +175,19 @@ macro_rules! gather_inputs {
             Bind::new(3, Slot::RsmNormal, Use::Sampled),
             Bind::new(4, Slot::RsmFlux, Use::Sampled),
             Bind::new(5, Slot::Counters, Use::WorkList),
+            Bind::new(params::BINDING, VPL_PARAMS, Use::BufferRead),
             $($rest),*
         ]
     };
 }
 
+/// The gather's parameters (params.rs), bound in every pass.
+pub const VPL_PARAMS: Slot = Slot::OwnBuffer("vpl_params");
+
 const CLASSIFY: &[Bind] = &[
     Bind::new(0, Slot::GPosition, Use::Sampled),
     Bind::new(5, Slot::Counters, Use::WorkList),
+    Bind::new(params::BINDING, VPL_PARAMS, Use::BufferRead),
     Bind::new(7, Slot::State, Use::StorageRead),
     Bind::new(11, CLAIMS, Use::BufferReadWrite),
 ];
@@ -354,6 +360,7 @@ pub struct IndirectEffect {
     /// patterns resolved into the history.
     refresh: ComputePass,
     resolve: ComputePass,
+    params: Buffer,
     sized: Sized,
     push: EffectPush,
 }
@@ -400,6 +407,7 @@ impl IndirectEffect {
             gather,
             refresh,
             resolve,
+            params: params::buffer(s.ctx, "indirect.vpl_params", s.config)?,
             sized: Self::create_sized(s.ctx, s.config)?,
             push: EffectPush::default(),
         })
@@ -477,12 +485,13 @@ impl IndirectEffect {
         ]
     }
 
-    fn buffers(&self) -> [(Slot, &Buffer); 3] {
+    fn buffers(&self) -> [(Slot, &Buffer); 4] {
         let s = &self.sized;
         [
             (LOWRES, &s.lowres),
             (PARTIALS, &s.partials),
             (CLAIMS, &s.claims),
+            (VPL_PARAMS, &self.params),
         ]
     }
 
@@ -490,7 +499,7 @@ impl IndirectEffect {
         &'a self,
         targets: &'a Targets,
         own: &'a [(Slot, [&'a Image; 2]); 2],
-        buffers: &'a [(Slot, &'a Buffer); 3],
+        buffers: &'a [(Slot, &'a Buffer); 4],
     ) -> EffectResources<'a> {
         EffectResources {
             targets,

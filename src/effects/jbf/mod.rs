@@ -8,6 +8,7 @@ use super::effect::{
 };
 use super::resolve::EffectResources;
 use crate::config::{IndirectFilter, RenderConfig};
+use crate::effects::indirect::{params, VPL_PARAMS};
 use crate::error::Result;
 use crate::passes::compute::{ComputePass, PassDecl};
 use crate::passes::decl::{Bind, Slot, Use};
@@ -15,7 +16,7 @@ use crate::passes::{PassId, PassLayout};
 use crate::resources::targets::{Target, Targets};
 use crate::resources::temporal_effect::TemporalEffect;
 use crate::shaders;
-use crate::vk::{Context, Image};
+use crate::vk::{Buffer, Context, Image};
 use std::sync::Arc;
 
 /// The effect's name (`Effect::id`).
@@ -45,6 +46,7 @@ const NOISY_GATHER: &[Bind] = &[
     Bind::new(3, Slot::RsmNormal, Use::Sampled),
     Bind::new(4, Slot::RsmFlux, Use::Sampled),
     Bind::new(5, NOISY, Use::StorageWrite),
+    Bind::new(params::BINDING, VPL_PARAMS, Use::BufferRead),
 ];
 
 const FILTER: &[Bind] = &[
@@ -95,6 +97,8 @@ pub struct JbfEffect {
     noisy: ComputePass,
     filter: ComputePass,
     sized: Sized,
+    /// The noisy gather's parameters.
+    vpl_params: Buffer,
 }
 
 impl JbfEffect {
@@ -104,6 +108,7 @@ impl JbfEffect {
             noisy: ComputePass::declared(s.ctx, s.pool, &INDIRECT_NOISY_PLAIN)?,
             filter: ComputePass::declared_with(s.ctx, s.pool, &INDIRECT_JBF, &[r])?,
             sized: Self::create_sized(s.ctx, s.config)?,
+            vpl_params: params::buffer(s.ctx, "jbf.vpl_params", s.config)?,
         })
     }
 
@@ -144,7 +149,7 @@ impl Effect for JbfEffect {
             targets,
             temporal: None,
             own: &own,
-            own_buffers: &[],
+            own_buffers: &[(VPL_PARAMS, &self.vpl_params)],
         };
         self.noisy.bind(ctx, &res)?;
         self.filter.bind(ctx, &res)
@@ -172,7 +177,7 @@ impl Effect for JbfEffect {
             targets: info.targets,
             temporal: None,
             own: &own,
-            own_buffers: &[],
+            own_buffers: &[(VPL_PARAMS, &self.vpl_params)],
         };
         let pixels = every_pixel(info);
         r.timed(crate::effects::ccipca::pass::INDIRECT_NOISY, |rec, tr| {

@@ -1,0 +1,43 @@
+//! The VPL gather's parameter block (shaders/include/vpl_params.glsl): what the gathers that
+//! read the RSM take of the configuration, in a buffer of their own rather than the shared
+//! frame block. The indirect light's cache and the noisy gather (CCIPCA, joint bilateral) each
+//! keep a copy; constant for a configuration (a new configuration makes new effects), so it is
+//! written once.
+
+use crate::config::{IndirectConfig, RenderConfig};
+use crate::error::Result;
+use crate::shaders::VplParams;
+use crate::vk::{Buffer, Context};
+use ash::vk;
+use gpu_allocator::MemoryLocation;
+use std::sync::Arc;
+
+/// Where the effects bind it.
+pub const BINDING: u32 = 15;
+
+/// The block for `c`.
+pub fn params(c: &RenderConfig) -> VplParams {
+    let ind = &c.indirect;
+    VplParams {
+        count: ind.vpls,
+        visibility: ind.visibility as u32,
+        march_near_px: IndirectConfig::MARCH_NEAR_PX,
+        interleave: ind.interleave,
+        lanes: ind.vpl_lanes,
+        noisy_half_res: ind.noisy_half_res as u32,
+    }
+}
+
+/// The block for `c` in a buffer the gathers read (host-visible: written before any
+/// submission that reads it, which makes the write visible to the device).
+pub fn buffer(ctx: &Arc<Context>, name: &str, c: &RenderConfig) -> Result<Buffer> {
+    let mut buffer = Buffer::new(
+        ctx,
+        name,
+        VplParams::SIZE as u64,
+        vk::BufferUsageFlags::STORAGE_BUFFER,
+        MemoryLocation::CpuToGpu,
+    )?;
+    buffer.write(&params(c).to_bytes())?;
+    Ok(buffer)
+}
