@@ -1,7 +1,7 @@
 // The VPL gather's parameters (IndirectConfig), shared by the gathers that read the RSM: the
-// indirect light's cache and the noisy gather the per-frame filters take (CCIPCA, joint
-// bilateral). Constant for a configuration: each of those effects writes its copy once
-// (src/effects/indirect/params.rs) and binds it at 15. build.rs generates `VplParams`.
+// indirect light's cache and the noisy per-frame gather its filters take. Constant for a
+// configuration: each effect that gathers writes its copy once (src/effects/indirect/
+// params.rs) and binds it at 15. build.rs generates `VplParams`.
 #ifndef VPL_PARAMS_GLSL
 #define VPL_PARAMS_GLSL
 

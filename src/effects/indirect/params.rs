@@ -1,8 +1,8 @@
 //! The VPL gather's parameter block (shaders/include/vpl_params.glsl): what the gathers that
 //! read the RSM take of the configuration, in a buffer of their own rather than the shared
-//! frame block. The indirect light's cache and the noisy gather (CCIPCA, joint bilateral) each
-//! keep a copy; constant for a configuration (a new configuration makes new effects), so it is
-//! written once.
+//! frame block. Every effect that gathers (the indirect light's cache, the noisy per-frame
+//! gather its filters take) keeps a copy; constant for a configuration (a new configuration
+//! makes new effects), so it is written once.
 
 use crate::config::{IndirectConfig, RenderConfig};
 use crate::error::Result;
