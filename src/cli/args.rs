@@ -48,8 +48,8 @@ pub enum Command {
     Bench(BenchArgs),
     /// Open a window with a fly camera (press H in the window for the keys).
     View(ViewArgs),
-    /// Reproduce a paper's table (the thesis's 4.1 and walkthroughs, Szentandrasi's Table 1):
-    /// report.md, report.json, CSV and PNG files in --out.
+    /// Reproduce one of the papers' tables (or the dynamic scene's): report.md, report.json,
+    /// CSV and PNG files in --out.
     Table(TableArgs),
     /// Ray-trace the ground truth of one frame on the CPU (no GPU): AO, direct light, shadow,
     /// one-bounce indirect light and the final image, as OpenEXR + PNG previews in --out.
