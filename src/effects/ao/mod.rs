@@ -68,7 +68,8 @@ pub const KIND: EffectKind = EffectKind {
     // Far taps read position levels up to `position_mips`: a block of that level's side.
     moved: MovedReach::ScreenRadius(|c| ScreenReach {
         radius: c.ao.radius,
-        pad_px: 1 << c.ao.position_mips,
+        // Clamped as validation clamps it: a shift past 31 would overflow.
+        pad_px: 1 << c.ao.position_mips.min(config::AoConfig::MAX_POSITION_MIPS),
     }),
     lit: false,
     reaccumulates: true,
