@@ -5,8 +5,7 @@
 
 use super::metrics::Channels;
 use super::{warmup, Report};
-use crate::config::Effects;
-use crate::effects::ssdo::config::SsdoForm;
+use crate::effects::TermKind;
 use crate::error::Result;
 use crate::frontend::progress::Progress;
 use crate::frontend::sink::FrameSink;
@@ -24,8 +23,8 @@ use std::sync::Arc;
 pub enum Buffer {
     /// The tonemapped output image (RGBA8, compared as RGB in 0..1).
     Final,
-    /// Ambient visibility as composited (red channel): AO's, or SSDO's modulation factor
-    /// (its `ssao` form's unoccluded fraction).
+    /// Ambient visibility as composited (red channel): the term of the effect that darkens the
+    /// ambient light (`Registration::ambient`): a visibility, or a modulation factor.
     Ao,
     /// Direct light with PCF shadows (linear RGB radiance).
     Direct,
@@ -72,11 +71,12 @@ impl Buffer {
         }
     }
 
-    /// Whether a configuration with `effects` produces this buffer.
-    pub fn present(self, effects: &Effects) -> bool {
+    /// Whether `config` produces this buffer.
+    pub fn present(self, config: &RenderConfig) -> bool {
+        let effects = &config.effects;
         match self {
             Buffer::Final => true,
-            Buffer::Ao => effects.ao || effects.ssdo,
+            Buffer::Ao => crate::effects::ambient_enabled(config),
             Buffer::Direct | Buffer::Shadow => effects.direct,
             Buffer::Indirect => effects.indirect,
         }
@@ -373,34 +373,52 @@ pub fn report_config(
     })
 }
 
-/// One buffer of the frame last rendered. SSDO's modulation factor (alpha of its term) is
-/// returned in the red channel of a single-channel image, as AO visibility is stored.
+/// One buffer of the frame last rendered.
 fn read_buffer(renderer: &mut Renderer, b: Buffer) -> Result<ImageData> {
-    let config = &renderer.config;
-    if b == Buffer::Ao && config.effects.ssdo && config.ssdo.form != SsdoForm::Ssao {
-        let m = renderer.read(Target::SsdoModulation)?;
-        let mut bytes = Vec::with_capacity(m.width as usize * m.height as usize * 4);
-        for y in 0..m.height {
-            for x in 0..m.width {
-                bytes.extend_from_slice(&m.texel(x, y)[3].to_le_bytes());
-            }
-        }
-        return Ok(ImageData {
-            width: m.width,
-            height: m.height,
-            format: ash::vk::Format::R32_SFLOAT,
-            bytes,
-        });
+    if b == Buffer::Ao {
+        return ambient_visibility(renderer);
     }
     renderer.read(b.target())
 }
 
+/// Ambient visibility as composited, from the effect whose term darkens the ambient light: a
+/// visibility term as it is (red), a bounce-and-modulation term's factor (alpha) in the red
+/// channel of a single-channel image, as a visibility is stored.
+fn ambient_visibility(renderer: &mut Renderer) -> Result<ImageData> {
+    let ambient = renderer.term_kinds().into_iter().find(|(_, kind)| {
+        matches!(
+            kind,
+            TermKind::AmbientVisibility | TermKind::BounceAndModulation
+        )
+    });
+    let Some((id, _)) = ambient else {
+        // No effect darkens the ambient light: the read names the missing buffer.
+        return renderer.read(Target::Ao);
+    };
+    let (kind, m) = renderer.read_term(id)?;
+    if kind == TermKind::AmbientVisibility {
+        return Ok(m);
+    }
+    let mut bytes = Vec::with_capacity(m.width as usize * m.height as usize * 4);
+    for y in 0..m.height {
+        for x in 0..m.width {
+            bytes.extend_from_slice(&m.texel(x, y)[3].to_le_bytes());
+        }
+    }
+    Ok(ImageData {
+        width: m.width,
+        height: m.height,
+        format: ash::vk::Format::R32_SFLOAT,
+        bytes,
+    })
+}
+
 /// Every buffer of the frame last rendered (the GPU must be idle: after `finish`).
 fn read_frame(renderer: &mut Renderer, camera: Camera) -> Result<LastFrame> {
-    let effects = renderer.config.effects;
+    let config = renderer.config;
     let mut buffers = Vec::new();
     for b in Buffer::ALL {
-        if b.present(&effects) {
+        if b.present(&config) {
             buffers.push((b, read_buffer(renderer, b)?));
         }
     }

@@ -262,6 +262,9 @@ pub struct Registration {
     pub timing_groups: &'static [(&'static str, &'static [PassId])],
     /// The parameters `ssgi sweep --vary` may vary (`effects/<effect>/sweep.rs`).
     pub sweep_keys: &'static [SweepKey],
+    /// Its term darkens the ambient light (a visibility, or a bounce-and-modulation factor):
+    /// the reports' ambient-visibility buffer and its time are this effect's.
+    pub ambient: bool,
 }
 
 /// The refresh pass's dispatch this frame, one workgroup per pixel of the refresh tile in

@@ -64,6 +64,21 @@ pub fn sweep_keys() -> impl Iterator<Item = &'static SweepKey> {
 
 /// Every pipeline of every effect, for the reflection check (also done when each pipeline is
 /// built; `renderer::all_layouts` adds the frame's own and the post stages').
+/// Whether `config` runs an effect whose term darkens the ambient light (`Registration::ambient`).
+pub fn ambient_enabled(config: &RenderConfig) -> bool {
+    REGISTRY.iter().any(|r| r.ambient && (r.enabled)(config))
+}
+
+/// The timing groups of the effects whose term darkens the ambient light (a run has at most
+/// one of them: they are exclusive).
+pub fn ambient_groups() -> Vec<&'static str> {
+    REGISTRY
+        .iter()
+        .filter(|r| r.ambient)
+        .flat_map(|r| r.timing_groups.iter().map(|(g, _)| *g))
+        .collect()
+}
+
 pub fn effect_layouts() -> Vec<PassLayout> {
     REGISTRY.iter().flat_map(|r| (r.layouts)()).collect()
 }

@@ -648,6 +648,14 @@ impl Renderer {
         read_buffer(&self.ctx, &mut self.tracker, buffer)
     }
 
+    /// The running effects and the kind of the term each hands the composite.
+    pub fn term_kinds(&self) -> Vec<(EffectId, TermKind)> {
+        self.effects
+            .iter()
+            .map(|e| (e.id(), e.term(&self.targets, 0).0))
+            .collect()
+    }
+
     /// Copy effect `id`'s composite term (the image `Effect::term` hands the composite) of the
     /// last rendered frame to the host, with its kind (waits for the GPU): any effect's
     /// contribution, without a debug target of its own.

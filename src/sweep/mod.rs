@@ -62,15 +62,16 @@ pub struct SweepSpec<'a> {
 }
 
 /// The pass groups the Pareto front and the plots use for a buffer's time axis: its effect's
-/// (the whole frame for the final image). Ambient visibility comes from AO or from SSDO, which
-/// are exclusive: a row ran one of the two groups.
-pub fn time_group(b: Buffer) -> &'static [&'static str] {
+/// (the whole frame for the final image). Ambient visibility comes from whichever effect
+/// darkens the ambient light (`effects::ambient_groups`); they are exclusive, so a row ran one
+/// of those groups.
+pub fn time_group(b: Buffer) -> Vec<&'static str> {
     match b {
-        Buffer::Final => &["total"],
-        Buffer::Ao => &["ao", "ssdo"],
-        Buffer::Shadow => &["shadow"],
-        Buffer::Direct => &["shadow", "direct"],
-        Buffer::Indirect => &["indirect"],
+        Buffer::Final => vec!["total"],
+        Buffer::Ao => crate::effects::ambient_groups(),
+        Buffer::Shadow => vec!["shadow"],
+        Buffer::Direct => vec!["shadow", "direct"],
+        Buffer::Indirect => vec!["indirect"],
     }
 }
 

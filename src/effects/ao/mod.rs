@@ -154,6 +154,7 @@ pub const REGISTRATION: Registration = Registration {
     passes: pass::ALL,
     timing_groups: pass::GROUPS,
     sweep_keys: sweep::SWEEP_KEYS,
+    ambient: true,
 };
 
 // Every pass of the effect, declared once (`PassDecl`): `layouts` and `new` both read these.

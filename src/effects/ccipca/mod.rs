@@ -225,6 +225,7 @@ pub const REGISTRATION: Registration = Registration {
     passes: pass::ALL,
     timing_groups: pass::GROUPS,
     sweep_keys: &[],
+    ambient: false,
 };
 
 fn layouts() -> Vec<PassLayout> {

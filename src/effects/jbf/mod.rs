@@ -64,6 +64,7 @@ pub const REGISTRATION: Registration = Registration {
     passes: pass::ALL,
     timing_groups: pass::GROUPS,
     sweep_keys: &[],
+    ambient: false,
 };
 
 // Every pass of the effect, declared once (`PassDecl`): `layouts` and `new` both read these.

@@ -50,6 +50,7 @@ pub const REGISTRATION: Registration = Registration {
     passes: pass::ALL,
     timing_groups: &[],
     sweep_keys: &[],
+    ambient: false,
 };
 
 pub struct NormalsEffect {

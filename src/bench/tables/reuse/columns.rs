@@ -118,7 +118,7 @@ fn sheet<'r>(r: &TableReport) -> Sheet<'static, Line<'r>> {
     }
     let buffers: Vec<Buffer> = Buffer::ALL
         .into_iter()
-        .filter(|b| b.present(&effects))
+        .filter(|b| b.present(&r.base_config))
         .collect();
     for &b in &buffers {
         let n = b.name();
