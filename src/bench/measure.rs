@@ -140,6 +140,15 @@ pub struct Measured {
     pub flicker: Option<Flicker>,
 }
 
+impl Measured {
+    /// The last frame's output image (a run always reads it back).
+    pub fn final_image(&self) -> Result<&ImageData> {
+        self.last
+            .buffer(Buffer::Final)
+            .ok_or_else(|| crate::error::Error::Config("the run read back no output image".into()))
+    }
+}
+
 /// Chen et al.'s flicker measure: the mean squared difference between consecutive frames,
 /// per pair of consecutive measured frames.
 #[derive(Clone, Debug, Default, Serialize)]

@@ -7,7 +7,7 @@ use crate::error::{Error, Result};
 use crate::scene::{DynamicObject, Mesh, TextureImage};
 use crate::shaders::MaterialPush;
 use crate::vk::{
-    upload_buffer, upload_image, Access, Buffer, Context, DescriptorPool, Image, ImageDesc,
+    upload_image, uploaded_buffer, Access, Buffer, Context, DescriptorPool, Image, ImageDesc,
     Sampler, SetWriter, Tracker,
 };
 use ash::vk;
@@ -114,7 +114,7 @@ impl VisibilityTables {
             .iter()
             .flat_map(|d| d.to_le_bytes())
             .collect();
-        let buffer = uploaded(
+        let buffer = uploaded_buffer(
             ctx,
             tracker,
             "scene.triangle_draws",
@@ -235,7 +235,7 @@ impl SceneGpu {
             .collect();
         // Storage too: the visibility buffer's resolve reads the triangles.
         let storage = vk::BufferUsageFlags::STORAGE_BUFFER;
-        let vertices = uploaded(
+        let vertices = uploaded_buffer(
             ctx,
             tracker,
             "scene.vertices",
@@ -243,7 +243,7 @@ impl SceneGpu {
             vk::BufferUsageFlags::VERTEX_BUFFER | storage,
             Access::VertexBufferRead,
         )?;
-        let indices = uploaded(
+        let indices = uploaded_buffer(
             ctx,
             tracker,
             "scene.indices",
@@ -335,24 +335,4 @@ fn pose_of(poses: &[Pose], draw: &Draw) -> Pose {
     draw.object
         .and_then(|o| poses.get(o).copied())
         .unwrap_or(Pose::STILL)
-}
-
-/// A device-local buffer of `usage` holding `bytes`, left in `then`.
-fn uploaded(
-    ctx: &Arc<Context>,
-    tracker: &mut Tracker,
-    name: &str,
-    bytes: &[u8],
-    usage: vk::BufferUsageFlags,
-    then: Access,
-) -> Result<Buffer> {
-    let buffer = Buffer::new(
-        ctx,
-        name,
-        bytes.len().max(4) as u64,
-        usage | vk::BufferUsageFlags::TRANSFER_DST,
-        MemoryLocation::GpuOnly,
-    )?;
-    upload_buffer(ctx, tracker, &buffer, bytes, then)?;
-    Ok(buffer)
 }

@@ -29,4 +29,4 @@ pub use surface::Surface;
 pub use swapchain::{AcquiredImage, PresentPolicy, Swapchain, SwapchainOptions};
 pub use sync::{Access, Tracked, TrackedImage, Tracker};
 pub use timing::{FrameTiming, GpuTimer, SkipReason, Skipped};
-pub use upload::{upload_buffer, upload_image};
+pub use upload::{upload_buffer, upload_image, uploaded_buffer};

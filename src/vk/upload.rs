@@ -81,3 +81,23 @@ pub fn upload_buffer(
         Ok(())
     })
 }
+
+/// A device-local buffer of `usage` holding `bytes`, left in `then`.
+pub fn uploaded_buffer(
+    ctx: &Arc<Context>,
+    tracker: &mut Tracker,
+    name: &str,
+    bytes: &[u8],
+    usage: vk::BufferUsageFlags,
+    then: Access,
+) -> Result<Buffer> {
+    let buffer = Buffer::new(
+        ctx,
+        name,
+        bytes.len().max(4) as u64,
+        usage | vk::BufferUsageFlags::TRANSFER_DST,
+        MemoryLocation::GpuOnly,
+    )?;
+    upload_buffer(ctx, tracker, &buffer, bytes, then)?;
+    Ok(buffer)
+}

@@ -183,8 +183,7 @@ fn run(
     }
     let path = CameraPath::parse(opts.path.as_deref().unwrap_or("orbit"))?;
     let scene = cornell_box();
-    std::fs::create_dir_all(out)
-        .map_err(|e| Error::Config(format!("cannot create {}: {e}", out.display())))?;
+    super::run::create_out(out)?;
     let warmup = warmup_frames(opts);
     let mut rows = Vec::new();
     for &size in &opts.sizes {

@@ -164,8 +164,7 @@ fn run(
     }
     let moving = CameraPath::parse(opts.path.as_deref().unwrap_or("orbit:60s"))?;
     let scene = cornell_box();
-    std::fs::create_dir_all(out)
-        .map_err(|e| Error::Config(format!("cannot create {}: {e}", out.display())))?;
+    super::run::create_out(out)?;
     let held = held_at(&scene.camera);
     let warmup = warmup_frames(opts);
     let mut rows = Vec::new();

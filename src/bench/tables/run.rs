@@ -63,6 +63,12 @@ pub fn warmup_frames(opts: &crate::bench::TableOptions) -> u32 {
     }
 }
 
+/// Create the table's output directory (and its parents).
+pub fn create_out(out: &std::path::Path) -> crate::error::Result<()> {
+    std::fs::create_dir_all(out)
+        .map_err(|e| crate::error::Error::Config(format!("cannot create {}: {e}", out.display())))
+}
+
 /// Write a table's `report.json` (of `report`), `report.md` and `<table>.csv` into `out`.
 pub fn write_reports<R: Serialize>(
     out: &std::path::Path,

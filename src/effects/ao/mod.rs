@@ -262,7 +262,7 @@ impl AoEffect {
             blur,
             chain,
             random,
-            params: params::buffer(s.ctx, s.config)?,
+            params: params::buffer(s.ctx, s.tracker, s.config)?,
             sized: Self::create_sized(s.ctx, s.config)?,
             push: EffectPush::default(),
         })

@@ -341,7 +341,7 @@ impl CcipcaEffect {
             warp: false,
             push: CcipcaPush::default(),
             age: 0,
-            vpl_params: params::buffer(s.ctx, "ccipca.vpl_params", s.config)?,
+            vpl_params: params::buffer(s.ctx, s.tracker, "ccipca.vpl_params", s.config)?,
         })
     }
 

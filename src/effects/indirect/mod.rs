@@ -408,7 +408,7 @@ impl IndirectEffect {
             gather,
             refresh,
             resolve,
-            params: params::buffer(s.ctx, "indirect.vpl_params", s.config)?,
+            params: params::buffer(s.ctx, s.tracker, "indirect.vpl_params", s.config)?,
             sized: Self::create_sized(s.ctx, s.config)?,
             push: EffectPush::default(),
         })

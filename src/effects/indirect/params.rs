@@ -7,9 +7,8 @@
 use crate::config::{IndirectConfig, RenderConfig};
 use crate::error::Result;
 use crate::shaders::VplParams;
-use crate::vk::{Buffer, Context};
+use crate::vk::{uploaded_buffer, Access, Buffer, Context, Tracker};
 use ash::vk;
-use gpu_allocator::MemoryLocation;
 use std::sync::Arc;
 
 /// Where the effects bind it.
@@ -28,16 +27,19 @@ pub fn params(c: &RenderConfig) -> VplParams {
     }
 }
 
-/// The block for `c` in a buffer the gathers read (host-visible: written before any
-/// submission that reads it, which makes the write visible to the device).
-pub fn buffer(ctx: &Arc<Context>, name: &str, c: &RenderConfig) -> Result<Buffer> {
-    let mut buffer = Buffer::new(
+/// The block for `c` in a device-local buffer the passes read, uploaded once.
+pub fn buffer(
+    ctx: &Arc<Context>,
+    tracker: &mut Tracker,
+    name: &str,
+    c: &RenderConfig,
+) -> Result<Buffer> {
+    uploaded_buffer(
         ctx,
+        tracker,
         name,
-        VplParams::SIZE as u64,
+        &params(c).to_bytes(),
         vk::BufferUsageFlags::STORAGE_BUFFER,
-        MemoryLocation::CpuToGpu,
-    )?;
-    buffer.write(&params(c).to_bytes())?;
-    Ok(buffer)
+        Access::ComputeStorageRead,
+    )
 }

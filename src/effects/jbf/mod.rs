@@ -109,7 +109,7 @@ impl JbfEffect {
             noisy: ComputePass::declared(s.ctx, s.pool, &INDIRECT_NOISY_PLAIN)?,
             filter: ComputePass::declared_with(s.ctx, s.pool, &INDIRECT_JBF, &[r])?,
             sized: Self::create_sized(s.ctx, s.config)?,
-            vpl_params: params::buffer(s.ctx, "jbf.vpl_params", s.config)?,
+            vpl_params: params::buffer(s.ctx, s.tracker, "jbf.vpl_params", s.config)?,
         })
     }
 

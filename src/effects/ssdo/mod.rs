@@ -449,7 +449,7 @@ impl SsdoEffect {
                     readback: CounterReadback::new(s.ctx, FRAMES_IN_FLIGHT)?,
                 })
             },
-            params: params::buffer(s.ctx, s.config)?,
+            params: params::buffer(s.ctx, s.tracker, s.config)?,
             sized: Self::create_sized(s.ctx, s.config)?,
             push: EffectPush::default(),
         })

@@ -1,13 +1,12 @@
 //! SSDO's parameter block (shaders/ssdo/ssdo_params.glsl): what its passes read of the
 //! configuration, in a buffer of its own rather than the shared frame block. Constant for a
-//! configuration (a new configuration makes a new effect), so it is written once.
+//! configuration (a new configuration makes a new effect), so it is uploaded once.
 
 use crate::config::RenderConfig;
 use crate::error::Result;
 use crate::shaders::SsdoParams;
-use crate::vk::{Buffer, Context};
+use crate::vk::{uploaded_buffer, Access, Buffer, Context, Tracker};
 use ash::vk;
-use gpu_allocator::MemoryLocation;
 use std::sync::Arc;
 
 /// The block for `c`.
@@ -27,16 +26,14 @@ pub fn params(c: &RenderConfig) -> SsdoParams {
     }
 }
 
-/// The block for `c` in a buffer the passes read (host-visible: written before any
-/// submission that reads it, which makes the write visible to the device).
-pub fn buffer(ctx: &Arc<Context>, c: &RenderConfig) -> Result<Buffer> {
-    let mut buffer = Buffer::new(
+/// The block for `c` in a device-local buffer the passes read, uploaded once.
+pub fn buffer(ctx: &Arc<Context>, tracker: &mut Tracker, c: &RenderConfig) -> Result<Buffer> {
+    uploaded_buffer(
         ctx,
+        tracker,
         "ssdo.params",
-        SsdoParams::SIZE as u64,
+        &params(c).to_bytes(),
         vk::BufferUsageFlags::STORAGE_BUFFER,
-        MemoryLocation::CpuToGpu,
-    )?;
-    buffer.write(&params(c).to_bytes())?;
-    Ok(buffer)
+        Access::ComputeStorageRead,
+    )
 }

@@ -12,7 +12,7 @@ pub mod edges;
 use super::def::TableDef;
 use super::run::{fixed, pass_ms, warmup_frames, write_reports, TableRun};
 use super::walkthroughs::WALKTHROUGHS;
-use crate::bench::measure::{held_at, measure, Buffer, Measured, RunSpec};
+use crate::bench::measure::{held_at, measure, RunSpec};
 use crate::bench::sheet::{notes_section, Cell, Column, Sheet};
 use crate::bench::warmup::Warmup;
 use crate::bench::{Report, TableOptions};
@@ -116,12 +116,6 @@ pub struct TableReport {
     pub sizes: Vec<SizeResult>,
 }
 
-fn final_image(m: &Measured) -> Result<&ImageData> {
-    m.last
-        .buffer(Buffer::Final)
-        .ok_or_else(|| Error::Config("the run read back no output image".into()))
-}
-
 fn config(opts: &TableOptions, size: (u32, u32), mode: AaMode) -> RenderConfig {
     RenderConfig {
         width: size.0,
@@ -179,7 +173,7 @@ fn run_size(
                 progress: opts.progress,
             },
         )?;
-        let image = final_image(&m)?;
+        let image = m.final_image()?;
         if reference.is_none() {
             let (position, normal) = m.last.supersampled.as_ref().ok_or_else(|| {
                 Error::Config("the supersampled run read back no 4x G-buffer".into())
@@ -237,8 +231,7 @@ fn run(
     let sponza = &WALKTHROUGHS[0];
     let (path, _) = sponza.camera_path(None)?;
     let scene = sponza.load(opts.assets.as_deref(), &path)?;
-    std::fs::create_dir_all(out)
-        .map_err(|e| Error::Config(format!("cannot create {}: {e}", out.display())))?;
+    super::run::create_out(out)?;
     let mut results = Vec::new();
     for &size in &opts.sizes {
         let r = run_size(ctx, sink, opts, &scene, size, out)?;

@@ -23,14 +23,14 @@ pub mod paper;
 use super::def::TableDef;
 use super::run::{write_reports, TableRun};
 use crate::bench::compare::group_median;
-use crate::bench::measure::{held_at, last_camera, measure, Buffer, RunSpec};
+use crate::bench::measure::{held_at, last_camera, measure, RunSpec};
 use crate::bench::metrics::{image_error, Channels};
 use crate::bench::output::file_stem;
 use crate::bench::sheet::{notes_section, Cell, Column, Sheet};
 use crate::bench::warmup::{before_path, Warmup};
 use crate::bench::{Report, TableOptions};
 use crate::effects::ssdo::config::SsdoForm;
-use crate::error::{Error, Result};
+use crate::error::Result;
 use crate::frontend::sink::FrameSink;
 use crate::scene::{load_scene, CameraPath, Scene};
 use crate::vk::{Context, ImageData};
@@ -122,12 +122,6 @@ fn ratio(a: Option<f64>, b: Option<f64>) -> Option<f64> {
     }
 }
 
-fn final_image(m: &crate::bench::measure::Measured) -> Result<&ImageData> {
-    m.last
-        .buffer(Buffer::Final)
-        .ok_or_else(|| Error::Config("the run read back no output image".into()))
-}
-
 /// Everything measured for one scene.
 struct SceneContext<'a> {
     ctx: &'a Arc<Context>,
@@ -176,7 +170,7 @@ fn run_scene(
                 progress: c.opts.progress,
             },
         )?;
-        references.push((config.ssdo.form, final_image(&m)?.clone()));
+        references.push((config.ssdo.form, m.final_image()?.clone()));
     }
     let mut rows: Vec<RowResult> = Vec::new();
     for (i, row) in ROWS.iter().enumerate() {
@@ -199,7 +193,7 @@ fn run_scene(
                 progress: c.opts.progress,
             },
         )?;
-        let image = final_image(&m)?;
+        let image = m.final_image()?;
         let family = row.reference_config(w, h).ssdo.form;
         let reference = &references
             .iter()
@@ -279,8 +273,7 @@ fn run(
     for s in &SCENES {
         scenes.push(load_scene(s.spec, opts.assets.as_deref())?);
     }
-    std::fs::create_dir_all(out)
-        .map_err(|e| Error::Config(format!("cannot create {}: {e}", out.display())))?;
+    super::run::create_out(out)?;
     let base = ROWS[0].config(opts.size.0, opts.size.1);
     let (warmup, warmup_along_path) = before_path(opts.warmup, base.temporal.rotation_limit);
     let c = SceneContext {
