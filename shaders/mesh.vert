@@ -1,6 +1,6 @@
 #version 460
-// Shared vertex stage of the raster passes: G-buffer (camera), light view (RSM), and SRAA's
-// subpixel geometry (the camera shifted by a subpixel offset, chosen by the draw's instance).
+// Shared vertex stage of the raster passes: G-buffer (camera), light view (RSM), and the
+// antialiasing's subpixel geometry (the camera shifted by a subpixel offset, chosen by the draw's instance).
 // Each draw places its object in the world (material.glsl: the identity for static geometry)
 // and hands on where the point was last frame.
 // @permutation camera: VIEW_CAMERA

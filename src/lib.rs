@@ -1,5 +1,8 @@
-//! ssgi: screen-space global illumination on Vulkan (ash), reproducing and measuring cached
-//! screen-space GI (Lin 2013), SSAO/SSDO (Szentandrási) and CCIPCA filtering (Chang).
+//! ssgi: screen-space global illumination on Vulkan (ash), reproducing and measuring three
+//! papers: cached screen-space GI (Lin 2013), screen-space ambient and directional occlusion
+//! (Szentandrási et al.), and incremental-PCA filtering of indirect light with subpixel
+//! reconstruction antialiasing (Chen, Chang et al.). Each technique is an effect
+//! (`effects/`) or a post stage (`post/`); docs/ARCHITECTURE.md draws the layers.
 
 pub mod bench;
 pub mod cli;

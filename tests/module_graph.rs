@@ -90,18 +90,32 @@ fn resolve(
         .find(|m| modules.contains_key(m))
 }
 
-/// Every module's uses of other modules (resolved paths and a parent's uses of its children).
-fn module_uses() -> BTreeMap<String, BTreeSet<String>> {
-    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("src");
+fn src_root() -> std::path::PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("src")
+}
+
+/// Every module of `src/` and its text (unit tests left out).
+fn modules() -> BTreeMap<String, String> {
+    let root = src_root();
     let mut modules = BTreeMap::new();
     sources(&root, &root, &mut modules);
     assert!(modules.len() > 50, "read only {} modules", modules.len());
+    modules
+}
+
+/// Every module's uses of other modules (resolved paths and a parent's uses of its children).
+fn module_uses() -> BTreeMap<String, BTreeSet<String>> {
+    uses_of(&modules())
+}
+
+fn uses_of(modules: &BTreeMap<String, String>) -> BTreeMap<String, BTreeSet<String>> {
+    let root = src_root();
     let mut uses: BTreeMap<String, BTreeSet<String>> = BTreeMap::new();
-    for (m, text) in &modules {
+    for (m, text) in modules {
         let dir_module = m.is_empty() || root.join(m.replace("::", "/")).is_dir();
         let mut deps = BTreeSet::new();
         for p in paths(text) {
-            if let Some(d) = resolve(&modules, m, dir_module, &p) {
+            if let Some(d) = resolve(modules, m, dir_module, &p) {
                 deps.insert(d);
             }
         }
@@ -187,21 +201,50 @@ fn layer(module: &str) -> usize {
     }
 }
 
-#[test]
-fn layers_are_used_downwards_only() {
-    let uses = module_uses();
+/// Every use of a higher layer, as `user -> used`.
+fn upward(uses: &BTreeMap<String, BTreeSet<String>>) -> Vec<String> {
     let mut upward: Vec<String> = Vec::new();
-    for (a, deps) in &uses {
+    for (a, deps) in uses {
         for b in deps {
             if layer(b) > layer(a) {
                 upward.push(format!("{a} -> {b}"));
             }
         }
     }
+    upward
+}
+
+#[test]
+fn layers_are_used_downwards_only() {
+    let upward = upward(&module_uses());
     assert!(
         upward.is_empty(),
         "uses up the layers (vk, scene, reference, config < resources < passes < effects, post < \
          renderer < frontend, plot, bench, sweep, stress < cli):\n{}",
         upward.join("\n")
     );
+}
+
+/// The check catches what it is for: imports planted in a copy of the tree, one up each step
+/// of the stack, are each reported, and nothing else is.
+#[test]
+fn a_planted_upward_import_is_caught() {
+    let plants = [
+        ("vk::context", "crate::resources::targets::Targets"),
+        ("passes::compute", "crate::effects::REGISTRY"),
+        ("effects::ao", "crate::renderer::Renderer"),
+        ("renderer::audit", "crate::bench::report::Report"),
+        ("bench::report", "crate::cli::args::Cli"),
+        ("config", "crate::sweep::keys"),
+    ];
+    for (module, import) in plants {
+        let mut modules = modules();
+        let text = modules
+            .get_mut(module)
+            .unwrap_or_else(|| panic!("no module {module}"));
+        text.insert_str(0, &format!("use {import};\n"));
+        let found = upward(&uses_of(&modules));
+        assert_eq!(found.len(), 1, "{module} importing {import}: {found:?}");
+        assert!(found[0].starts_with(&format!("{module} -> ")), "{found:?}");
+    }
 }

@@ -8,6 +8,7 @@ use glam::{Mat4, Vec3, Vec4};
 use ssgi::config::pcf::Pcf;
 use ssgi::config::{Accumulate, Effects, Refresh, RenderConfig, TemporalConfig};
 use ssgi::effects::ao::config::{AoConfig, AoEstimator};
+use ssgi::effects::ao::POSITION_LEVELS;
 use ssgi::effects::EffectId;
 use ssgi::renderer::Renderer;
 use ssgi::resources::targets::Target;
@@ -886,17 +887,13 @@ fn position_levels_point_sample_the_gbuffer_and_keep_the_ao() {
     let mut exact = renderer(&ctx, cornell_box(), config(size, no_reuse, ao(0)));
     run(&mut exact, 1);
     let exact_ao = ao_values(&mut exact);
-    assert!(!exact.has_target(Target::AoPositionLevel1));
+    assert!(!exact.has_target(Target::Effect(&POSITION_LEVELS[0])));
     drop(exact);
 
     let mut r = renderer(&ctx, cornell_box(), config(size, no_reuse, ao(3)));
     run(&mut r, 1);
     let pos = r.read(Target::GPosition).unwrap();
-    let levels = [
-        Target::AoPositionLevel1,
-        Target::AoPositionLevel2,
-        Target::AoPositionLevel3,
-    ];
+    let levels = POSITION_LEVELS.iter().map(Target::Effect);
     for (l, target) in (1u32..).zip(levels) {
         let img = r.read(target).unwrap();
         let side = size.div_ceil(1 << l);

@@ -10,6 +10,7 @@ mod common;
 use glam::{Mat4, Vec2, Vec3, Vec4};
 use ssgi::config::pcf::Pcf;
 use ssgi::config::{Effects, RenderConfig, TemporalConfig};
+use ssgi::effects::ssdo;
 use ssgi::effects::ssdo::config::{AdaptiveSamples, SsdoConfig, SsdoForm};
 use ssgi::renderer::Renderer;
 use ssgi::resources::targets::Target;
@@ -57,7 +58,7 @@ fn render_counted(
 
 /// Every geometry pixel's SSDO texel (bounce rgb, modulation a).
 fn ssdo_texels(r: &mut Renderer) -> Vec<Option<[f32; 4]>> {
-    let s = r.read(Target::SsdoBounce).unwrap();
+    let s = r.read(Target::Effect(&ssdo::BOUNCE_VIEW)).unwrap();
     let pos = r.read(Target::GPosition).unwrap();
     (0..s.width * s.height)
         .map(|i| {
@@ -115,7 +116,7 @@ fn floor_beside_the_red_wall_receives_a_red_bounce() {
         ..Default::default()
     };
     let mut r = render(&ctx, cornell_box(), config(size, ssdo));
-    let s = r.read(Target::SsdoBounce).unwrap();
+    let s = r.read(Target::Effect(&ssdo::BOUNCE_VIEW)).unwrap();
     let vp = r.scene.camera.view_proj(1.0);
     // The floor 5 cm from the red (left, x = -1) wall, and the middle of the floor.
     let mean = |centre: Vec3| -> Vec3 {
@@ -312,7 +313,7 @@ fn one_step_equals_a_cpu_evaluation_of_eqs_2_and_4() {
     };
     let mut r = render(&ctx, cornell_box(), config(size, ssdo));
     let b = Buffers::read(&mut r);
-    let gpu = r.read(Target::SsdoBounce).unwrap();
+    let gpu = r.read(Target::Effect(&ssdo::BOUNCE_VIEW)).unwrap();
     let vp = r.scene.camera.view_proj(1.0);
     let r_max = ssdo.radius * r.scene.mesh.bounds.radius();
     let mut checked = 0;
@@ -365,7 +366,10 @@ fn ssao_form_equals_a_cpu_evaluation_of_section_3_1() {
     let mut r = render(&ctx, cornell_box(), config(size, ssdo));
     let b = Buffers::read(&mut r);
     let gpu = r.read(Target::Ao).unwrap();
-    assert!(r.read(Target::SsdoBounce).is_err(), "SSAO has no bounce");
+    assert!(
+        r.read(Target::Effect(&ssdo::BOUNCE_VIEW)).is_err(),
+        "SSAO has no bounce"
+    );
     let vp = r.scene.camera.view_proj(1.0);
     let r_max = ssdo.radius * r.scene.mesh.bounds.radius();
     let (mut checked, mut occluded) = (0, 0);
@@ -472,7 +476,7 @@ fn bilateral_filter_smooths_planes_without_bleeding_across_edges() {
             ..Default::default()
         };
         let mut r = render(&ctx, stepped_walls(), config(size, ssdo));
-        let s = r.read(Target::SsdoModulation).unwrap();
+        let s = r.read(Target::Effect(&ssdo::MODULATION_VIEW)).unwrap();
         (0..size * size)
             .map(|i| s.texel(i % size, i / size)[3])
             .collect::<Vec<f32>>()
@@ -547,7 +551,7 @@ fn adaptive_counts_follow_creases_and_edges() {
         ..Default::default()
     };
     let (mut r, counters) = render_counted(&ctx, cornell_box(), config(size, ssdo));
-    let counts = r.read(Target::SsdoSamples).unwrap();
+    let counts = r.read(Target::Effect(&ssdo::SAMPLES_VIEW)).unwrap();
     let pos = r.read(Target::GPosition).unwrap();
     let normal = r.read(Target::GNormal).unwrap();
     let vp = r.scene.camera.view_proj(1.0);
@@ -652,7 +656,7 @@ fn half_resolution_follows_full_resolution() {
             ..Default::default()
         };
         let mut r = render(&ctx, cornell_box(), config(size, ssdo));
-        let s = r.read(Target::SsdoBounce).unwrap();
+        let s = r.read(Target::Effect(&ssdo::BOUNCE_VIEW)).unwrap();
         assert_eq!(
             (s.width, s.height),
             (size, size),
@@ -731,7 +735,7 @@ fn upsampling_does_not_bleed_across_edges() {
             ..Default::default()
         };
         let mut r = render(&ctx, stepped_walls(), config(size, ssdo));
-        let s = r.read(Target::SsdoModulation).unwrap();
+        let s = r.read(Target::Effect(&ssdo::MODULATION_VIEW)).unwrap();
         (0..size * size)
             .map(|i| s.texel(i % size, i / size)[3])
             .collect::<Vec<f32>>()
@@ -823,7 +827,7 @@ fn cached_ssdo_converges_to_the_many_sample_result_and_then_skips() {
             );
             assert_eq!(counter(t, "ssdo_samples"), Some(0), "frame {}", t.frame);
         }
-        let cached = r.read(Target::SsdoModulation).unwrap();
+        let cached = r.read(Target::Effect(&ssdo::MODULATION_VIEW)).unwrap();
         let pos = r.read(Target::GPosition).unwrap();
         let mut u = config(
             size,
@@ -836,7 +840,9 @@ fn cached_ssdo_converges_to_the_many_sample_result_and_then_skips() {
         );
         u.temporal.reuse = false;
         let mut reference = render(&ctx, cornell_box(), u);
-        let once = reference.read(Target::SsdoModulation).unwrap();
+        let once = reference
+            .read(Target::Effect(&ssdo::MODULATION_VIEW))
+            .unwrap();
         let (mut dm, mut db, mut n, mut rms) = (0.0f64, 0.0f64, 0usize, 0.0f64);
         for y in 0..size {
             for x in 0..size {
@@ -878,7 +884,7 @@ fn cached_ssdo_converges_to_the_many_sample_result_and_then_skips() {
         r.render_frame(&camera).unwrap();
     }
     r.finish().unwrap();
-    let s = r.read(Target::SsdoModulation).unwrap();
+    let s = r.read(Target::Effect(&ssdo::MODULATION_VIEW)).unwrap();
     for y in 0..size {
         for x in 0..size {
             assert!(s.texel(x, y).iter().all(|v| v.is_finite()), "({x}, {y})");

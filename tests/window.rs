@@ -508,7 +508,7 @@ fn effect_keys_rebuild_the_renderer() {
     );
     let stderr = assert_clean_run(&out, "view with effect keys");
     assert!(
-        stderr.contains("renderer rebuilt: pcf -ao indirect -ssdo filter -reuse"),
+        stderr.contains("renderer rebuilt: pcf -ao indirect -ssdo -normals filter -reuse"),
         "{stderr}"
     );
     let switched = headless_render(

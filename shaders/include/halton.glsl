@@ -1,5 +1,5 @@
-// Halton sampling of the hemisphere after Szentandrasi (section 4.2, eqs 5-8), shared by his
-// SSAO (`--ao szentandrasi`) and SSDO. Pure functions, no bindings (the probe
+// Halton sampling of the hemisphere after Szentandrasi (section 4.2, eqs 5-8), for the
+// effects that estimate occlusion from hemisphere samples. Pure functions, no bindings (the probe
 // shaders/probes/pattern_offsets.comp evaluates them for the tests).
 #ifndef HALTON_GLSL
 #define HALTON_GLSL

@@ -1,5 +1,5 @@
 // Screen-space visibility of a point of the hemisphere (Szentandrasi section 3.2.1, Ritschel
-// et al. 2009), shared by Szentandrasi's SSAO and SSDO. Requires g_position and g_normal.
+// et al. 2009), shared by the hemisphere-sampling effects. Requires g_position and g_normal.
 #ifndef HEMISPHERE_GLSL
 #define HEMISPHERE_GLSL
 
@@ -10,7 +10,7 @@
 struct HemisphereTap {
     bool occluded;  // s lies behind the visible surface there: an occluder in its direction
     bool on_screen; // s projects inside the image onto geometry (q and its normal are valid)
-    vec3 q;         // the visible surface point there (the sender of SSDO's bounce)
+    vec3 q;         // the visible surface point there (a bounce's sender)
     vec3 q_normal;
     ivec2 q_pixel;
 };

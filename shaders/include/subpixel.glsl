@@ -1,4 +1,4 @@
-// SRAA's subpixel samples: the 4x rotated grid (one sample in each row and each column of a
+// The subpixel geometry's samples: the 4x rotated grid (one sample in each row and each column of a
 // 4x4 grid over the pixel), as offsets from the pixel centre [px]. The subpixel geometry
 // renders shift the projection by these; the reconstruction reads them back.
 #ifndef SUBPIXEL_GLSL

@@ -1,6 +1,6 @@
 #version 460
-// Joint bilateral filter of the noisy indirect light (the geometry-aware filters Chen et al.
-// compare CCIPCA with: 11x11 and 17x17 windows): every pixel of the (2 RADIUS + 1)^2 window
+// Joint bilateral filter of the noisy indirect light (the geometry-aware baselines of Chen et
+// al.'s comparison: 11x11 and 17x17 windows): every pixel of the (2 RADIUS + 1)^2 window
 // weighted by a Gaussian of its screen distance (sigma = RADIUS / 2, so the window spans 2
 // sigma), by its normal's agreement (max(0, n . n_q)^16: 0.2 at 25 degrees) and by its
 // distance from the centre's tangent plane in pixel footprints (a Gaussian of sigma 2, as

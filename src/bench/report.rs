@@ -362,13 +362,13 @@ mod tests {
 
     #[test]
     fn counter_means_average_and_samples_per_pixel_weighs_by_pixels() {
-        let a = frame(vec![("ssdo_computed_pixels", 100), ("ssdo_samples", 1000)]);
-        let b = frame(vec![("ssdo_computed_pixels", 300), ("ssdo_samples", 15000)]);
+        let a = frame(vec![("fx_computed_pixels", 100), ("fx_samples", 1000)]);
+        let b = frame(vec![("fx_computed_pixels", 300), ("fx_samples", 15000)]);
         let m = counter_means(&[&a, &b]);
-        assert_eq!(m["ssdo_computed_pixels"], 200.0);
-        assert_eq!(m["ssdo_samples"], 8000.0);
+        assert_eq!(m["fx_computed_pixels"], 200.0);
+        assert_eq!(m["fx_samples"], 8000.0);
         // 16000 samples over 400 pixels, not the mean of 10 and 50.
-        assert_eq!(m["ssdo_samples_per_pixel"], 40.0);
+        assert_eq!(m["fx_samples_per_pixel"], 40.0);
         let lanes = counter_means(&[
             &frame(vec![
                 ("indirect_fixup_invocations", 128),
@@ -380,10 +380,7 @@ mod tests {
             ]),
         ]);
         assert_eq!(lanes["indirect_fixup_lane_efficiency"], 128.0 / 192.0);
-        let none = counter_means(&[&frame(vec![
-            ("ssdo_computed_pixels", 0),
-            ("ssdo_samples", 0),
-        ])]);
-        assert!(!none.contains_key("ssdo_samples_per_pixel"));
+        let none = counter_means(&[&frame(vec![("fx_computed_pixels", 0), ("fx_samples", 0)])]);
+        assert!(!none.contains_key("fx_samples_per_pixel"));
     }
 }

@@ -111,9 +111,7 @@ pub struct SceneArgs {
     /// every value explicit, to edit or to load again with --scene.
     #[arg(long, value_name = "FILE")]
     pub save_scene: Option<PathBuf>,
-    /// Effects to render, comma-separated: direct, ao, indirect, ssdo (all = direct, ao,
-    /// indirect; ssdo replaces ao).
-    #[arg(long, default_value = "all", value_parser = parse_effects)]
+    #[arg(long, default_value = "all", value_parser = parse_effects, help = effects_help())]
     pub effects: Effects,
     /// Temporal reuse (reverse reprojection cache): on, or off for the no-reuse baseline
     /// (fixed pattern every frame + 5x5 Gaussian blur).
@@ -155,10 +153,10 @@ pub struct SceneArgs {
     /// tiles at 256x256).
     #[arg(long, default_value = "5%", value_parser = parse_fraction)]
     pub refresh_budget: f32,
-    /// Drop histories where a change reaches them: a moved light restarts shadows, indirect
-    /// light and SSDO, a light view rendered again (something moved in the light's sight) the
-    /// indirect light and SSDO, a moving object each effect's pixels within its reach (AO and
-    /// SSDO radius, shadow-map footprint). `off`: only disocclusion and the gate react.
+    /// Drop histories where a change reaches them: a moved light restarts the effects that
+    /// read the light, a light view rendered again (something moved in the light's sight)
+    /// those that read the RSM, a moving object each effect's pixels within its reach (its
+    /// radius or the shadow map's footprint). `off`: only disocclusion and the gate react.
     #[arg(long, default_value = "on", value_parser = parse_on_off, action = clap::ArgAction::Set)]
     pub invalidate: bool,
     /// Re-accumulate when the camera stops: the histories the moving camera resampled take
@@ -208,13 +206,6 @@ impl SceneArgs {
             rsm_size: self.rsm_size,
             pcf: self.pcf,
             effects: self.effects,
-            // Set from the effects' own options below.
-            ao: Default::default(),
-            // Set from the effects' own options below.
-            indirect: Default::default(),
-            // Set from the effects' own options below.
-            ccipca: Default::default(),
-            ssdo: Default::default(),
             temporal: TemporalConfig {
                 reuse: self.reuse,
                 accumulate,
@@ -226,10 +217,10 @@ impl SceneArgs {
                 invalidate: self.invalidate,
                 reaccumulate: self.reaccumulate,
             },
-            // Set from the post stages' options below.
-            aa: Default::default(),
             gbuffer: self.gbuffer,
             skip_unchanged: self.skip_unchanged,
+            // The effects' and post stages' parts: set from their own options below.
+            ..RenderConfig::default()
         };
         self.effect_options.apply(&mut config);
         self.post_options.apply(&mut config);
@@ -269,6 +260,16 @@ fn parse_frame_count(s: &str) -> std::result::Result<u32, String> {
 
 fn parse_effects(s: &str) -> std::result::Result<Effects, String> {
     Effects::parse(s)
+}
+
+/// `--effects`' help, from the switches and the registry's ambient effects.
+fn effects_help() -> String {
+    format!(
+        "Effects to render, comma-separated: {} (all = direct, ao, indirect). At most one of \
+         {} (each darkens the ambient light)",
+        Effects::NAMES.join(", "),
+        crate::effects::ambient_switches().join(", ")
+    )
 }
 
 #[derive(Args, Debug)]
@@ -383,8 +384,8 @@ pub struct TableArgs {
     #[arg(long, value_name = "P")]
     pub path: Option<String>,
     /// Effects to render, comma-separated: direct, ao, indirect (or all; the default). Leaving
-    /// one out drops its columns (e.g. `direct,ao` on a slow device). Not for szentandrasi-1,
-    /// whose rows choose theirs (direct light and SSDO).
+    /// one out drops its columns (e.g. `direct,ao` on a slow device). Not for the tables whose
+    /// rows choose theirs (szentandrasi-1).
     #[arg(long, value_parser = Effects::parse)]
     pub effects: Option<Effects>,
     /// Present every frame to a window (present mode immediate, else mailbox, else fifo) and

@@ -60,28 +60,49 @@ impl Effects {
         normals: false,
     };
 
-    /// Comma-separated list: `direct`, `ao`, `indirect`, `ssdo`, `normals`, or `all` (the
-    /// first three).
+    /// The `--effects` names, each a switch of its own (`all` is [`Effects::ALL`]). The
+    /// registry's `Registration::switch` names which of them turns an effect on.
+    pub const NAMES: [&'static str; 5] = ["direct", "ao", "indirect", "ssdo", "normals"];
+
+    fn flag_mut(&mut self, name: &str) -> Option<&mut bool> {
+        Some(match name {
+            "direct" => &mut self.direct,
+            "ao" => &mut self.ao,
+            "indirect" => &mut self.indirect,
+            "ssdo" => &mut self.ssdo,
+            "normals" => &mut self.normals,
+            _ => return None,
+        })
+    }
+
+    /// Whether the switch `name` is on (false for a name that is not one).
+    pub fn has(&self, name: &str) -> bool {
+        let mut copy = *self;
+        copy.flag_mut(name).is_some_and(|on| *on)
+    }
+
+    /// Turn the switch `name` on or off; an unknown name is an error naming the known ones.
+    pub fn set(&mut self, name: &str, on: bool) -> std::result::Result<(), String> {
+        let flag = self.flag_mut(name).ok_or_else(|| {
+            format!(
+                "unknown effect {name:?} in --effects (known: {}, all)",
+                Effects::NAMES.join(", ")
+            )
+        })?;
+        *flag = on;
+        Ok(())
+    }
+
+    /// Comma-separated list of [`Effects::NAMES`], or `all` (the thesis's three).
     pub fn parse(s: &str) -> std::result::Result<Effects, String> {
         let mut e = Effects::NONE;
         for part in s.split(',').map(str::trim).filter(|p| !p.is_empty()) {
-            match part {
-                "all" => {
-                    e.direct = true;
-                    e.ao = true;
-                    e.indirect = true;
-                }
-                "direct" => e.direct = true,
-                "ao" => e.ao = true,
-                "indirect" => e.indirect = true,
-                "ssdo" => e.ssdo = true,
-                "normals" => e.normals = true,
-                other => {
-                    return Err(format!(
-                        "unknown effect {other:?} in --effects (known: direct, ao, indirect, \
-                         ssdo, normals, all)"
-                    ))
-                }
+            if part == "all" {
+                e.direct = true;
+                e.ao = true;
+                e.indirect = true;
+            } else {
+                e.set(part, true)?;
             }
         }
         if e == Effects::NONE {
@@ -94,18 +115,7 @@ impl Effects {
 /// The `--effects` list that selects exactly these: `direct,ao`.
 impl std::fmt::Display for Effects {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        let names = [
-            ("direct", self.direct),
-            ("ao", self.ao),
-            ("indirect", self.indirect),
-            ("ssdo", self.ssdo),
-            ("normals", self.normals),
-        ];
-        let on: Vec<&str> = names
-            .iter()
-            .filter(|(_, on)| *on)
-            .map(|(n, _)| *n)
-            .collect();
+        let on: Vec<&str> = Effects::NAMES.into_iter().filter(|n| self.has(n)).collect();
         f.write_str(&on.join(","))
     }
 }

@@ -6,7 +6,8 @@ use crate::config::{Accumulate, RenderConfig};
 use crate::error::Result;
 use crate::passes::compute::{Dispatch, FrameSet};
 use crate::passes::{PassId, PassLayout};
-use crate::resources::targets::{Target, Targets};
+use crate::reference::compose::Terms;
+use crate::resources::targets::{EffectView, Target, Targets};
 use crate::resources::temporal_effect::{EffectKind, TemporalEffect};
 use crate::shaders::EffectPush;
 use crate::vk::recorder::Recorder;
@@ -45,8 +46,8 @@ pub enum TermKind {
     /// VPL of flux Phi has intensity Phi cos / pi (eq 9 leaves that 1/pi out).
     VplIrradiance = 2,
     /// rgb = bounce irradiance (the receiver reflects albedo/pi of it), a = a modulation
-    /// factor that darkens the ambient light and the radiance terms (SSDO's: Szentandrasi
-    /// section 4.1, "the diffuse and/or the ambient component").
+    /// factor that darkens the ambient light and the radiance terms (directional occlusion's:
+    /// Szentandrasi section 4.1, "the diffuse and/or the ambient component").
     BounceAndModulation = 3,
 }
 
@@ -253,6 +254,8 @@ pub trait Effect {
 /// pipelines for the up-front reflection check.
 pub struct Registration {
     pub id: EffectId,
+    /// The `--effects` switch (`Effects::NAMES`) that turns it on; `enabled` may ask more.
+    pub switch: &'static str,
     pub enabled: fn(&RenderConfig) -> bool,
     pub create: fn(&mut Setup<'_>) -> Result<Box<dyn Effect>>,
     pub layouts: fn() -> Vec<PassLayout>,
@@ -265,6 +268,25 @@ pub struct Registration {
     /// Its term darkens the ambient light (a visibility, or a bounce-and-modulation factor):
     /// the reports' ambient-visibility buffer and its time are this effect's.
     pub ambient: bool,
+    /// Debug views of its own images (`Effect::target` answers `Target::Effect` for them).
+    pub views: &'static [EffectView],
+    /// The ground truth's buffers its term estimates under a configuration that enables it
+    /// (what the final image's error is measured against).
+    pub estimates: fn(&RenderConfig) -> Terms,
+    /// On/off settings of its own the viewer offers beside the effect switches.
+    pub toggles: &'static [Toggle],
+}
+
+/// An on/off setting of an effect's configuration (the viewer's keys).
+pub struct Toggle {
+    /// Its name (the viewer's summary and test scripts' `key=NAME`).
+    pub name: &'static str,
+    /// What it switches, for the viewer's help.
+    pub what: &'static str,
+    pub get: fn(&RenderConfig) -> bool,
+    /// Turn it on or off in a configuration; `start` is the one the viewer began with (its
+    /// value comes back when the setting is turned on again).
+    pub set: fn(config: &mut RenderConfig, on: bool, start: &RenderConfig),
 }
 
 /// The refresh pass's dispatch this frame, one workgroup per pixel of the refresh tile in

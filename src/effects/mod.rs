@@ -16,13 +16,15 @@ pub mod ssdo;
 
 pub use effect::{
     every_pixel, refresh_dispatch, Effect, EffectId, FrameInfo, Recording, Registration, Setup,
-    TermKind,
+    TermKind, Toggle,
 };
 
 use crate::config::sweep_key::SweepKey;
 use crate::config::RenderConfig;
 use crate::error::Result;
 use crate::passes::{PassId, PassLayout};
+use crate::reference::compose::Terms;
+use crate::resources::targets::Target;
 
 /// The registry, in recording order (also the composite's term order). Adding an effect is its
 /// module and one line here.
@@ -57,13 +59,44 @@ pub fn effect_passes() -> Vec<PassId> {
     v
 }
 
+/// Every target a run may read back: the frame's own and each effect's views, in registry
+/// order (`--target`, `--dump-targets`, the audit).
+pub fn all_targets() -> Vec<Target> {
+    let views = REGISTRY.iter().flat_map(|r| r.views).map(Target::Effect);
+    Target::FRAME.into_iter().chain(views).collect()
+}
+
+/// The ground truth's buffers `config`'s final image estimates: those of every effect it
+/// turns on.
+pub fn estimated_terms(config: &RenderConfig) -> Terms {
+    REGISTRY
+        .iter()
+        .filter(|r| (r.enabled)(config))
+        .fold(Terms::NONE, |t, r| t.union((r.estimates)(config)))
+}
+
+/// The effects' own on/off settings, in registry order (the viewer's keys).
+pub fn toggles() -> impl Iterator<Item = &'static Toggle> {
+    REGISTRY.iter().flat_map(|r| r.toggles)
+}
+
+/// The `--effects` switches whose effects darken the ambient light (`Registration::ambient`):
+/// a run has at most one of them on.
+pub fn ambient_switches() -> Vec<&'static str> {
+    let mut v: Vec<&'static str> = Vec::new();
+    for r in REGISTRY.iter().filter(|r| r.ambient) {
+        if !v.contains(&r.switch) {
+            v.push(r.switch);
+        }
+    }
+    v
+}
+
 /// Every effect's sweep keys, in registry order.
 pub fn sweep_keys() -> impl Iterator<Item = &'static SweepKey> {
     REGISTRY.iter().flat_map(|r| r.sweep_keys)
 }
 
-/// Every pipeline of every effect, for the reflection check (also done when each pipeline is
-/// built; `renderer::all_layouts` adds the frame's own and the post stages').
 /// Whether `config` runs an effect whose term darkens the ambient light (`Registration::ambient`).
 pub fn ambient_enabled(config: &RenderConfig) -> bool {
     REGISTRY.iter().any(|r| r.ambient && (r.enabled)(config))
@@ -79,6 +112,8 @@ pub fn ambient_groups() -> Vec<&'static str> {
         .collect()
 }
 
+/// Every pipeline of every effect, for the reflection check (also done when each pipeline is
+/// built; `renderer::all_layouts` adds the frame's own and the post stages').
 pub fn effect_layouts() -> Vec<PassLayout> {
     REGISTRY.iter().flat_map(|r| (r.layouts)()).collect()
 }
@@ -104,5 +139,73 @@ impl EffectArgs {
         config.indirect = self.indirect.config();
         config.ccipca = self.ccipca.config();
         config.ssdo = self.ssdo.config();
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::config::{Effects, IndirectFilter};
+
+    #[test]
+    fn each_effect_is_off_without_its_switch() {
+        for r in REGISTRY {
+            assert!(Effects::NAMES.contains(&r.switch), "{}", r.id.name());
+            let mut config = RenderConfig {
+                effects: Effects::parse(&Effects::NAMES.join(",")).unwrap(),
+                ..Default::default()
+            };
+            config.effects.set(r.switch, false).unwrap();
+            assert!(
+                !(r.enabled)(&config),
+                "{} runs without --effects {}",
+                r.id.name(),
+                r.switch
+            );
+        }
+    }
+
+    fn terms(effects: &str, change: impl Fn(&mut RenderConfig)) -> Terms {
+        let mut config = RenderConfig {
+            effects: Effects::parse(effects).unwrap(),
+            ..Default::default()
+        };
+        change(&mut config);
+        estimated_terms(&config)
+    }
+
+    #[test]
+    fn the_estimated_terms_are_those_of_the_effects_that_run() {
+        assert_eq!(terms("all", |_| {}), Terms::ALL);
+        assert_eq!(terms("ao", |_| {}), Terms::AMBIENT_OCCLUSION);
+        assert_eq!(terms("direct,normals", |_| {}), Terms::DIRECT);
+        for filter in [IndirectFilter::Ccipca, IndirectFilter::Jbf11] {
+            let t = terms("indirect", |c| c.indirect.filter = filter);
+            assert_eq!(t, Terms::INDIRECT, "{filter:?}");
+        }
+        // SSDO darkens the ambient light as AO does; its forms with a bounce add the indirect
+        // light's near field.
+        let ssao = terms("direct,ssdo", |c| {
+            c.ssdo.form = ssdo::config::SsdoForm::Ssao
+        });
+        assert_eq!(ssao, terms("direct,ao", |_| {}));
+        for form in [
+            ssdo::config::SsdoForm::OneStep,
+            ssdo::config::SsdoForm::TwoStep,
+        ] {
+            assert_eq!(terms("direct,ssdo", |c| c.ssdo.form = form), Terms::ALL);
+        }
+    }
+
+    #[test]
+    fn views_and_toggles_have_unique_names() {
+        let unique = |mut names: Vec<&str>| {
+            let n = names.len();
+            names.sort_unstable();
+            names.dedup();
+            assert_eq!(names.len(), n, "a name repeats: {names:?}");
+        };
+        unique(all_targets().iter().map(|t| t.name()).collect());
+        unique(toggles().map(|t| t.name).chain(Effects::NAMES).collect());
     }
 }

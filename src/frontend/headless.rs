@@ -65,7 +65,7 @@ pub fn write_output(renderer: &mut Renderer, path: &Path) -> Result<()> {
 /// buffers of effects that are off do not exist and are left out.
 pub fn dump_targets(renderer: &mut Renderer, dir: &Path) -> Result<Vec<std::path::PathBuf>> {
     let mut written = Vec::new();
-    let present: Vec<Target> = Target::ALL
+    let present: Vec<Target> = crate::effects::all_targets()
         .into_iter()
         .filter(|t| renderer.has_target(*t))
         .collect();

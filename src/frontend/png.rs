@@ -1,6 +1,6 @@
 //! PNG output: the tonemapped image as is, and false-colour views of G-buffer / RSM targets.
 
-use crate::resources::targets::Target;
+use crate::resources::targets::{Look, Target};
 use crate::scene::Aabb;
 use crate::vk::ImageData;
 
@@ -27,13 +27,14 @@ pub fn visualize(target: Target, data: &ImageData, bounds: &Aabb) -> Vec<u8> {
         .map(|i| data.texel(i as u32 % data.width, i as u32 / data.width))
         .collect();
     let ext = bounds.extent().max(glam::Vec3::splat(1e-6));
-    let (lo, hi) = match target {
-        Target::GDepth | Target::RsmDepth => texels
+    let look = target.look();
+    let (lo, hi) = match look {
+        Look::Depth => texels
             .iter()
             .map(|t| t[0])
             .filter(|d| *d < 1.0)
             .fold((f32::MAX, f32::MIN), |(a, b), d| (a.min(d), b.max(d))),
-        Target::RsmFlux | Target::SsdoBounce => (
+        Look::Brightest => (
             0.0,
             texels
                 .iter()
@@ -47,13 +48,8 @@ pub fn visualize(target: Target, data: &ImageData, bounds: &Aabb) -> Vec<u8> {
     texels
         .iter()
         .flat_map(|t| {
-            let rgb = match target {
-                Target::GPosition
-                | Target::GPositionHistory
-                | Target::RsmPosition
-                | Target::AoPositionLevel1
-                | Target::AoPositionLevel2
-                | Target::AoPositionLevel3 => {
+            let rgb = match look {
+                Look::Position => {
                     if t[3] == 0.0 {
                         [0.0; 3]
                     } else {
@@ -61,10 +57,8 @@ pub fn visualize(target: Target, data: &ImageData, bounds: &Aabb) -> Vec<u8> {
                         p.to_array()
                     }
                 }
-                Target::GNormal | Target::GNormalHistory | Target::RsmNormal => {
-                    [t[0] * 0.5 + 0.5, t[1] * 0.5 + 0.5, t[2] * 0.5 + 0.5]
-                }
-                Target::GDepth | Target::RsmDepth => {
+                Look::Normal => [t[0] * 0.5 + 0.5, t[1] * 0.5 + 0.5, t[2] * 0.5 + 0.5],
+                Look::Depth => {
                     let v = if t[0] >= 1.0 {
                         0.0
                     } else {
@@ -72,32 +66,33 @@ pub fn visualize(target: Target, data: &ImageData, bounds: &Aabb) -> Vec<u8> {
                     };
                     [v, v, v]
                 }
-                // Scaled by the brightest channel: flux and bounce span any range.
-                Target::RsmFlux | Target::SsdoBounce => [t[0] / range, t[1] / range, t[2] / range],
-                Target::Ao | Target::Shadow => [t[0], t[0], t[0]],
-                // Linear albedo in 0..1, as stored (fp16).
-                Target::GAlbedo => [t[0], t[1], t[2]],
-                Target::SsdoModulation => [t[3], t[3], t[3]],
-                // Samples per block: 50 (the paper's most) is white.
-                Target::SsdoSamples => [t[0] / 50.0, t[0] / 50.0, t[0] / 50.0],
-                Target::DiscardMask => [t[0], 0.0, 0.0],
+                Look::Brightest => [t[0] / range, t[1] / range, t[2] / range],
+                Look::Red => [t[0], t[0], t[0]],
+                Look::Albedo => [t[0], t[1], t[2]],
+                Look::Alpha => [t[3], t[3], t[3]],
+                Look::Count { full } => {
+                    // `full` is a constant the view declares; max(1) keeps 0 from dividing.
+                    let v = t[0] / full.max(1) as f32;
+                    [v, v, v]
+                }
+                Look::Mask => [t[0], 0.0, 0.0],
                 // Figure 4.10: red where recomputed from scratch (disoccluded), blue for the
                 // refresh tile, yellow accumulating, grey converged, black background.
-                Target::State => match t[0] as u32 {
+                Look::State => match t[0] as u32 {
                     0 => [0.25, 0.25, 0.25],
                     1 => [0.9, 0.8, 0.1],
                     2 => [0.9, 0.05, 0.05],
                     3 => [0.1, 0.3, 0.9],
                     _ => [0.0, 0.0, 0.0],
                 },
-                _ => [
+                Look::Radiance => [
                     t[0] / (1.0 + t[0]),
                     t[1] / (1.0 + t[1]),
                     t[2] / (1.0 + t[2]),
                 ],
             };
             // The albedo keeps its alpha (0 over the background), as the 8-bit albedo did.
-            let alpha = if target == Target::GAlbedo {
+            let alpha = if look == Look::Albedo {
                 to_u8(t[3])
             } else {
                 255

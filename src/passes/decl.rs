@@ -50,11 +50,11 @@ pub enum Slot {
     Output,
     /// With antialiasing: the composite's display-linear colour (fp16), before filtering.
     Shaded,
-    /// SRAA: world position (w = 1 on geometry) at subpixel `n` of the rotated grid.
+    /// Subpixel geometry: world position (w = 1 on geometry) at subpixel `n` of the rotated grid.
     SubPosition(u8),
-    /// SRAA: normal at subpixel `n`.
+    /// Subpixel geometry: normal at subpixel `n`.
     SubNormal(u8),
-    /// SRAA: the depth buffer the four subpixel renders share.
+    /// Subpixel geometry: the depth buffer the four subpixel renders share.
     SubDepth,
     /// The direct effect's outgoing radiance (written by it, read by effects that bounce it).
     DirectLight,

@@ -3,15 +3,10 @@
 //! (π·E₁)/π, then Reinhard c/(1 + c) and the sRGB encoding, for the terms a run estimates.
 
 use super::trace::Reference;
-use crate::config::Effects;
-use crate::config::RenderConfig;
-use crate::effects::ssdo::config::SsdoForm;
 use glam::Vec3;
 
-/// The reference buffers a configuration's final image estimates. SSDO estimates the
-/// occlusion of the ambient light (the `ao` buffer, as `--ao` does) and, in its forms with a
-/// bounce, the near-field part of the one-bounce indirect light (the `indirect` buffer: the
-/// truth has the whole bounce, so what SSDO's radius leaves out counts as its error).
+/// The reference buffers a configuration's final image estimates: each effect says which of
+/// them it estimates (`Registration::estimates`, gathered by `effects::estimated_terms`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Terms {
     pub ambient_occlusion: bool,
@@ -26,20 +21,31 @@ impl Terms {
         direct: true,
         indirect: true,
     };
+    pub const NONE: Terms = Terms {
+        ambient_occlusion: false,
+        direct: false,
+        indirect: false,
+    };
+    pub const AMBIENT_OCCLUSION: Terms = Terms {
+        ambient_occlusion: true,
+        ..Terms::NONE
+    };
+    pub const DIRECT: Terms = Terms {
+        direct: true,
+        ..Terms::NONE
+    };
+    pub const INDIRECT: Terms = Terms {
+        indirect: true,
+        ..Terms::NONE
+    };
 
-    /// What `effects` estimate, SSDO in `form`.
-    pub fn estimated(effects: Effects, form: SsdoForm) -> Terms {
-        let ssdo_bounce = effects.ssdo && form != SsdoForm::Ssao;
+    /// The terms either estimates.
+    pub fn union(self, other: Terms) -> Terms {
         Terms {
-            ambient_occlusion: effects.ao || effects.ssdo,
-            direct: effects.direct,
-            indirect: effects.indirect || ssdo_bounce,
+            ambient_occlusion: self.ambient_occlusion || other.ambient_occlusion,
+            direct: self.direct || other.direct,
+            indirect: self.indirect || other.indirect,
         }
-    }
-
-    /// What a render configuration estimates.
-    pub fn of(config: &RenderConfig) -> Terms {
-        Terms::estimated(config.effects, config.ssdo.form)
     }
 }
 
@@ -84,30 +90,4 @@ pub fn to_rgb8(values: &[f32]) -> Vec<u8> {
         .iter()
         .map(|v| (v.clamp(0.0, 1.0) * 255.0).round() as u8)
         .collect()
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn ssdo_estimates_occlusion_and_its_forms_with_a_bounce_the_indirect_light() {
-        let direct_ssdo = Effects::parse("direct,ssdo").unwrap();
-        let ssao = Terms::estimated(direct_ssdo, SsdoForm::Ssao);
-        assert_eq!(
-            ssao,
-            Terms::estimated(Effects::parse("direct,ao").unwrap(), ssao_any())
-        );
-        assert!(ssao.ambient_occlusion && ssao.direct && !ssao.indirect);
-        for form in [SsdoForm::OneStep, SsdoForm::TwoStep] {
-            assert_eq!(Terms::estimated(direct_ssdo, form), Terms::ALL);
-        }
-        let ao_only = Terms::estimated(Effects::parse("ao").unwrap(), SsdoForm::OneStep);
-        assert!(ao_only.ambient_occlusion && !ao_only.direct && !ao_only.indirect);
-    }
-
-    /// The SSDO form of a run without SSDO does not matter.
-    fn ssao_any() -> SsdoForm {
-        SsdoForm::OneStep
-    }
 }

@@ -79,22 +79,6 @@ fn float_channels(format: vk::Format) -> Option<u32> {
     }
 }
 
-/// Channels of a target that may be negative: positions and normals (xyz).
-fn signed_channels(target: Target) -> u32 {
-    match target {
-        Target::GPosition
-        | Target::GPositionHistory
-        | Target::GNormal
-        | Target::GNormalHistory
-        | Target::RsmPosition
-        | Target::RsmNormal
-        | Target::AoPositionLevel1
-        | Target::AoPositionLevel2
-        | Target::AoPositionLevel3 => 0b0111,
-        _ => 0,
-    }
-}
-
 /// The moments' g is the side of a pending gate crossing, -1, 0 or +1.
 const MOMENTS_SIGNED: u32 = 0b0010;
 /// A registration's point is a world position (any sign); its w a magnification (>= 1) or a
@@ -152,7 +136,7 @@ impl Renderer {
                 signed_mask: POSITION_SIGNED,
             });
         }
-        for target in Target::ALL {
+        for target in crate::effects::all_targets() {
             let gbuffer_history =
                 matches!(target, Target::GPositionHistory | Target::GNormalHistory);
             if gbuffer_history && !self.last_frame_reused {
@@ -169,7 +153,7 @@ impl Renderer {
                 kind: AuditKind::Target,
                 image,
                 channels,
-                signed_mask: signed_channels(target),
+                signed_mask: target.look().signed_channels(),
             });
         }
         // A target may be a history itself (AO with reuse): audit each image once, under its

@@ -126,7 +126,7 @@ pub struct Rsm {
     pub size: u32,
 }
 
-/// SRAA's subpixel geometry: position and normal at each subpixel of the rotated grid, one
+/// The subpixel geometry an antialiasing mode asks for (`AaMode::subpixel`): position and normal at each subpixel of the rotated grid, one
 /// render each, sharing a depth buffer.
 pub struct Subpixels {
     pub position: [Image; 4],
@@ -135,7 +135,7 @@ pub struct Subpixels {
 }
 
 /// What antialiasing adds: the composite's display-linear image it filters (at the render
-/// size) and, for SRAA, the subpixel geometry.
+/// size) and, for a mode that reconstructs from it, the subpixel geometry.
 pub struct Antialias {
     pub shaded: Image,
     pub subpixels: Option<Subpixels>,
@@ -152,7 +152,7 @@ pub struct Targets {
     pub gbuffer: GBuffer,
     pub rsm: Rsm,
     /// The direct effect's outgoing radiance (rgb) and shadow visibility (a): shared, because
-    /// SSDO's bounce reads it at its senders.
+    /// other effects read it (a directional-occlusion bounce at its senders).
     pub direct: Image,
     /// The final image, at the output size.
     pub output: Image,
@@ -186,25 +186,67 @@ pub enum Target {
     Shadow,
     /// Indirect light (eq 9's I_p, rgb; a = estimates accumulated).
     Indirect,
-    /// CCIPCA's input: this frame's noisy gather (--indirect-filter ccipca).
+    /// The per-frame filters' input: this frame's noisy gather (`--indirect-filter`).
     IndirectNoisy,
     /// Pixels the half-resolution upsampling discarded this frame (Figure 4.1).
     DiscardMask,
     /// Reprojection state per pixel (Figure 4.10's recompute mask).
     State,
-    /// The point-sampled G-buffer position levels SSAO's far taps read (--ao-position-mips).
-    AoPositionLevel1,
-    AoPositionLevel2,
-    AoPositionLevel3,
-    /// SSDO's modulation factor (a of its term) and bounce irradiance (rgb), as composited.
-    SsdoModulation,
-    SsdoBounce,
-    /// The adaptive pre-pass's samples per block.
-    SsdoSamples,
+    /// A view of an image one effect owns, declared in its registration (`Registration::views`).
+    Effect(&'static EffectView),
+}
+
+/// A debug view an effect declares of one of its own images: its name (the PNG's and
+/// `--target`'s) and how it is drawn.
+#[derive(Debug, PartialEq, Eq)]
+pub struct EffectView {
+    pub name: &'static str,
+    pub look: Look,
+    /// The viewer's display cycle shows it (Tab), after the frame's own buffers.
+    pub in_viewer: bool,
+}
+
+/// How a target's texels become a picture (`frontend::png::visualize`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Look {
+    /// Tonemapped radiance (Reinhard), and the RGBA8 output as it is.
+    Radiance,
+    /// A world position (w = 0 off geometry) mapped from the scene bounds to 0..1.
+    Position,
+    /// A unit normal as n/2 + 1/2.
+    Normal,
+    /// Depth normalised by its range over the image, near bright, the far plane black.
+    Depth,
+    /// rgb scaled by the image's brightest channel (flux and bounce span any range).
+    Brightest,
+    /// The r channel as grey (visibilities).
+    Red,
+    /// The a channel as grey (a modulation factor kept in alpha).
+    Alpha,
+    /// The r channel as grey, `full` white (a count).
+    Count { full: u32 },
+    /// Linear albedo in 0..1, its alpha kept (0 over the background).
+    Albedo,
+    /// The r channel in red (a mask).
+    Mask,
+    /// Figure 4.10's reprojection states in colour.
+    State,
+}
+
+impl Look {
+    /// Channels that may be negative: positions and normals (xyz).
+    pub fn signed_channels(self) -> u32 {
+        match self {
+            Look::Position | Look::Normal => 0b0111,
+            _ => 0,
+        }
+    }
 }
 
 impl Target {
-    pub const ALL: [Target; 26] = [
+    /// The frame's own targets and the roles effects fill (an effect's own views are in the
+    /// registry: `effects::all_targets`).
+    pub const FRAME: [Target; 20] = [
         Target::Output,
         Target::Shaded,
         Target::Direct,
@@ -225,12 +267,6 @@ impl Target {
         Target::IndirectNoisy,
         Target::DiscardMask,
         Target::State,
-        Target::AoPositionLevel1,
-        Target::AoPositionLevel2,
-        Target::AoPositionLevel3,
-        Target::SsdoModulation,
-        Target::SsdoBounce,
-        Target::SsdoSamples,
     ];
 
     pub fn name(self) -> &'static str {
@@ -255,12 +291,28 @@ impl Target {
             Target::IndirectNoisy => "indirect_noisy",
             Target::DiscardMask => "discard_mask",
             Target::State => "recompute_mask",
-            Target::AoPositionLevel1 => "ao_position_level1",
-            Target::AoPositionLevel2 => "ao_position_level2",
-            Target::AoPositionLevel3 => "ao_position_level3",
-            Target::SsdoModulation => "ssdo_modulation",
-            Target::SsdoBounce => "ssdo_bounce",
-            Target::SsdoSamples => "ssdo_samples",
+            Target::Effect(view) => view.name,
+        }
+    }
+
+    /// How the target is drawn.
+    pub fn look(self) -> Look {
+        match self {
+            Target::GPosition | Target::GPositionHistory | Target::RsmPosition => Look::Position,
+            Target::GNormal | Target::GNormalHistory | Target::RsmNormal => Look::Normal,
+            Target::GDepth | Target::RsmDepth => Look::Depth,
+            Target::RsmFlux => Look::Brightest,
+            Target::Ao | Target::Shadow => Look::Red,
+            Target::GAlbedo => Look::Albedo,
+            Target::DiscardMask => Look::Mask,
+            Target::State => Look::State,
+            Target::Effect(view) => view.look,
+            Target::Output
+            | Target::Shaded
+            | Target::Direct
+            | Target::GMotion
+            | Target::Indirect
+            | Target::IndirectNoisy => Look::Radiance,
         }
     }
 }
@@ -268,13 +320,21 @@ impl Target {
 fn subpixels(ctx: &Arc<Context>, s: (u32, u32)) -> Result<Subpixels> {
     let [gp, gn, _, _] = GBUFFER_COLOR_FORMATS;
     let four = |what: &str, format| -> Result<[Image; 4]> {
-        let layer = |i: usize| image(ctx, &format!("sraa.{what}.{i}"), s, format, ATTACHMENT_READ);
+        let layer = |i: usize| {
+            image(
+                ctx,
+                &format!("subpixel.{what}.{i}"),
+                s,
+                format,
+                ATTACHMENT_READ,
+            )
+        };
         Ok([layer(0)?, layer(1)?, layer(2)?, layer(3)?])
     };
     Ok(Subpixels {
         position: four("position", gp)?,
         normal: four("normal", gn)?,
-        depth: image(ctx, "sraa.depth", s, DEPTH_FORMAT, DEPTH_READ)?,
+        depth: image(ctx, "subpixel.depth", s, DEPTH_FORMAT, DEPTH_READ)?,
     })
 }
 
@@ -371,12 +431,7 @@ impl Targets {
             | Target::IndirectNoisy
             | Target::DiscardMask
             | Target::State
-            | Target::AoPositionLevel1
-            | Target::AoPositionLevel2
-            | Target::AoPositionLevel3
-            | Target::SsdoModulation
-            | Target::SsdoBounce
-            | Target::SsdoSamples => return None,
+            | Target::Effect(_) => return None,
         })
     }
 }

@@ -43,30 +43,20 @@ const AUDITS: u64 = 100;
 /// An effect set and a reuse mode.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Variant {
-    /// `ao` (direct, AO, indirect light: the thesis's set) or `ssdo` (direct, SSDO, indirect).
+    /// The effect that darkens the ambient light beside direct and indirect light: each
+    /// `--effects` switch of one that does (`ao`, the thesis's set, first).
     pub effects: &'static str,
     pub reuse: bool,
 }
 
 impl Variant {
-    pub const ALL: [Variant; 4] = [
-        Variant {
-            effects: "ao",
-            reuse: true,
-        },
-        Variant {
-            effects: "ao",
-            reuse: false,
-        },
-        Variant {
-            effects: "ssdo",
-            reuse: true,
-        },
-        Variant {
-            effects: "ssdo",
-            reuse: false,
-        },
-    ];
+    /// Every ambient effect with and without reuse.
+    pub fn all() -> Vec<Variant> {
+        crate::effects::ambient_switches()
+            .into_iter()
+            .flat_map(|effects| [true, false].map(|reuse| Variant { effects, reuse }))
+            .collect()
+    }
 
     pub fn config(&self, rsm_size: u32) -> RenderConfig {
         let mut c = RenderConfig {
@@ -74,9 +64,9 @@ impl Variant {
             effects: Effects::ALL,
             ..Default::default()
         };
-        if self.effects == "ssdo" {
-            c.effects.ao = false;
-            c.effects.ssdo = true;
+        for other in crate::effects::ambient_switches() {
+            // Switches from the registry: known names.
+            let _ = c.effects.set(other, other == self.effects);
         }
         c.temporal.reuse = self.reuse;
         c

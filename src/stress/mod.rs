@@ -39,12 +39,13 @@ pub fn plan(options: &StressOptions) -> Vec<(Case, Variant)> {
             .as_ref()
             .is_none_or(|o| c.name.contains(o.as_str()))
     };
+    let variants = Variant::all();
     let mut plan = Vec::new();
     for (i, case) in cases.into_iter().filter(wanted).enumerate() {
         if options.quick && i > 0 {
-            plan.push((case, Variant::ALL[i % Variant::ALL.len()]));
+            plan.push((case, variants[i % variants.len()]));
         } else {
-            for v in Variant::ALL {
+            for v in variants.iter().copied() {
                 plan.push((case.clone(), v));
             }
         }

@@ -12,7 +12,6 @@ use crate::bench::measure::{held_at, last_camera, measure, Buffer, LastFrame, Ru
 use crate::bench::tables::reuse::rows::{RowKind, REFERENCE_FRAMES};
 use crate::error::{Error, Result};
 use crate::frontend::sink::Offscreen;
-use crate::reference::compose::Terms;
 use crate::reference::run::Session;
 use crate::renderer::RenderConfig;
 use crate::scene::{CameraPath, Scene};
@@ -210,10 +209,15 @@ pub fn run(
 fn score(rows: &mut [SweepRow], scene: &Scene, truth: &Session<'_>) -> Result<()> {
     for row in rows {
         let Some(last) = &row.last else { continue };
-        row.truth = ground_truth::errors(last, &truth.reference, scene, Terms::of(&row.config))?
-            .into_iter()
-            .map(|(b, e)| (b.name().to_string(), e))
-            .collect();
+        row.truth = ground_truth::errors(
+            last,
+            &truth.reference,
+            scene,
+            crate::effects::estimated_terms(&row.config),
+        )?
+        .into_iter()
+        .map(|(b, e)| (b.name().to_string(), e))
+        .collect();
     }
     Ok(())
 }

@@ -25,7 +25,7 @@ const CHUNK_PER_SET: u32 = 8;
 /// recreated. Every set is counted against its pool's declared sizes from the descriptors its
 /// layout declares (`Context::layout_counts`), and a new Vulkan pool is opened before one
 /// would run out, so no driver refuses an allocation (lavapipe never does; NVIDIA refuses
-/// past `maxSets` or a type's size, as it did for CCIPCA's many sets).
+/// past `maxSets` or a type's size, as it did for the incremental-PCA filter's many sets).
 pub struct DescriptorPool {
     ctx: Arc<Context>,
     chunks: Mutex<Vec<Chunk>>,

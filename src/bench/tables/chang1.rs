@@ -1,5 +1,5 @@
-//! `ssgi table chang-1`: Chen, Lei & Chang's Table 1 (the article in
-//! `../shared/papers/chang-ccipca-filtering-and-sraa.txt`): CCIPCA's milliseconds per frame at
+//! `ssgi table chang-1`: Chen, Lei & Chang's Table 1 (the article in `../shared/papers/`, with
+//! the antialiasing report): CCIPCA's milliseconds per frame at
 //! five sizes with 3, 5 and 7 bases, split as the article splits them: reprojection (the warp
 //! and the orthogonalization, `ccipca_reproject`), incremental PCA (`ccipca_update`) and
 //! reconstruction (`ccipca_reconstruct`), with the article's numbers beside ours. The camera

@@ -5,12 +5,12 @@
 
 pub mod chang1;
 pub mod chang_flicker;
+pub mod chiu1;
 mod def;
 pub mod dynamic;
 pub mod paths;
 pub mod reuse;
 pub mod run;
-pub mod sraa;
 pub mod szentandrasi;
 pub mod thesis41;
 pub mod walkthroughs;
@@ -22,7 +22,7 @@ pub const TABLES: [&TableDef; 7] = [
     &thesis41::TABLE,
     &walkthroughs::TABLE,
     &szentandrasi::TABLE,
-    &sraa::TABLE,
+    &chiu1::TABLE,
     &chang1::TABLE,
     &chang_flicker::TABLE,
     &dynamic::TABLE,

@@ -101,7 +101,7 @@ pub fn sweep(cli: &Cli, args: &SweepArgs) -> Result<()> {
                 last,
                 &truth.reference,
                 &scene,
-                crate::reference::compose::Terms::of(&row.config),
+                crate::effects::estimated_terms(&row.config),
                 &args.out.join("maps"),
                 &format!("{i:02}"),
             )?);

@@ -20,8 +20,11 @@ use crate::error::Result;
 use crate::passes::compute::{ComputePass, Dispatch, PassDecl};
 use crate::passes::decl::{Bind, Slot, Use};
 use crate::passes::{PassId, PassLayout};
+use crate::reference::compose::Terms;
 use crate::resources::counters::{Counter, Role};
-use crate::resources::targets::{Target, Targets, AO_FORMAT, GBUFFER_COLOR_FORMATS};
+use crate::resources::targets::{
+    EffectView, Look, Target, Targets, AO_FORMAT, GBUFFER_COLOR_FORMATS,
+};
 use crate::resources::temporal::random_vectors;
 use crate::resources::temporal::Sampling;
 use crate::resources::temporal_effect::{EffectKind, MovedReach, ScreenReach, TemporalEffect};
@@ -148,6 +151,7 @@ const BLUR: &[Bind] = &[
 
 pub const REGISTRATION: Registration = Registration {
     id: ID,
+    switch: "ao",
     enabled: |c| c.effects.ao,
     create: |s| Ok(Box::new(AoEffect::new(s)?)),
     layouts,
@@ -155,7 +159,25 @@ pub const REGISTRATION: Registration = Registration {
     timing_groups: pass::GROUPS,
     sweep_keys: sweep::SWEEP_KEYS,
     ambient: true,
+    views: &POSITION_LEVELS,
+    estimates: |_| Terms::AMBIENT_OCCLUSION,
+    toggles: &[],
 };
+
+/// The point-sampled G-buffer position levels the far taps read (`--ao-position-mips`).
+pub const POSITION_LEVELS: [EffectView; 3] = [
+    level_view("ao_position_level1"),
+    level_view("ao_position_level2"),
+    level_view("ao_position_level3"),
+];
+
+const fn level_view(name: &'static str) -> EffectView {
+    EffectView {
+        name,
+        look: Look::Position,
+        in_viewer: false,
+    }
+}
 
 // Every pass of the effect, declared once (`PassDecl`): `layouts` and `new` both read these.
 const SSAO_ACCUMULATE_BLOCKS: PassDecl = PassDecl::new(
@@ -453,9 +475,10 @@ impl Effect for AoEffect {
             Target::Ao => Some(self.visibility(parity)),
             Target::State => Some(&self.sized.temporal.state),
             // Only when the chain writes them (otherwise they hold nothing).
-            Target::AoPositionLevel1 if self.chain.is_some() => Some(&self.sized.levels[0]),
-            Target::AoPositionLevel2 if self.chain.is_some() => Some(&self.sized.levels[1]),
-            Target::AoPositionLevel3 if self.chain.is_some() => Some(&self.sized.levels[2]),
+            Target::Effect(v) if self.chain.is_some() => POSITION_LEVELS
+                .iter()
+                .position(|l| l == v)
+                .map(|i| &self.sized.levels[i]),
             _ => None,
         }
     }

@@ -24,6 +24,7 @@ use crate::error::Result;
 use crate::passes::compute::{ComputePass, Dispatch, PassDecl};
 use crate::passes::decl::{Bind, Slot, Use};
 use crate::passes::{PassId, PassLayout};
+use crate::reference::compose::Terms;
 use crate::resources::targets::{Target, Targets};
 use crate::resources::temporal_effect::TemporalEffect;
 use crate::shaders::{self, CcipcaPush};
@@ -41,11 +42,8 @@ pub const ID: EffectId = EffectId::new("ccipca");
 pub mod pass {
     use crate::passes::pass_id::{Change, PassId};
 
-    /// CCIPCA's input: a new noisy full-resolution gather each frame (--vpls per pixel).
-    pub const INDIRECT_NOISY: PassId = PassId::new(
-        "indirect_noisy",
-        &[Change::Camera, Change::Light, Change::Config],
-    );
+    /// CCIPCA's input, the indirect light's noisy gather (with the update's partial sums).
+    pub use crate::effects::indirect::pass::INDIRECT_NOISY;
     /// CCIPCA: the bases warped along the reprojection and orthogonalized (a moving camera).
     pub const CCIPCA_REPROJECT: PassId =
         PassId::new("ccipca_reproject", &[Change::Camera, Change::Config]);
@@ -219,6 +217,7 @@ const PASSES: [&PassDecl; 9] = [
 
 pub const REGISTRATION: Registration = Registration {
     id: ID,
+    switch: "indirect",
     enabled: |c| c.effects.indirect && c.indirect.filter == IndirectFilter::Ccipca,
     create: |s| Ok(Box::new(CcipcaEffect::new(s)?)),
     layouts,
@@ -226,6 +225,9 @@ pub const REGISTRATION: Registration = Registration {
     timing_groups: pass::GROUPS,
     sweep_keys: &[],
     ambient: false,
+    views: &[],
+    estimates: |_| Terms::INDIRECT,
+    toggles: &[],
 };
 
 fn layouts() -> Vec<PassLayout> {

@@ -17,6 +17,7 @@ use crate::error::Result;
 use crate::passes::compute::{ComputePass, Dispatch, PassDecl};
 use crate::passes::decl::{Bind, Slot, Use};
 use crate::passes::{PassId, PassLayout};
+use crate::reference::compose::Terms;
 use crate::resources::counters::{Counter, Role};
 use crate::resources::targets::{Target, Targets, AO_FORMAT};
 use crate::resources::temporal::Sampling;
@@ -121,6 +122,7 @@ const DIRECT_LIGHT: &[Bind] = &[
 
 pub const REGISTRATION: Registration = Registration {
     id: ID,
+    switch: "direct",
     enabled: |c| c.effects.direct,
     create: |s| Ok(Box::new(DirectEffect::new(s)?)),
     layouts,
@@ -128,6 +130,9 @@ pub const REGISTRATION: Registration = Registration {
     timing_groups: pass::GROUPS,
     sweep_keys: sweep::SWEEP_KEYS,
     ambient: false,
+    views: &[],
+    estimates: |_| Terms::DIRECT,
+    toggles: &[],
 };
 
 // Every pass of the effect, declared once (`PassDecl`): `layouts` and `new` both read these.

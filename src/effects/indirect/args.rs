@@ -21,12 +21,11 @@ pub struct IndirectArgs {
     /// power of two, 1-64; more lanes hide a GPU's memory latency, fewer sum less).
     #[arg(long, default_value_t = IndirectConfig::default().vpl_lanes)]
     pub vpl_lanes: u32,
-    /// How indirect light is smoothed over time: `accumulate` (the thesis's cache) or `ccipca`
-    /// (Chen et al. 2012: a new noisy gather of --vpls per pixel each frame, projected on
-    /// incrementally estimated principal components).
+    /// How indirect light is smoothed over time: the thesis's cache, or one of the per-frame
+    /// filters of a new noisy gather of --vpls per pixel each frame.
     #[arg(long, value_enum, default_value_t = IndirectFilter::Accumulate)]
     pub indirect_filter: IndirectFilter,
-    /// The noisy gather of `ccipca` and `jbf*` at half resolution: one pixel of each 2x2 block
+    /// The per-frame filters' noisy gather at half resolution: one pixel of each 2x2 block
     /// gathers (each in turn), the others take its sample where they lie on its surface.
     #[arg(long, default_value = "off", value_parser = parse_on_off, action = clap::ArgAction::Set)]
     pub noisy_half_res: bool,

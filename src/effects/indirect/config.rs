@@ -23,9 +23,9 @@ pub struct IndirectConfig {
     /// gather (a power of two, 1-64): a GPU hides the RSM reads' latency only with enough lanes
     /// in flight, and one lane looping over every VPL is one long dependency chain.
     pub vpl_lanes: u32,
-    /// What becomes of the noisy per-frame gather: the thesis's accumulation, or CCIPCA.
+    /// What smooths indirect light over time: the thesis's accumulation, or a per-frame filter.
     pub filter: IndirectFilter,
-    /// The noisy gather of CCIPCA and the joint bilateral filters at half resolution: one
+    /// The per-frame filters' noisy gather at half resolution: one
     /// pixel of each 2x2 block gathers (each in turn), the others take its sample where they
     /// lie on its surface.
     pub noisy_half_res: bool,

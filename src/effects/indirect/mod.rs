@@ -23,6 +23,7 @@ use crate::error::Result;
 use crate::passes::compute::{ComputePass, Dispatch, PassDecl};
 use crate::passes::decl::{Bind, Slot, Use};
 use crate::passes::{PassId, PassLayout};
+use crate::reference::compose::Terms;
 use crate::resources::counters::{Counter, Role, FIXUP_DISPATCH_OFFSET, LOWRES_DISPATCH_OFFSET};
 use crate::resources::targets::{Target, Targets, STATE_FORMAT};
 use crate::resources::temporal::{tile_evaluations, Sampling};
@@ -94,6 +95,13 @@ pub const KIND: EffectKind = EffectKind {
 /// The effect's passes (timing rows and the scene inputs each reads).
 pub mod pass {
     use crate::passes::pass_id::{Change, PassId};
+
+    /// The per-frame filters' input: a new noisy full-resolution gather each frame (--vpls per
+    /// pixel), recorded by whichever filter runs (`--indirect-filter`), not by this effect.
+    pub const INDIRECT_NOISY: PassId = PassId::new(
+        "indirect_noisy",
+        &[Change::Camera, Change::Light, Change::Config],
+    );
 
     /// The half-resolution gather's list: the low-resolution samples the upsampling reads.
     pub const INDIRECT_CLASSIFY: PassId = PassId::new(
@@ -235,6 +243,7 @@ const GATHER: &[Bind] = gather_inputs![
 
 pub const REGISTRATION: Registration = Registration {
     id: ID,
+    switch: "indirect",
     enabled: |c| c.effects.indirect && c.indirect.filter == IndirectFilter::Accumulate,
     create: |s| Ok(Box::new(IndirectEffect::new(s)?)),
     layouts,
@@ -242,6 +251,9 @@ pub const REGISTRATION: Registration = Registration {
     timing_groups: pass::GROUPS,
     sweep_keys: sweep::SWEEP_KEYS,
     ambient: false,
+    views: &[],
+    estimates: |_| Terms::INDIRECT,
+    toggles: &[],
 };
 
 // Every pass of the effect, declared once (`PassDecl`): `layouts` and `new` both read these.

@@ -1,5 +1,5 @@
-//! The indirect light's keys for `ssgi sweep --vary` (the gather's: they apply to CCIPCA's
-//! and the joint bilateral filters' noisy gather too).
+//! The indirect light's keys for `ssgi sweep --vary` (the gather's: they apply to the per-frame
+//! filters' noisy gather too).
 
 use crate::config::parse::{parse_count, parse_on_off, parse_vpls};
 use crate::config::sweep_key::SweepKey;

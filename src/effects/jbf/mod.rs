@@ -1,7 +1,7 @@
 //! Indirect light from the noisy per-frame gather, filtered within the frame by a joint
-//! bilateral filter (`--indirect-filter jbf11|jbf17`): the geometry-aware baselines Chen, Lei
-//! & Chang compare CCIPCA with, on the same input (`indirect_noisy`, --vpls per pixel, new
-//! VPLs every frame). No history: a pixel's light is as new each frame as its input.
+//! bilateral filter (`--indirect-filter jbf11|jbf17`): the geometry-aware baselines of Chen,
+//! Lei & Chang's comparison, on the same input as the other per-frame filters
+//! (`indirect_noisy`, --vpls per pixel, new VPLs every frame). No history: a pixel's light is as new each frame as its input.
 
 use super::effect::{
     every_pixel, float_image, Effect, EffectId, FrameInfo, Recording, Registration, Setup, TermKind,
@@ -13,6 +13,7 @@ use crate::error::Result;
 use crate::passes::compute::{ComputePass, PassDecl};
 use crate::passes::decl::{Bind, Slot, Use};
 use crate::passes::{PassId, PassLayout};
+use crate::reference::compose::Terms;
 use crate::resources::targets::{Target, Targets};
 use crate::resources::temporal_effect::TemporalEffect;
 use crate::shaders;
@@ -30,7 +31,7 @@ pub mod pass {
     pub const INDIRECT_JBF: PassId = PassId::new("indirect_jbf", &[Change::Camera, Change::Config]);
 
     /// Every pass the effect may record, in recording order.
-    pub const ALL: &[PassId] = &[crate::effects::ccipca::pass::INDIRECT_NOISY, INDIRECT_JBF];
+    pub const ALL: &[PassId] = &[crate::effects::indirect::pass::INDIRECT_NOISY, INDIRECT_JBF];
 
     /// The timing groups `bench --compare-reuse`, tables and sweeps compare (summed per frame).
     pub const GROUPS: &[(&str, &[PassId])] = &[];
@@ -58,6 +59,7 @@ const FILTER: &[Bind] = &[
 
 pub const REGISTRATION: Registration = Registration {
     id: ID,
+    switch: "indirect",
     enabled: |c| c.effects.indirect && radius(c.indirect.filter).is_some(),
     create: |s| Ok(Box::new(JbfEffect::new(s)?)),
     layouts,
@@ -65,11 +67,14 @@ pub const REGISTRATION: Registration = Registration {
     timing_groups: pass::GROUPS,
     sweep_keys: &[],
     ambient: false,
+    views: &[],
+    estimates: |_| Terms::INDIRECT,
+    toggles: &[],
 };
 
 // Every pass of the effect, declared once (`PassDecl`): `layouts` and `new` both read these.
 const INDIRECT_NOISY_PLAIN: PassDecl = PassDecl::new(
-    crate::effects::ccipca::pass::INDIRECT_NOISY,
+    crate::effects::indirect::pass::INDIRECT_NOISY,
     &shaders::INDIRECT_NOISY_COMP_PLAIN,
     NOISY_GATHER,
 );
@@ -85,7 +90,8 @@ fn radius(filter: IndirectFilter) -> Option<u32> {
     match filter {
         IndirectFilter::Jbf11 => Some(5),
         IndirectFilter::Jbf17 => Some(8),
-        IndirectFilter::Accumulate | IndirectFilter::Ccipca => None,
+        // Every other filter is another effect's.
+        _ => None,
     }
 }
 
@@ -181,7 +187,7 @@ impl Effect for JbfEffect {
             own_buffers: &[(VPL_PARAMS, &self.vpl_params)],
         };
         let pixels = every_pixel(info);
-        r.timed(crate::effects::ccipca::pass::INDIRECT_NOISY, |rec, tr| {
+        r.timed(crate::effects::indirect::pass::INDIRECT_NOISY, |rec, tr| {
             self.noisy.record(rec, tr, info.frame, &res, &[], pixels)
         });
         r.timed(pass::INDIRECT_JBF, |rec, tr| {

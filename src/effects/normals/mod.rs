@@ -11,6 +11,7 @@ use crate::error::Result;
 use crate::passes::compute::{ComputePass, PassDecl};
 use crate::passes::decl::{Bind, Slot, Use};
 use crate::passes::PassId;
+use crate::reference::compose::Terms;
 use crate::resources::targets::{Target, Targets};
 use crate::resources::temporal_effect::TemporalEffect;
 use crate::shaders;
@@ -44,6 +45,7 @@ const NORMALS: PassDecl = PassDecl::new(pass::NORMALS, &shaders::NORMALS_COMP, N
 
 pub const REGISTRATION: Registration = Registration {
     id: ID,
+    switch: "normals",
     enabled: |c| c.effects.normals,
     create: |s| Ok(Box::new(NormalsEffect::new(s)?)),
     layouts: || vec![NORMALS.layout()],
@@ -51,6 +53,9 @@ pub const REGISTRATION: Registration = Registration {
     timing_groups: &[],
     sweep_keys: &[],
     ambient: false,
+    views: &[],
+    estimates: |_| Terms::NONE,
+    toggles: &[],
 };
 
 pub struct NormalsEffect {

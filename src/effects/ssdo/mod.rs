@@ -16,6 +16,7 @@ pub mod sweep;
 use super::effect::TermKind;
 use super::effect::{
     every_pixel, refresh_dispatch, Effect, EffectId, FrameInfo, Recording, Registration, Setup,
+    Toggle,
 };
 use super::resolve::EffectResources;
 use crate::config::RenderConfig;
@@ -24,15 +25,16 @@ use crate::error::Result;
 use crate::passes::compute::{ComputePass, Dispatch, PassDecl};
 use crate::passes::decl::{Bind, Slot, Use};
 use crate::passes::{PassId, PassLayout};
+use crate::reference::compose::Terms;
 use crate::resources::counters::{self, Counter, CounterReadback, Role};
-use crate::resources::targets::{Target, Targets, AO_FORMAT};
+use crate::resources::targets::{EffectView, Look, Target, Targets, AO_FORMAT};
 use crate::resources::temporal::Sampling;
 use crate::resources::temporal_effect::{EffectKind, MovedReach, ScreenReach, TemporalEffect};
 use crate::shaders::{self, EffectPush};
 use crate::vk::recorder::Recorder;
 use crate::vk::{Buffer, Context, Image, ImageDesc, Tracker};
 use ash::vk;
-use config::SsdoForm;
+use config::{SsdoConfig, SsdoForm};
 use std::sync::Arc;
 
 /// The effect's name (`Effect::id`).
@@ -244,6 +246,7 @@ const UPSAMPLE_RAW: &[Bind] = &upsample(RAW);
 
 pub const REGISTRATION: Registration = Registration {
     id: ID,
+    switch: "ssdo",
     enabled: |c| c.effects.ssdo,
     create: |s| Ok(Box::new(SsdoEffect::new(s)?)),
     layouts,
@@ -251,7 +254,55 @@ pub const REGISTRATION: Registration = Registration {
     timing_groups: pass::GROUPS,
     sweep_keys: sweep::SWEEP_KEYS,
     ambient: true,
+    views: VIEWS,
+    estimates,
+    toggles: &[FILTER_TOGGLE],
 };
+
+/// SSDO estimates the occlusion of the ambient light (the `ao` buffer, as AO does) and, in its
+/// forms with a bounce, the near-field part of the one-bounce indirect light (the `indirect`
+/// buffer: the truth has the whole bounce, so what the radius leaves out counts as its error).
+fn estimates(c: &RenderConfig) -> Terms {
+    match c.ssdo.form {
+        SsdoForm::Ssao => Terms::AMBIENT_OCCLUSION,
+        SsdoForm::OneStep | SsdoForm::TwoStep => Terms::AMBIENT_OCCLUSION.union(Terms::INDIRECT),
+    }
+}
+
+/// The bilateral filter on or off; on again, the run's side (or the default when it started
+/// without one).
+const FILTER_TOGGLE: Toggle = Toggle {
+    name: "filter",
+    what: "SSDO's bilateral filter",
+    get: |c| c.ssdo.filter > 0,
+    set: |c, on, start| {
+        c.ssdo.filter = match (on, start.ssdo.filter) {
+            (false, _) => 0,
+            (true, 0) => SsdoConfig::default().filter,
+            (true, side) => side,
+        }
+    },
+};
+
+/// The modulation factor (a of its term) and bounce irradiance (rgb), as composited, and the
+/// adaptive pre-pass's samples per block.
+pub const MODULATION_VIEW: EffectView = EffectView {
+    name: "ssdo_modulation",
+    look: Look::Alpha,
+    in_viewer: false,
+};
+pub const BOUNCE_VIEW: EffectView = EffectView {
+    name: "ssdo_bounce",
+    look: Look::Brightest,
+    in_viewer: true,
+};
+/// Samples per block: 50 (the paper's most) is white.
+pub const SAMPLES_VIEW: EffectView = EffectView {
+    name: "ssdo_samples",
+    look: Look::Count { full: 50 },
+    in_viewer: false,
+};
+const VIEWS: &[EffectView] = &[MODULATION_VIEW, BOUNCE_VIEW, SAMPLES_VIEW];
 
 // Every pass of the effect, declared once (`PassDecl`): `layouts` and `new` both read these.
 const SSDO_ONE_STEP: PassDecl = PassDecl::new(pass::SSDO, &shaders::SSDO_COMP_ONE_STEP, ONE_STEP);
@@ -747,10 +798,12 @@ impl Effect for SsdoEffect {
 
     fn target(&self, target: Target, _parity: usize, _config: &RenderConfig) -> Option<&Image> {
         match target {
-            Target::SsdoModulation => Some(self.result()),
-            Target::SsdoBounce if !self.ssao => Some(self.result()),
+            Target::Effect(v) if *v == MODULATION_VIEW => Some(self.result()),
+            Target::Effect(v) if *v == BOUNCE_VIEW && !self.ssao => Some(self.result()),
             Target::Ao if self.ssao => Some(self.result()),
-            Target::SsdoSamples if self.prepass.is_some() => Some(&self.sized.images[4]),
+            Target::Effect(v) if *v == SAMPLES_VIEW && self.prepass.is_some() => {
+                Some(&self.sized.images[4])
+            }
             _ => None,
         }
     }

@@ -17,7 +17,7 @@ use super::stats::Stats;
 use crate::error::{Error, Result};
 use crate::frontend::display::{new_event_loop, presenting_context};
 use crate::frontend::swapchain_frame::{recreate, render_and_present, Presented, Recreated};
-use crate::frontend::view_state::{needs_rebuild, Action, ViewState, DISPLAY_CYCLE, HELP};
+use crate::frontend::view_state::{display_cycle, help, needs_rebuild, Action, ViewState};
 use crate::renderer::{Renderer, FRAMES_IN_FLIGHT};
 use crate::resources::targets::Target;
 use crate::scene::Camera;
@@ -227,10 +227,9 @@ impl App {
         let Some(view) = self.view.as_mut() else {
             return;
         };
-        let e = &mut view.effects;
         match action {
             Action::CycleDisplay(step) => {
-                let n = DISPLAY_CYCLE.len() as i32;
+                let n = display_cycle().len() as i32;
                 let displayable = self.live.as_ref().map(|l| l.displayable.clone());
                 for _ in 0..n {
                     view.display = (view.display as i32 + step).rem_euclid(n) as usize;
@@ -240,18 +239,13 @@ impl App {
                 }
                 eprintln!("display: {}", view.display_name());
             }
-            Action::ToggleShadows => e.soft_shadows = !e.soft_shadows,
-            // AO and SSDO both darken the ambient light: switching one on switches the other off.
-            Action::ToggleAo => {
-                e.ao = !e.ao;
-                e.ssdo &= !e.ao;
+            Action::ToggleShadows => view.soft_shadows = !view.soft_shadows,
+            Action::ToggleEffect(name) => view.toggle_effect(name),
+            Action::ToggleSetting(i) => {
+                if let Some(on) = view.toggles.get_mut(i) {
+                    *on = !*on;
+                }
             }
-            Action::ToggleIndirect => e.indirect = !e.indirect,
-            Action::ToggleSsdo => {
-                e.ssdo = !e.ssdo;
-                e.ao &= !e.ssdo;
-            }
-            Action::ToggleFilter => e.filter = !e.filter,
             Action::ToggleReuse => view.temporal_reuse = !view.temporal_reuse,
             Action::PrintCamera => {
                 if let Some(c) = self
@@ -269,7 +263,7 @@ impl App {
                     );
                 }
             }
-            Action::Help => eprintln!("{HELP}"),
+            Action::Help => eprintln!("{}", help()),
             Action::Quit => event_loop.exit(),
         }
         if !matches!(
@@ -346,7 +340,7 @@ impl App {
                     }
                 }
                 ScriptOp::Display(name) => {
-                    let index = DISPLAY_CYCLE.iter().position(|(_, n)| *n == name);
+                    let index = display_cycle().iter().position(|(_, n)| *n == name);
                     let shown = self.live.as_ref().map(|l| l.displayable.clone());
                     match (index, self.view.as_mut(), shown) {
                         (Some(i), Some(view), Some(shown)) if shown[i] => {
@@ -532,12 +526,12 @@ fn renderer_size(r: Option<&Renderer>) -> (u32, u32) {
     r.map_or((0, 0), |r| (r.config.width, r.config.height))
 }
 
-/// Per [`DISPLAY_CYCLE`] entry, whether it can be shown: the target exists in this run (the
+/// Per display-cycle entry, whether it can be shown: the target exists in this run (the
 /// buffers of effects that are off do not) and is written (the direct and shadow
 /// targets exist without direct light, unwritten), and its format can be blitted into the
 /// swapchain (depth and integer formats cannot).
 fn displayable(renderer: &Renderer, swapchain: &Swapchain) -> Vec<bool> {
-    DISPLAY_CYCLE
+    display_cycle()
         .iter()
         .map(|(target, _)| {
             let written = renderer.config.effects.direct

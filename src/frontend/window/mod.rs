@@ -6,7 +6,7 @@
 //!
 //! Files: `app.rs` the application and frame loop, `keys.rs` window input to viewer input,
 //! `fly_camera.rs` the camera step, `script.rs` the test script, `stats.rs` the title's
-//! timings. Viewer keys: see [`HELP`] (`view_state.rs`).
+//! timings. Viewer keys: see [`help`] (`view_state.rs`).
 
 mod app;
 pub mod fly_camera;
@@ -14,6 +14,6 @@ pub mod keys;
 pub mod script;
 mod stats;
 
-pub use super::view_state::{Action, ViewState, DISPLAY_CYCLE, HELP};
+pub use super::view_state::{display_cycle, help, Action, ViewState};
 pub use app::{run, WindowOptions, WindowRun};
 pub use script::{parse_script, ScriptOp, ScriptStep};

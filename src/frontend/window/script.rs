@@ -1,7 +1,7 @@
 //! The viewer's test script (hidden `--script` flag, for runs under Xvfb): parsing
 //! `FRAME:OP,...` and handing out the steps due before each presented frame.
 
-use crate::frontend::view_state::{Action, DISPLAY_CYCLE};
+use crate::frontend::view_state::{display_cycle, Action};
 
 /// One step of a scripted run (hidden `--script` flag, for tests under Xvfb): before
 /// presented frame `frame`, do `op`.
@@ -19,10 +19,10 @@ pub enum ScriptOp {
     /// iterations: X11 windows never have one (a minimised X11 window keeps its size, and a
     /// zero-sized X window is invalid), so under Xvfb the path is exercised this way.
     ZeroExtent(u32),
-    /// A viewer key action by name (cycle, pcf, ao, indirect, ssdo, filter, reuse, camera, help,
-    /// quit).
+    /// A viewer key action by name (`Action::from_name`: cycle, pcf, an effect switch or
+    /// setting, reuse, camera, help, quit).
     Key(String),
-    /// Show this buffer of [`DISPLAY_CYCLE`] by name.
+    /// Show this buffer of the display cycle by name.
     Display(String),
 }
 
@@ -57,7 +57,7 @@ pub fn parse_script(s: &str) -> std::result::Result<Vec<ScriptStep>, String> {
             }
             "display" => {
                 let name = value.trim();
-                if !DISPLAY_CYCLE.iter().any(|(_, n)| *n == name) {
+                if !display_cycle().iter().any(|(_, n)| *n == name) {
                     return Err(format!("{part:?}: unknown buffer {name:?}"));
                 }
                 ScriptOp::Display(name.to_string())

@@ -10,6 +10,7 @@ use crate::bench::report::FrameRow;
 use crate::bench::Report;
 use crate::config::pcf::{Pcf, PcfKernel};
 use crate::config::Effects;
+use crate::effects::estimated_terms;
 use crate::error::{Error, Result};
 use crate::frontend::sink::FrameSink;
 use crate::passes::PassId;
@@ -287,7 +288,7 @@ pub fn measure_rows(
     // compared with: refine it (from the cache's samples) before scoring the rows.
     let mut truth = truth;
     let frames_last: Vec<&LastFrame> = runs.iter().map(|r| &r.2.last).collect();
-    refine_truth_for(&mut truth, &last, &frames_last, Terms::of(&run.base))?;
+    refine_truth_for(&mut truth, &last, &frames_last, estimated_terms(&run.base))?;
     let mut rows = Vec::new();
     for (kind, config, measured, path, warmup) in runs {
         rows.push(summarize(
@@ -343,7 +344,7 @@ fn ground_truth_of<'a>(
     let cache = Some(crate::reference::store::default_dir());
     let (w, h) = (run.base.width, run.base.height);
     let mut truth = Session::start(scene, camera, w, h, settings, cache, run.progress)?;
-    let terms = Terms::of(&run.base);
+    let terms = estimated_terms(&run.base);
     if terms.ambient_occlusion {
         truth.ensure(RefBuffer::Ao, TABLE_TRUTH_SAMPLES)?;
     }
@@ -435,10 +436,15 @@ fn summarize(
         )?;
         error.insert(buffer.name().to_string(), e);
     }
-    let truth = ground_truth::errors(&last, &truth.reference, truth.scene, Terms::of(&config))?
-        .into_iter()
-        .map(|(b, e)| (b.name().to_string(), e))
-        .collect();
+    let truth = ground_truth::errors(
+        &last,
+        &truth.reference,
+        truth.scene,
+        estimated_terms(&config),
+    )?
+    .into_iter()
+    .map(|(b, e)| (b.name().to_string(), e))
+    .collect();
     Ok(RowResult {
         kind,
         label: kind.label(config.effects),

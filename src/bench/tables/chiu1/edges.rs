@@ -7,7 +7,8 @@ use glam::Vec3;
 
 /// Two samples lie on one surface when their eye distances differ by at most this fraction of
 /// the larger (a surface at a grazing angle spans a few per cent of depth within one pixel of a
-/// 256-pixel view; a depth step beyond 5% is an edge SRAA's σz = 10 weighs at most 0.78)...
+/// 256-pixel view; a depth step beyond 5% is an edge the reconstruction's σz = 10 weighs at
+/// most 0.78)...
 pub const SAME_SURFACE_DISTANCE: f32 = 0.05;
 /// ... and their normals by at most 25 degrees (cos 25° = 0.906).
 pub const SAME_SURFACE_COS: f32 = 0.906;

@@ -1,5 +1,5 @@
 //! `ssgi table sraa`: Chiu et al.'s Table 1 and Figure 3 (the SRAA report in
-//! `../shared/papers/chang-ccipca-filtering-and-sraa.txt`): on Sponza, at each size, no
+//! `../shared/papers/`, after Chen et al.'s article): on Sponza, at each size, no
 //! antialiasing, `sraa`, `sraa-shadow` and 16x supersampling, timed per pass (the geometry
 //! pass and the antialiasing pass as their own columns), with the report's milliseconds beside
 //! ours, the speed-up over supersampling, and the error against it over all pixels and over
