@@ -1,4 +1,4 @@
-// SSAO estimators. Both return occlusion in [0, 1] for one sampling pattern; `pattern` indexes
+// SSAO estimators (GTAO's in gtao.glsl). Each returns occlusion in [0, 1] for one sampling pattern; `pattern` indexes
 // the pattern sequences of patterns.glsl (rotation and range scale, or the sphere's points).
 // Requires g_position, g_normal, g_position_1..3 (ao_position_chain.comp's levels) and
 // random_vectors to be declared by the including shader.
@@ -170,11 +170,16 @@ float ao_szentandrasi(ivec2 pixel, vec3 p, vec3 n, uint pattern) {
     return ao_szentandrasi_taps(pixel, p, n, pattern, 0u, count) / float(max(count, 1u));
 }
 
+#include "gtao.glsl"
+
 // Occlusion averaged over `patterns` consecutive patterns starting at `first` (a whole number:
 // pattern indices arrive as floats from the history's count channel, exact below 2^24).
 // Taps one pattern of the configured estimator reads (the work counters' evaluations).
+// (GTAO's unit is a slice: its two horizon searches.)
 uint ao_taps() {
-    return ao.estimator == 0u ? ao.directions * ao.steps : ao.samples;
+    if (ao.estimator == 0u) return ao.directions * ao.steps;
+    if (ao.estimator == 3u) return max(ao.directions, 1u);
+    return ao.samples;
 }
 
 // The sum of taps [first, end) of pattern `pattern` of the configured estimator: over every
@@ -182,6 +187,7 @@ uint ao_taps() {
 float ao_taps_sum(ivec2 pixel, vec3 p, vec3 n, uint pattern, uint first, uint end) {
     if (ao.estimator == 1u) return ao_crytek_taps(pixel, p, pattern, first, end);
     if (ao.estimator == 2u) return ao_szentandrasi_taps(pixel, p, n, pattern, first, end);
+    if (ao.estimator == 3u) return ao_gtao_taps(pixel, p, n, pattern, first, end);
     return ao_thesis_taps(pixel, p, n, pattern, first, end);
 }
 
@@ -191,6 +197,7 @@ float ao_estimate(ivec2 pixel, vec3 p, vec3 n, float first, uint patterns) {
         uint pattern = uint(first) + j;
         if (ao.estimator == 1u) sum += ao_crytek(pixel, p, pattern);
         else if (ao.estimator == 2u) sum += ao_szentandrasi(pixel, p, n, pattern);
+        else if (ao.estimator == 3u) sum += ao_gtao(pixel, p, n, pattern);
         else sum += ao_thesis(pixel, p, n, pattern);
     }
     return sum / float(max(patterns, 1u));

@@ -4,6 +4,7 @@
 
 const float PI = 3.14159265358979;
 const float TWO_PI = 6.28318530718;
+const float HALF_PI = 1.57079632679490;
 
 // Normalise with a fallback: |v|^2 below 1e-20 means a degenerate direction (interpolated
 // normals and light vectors are O(1) or scene-scale, never legitimately that small).

@@ -16,6 +16,10 @@ pub struct AoArgs {
     /// (0 = off: every tap reads the full-resolution G-buffer, the estimator as published).
     #[arg(long, default_value_t = AoConfig::default().position_mips, value_parser = clap::value_parser!(u32).range(0..=AoConfig::MAX_POSITION_MIPS as i64))]
     pub ao_position_mips: u32,
+    /// GTAO horizon-search steps on each side of a slice (`--ao gtao`; --ao-samples / (2
+    /// steps) slices per pattern, at least one).
+    #[arg(long, default_value_t = AoConfig::default().steps)]
+    pub ao_steps: u32,
 }
 
 impl AoArgs {
@@ -26,6 +30,7 @@ impl AoArgs {
             estimator: self.ao_estimator,
             samples: self.ao_samples,
             position_mips: self.ao_position_mips,
+            steps: self.ao_steps,
             ..AoConfig::default()
         }
     }

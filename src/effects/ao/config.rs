@@ -17,6 +17,10 @@ pub enum AoEstimator {
     /// Szentandrasi section 3.1: Halton points in the normal's hemisphere, back-projected; the
     /// fraction behind the visible surface.
     Szentandrasi,
+    /// Jimenez et al. 2016 (ground-truth AO, as Intel's XeGTAO): per slice through the view
+    /// vector, the two horizons within the radius and the cosine-weighted visibility between
+    /// them in closed form; `--ao-samples` taps split into slices of 2 x `--ao-steps`.
+    Gtao,
 }
 
 impl AoEstimator {
@@ -26,6 +30,7 @@ impl AoEstimator {
             AoEstimator::Thesis => 0,
             AoEstimator::Crytek => 1,
             AoEstimator::Szentandrasi => 2,
+            AoEstimator::Gtao => 3,
         }
     }
 }
@@ -46,6 +51,8 @@ pub struct AoConfig {
     /// Far taps read point-sampled levels of the G-buffer position, up to this level (0: every
     /// tap reads the full-resolution G-buffer, the estimator as published).
     pub position_mips: u32,
+    /// GTAO: horizon-search steps on each side of a slice (slices = samples / (2 steps)).
+    pub steps: u32,
 }
 
 impl Default for AoConfig {
@@ -58,6 +65,7 @@ impl Default for AoConfig {
             near_px: 1.5,
             patterns: 1,
             position_mips: 0,
+            steps: 4,
         }
     }
 }
@@ -72,6 +80,15 @@ impl AoConfig {
         ((self.samples / steps).max(1), steps)
     }
 
+    /// Most GTAO steps per side.
+    pub const MAX_STEPS: u32 = 256;
+
+    /// GTAO's slices and steps per side for `samples` taps: at least one slice, each of
+    /// 2 x `steps` taps.
+    pub fn slices_steps(&self) -> (u32, u32) {
+        ((self.samples / (2 * self.steps.max(1))).max(1), self.steps)
+    }
+
     /// Its rules: counts, radius, attenuation and nearest step within what the shaders take,
     /// a clear error for each, never a clamp.
     pub fn validate(&self) -> Result<()> {
@@ -79,6 +96,13 @@ impl AoConfig {
         let ao = self;
         if !(1..=4096).contains(&ao.samples) {
             return bad(format!("AO samples {} outside 1..=4096", ao.samples));
+        }
+        if !(1..=AoConfig::MAX_STEPS).contains(&ao.steps) {
+            return bad(format!(
+                "GTAO steps per side {} outside 1..={}",
+                ao.steps,
+                AoConfig::MAX_STEPS
+            ));
         }
         if ao.position_mips > AoConfig::MAX_POSITION_MIPS {
             return bad(format!(

@@ -2,6 +2,7 @@
 //! configuration, in a buffer of its own rather than the shared frame block. Constant for a
 //! configuration (a new configuration makes a new effect), so it is uploaded once.
 
+use super::config::AoEstimator;
 use crate::config::RenderConfig;
 use crate::error::Result;
 use crate::shaders::AoParams;
@@ -21,7 +22,11 @@ pub const REFERENCE_PATTERN_BASE: u32 = 1_000_003;
 /// The block for `c`.
 pub fn params(c: &RenderConfig) -> AoParams {
     let ao = &c.ao;
-    let (directions, steps) = ao.directions_steps();
+    // GTAO's slices and steps per side travel in the thesis's directions and steps.
+    let (directions, steps) = match ao.estimator {
+        AoEstimator::Gtao => ao.slices_steps(),
+        _ => ao.directions_steps(),
+    };
     AoParams {
         // Relative to the scene's bounding radius (frame.scene_radius): scale-free AO.
         radius: ao.radius,

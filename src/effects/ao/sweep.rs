@@ -17,10 +17,19 @@ pub const SWEEP_KEYS: &[SweepKey] = &[
     },
     SweepKey {
         name: "ao.estimator",
-        syntax: "thesis|crytek|szentandrasi",
+        syntax: "thesis|crytek|szentandrasi|gtao",
         description: "SSAO estimator (--ao)",
         set: |c, v| {
             c.ao.estimator = AoEstimator::from_str(v, false)?;
+            Ok(())
+        },
+    },
+    SweepKey {
+        name: "ao.steps",
+        syntax: "integer 1..=256",
+        description: "GTAO steps per side of a slice (--ao-steps)",
+        set: |c, v| {
+            c.ao.steps = parse_count(v, 1, AoConfig::MAX_STEPS)?;
             Ok(())
         },
     },
@@ -66,6 +75,7 @@ mod tests {
             ("ao.estimator", "crytek", |c| {
                 c.ao.estimator = AoEstimator::Crytek
             }),
+            ("ao.steps", "8", |c| c.ao.steps = 8),
             ("ao.radius", "0.5", |c| c.ao.radius = 0.5),
             ("ao.patterns", "8", |c| c.ao.patterns = 8),
             ("ao.position_mips", "2", |c| c.ao.position_mips = 2),

@@ -1,0 +1,151 @@
+// Ground-truth AO (Jimenez et al. 2016, "Practical Real-Time Strategies for Accurate Indirect
+// Occlusion"; Intel's XeGTAO is the reference implementation): the hemisphere is cut into
+// slices through the view vector; in each slice the two horizons are found by marching the
+// G-buffer on both sides, and the cosine-weighted visibility between them is integrated in
+// closed form (eq 10), weighted by the length of the normal projected on the slice. Over
+// slices spread evenly in angle, the mean is the cosine-weighted visibility of the hemisphere
+// (1 on an open plane for any view). Included by ao.glsl after its helpers.
+//
+// Relation to the ground truth (src/reference/estimators.rs): a sample farther than the radius
+// R does not raise the horizon, so with attenuation (0, 0) GTAO estimates the reference's
+// binary visibility within R exactly wherever the occluders are a height field as seen along
+// each slice (a floor beside a wall: tests/gtao.rs). With eq 7's attenuation a horizon sample
+// at x = d/R is pulled down towards the tangent plane by 1/D(x) (XeGTAO's falloff with the
+// thesis's D): an approximation of the reference's weighting, not the same integral. Like
+// every screen-space estimator it sees no occluder that is hidden or off screen, and it takes
+// the visible surface for an infinitely thick one (the space behind it counts as occluded).
+#ifndef GTAO_GLSL
+#define GTAO_GLSL
+
+// Steps are spread as ((i + jitter) / steps)^2 of the projected radius, XeGTAO's sample
+// distribution power: denser near the pixel, where the horizon changes fastest.
+const float GTAO_DISTRIBUTION_POWER = 2.0;
+
+// acos on [-1, 1]; the clamp keeps a rounding past +-1 from giving NaN.
+float gtao_acos(float x) {
+    return acos(clamp(x, -1.0, 1.0));
+}
+
+// Eq 10's inner integral for one horizon angle h (from the view vector, signed towards the
+// slice's direction) and the projected normal's angle n: (cos n + 2 h sin n - cos(2 h - n)) / 4.
+float gtao_arc(float h, float n) {
+    return (cos(n) + 2.0 * h * sin(n) - cos(2.0 * h - n)) * 0.25;
+}
+
+// The surface point the view ray through screen point `s` [px] meets: the plane of the
+// G-buffer texel it falls in (position q, normal n_q). A texel's centre lies up to half a
+// pixel off the slice's line, and its direction to the pixel then leaves the slice: on a plane
+// seen at a grazing angle that alone raised horizons by 0.04 of visibility. Left at q where the
+// ray grazes the texel's plane (within 3 degrees), whose intersection is ill-conditioned.
+vec3 gtao_on_ray(vec2 s, vec3 q, vec3 n_q, vec3 right, vec3 down, vec3 forward) {
+    vec2 ndc = s / vec2(frame.size) * 2.0 - 1.0;
+    float aspect = float(frame.size.x) / float(frame.size.y);
+    vec3 ray = forward + (ndc.x * aspect * frame.tan_half_fov) * right
+             + (ndc.y * frame.tan_half_fov) * down;
+    float along = dot(ray, n_q);
+    if (!(abs(along) > 0.05 * length(ray))) return q;
+    float t = dot(q - frame.camera_pos, n_q) / along;
+    return t > 0.0 ? frame.camera_pos + t * ray : q;
+}
+
+// The sum over slices [first, end) of pattern `pattern` of (1 - the slice's visibility): over
+// every slice (ao.directions), divided by their count, that pattern's occlusion. Pattern j
+// turns every slice by the same angle (pattern_point's golden sequence), so any set of
+// patterns keeps the slices evenly spread; the per-pixel rotation comes on top.
+float ao_gtao_taps(ivec2 pixel, vec3 p, vec3 n, uint pattern, uint first, uint end) {
+    uint slices = max(ao.directions, 1u);
+    uint steps = max(ao.steps, 1u);
+    float radius = ao.radius * frame.scene_radius;
+    float depth = max((frame.view_proj * vec4(p, 1.0)).w, 1e-30);
+    float px_per_world = float(frame.size.y) / (2.0 * frame.tan_half_fov * depth);
+    // The radius on screen, at most a quarter of the image (as the thesis estimator), at
+    // least one step out of the pixel.
+    float radius_px = max(min(radius * px_per_world, 0.25 * float(frame.size.y)), ao.near_px);
+    vec2 u = pattern_point(pattern);
+    // Pixel rotation (4x4 unit vectors) as an angle in [0, 2 pi): slices cover a half turn.
+    vec2 r = pixel_rotation(pixel);
+    float base = atan(r.y, r.x) + PI * u.x / float(slices);
+    vec3 v = safe_normalize(frame.camera_pos - p, n);
+    // Camera right and image-down in world space: rows 0 and 1 of view_proj (no roll or
+    // skew in a perspective projection's first two rows beyond the scale).
+    vec3 right = safe_normalize(vec3(frame.view_proj[0][0], frame.view_proj[1][0], frame.view_proj[2][0]), vec3(1.0, 0.0, 0.0));
+    vec3 down = safe_normalize(vec3(frame.view_proj[0][1], frame.view_proj[1][1], frame.view_proj[2][1]), vec3(0.0, -1.0, 0.0));
+    // Row 3: the view depth (clip w) grows along the camera's forward axis.
+    vec3 forward = safe_normalize(vec3(frame.view_proj[0][3], frame.view_proj[1][3], frame.view_proj[2][3]), -v);
+    vec2 center = vec2(pixel) + 0.5;
+    float inv_radius = 1.0 / radius;
+    // Slices turn evenly about the view vector in the world (even screen angles would crowd
+    // them off the image's centre, where the view ray leaves the camera axis: 0.004 of
+    // visibility on an open plane): a basis perpendicular to v, and the screen direction of
+    // each slice's world direction through the projection's derivative at p.
+    vec3 a = safe_normalize(right - dot(right, v) * v, safe_normalize(cross(v, down), right));
+    vec3 b = cross(v, a);
+    vec4 clip = frame.view_proj * vec4(p, 1.0);
+    float sum = 0.0;
+    for (uint s = first; s < end; ++s) {
+        float phi = base + PI * float(s) / float(slices);
+        vec3 ortho = cos(phi) * a + sin(phi) * b;
+        vec4 d_clip = frame.view_proj * vec4(ortho, 0.0);
+        // The direction of d(clip.xy / clip.w) in pixels (the quotient rule; y grows down).
+        vec2 d_screen = (d_clip.xy * clip.w - clip.xy * d_clip.w) * vec2(frame.size);
+        float d_len = length(d_screen);
+        // A slice seen edge-on (its direction along the view ray) marches nowhere: skipped.
+        if (!(d_len > 0.0)) {
+            sum += 1.0;
+            continue;
+        }
+        vec2 dir = d_screen / d_len;
+        vec3 axis = cross(ortho, v);
+        vec3 np = n - axis * dot(n, axis);
+        float np_len = length(np);
+        // A normal along the slice's axis sees nothing of it: the slice weighs 0.
+        if (!(np_len > 1e-20)) {
+            sum += 1.0;
+            continue;
+        }
+        float cos_n = clamp(dot(np, v) / np_len, -1.0, 1.0);
+        float sign_n = dot(ortho, np) < 0.0 ? -1.0 : 1.0;
+        float ang_n = sign_n * gtao_acos(cos_n);
+        // Horizon cosines (to the view vector) start at the tangent plane on each side.
+        float low_pos = cos(ang_n + HALF_PI);
+        float low_neg = cos(ang_n - HALF_PI);
+        float h_pos = low_pos;
+        float h_neg = low_neg;
+        for (uint i = 0u; i < steps; ++i) {
+            float t = (float(i) + u.y) / float(steps);
+            float s_px = max(radius_px * pow(t, GTAO_DISTRIBUTION_POWER), ao.near_px);
+            for (int side = 0; side < 2; ++side) {
+                vec2 offset = (side == 0 ? dir : -dir) * s_px;
+                ivec2 q_pixel = ivec2(floor(center + offset));
+                if (outside_frame(q_pixel) || q_pixel == pixel) continue;
+                vec4 q = ao_tap_position(q_pixel, s_px);
+                if (q.w == 0.0) continue;
+                vec3 n_q = texelFetch(g_normal, q_pixel, 0).xyz;
+                vec3 w = gtao_on_ray(center + offset, q.xyz, n_q, right, down, forward) - p;
+                float len = length(w);
+                float x = len * inv_radius;
+                if (!(len > 0.0) || x > 1.0) continue;
+                float shc = dot(w, v) / len;
+                // Eq 7's attenuation as a falloff towards the tangent plane (1 with (0, 0)).
+                float weight = 1.0 / (1.0 + ao.atten_a * x + ao.atten_b * x * x);
+                if (side == 0) h_pos = max(h_pos, mix(low_pos, shc, weight));
+                else h_neg = max(h_neg, mix(low_neg, shc, weight));
+            }
+        }
+        // Angles from the view vector: positive towards the slice's direction.
+        float h1 = gtao_acos(h_pos);
+        float h0 = -gtao_acos(h_neg);
+        h0 = ang_n + clamp(h0 - ang_n, -HALF_PI, HALF_PI);
+        h1 = ang_n + clamp(h1 - ang_n, -HALF_PI, HALF_PI);
+        float visibility = np_len * (gtao_arc(h0, ang_n) + gtao_arc(h1, ang_n));
+        sum += 1.0 - visibility;
+    }
+    return sum;
+}
+
+float ao_gtao(ivec2 pixel, vec3 p, vec3 n, uint pattern) {
+    uint slices = max(ao.directions, 1u);
+    return ao_gtao_taps(pixel, p, n, pattern, 0u, slices) / float(slices);
+}
+
+#endif // GTAO_GLSL
