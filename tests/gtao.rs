@@ -186,8 +186,12 @@ fn cached_value_converges_to_the_many_slice_evaluation() {
     let ctx = common::context();
     let size = 96;
     let ao = AoConfig::default();
-    // 32 patterns of 4 slices from the reference's own pattern range: 128 slice angles.
-    let reference_ao = AoConfig { patterns: 32, ..ao };
+    // By default a pattern is two slices of 2 x 8 steps: the reference takes 256 patterns
+    // from its own pattern range (512 slice angles), the cache 36 (72).
+    let reference_ao = AoConfig {
+        patterns: 256,
+        ..ao
+    };
     let mut reference =
         Renderer::new(&ctx, cornell_box(), config(size, false, reference_ao)).unwrap();
     run(&mut reference, 1);

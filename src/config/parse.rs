@@ -113,10 +113,36 @@ pub fn parse_count(s: &str, min: u32, max: u32) -> Result<u32, String> {
     }
 }
 
+/// Eq 7's attenuation coefficients `A:B` (D(d) = 1 + A d + B d^2), each finite and >= 0
+/// (a colon, because a sweep's values are separated by commas).
+pub fn parse_attenuation(s: &str) -> Result<[f32; 2], String> {
+    let bad = || format!("not two coefficients A:B, each finite and >= 0: {s:?}");
+    let (a, b) = s.split_once(':').ok_or_else(bad)?;
+    let c = |x: &str| match x.trim().parse::<f32>() {
+        Ok(v) if v.is_finite() && v >= 0.0 => Ok(v),
+        _ => Err(bad()),
+    };
+    Ok([c(a)?, c(b)?])
+}
+
 /// A sampling radius as a fraction of the scene's bounding radius: in (0, 10].
 pub fn parse_radius(s: &str) -> Result<f32, String> {
     match s.parse::<f32>() {
         Ok(r) if r.is_finite() && r > 0.0 && r <= 10.0 => Ok(r),
         _ => Err("not a number in (0, 10]".into()),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn attenuation_takes_two_finite_non_negative_coefficients() {
+        assert_eq!(parse_attenuation("0:1"), Ok([0.0, 1.0]));
+        assert_eq!(parse_attenuation(" 0.5 : 2 "), Ok([0.5, 2.0]));
+        for bad in ["0", "0,1", "-1:0", "nan:0", "0:inf", "a:b", ":", "1:2:3"] {
+            assert!(parse_attenuation(bad).is_err(), "{bad:?} accepted");
+        }
     }
 }

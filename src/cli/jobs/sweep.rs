@@ -4,6 +4,7 @@ use super::common::{context_options, finish, load};
 use crate::bench::measure::last_camera;
 use crate::bench::warmup::{before_path, Warmup};
 use crate::cli::args::{Cli, SweepArgs};
+use crate::config::RenderConfig;
 use crate::error::Result;
 use crate::reference::run::Session;
 use crate::reference::store::default_dir;
@@ -36,19 +37,23 @@ pub fn sweep(cli: &Cli, args: &SweepArgs) -> Result<()> {
         args.warmup.unwrap_or(Warmup::Frames(longest_cycle + 4)),
         longest_cycle,
     );
-    // The ground truth of the last frame, with the base configuration's AO definition (one
-    // ground truth serves every combination, so the radius cannot vary).
+    // The ground truth of the last frame, with the combinations' AO definition (one ground
+    // truth serves every combination, so its radius and attenuation cannot vary; a single
+    // value of either sets it for the whole sweep).
     let camera = last_camera(&scene, &path, args.frames, args.scene.fps);
+    let defining = combos.first().map_or(base, |(_, c)| *c);
+    let definition = |c: &RenderConfig| (c.ao.radius, c.ao.attenuation);
     if combos
         .iter()
-        .any(|(_, c)| (c.ao.radius, c.ao.attenuation) != (base.ao.radius, base.ao.attenuation))
+        .any(|(_, c)| definition(c) != definition(&defining))
     {
         return Err(crate::error::Error::Config(
-            "sweeping ao.radius would need one ground truth per radius; sweep it in separate runs"
+            "ao.radius and ao.attenuation define the ground truth's AO: give each one value per \
+             sweep (sweep several in separate runs)"
                 .into(),
         ));
     }
-    let settings = Settings::for_render(&base, &scene);
+    let settings = Settings::for_render(&defining, &scene);
     let cache = (!args.no_cache).then(|| args.cache_dir.clone().unwrap_or_else(default_dir));
     let (w, h) = args.scene.size;
     // Moving objects and light where the last frame has them.

@@ -51,7 +51,11 @@ pub struct AoConfig {
     /// Far taps read point-sampled levels of the G-buffer position, up to this level (0: every
     /// tap reads the full-resolution G-buffer, the estimator as published).
     pub position_mips: u32,
-    /// GTAO: horizon-search steps on each side of a slice (slices = samples / (2 steps)).
+    /// GTAO: horizon-search steps on each side of a slice (slices = samples / (2 steps)). 8 by
+    /// default, two slices of the default 32 samples: on the Cornell box (256x256, static) 4
+    /// steps miss horizons near the radius (AO RMSE 0.118 against the ray-traced AO), 8 reach
+    /// 0.101, 16 0.092 and 128 0.087; one slice per pattern (16 steps) leaves the cache 0.010
+    /// from its converged value after the 36 patterns, two 0.002 (docs/results).
     pub steps: u32,
 }
 
@@ -65,7 +69,7 @@ impl Default for AoConfig {
             near_px: 1.5,
             patterns: 1,
             position_mips: 0,
-            steps: 4,
+            steps: 8,
         }
     }
 }

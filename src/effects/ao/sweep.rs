@@ -1,7 +1,7 @@
 //! SSAO's keys for `ssgi sweep --vary` (the registry hands them to the sweep).
 
 use super::config::{AoConfig, AoEstimator};
-use crate::config::parse::{parse_count, parse_radius};
+use crate::config::parse::{parse_attenuation, parse_count, parse_radius};
 use crate::config::sweep_key::SweepKey;
 use clap::ValueEnum;
 
@@ -43,6 +43,16 @@ pub const SWEEP_KEYS: &[SweepKey] = &[
         },
     },
     SweepKey {
+        name: "ao.attenuation",
+        syntax: "A:B, each finite and >= 0",
+        description: "eq 7's D(d) = 1 + A d + B d^2 (0:0: binary visibility within the radius); \
+                      the ground truth follows it",
+        set: |c, v| {
+            c.ao.attenuation = parse_attenuation(v)?;
+            Ok(())
+        },
+    },
+    SweepKey {
         name: "ao.patterns",
         syntax: "integer 1..=1024",
         description: "SSAO patterns evaluated at once per frame",
@@ -75,8 +85,9 @@ mod tests {
             ("ao.estimator", "crytek", |c| {
                 c.ao.estimator = AoEstimator::Crytek
             }),
-            ("ao.steps", "8", |c| c.ao.steps = 8),
+            ("ao.steps", "16", |c| c.ao.steps = 16),
             ("ao.radius", "0.5", |c| c.ao.radius = 0.5),
+            ("ao.attenuation", "0:0", |c| c.ao.attenuation = [0.0, 0.0]),
             ("ao.patterns", "8", |c| c.ao.patterns = 8),
             ("ao.position_mips", "2", |c| c.ao.position_mips = 2),
         ];
