@@ -10,7 +10,8 @@ S1080=${S1080:-1920x1080}
 # 58-66% of the reuse frame on the H200 and its time followed the bytes written per pixel), on
 # the orbit and Sponza at 1080p, each mode in its own process beside its reuse comparison; then
 # thesis-4.1 again at HEAD (the last run's first row ran at a low clock) and the walkthroughs;
-# then the refresh tiles' cost with whole 16x16 tiles (--refresh-budget 1) and validation.
+# then ground-truth AO; then the refresh tiles' cost with whole 16x16 tiles (--refresh-budget 1)
+# and validation.
 step orbit512 30 $SSGI bench --scene cornell-box --size $S512 --path orbit \
   --warmup converged --frames 240 --compare-reuse --json $R/orbit512.json
 step orbit512-vis 30 $SSGI bench --scene cornell-box --size $S512 --path orbit \
@@ -21,6 +22,13 @@ step sponza1080-vis 40 $SSGI bench --scene scenes/sponza.toml --size $S1080 --wa
   --frames 240 --compare-reuse --gbuffer visibility --json $R/sponza1080-vis.json
 step val-vis 40 $SSGI --validation bench --scene box:bunny --path paths/box.json \
   --gbuffer visibility --frames 40 --warmup 5
+# Ground-truth AO beside the thesis's estimator along the orbit (issue 47: its GPU cost with
+# and without the cache, and its error against the ray-traced AO), under validation first.
+step val-gtao 40 $SSGI --validation bench --scene box:bunny --path paths/box.json --ao gtao \
+  --frames 40 --warmup 5
+step gtao512 90 $SSGI sweep --scene cornell-box --size $S512 --path orbit --effects ao \
+  --frames 120 --warmup converged --vary ao.estimator=thesis,gtao --vary temporal.reuse=on,off \
+  --out $R/gtao512
 step t41 120 $SSGI table thesis-4.1 --size $S512 --out $R/thesis-4.1
 step walk 150 $SSGI table thesis-walkthroughs --size $S512 --out $R/walkthroughs
 step orbit512-budget1 30 $SSGI bench --scene cornell-box --size $S512 --path orbit \

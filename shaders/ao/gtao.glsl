@@ -89,16 +89,15 @@ float ao_gtao_taps(ivec2 pixel, vec3 p, vec3 n, uint pattern, uint first, uint e
         // The direction of d(clip.xy / clip.w) in pixels (the quotient rule; y grows down).
         vec2 d_screen = (d_clip.xy * clip.w - clip.xy * d_clip.w) * vec2(frame.size);
         float d_len = length(d_screen);
-        // A slice seen edge-on (its direction along the view ray) marches nowhere: skipped.
-        if (!(d_len > 0.0)) {
-            sum += 1.0;
-            continue;
-        }
-        vec2 dir = d_screen / d_len;
+        // A direction the projection flattens to nothing (clip w near 0) marches nowhere:
+        // its horizons stay at the tangent plane, an unoccluded slice.
+        bool marches = d_len > 0.0;
+        vec2 dir = marches ? d_screen / d_len : vec2(0.0);
         vec3 axis = cross(ortho, v);
         vec3 np = n - axis * dot(n, axis);
         float np_len = length(np);
-        // A normal along the slice's axis sees nothing of it: the slice weighs 0.
+        // A normal along the slice's axis: the projected normal, and so the slice's
+        // visibility, is 0 (the closed form's limit; the other slices carry the weight).
         if (!(np_len > 1e-20)) {
             sum += 1.0;
             continue;
@@ -111,7 +110,7 @@ float ao_gtao_taps(ivec2 pixel, vec3 p, vec3 n, uint pattern, uint first, uint e
         float low_neg = cos(ang_n - HALF_PI);
         float h_pos = low_pos;
         float h_neg = low_neg;
-        for (uint i = 0u; i < steps; ++i) {
+        for (uint i = 0u; marches && i < steps; ++i) {
             float t = (float(i) + u.y) / float(steps);
             float s_px = max(radius_px * pow(t, GTAO_DISTRIBUTION_POWER), ao.near_px);
             for (int side = 0; side < 2; ++side) {

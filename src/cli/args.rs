@@ -9,7 +9,7 @@ pub use crate::config::parse::{
 use crate::config::{
     Accumulate, Effects, Epsilon, GBufferMode, HistoryResample, Refresh, TemporalConfig,
 };
-use crate::effects::ao::config::AoConfig;
+use crate::effects::ao::config::{AoConfig, AoEstimator};
 use crate::effects::EffectArgs;
 use crate::post::PostArgs;
 use crate::renderer::frame::Pcf;
@@ -639,6 +639,9 @@ pub struct StressArgs {
     /// Side of the shadow map / RSM in texels.
     #[arg(long, default_value_t = 256)]
     pub rsm_size: u32,
+    /// The AO estimator of every variant with AO (e.g. `gtao` to stress ground-truth AO).
+    #[arg(long = "ao", value_enum, default_value = "thesis")]
+    pub ao_estimator: AoEstimator,
     /// Output directory.
     #[arg(long, default_value = "out/stress")]
     pub out: PathBuf,

@@ -13,6 +13,7 @@ pub use cases::{drift_tolerance, matrix, Case, Program, Variant, DRIFT_TOLERANCE
 pub use report::{CaseResult, StressReport};
 pub use run::run_case;
 
+use crate::effects::ao::config::AoEstimator;
 use crate::error::Result;
 use crate::vk::Context;
 use std::sync::Arc;
@@ -27,6 +28,8 @@ pub struct StressOptions {
     /// Only cases whose name contains this.
     pub only: Option<String>,
     pub rsm_size: u32,
+    /// The AO estimator of the variants with AO.
+    pub ao_estimator: AoEstimator,
 }
 
 /// The (case, variant) pairs of a run: every variant of every case, or in quick mode the
@@ -60,7 +63,7 @@ pub fn run_plan(ctx: &Arc<Context>, options: &StressOptions) -> Result<Vec<CaseR
     let total = plan.len();
     let mut results = Vec::with_capacity(total);
     for (k, (case, variant)) in plan.iter().enumerate() {
-        let r = run_case(ctx, case, *variant, options.rsm_size);
+        let r = run_case(ctx, case, *variant, options);
         crate::interrupt::check()?;
         eprintln!("[{:>3}/{total}] {}", k + 1, StressReport::line(&r));
         results.push(r);

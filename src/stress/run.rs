@@ -7,6 +7,7 @@ use super::cases::{
     TURN_DEG_PER_FRAME,
 };
 use super::report::CaseResult;
+use super::StressOptions;
 use crate::config::Accumulate;
 use crate::error::Result;
 use crate::frontend::progress::Progress;
@@ -30,10 +31,17 @@ pub const MAX_GROWTH_PER_FRAME: f64 = 4096.0;
 const HOLD_EXTRA: u32 = 4;
 
 /// Run `case` under `variant` on `ctx`; every failure is in the result, not an error.
-pub fn run_case(ctx: &Arc<Context>, case: &Case, variant: Variant, rsm_size: u32) -> CaseResult {
+pub fn run_case(
+    ctx: &Arc<Context>,
+    case: &Case,
+    variant: Variant,
+    options: &StressOptions,
+) -> CaseResult {
     let start = Instant::now();
     let before = ctx.validation().map_or(0, |log| log.count());
-    let config = case.config(&variant.config(rsm_size));
+    let mut base = variant.config(options.rsm_size);
+    base.ao.estimator = options.ao_estimator;
+    let config = case.config(&base);
     let mut result = CaseResult::new(case, variant, &config);
     if let Err(e) = drive(ctx, case, config, &mut result) {
         result.fail(format!("error: {e}"));

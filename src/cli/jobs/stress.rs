@@ -29,6 +29,7 @@ pub fn stress(cli: &Cli, args: &StressArgs) -> Result<()> {
         }),
         only: args.only.clone(),
         rsm_size: args.rsm_size,
+        ao_estimator: args.ao_estimator,
     };
     // Validation is part of what is checked: always on.
     let mut context = context_options(cli);
