@@ -193,6 +193,13 @@ fn a_moving_ball_uncovers_only_what_was_behind_it() {
         again.len(),
         settled.len()
     );
+    // The ball moving back (-x): a frame whose motion target is negative, which the audit
+    // takes as signed xyz (as positions and normals), everything else as for a still frame.
+    let back = frames(&mut r, &camera, 0.0, 1);
+    assert_eq!(counter(back.last().unwrap(), "moved_objects"), Some(1));
+    for a in r.audit().expect("audit") {
+        assert_eq!(a.bad_values(), 0, "{a:?}");
+    }
     common::assert_clean(&ctx);
 }
 

@@ -85,7 +85,7 @@ pub fn visualize(target: Target, data: &ImageData, bounds: &Aabb) -> Vec<u8> {
                     3 => [0.1, 0.3, 0.9],
                     _ => [0.0, 0.0, 0.0],
                 },
-                Look::Radiance => [
+                Look::Radiance | Look::Motion => [
                     t[0] / (1.0 + t[0]),
                     t[1] / (1.0 + t[1]),
                     t[2] / (1.0 + t[2]),

@@ -215,6 +215,9 @@ pub enum Look {
     Position,
     /// A unit normal as n/2 + 1/2.
     Normal,
+    /// A world-space motion (any sign), tonemapped per channel as radiance is (negative
+    /// components black).
+    Motion,
     /// Depth normalised by its range over the image, near bright, the far plane black.
     Depth,
     /// rgb scaled by the image's brightest channel (flux and bounce span any range).
@@ -234,10 +237,10 @@ pub enum Look {
 }
 
 impl Look {
-    /// Channels that may be negative: positions and normals (xyz).
+    /// Channels that may be negative: positions, normals and motions (xyz).
     pub fn signed_channels(self) -> u32 {
         match self {
-            Look::Position | Look::Normal => 0b0111,
+            Look::Position | Look::Normal | Look::Motion => 0b0111,
             _ => 0,
         }
     }
@@ -300,6 +303,7 @@ impl Target {
         match self {
             Target::GPosition | Target::GPositionHistory | Target::RsmPosition => Look::Position,
             Target::GNormal | Target::GNormalHistory | Target::RsmNormal => Look::Normal,
+            Target::GMotion => Look::Motion,
             Target::GDepth | Target::RsmDepth => Look::Depth,
             Target::RsmFlux => Look::Brightest,
             Target::Ao | Target::Shadow => Look::Red,
@@ -310,7 +314,6 @@ impl Target {
             Target::Output
             | Target::Shaded
             | Target::Direct
-            | Target::GMotion
             | Target::Indirect
             | Target::IndirectNoisy => Look::Radiance,
         }
