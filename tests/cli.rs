@@ -207,6 +207,8 @@ fn bad_flags_get_clear_errors() {
     fails_with(&["render", "--size", "banana"], "WIDTHxHEIGHT");
     fails_with(&["render", "--pcf", "50"], "square");
     fails_with(&["render", "--pcf", "soft"], "--pcf");
+    fails_with(&["render", "--ao-attenuation", "-1:0"], "A:B, each finite");
+    fails_with(&["render", "--ao-steps", "0"], "GTAO steps");
     fails_with(&["bench", "--frames", "0"], "at least 1");
     fails_with(&["render", "--frames", "0"], "at least 1");
     fails_with(&["view", "--frames", "0"], "at least 1");

@@ -2,6 +2,7 @@
 //! registry's `EffectArgs`) and what they make of `AoConfig`.
 
 use super::config::{AoConfig, AoEstimator};
+use crate::config::parse::parse_attenuation;
 use clap::Args;
 
 #[derive(Args, Debug, Clone)]
@@ -20,6 +21,10 @@ pub struct AoArgs {
     /// steps) slices per pattern, at least one).
     #[arg(long, default_value_t = AoConfig::default().steps)]
     pub ao_steps: u32,
+    /// Eq 7's attenuation D(d) = 1 + A d + B d^2 as `A:B` (d in units of the AO radius);
+    /// `0:0` is binary visibility within the radius. The ground truth's AO follows it.
+    #[arg(long, default_value = "0:1", value_parser = parse_attenuation, value_name = "A:B", allow_hyphen_values = true)]
+    pub ao_attenuation: [f32; 2],
 }
 
 impl AoArgs {
@@ -31,6 +36,7 @@ impl AoArgs {
             samples: self.ao_samples,
             position_mips: self.ao_position_mips,
             steps: self.ao_steps,
+            attenuation: self.ao_attenuation,
             ..AoConfig::default()
         }
     }

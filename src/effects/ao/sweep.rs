@@ -45,8 +45,8 @@ pub const SWEEP_KEYS: &[SweepKey] = &[
     SweepKey {
         name: "ao.attenuation",
         syntax: "A:B, each finite and >= 0",
-        description: "eq 7's D(d) = 1 + A d + B d^2 (0:0: binary visibility within the radius); \
-                      the ground truth follows it",
+        description: "eq 7's D(d) = 1 + A d + B d^2 (0:0: binary visibility within the radius; \
+                      --ao-attenuation); the ground truth follows it",
         set: |c, v| {
             c.ao.attenuation = parse_attenuation(v)?;
             Ok(())
