@@ -63,7 +63,7 @@ pub fn run_plan(ctx: &Arc<Context>, options: &StressOptions) -> Result<Vec<CaseR
     let total = plan.len();
     let mut results = Vec::with_capacity(total);
     for (k, (case, variant)) in plan.iter().enumerate() {
-        let r = run_case(ctx, case, *variant, options);
+        let r = run_case(ctx, case, *variant, options.rsm_size, options.ao_estimator);
         crate::interrupt::check()?;
         eprintln!("[{:>3}/{total}] {}", k + 1, StressReport::line(&r));
         results.push(r);

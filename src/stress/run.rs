@@ -7,8 +7,8 @@ use super::cases::{
     TURN_DEG_PER_FRAME,
 };
 use super::report::CaseResult;
-use super::StressOptions;
 use crate::config::Accumulate;
+use crate::effects::ao::config::AoEstimator;
 use crate::error::Result;
 use crate::frontend::progress::Progress;
 use crate::renderer::audit::AuditKind;
@@ -35,12 +35,13 @@ pub fn run_case(
     ctx: &Arc<Context>,
     case: &Case,
     variant: Variant,
-    options: &StressOptions,
+    rsm_size: u32,
+    ao_estimator: AoEstimator,
 ) -> CaseResult {
     let start = Instant::now();
     let before = ctx.validation().map_or(0, |log| log.count());
-    let mut base = variant.config(options.rsm_size);
-    base.ao.estimator = options.ao_estimator;
+    let mut base = variant.config(rsm_size);
+    base.ao.estimator = ao_estimator;
     let config = case.config(&base);
     let mut result = CaseResult::new(case, variant, &config);
     if let Err(e) = drive(ctx, case, config, &mut result) {

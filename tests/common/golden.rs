@@ -4,6 +4,7 @@
 
 use ssgi::config::pcf::Pcf;
 use ssgi::config::{AaMode, Effects, HistoryResample, IndirectFilter};
+use ssgi::effects::ao::config::AoEstimator;
 use ssgi::effects::ssdo::config::SsdoForm;
 use ssgi::renderer::{RenderConfig, Renderer};
 use ssgi::resources::targets::Target;
@@ -127,7 +128,7 @@ fn converged(variant: &str, group: Group, config: RenderConfig) -> Case {
 
 /// The effects converged in a still view, alone where they can be, so that their own pixels are
 /// compared (under the direct light AO moves a few codes): the thesis's AO and indirect light,
-/// and the three with direct light (the default frame); SSDO's SSAO form alone, one-step SSDO
+/// and the three with direct light (the default frame); ground-truth AO alone; SSDO's SSAO form alone, one-step SSDO
 /// with the direct light its bounce sends; two-step SSDO, which its cache does not take, with
 /// direct light and without reuse along the orbit; SRAA and shadow-aware SRAA on every effect.
 fn converged_effects() -> Vec<Case> {
@@ -151,6 +152,8 @@ fn converged_effects() -> Vec<Case> {
     ssao_form.ssdo.form = SsdoForm::Ssao;
     let mut two_step = base(lit_ssdo, false);
     two_step.ssdo.form = SsdoForm::TwoStep;
+    let mut gtao = base(ao, true);
+    gtao.ao.estimator = AoEstimator::Gtao;
     let all = base(Effects::ALL, true);
     let aa = |mode| {
         let mut c = all;
@@ -161,6 +164,7 @@ fn converged_effects() -> Vec<Case> {
     vec![
         converged("direct+ao+indirect", group, all),
         converged("ao", group, base(ao, true)),
+        converged("ao-gtao", group, gtao),
         converged("indirect", group, base(indirect, true)),
         converged("direct+ssdo", group, base(lit_ssdo, true)),
         converged("ssdo-ssao", group, ssao_form),
