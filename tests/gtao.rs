@@ -6,35 +6,23 @@
 mod common;
 
 use glam::Vec3;
-use ssgi::config::pcf::Pcf;
-use ssgi::config::{Effects, RenderConfig, TemporalConfig};
+use ssgi::config::{RenderConfig, TemporalConfig};
 use ssgi::effects::ao::config::{AoConfig, AoEstimator};
 use ssgi::renderer::Renderer;
-use ssgi::resources::targets::Target;
 use ssgi::scene::{cornell_box, Camera, Material, MeshBuilder, Scene};
 use std::f32::consts::PI;
 
+/// GTAO alone (`common::ao_config`), with or without the cache.
 fn config(size: u32, reuse: bool, ao: AoConfig) -> RenderConfig {
-    RenderConfig {
-        width: size,
-        height: size,
-        rsm_size: 128,
-        pcf: Pcf::HARD,
-        effects: Effects {
-            ao: true,
-            ..Effects::NONE
-        },
-        ao: AoConfig {
-            estimator: AoEstimator::Gtao,
-            ..ao
-        },
-        temporal: TemporalConfig {
-            reuse,
-            ..Default::default()
-        },
-        skip_unchanged: false,
-        ..RenderConfig::default()
-    }
+    let temporal = TemporalConfig {
+        reuse,
+        ..Default::default()
+    };
+    let ao = AoConfig {
+        estimator: AoEstimator::Gtao,
+        ..ao
+    };
+    common::ao_config(size, temporal, ao)
 }
 
 fn run(r: &mut Renderer, frames: u32) {
@@ -43,19 +31,6 @@ fn run(r: &mut Renderer, frames: u32) {
         r.render_frame(&camera).unwrap();
     }
     r.finish().unwrap();
-}
-
-/// AO visibility and world position of every geometry pixel (None for background).
-fn ao_values(r: &mut Renderer) -> Vec<Option<(f32, Vec3)>> {
-    let ao = r.read(Target::Ao).unwrap();
-    let pos = r.read(Target::GPosition).unwrap();
-    (0..ao.width * ao.height)
-        .map(|i| {
-            let (x, y) = (i % ao.width, i / ao.width);
-            let p = pos.texel(x, y);
-            (p[3] != 0.0).then(|| (ao.texel(x, y)[0], Vec3::new(p[0], p[1], p[2])))
-        })
-        .collect()
 }
 
 #[test]
@@ -73,7 +48,7 @@ fn open_plane_is_unoccluded_from_a_grazing_view() {
         let ao = AoConfig { patterns, ..ao };
         let mut r = Renderer::new(&ctx, common::open_plane(), config(96, reuse, ao)).unwrap();
         run(&mut r, frames);
-        let all = ao_values(&mut r);
+        let all = common::ao_and_positions(&mut r);
         let values: Vec<f32> = all.iter().flatten().map(|v| v.0).collect();
         assert!(
             values.len() > 96 * 96 / 2,
@@ -159,7 +134,7 @@ fn floor_beside_a_wall_matches_the_closed_form() {
     let mut r = Renderer::new(&ctx, scene, config(128, false, ao)).unwrap();
     run(&mut r, 1);
     let (mut worst, mut sum, mut n) = (0.0f32, 0.0f32, 0);
-    for (v, p) in ao_values(&mut r).into_iter().flatten() {
+    for (v, p) in common::ao_and_positions(&mut r).into_iter().flatten() {
         // Floor points 0.1-0.45 m from the wall, away from the image's sides.
         let d = -p.x;
         if p.y.abs() > 1e-3 || !(0.1..0.45).contains(&d) || p.z.abs() > 0.6 {
@@ -195,11 +170,11 @@ fn cached_value_converges_to_the_many_slice_evaluation() {
     let mut reference =
         Renderer::new(&ctx, cornell_box(), config(size, false, reference_ao)).unwrap();
     run(&mut reference, 1);
-    let reference = ao_values(&mut reference);
+    let reference = common::ao_and_positions(&mut reference);
     let mut cached = Renderer::new(&ctx, cornell_box(), config(size, true, ao)).unwrap();
     // The rotation limit (36 patterns) and a few frames more.
     run(&mut cached, 40);
-    let cached = ao_values(&mut cached);
+    let cached = common::ao_and_positions(&mut cached);
     let (mut sq, mut n) = (0.0f64, 0);
     for (a, b) in cached.iter().zip(&reference) {
         if let (Some(a), Some(b)) = (a, b) {

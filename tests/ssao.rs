@@ -4,6 +4,8 @@
 
 mod common;
 
+use common::ao_config as config;
+
 use glam::{Mat4, Vec3, Vec4};
 use ssgi::config::pcf::Pcf;
 use ssgi::config::{Accumulate, Effects, Refresh, RenderConfig, TemporalConfig};
@@ -15,25 +17,6 @@ use ssgi::resources::targets::Target;
 use ssgi::scene::{cornell_box, Camera, Material, MeshBuilder, Scene};
 use ssgi::vk::{FrameTiming, ImageData};
 use std::sync::Arc;
-
-fn config(size: u32, temporal: TemporalConfig, ao: AoConfig) -> RenderConfig {
-    RenderConfig {
-        width: size,
-        height: size,
-        rsm_size: 128,
-        pcf: Pcf::HARD,
-        effects: Effects {
-            ao: true,
-            ..Effects::NONE
-        },
-        ao,
-        temporal,
-        // Every frame reads the cache's counters: a converged frame must run, not be skipped
-        // (tests/skip.rs covers skipping).
-        skip_unchanged: false,
-        ..RenderConfig::default()
-    }
-}
 
 fn no_refresh() -> TemporalConfig {
     TemporalConfig {
@@ -54,13 +37,9 @@ fn run(r: &mut Renderer, frames: u32) -> Vec<FrameTiming> {
 
 /// AO visibility of every geometry pixel (None for background).
 fn ao_values(r: &mut Renderer) -> Vec<Option<f32>> {
-    let ao = r.read(Target::Ao).unwrap();
-    let pos = r.read(Target::GPosition).unwrap();
-    (0..ao.width * ao.height)
-        .map(|i| {
-            let (x, y) = (i % ao.width, i / ao.width);
-            (pos.texel(x, y)[3] != 0.0).then(|| ao.texel(x, y)[0])
-        })
+    common::ao_and_positions(r)
+        .into_iter()
+        .map(|v| v.map(|(ao, _)| ao))
         .collect()
 }
 

@@ -56,7 +56,8 @@ float ao_gtao_taps(ivec2 pixel, vec3 p, vec3 n, uint pattern, uint first, uint e
     uint slices = max(ao.directions, 1u);
     uint steps = max(ao.steps, 1u);
     float radius = ao.radius * frame.scene_radius;
-    float depth = max((frame.view_proj * vec4(p, 1.0)).w, 1e-30);
+    vec4 clip = frame.view_proj * vec4(p, 1.0);
+    float depth = max(clip.w, 1e-30);
     float px_per_world = float(frame.size.y) / (2.0 * frame.tan_half_fov * depth);
     // The radius on screen, at most a quarter of the image (as the thesis estimator), at
     // least one step out of the pixel.
@@ -80,7 +81,6 @@ float ao_gtao_taps(ivec2 pixel, vec3 p, vec3 n, uint pattern, uint first, uint e
     // each slice's world direction through the projection's derivative at p.
     vec3 a = safe_normalize(right - dot(right, v) * v, safe_normalize(cross(v, down), right));
     vec3 b = cross(v, a);
-    vec4 clip = frame.view_proj * vec4(p, 1.0);
     float sum = 0.0;
     for (uint s = first; s < end; ++s) {
         float phi = base + PI * float(s) / float(slices);

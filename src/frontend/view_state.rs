@@ -6,14 +6,18 @@ use crate::effects;
 use crate::renderer::frame::Pcf;
 use crate::renderer::RenderConfig;
 use crate::resources::targets::Target;
+use std::sync::OnceLock;
 
 /// The effect switches the digit keys toggle, in order from `1`: every `--effects` switch but
-/// direct light.
-pub fn effect_keys() -> Vec<&'static str> {
-    Effects::NAMES
-        .into_iter()
-        .filter(|n| *n != "direct")
-        .collect()
+/// direct light. Built once (the window's title reads it every frame).
+pub fn effect_keys() -> &'static [&'static str] {
+    static KEYS: OnceLock<Vec<&'static str>> = OnceLock::new();
+    KEYS.get_or_init(|| {
+        Effects::NAMES
+            .into_iter()
+            .filter(|n| *n != "direct")
+            .collect()
+    })
 }
 
 /// The viewer's keys, printed by `H` and documented in docs/cli.md: the digits toggle
@@ -22,7 +26,7 @@ pub fn help() -> String {
     let buffers: Vec<&str> = display_cycle().iter().map(|(_, n)| *n).collect();
     let mut digits = String::new();
     let ambient = effects::ambient_switches();
-    for (i, name) in effect_keys().into_iter().enumerate() {
+    for (i, name) in effect_keys().iter().copied().enumerate() {
         let note = if ambient.contains(&name) {
             " (darkens the ambient light: switches the others that do off)"
         } else {
@@ -54,8 +58,14 @@ pub fn help() -> String {
 
 /// Buffers the viewer can show, in cycling order: the frame's, then the effects' views marked
 /// for the viewer. Depth targets cannot be blitted to a colour image and are left out; a
-/// target whose format lacks BLIT_SRC support is skipped.
-pub fn display_cycle() -> Vec<(Target, &'static str)> {
+/// target whose format lacks BLIT_SRC support is skipped. Built once from the registry (the
+/// window reads it every frame).
+pub fn display_cycle() -> &'static [(Target, &'static str)] {
+    static CYCLE: OnceLock<Vec<(Target, &'static str)>> = OnceLock::new();
+    CYCLE.get_or_init(build_display_cycle)
+}
+
+fn build_display_cycle() -> Vec<(Target, &'static str)> {
     let frame = [
         (Target::Output, "final"),
         (Target::Direct, "direct"),
@@ -152,11 +162,7 @@ impl ViewState {
             }
         };
         let mut flags = vec![flag(self.soft_shadows, "pcf")];
-        flags.extend(
-            effect_keys()
-                .into_iter()
-                .map(|n| flag(self.effects.has(n), n)),
-        );
+        flags.extend(effect_keys().iter().map(|n| flag(self.effects.has(n), n)));
         flags.extend(
             effects::toggles()
                 .zip(&self.toggles)
@@ -198,7 +204,7 @@ impl Action {
     /// The action a test script names (`key=NAME`): cycle, pcf, an effect switch, an effect's
     /// setting, reuse, camera, help, quit.
     pub fn from_name(name: &str) -> Option<Action> {
-        if let Some(e) = effect_keys().into_iter().find(|e| *e == name) {
+        if let Some(e) = effect_keys().iter().copied().find(|e| *e == name) {
             return Some(Action::ToggleEffect(e));
         }
         if let Some(i) = effects::toggles().position(|t| t.name == name) {

@@ -33,6 +33,44 @@ pub fn assert_clean(ctx: &Context) {
     );
 }
 
+/// AO alone at `size` x `size` (hard shadows, 128-texel RSM), every frame recorded: a
+/// converged frame must run, not be skipped, for the cache's counters to be read
+/// (tests/skip.rs covers skipping).
+pub fn ao_config(
+    size: u32,
+    temporal: ssgi::config::TemporalConfig,
+    ao: ssgi::effects::ao::config::AoConfig,
+) -> RenderConfig {
+    RenderConfig {
+        width: size,
+        height: size,
+        rsm_size: 128,
+        pcf: Pcf::HARD,
+        effects: ssgi::config::Effects {
+            ao: true,
+            ..ssgi::config::Effects::NONE
+        },
+        ao,
+        temporal,
+        skip_unchanged: false,
+        ..RenderConfig::default()
+    }
+}
+
+/// AO visibility and world position of every geometry pixel of the last frame (None for
+/// background).
+pub fn ao_and_positions(r: &mut Renderer) -> Vec<Option<(f32, glam::Vec3)>> {
+    let ao = r.read(Target::Ao).unwrap();
+    let pos = r.read(Target::GPosition).unwrap();
+    (0..ao.width * ao.height)
+        .map(|i| {
+            let (x, y) = (i % ao.width, i / ao.width);
+            let p = pos.texel(x, y);
+            (p[3] != 0.0).then(|| (ao.texel(x, y)[0], glam::Vec3::new(p[0], p[1], p[2])))
+        })
+        .collect()
+}
+
 /// Render `frames` frames of `scene` from its own camera and return the renderer.
 pub fn render(ctx: &Arc<Context>, scene: Scene, size: u32, pcf: Pcf, frames: u32) -> Renderer {
     let config = RenderConfig {
