@@ -11,6 +11,7 @@ use std::fmt::Write as _;
 pub const GENERATED: &[(&str, &str)] = &[
     ("Frame", "FrameBlock"),
     ("Ccipca", "CcipcaPush"),
+    ("Svgf", "SvgfPush"),
     ("Ssdo", "SsdoParams"),
     ("Ao", "AoParams"),
     ("Sraa", "SraaPush"),

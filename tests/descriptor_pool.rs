@@ -54,6 +54,7 @@ fn configs() -> Vec<(&'static str, RenderConfig)> {
             "jbf11",
             with(&|c| c.indirect.filter = IndirectFilter::Jbf11),
         ),
+        ("svgf", with(&|c| c.indirect.filter = IndirectFilter::Svgf)),
         ("ssdo", with(&|c| c.effects = ssdo)),
         (
             "ssdo cached",

@@ -6,6 +6,8 @@
 
 mod common;
 
+use common::counter;
+
 use glam::Vec3;
 use ssgi::config::pcf::Pcf;
 use ssgi::config::{Effects, Refresh, TemporalConfig};
@@ -92,10 +94,6 @@ fn point(img: &ImageData, x: u32, y: u32) -> Option<Vec3> {
 /// On the ball's surface (the tessellation lies within 0.5% inside the sphere).
 fn on_ball(p: Option<Vec3>, center: Vec3) -> bool {
     p.is_some_and(|p| p.distance(center) < RADIUS * 1.01)
-}
-
-fn counter(t: &FrameTiming, name: &str) -> Option<u64> {
-    t.counters.iter().find(|(n, _)| *n == name).map(|(_, v)| *v)
 }
 
 /// Without invalidation (and refresh), what a step changes in the state images is its

@@ -1,6 +1,6 @@
 //! A NaN in one indirect estimate stays where it was planted (`Renderer::plant_nan`, before
-//! the guards): CCIPCA's image-wide sums and bases, and the cached indirect light's history,
-//! stay finite, and the image outside the pixel's neighbourhood is the image of a run without
+//! the guards): CCIPCA's image-wide sums and bases, SVGF's moments and the cached indirect
+//! light's history stay finite, and the image outside the pixel's neighbourhood is the image of a run without
 //! the NaN. Without the guards one NaN blackens CCIPCA's whole image (its sums are
 //! image-wide) and sticks in a history until a restart.
 
@@ -45,11 +45,11 @@ fn texels(image: &ImageData) -> Vec<[f32; 4]> {
         .collect()
 }
 
-/// Renders `frames` frames (planting the NaN before frame `plant`, if given) and returns the
+/// Renders `frames` frames of `c` (planting the NaN before frame `plant`, if given) and returns the
 /// indirect light of the last two frames and the renderer.
-fn run(filter: IndirectFilter, frames: u32, plant: Option<u32>) -> (Vec<Vec<[f32; 4]>>, Renderer) {
+fn run(c: RenderConfig, frames: u32, plant: Option<u32>) -> (Vec<Vec<[f32; 4]>>, Renderer) {
     let ctx = common::context();
-    let mut r = Renderer::new(&ctx, cornell_box(), config(filter)).unwrap();
+    let mut r = Renderer::new(&ctx, cornell_box(), c).unwrap();
     let camera = r.scene.camera;
     let mut images = Vec::new();
     for frame in 0..frames {
@@ -97,8 +97,8 @@ fn compare(a: &[[f32; 4]], b: &[[f32; 4]], radius: u32) -> (f32, usize) {
 /// image moves only by the planted sample's share of the image-wide sums.
 #[test]
 fn a_nan_sample_stays_out_of_ccipcas_sums_and_bases() {
-    let (clean, _) = run(IndirectFilter::Ccipca, 8, None);
-    let (planted, mut r) = run(IndirectFilter::Ccipca, 8, Some(6));
+    let (clean, _) = run(config(IndirectFilter::Ccipca), 8, None);
+    let (planted, mut r) = run(config(IndirectFilter::Ccipca), 8, Some(6));
     let bases = r.read_buffer(ssgi::effects::ccipca::ID, "bases").unwrap();
     let bad_bases = bases
         .chunks_exact(4)
@@ -131,8 +131,8 @@ fn a_nan_sample_stays_out_of_ccipcas_sums_and_bases() {
 /// upsampling's reach is exactly the clean run's.
 #[test]
 fn a_nan_estimate_stays_out_of_the_indirect_history() {
-    let (clean, _) = run(IndirectFilter::Accumulate, 6, None);
-    let (planted, mut r) = run(IndirectFilter::Accumulate, 6, Some(4));
+    let (clean, _) = run(config(IndirectFilter::Accumulate), 6, None);
+    let (planted, mut r) = run(config(IndirectFilter::Accumulate), 6, Some(4));
     for a in r.audit().unwrap() {
         assert_eq!(a.bad_values(), 0, "{a:?}");
     }
@@ -157,6 +157,36 @@ fn a_nan_estimate_stays_out_of_the_indirect_history() {
         held.clone().all(|i| distance(i) <= 8),
         "a count changed far away"
     );
+}
+
+/// SVGF: the NaN enters the noisy sample at frame 4 of 6. The gather's guard makes it 0, so
+/// the moments, histories and image stay finite, and with one a-trous iteration (radius 2) the
+/// image outside the reach of two frames' filtering (4 pixels) is exactly the clean run's.
+#[test]
+fn a_nan_sample_stays_out_of_svgfs_moments() {
+    let mut c = config(IndirectFilter::Svgf);
+    c.svgf.iterations = 1;
+    let (clean, _) = run(c, 6, None);
+    let (planted, mut r) = run(c, 6, Some(4));
+    for a in r.audit().unwrap() {
+        assert_eq!(a.bad_values(), 0, "{a:?}");
+    }
+    for (frame, (a, b)) in planted.iter().zip(&clean).enumerate() {
+        let (outside, bad) = compare(a, b, 4);
+        let (inside, _) = compare(a, b, 0);
+        eprintln!(
+            "frame {}: largest difference outside the neighbourhood {outside:.2e}, anywhere \
+             {inside:.2e}; {bad} non-finite values",
+            4 + frame
+        );
+        assert_eq!(bad, 0, "frame {}: the NaN reached the image", 4 + frame);
+        assert_eq!(outside, 0.0, "frame {}", 4 + frame);
+        assert!(
+            inside > 0.0,
+            "frame {}: the planted NaN changed nothing",
+            4 + frame
+        );
+    }
 }
 
 /// Largest relative change CCIPCA's image may show outside the planted pixel's neighbourhood:

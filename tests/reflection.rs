@@ -98,8 +98,8 @@ mod block_layout;
 
 use ssgi::shaders::{
     AoParams, BlockMember, CcipcaPush, CountersHeader, EffectPush, FrameBlock, GBufferResolvePush,
-    ImageStatsPush, MaterialPush, ProbePush, ReprojectPush, SraaPush, SsdoParams, VplParams,
-    PROBES,
+    ImageStatsPush, MaterialPush, ProbePush, ReprojectPush, SraaPush, SsdoParams, SvgfPush,
+    VplParams, PROBES,
 };
 
 /// The generated struct of a GLSL block: its members and size.
@@ -108,6 +108,7 @@ fn generated(name: &str) -> (&'static [BlockMember], usize) {
         "Frame" => (FrameBlock::MEMBERS, FrameBlock::SIZE),
         "Effect" => (EffectPush::MEMBERS, EffectPush::SIZE),
         "Ccipca" => (CcipcaPush::MEMBERS, CcipcaPush::SIZE),
+        "Svgf" => (SvgfPush::MEMBERS, SvgfPush::SIZE),
         "Ssdo" => (SsdoParams::MEMBERS, SsdoParams::SIZE),
         "Ao" => (AoParams::MEMBERS, AoParams::SIZE),
         "Sraa" => (SraaPush::MEMBERS, SraaPush::SIZE),

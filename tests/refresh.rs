@@ -4,6 +4,8 @@
 
 mod common;
 
+use common::counter;
+
 use glam::Vec3;
 use ssgi::config::pcf::Pcf;
 use ssgi::config::{Effects, RenderConfig, TemporalConfig, REFRESH_BUDGET};
@@ -35,10 +37,6 @@ fn stepped(base: Camera, i: u32) -> Camera {
         target: base.target + shift,
         ..base
     }
-}
-
-fn counter(t: &FrameTiming, name: &str) -> Option<u64> {
-    t.counters.iter().find(|(n, _)| *n == name).map(|(_, v)| *v)
 }
 
 /// Move the camera for a few frames (tiles run while it moves), then hold it: on every frame

@@ -290,47 +290,17 @@ fn check_mask(
     (c0, c1): (Camera, Camera),
 ) {
     let size = state.width;
-    let vp0 = c0.view_proj(1.0);
-    let tan_half = (0.5 * c1.vfov_deg).to_radians().tan();
-    let texel = |img: &ImageData, x: i64, y: i64| {
-        (x >= 0 && y >= 0 && x < size as i64 && y < size as i64)
-            .then(|| img.texel(x as u32, y as u32))
-    };
+    let cpu = common::cpu_disocclusion([pos0, pos1], [nrm0, nrm1], (c0, c1));
     let (mut agree, mut total, mut cpu_new) = (0, 0, 0);
     for y in 0..size {
         for x in 0..size {
-            let p = pos1.texel(x, y);
-            if p[3] == 0.0 {
+            let Some(new) = cpu[(y * size + x) as usize] else {
                 assert_eq!(state.texel(x, y)[0] as u32, 4, "background at ({x},{y})");
                 continue;
-            }
-            let w = Vec3::new(p[0], p[1], p[2]);
-            let n = Vec3::from_slice(&nrm1.texel(x, y)[..3]);
-            let to_eye = c1.position - w;
-            let dist = to_eye.length();
-            let footprint = 2.0 * dist * tan_half / size as f32;
-            let eps = 2.0 * footprint / n.dot(to_eye / dist).abs().max(0.1);
-            let clip = vp0 * Vec4::new(w.x, w.y, w.z, 1.0);
-            let valid = clip.w > 0.0 && {
-                let uv = Vec3::new(
-                    clip.x / clip.w * 0.5 + 0.5,
-                    clip.y / clip.w * 0.5 + 0.5,
-                    0.0,
-                );
-                let (tx, ty) = (
-                    (uv.x * size as f32).floor() as i64,
-                    (uv.y * size as f32).floor() as i64,
-                );
-                let facing = |t: [f32; 4]| Vec3::from_slice(&t[..3]).dot(n) >= 0.5;
-                texel(pos0, tx, ty).is_some_and(|h| {
-                    h[3] != 0.0
-                        && Vec3::new(h[0], h[1], h[2]).distance(w) <= eps
-                        && texel(nrm0, tx, ty).is_some_and(facing)
-                })
             };
             let gpu_new = state.texel(x, y)[0] as u32 == 2;
-            cpu_new += (!valid) as u32;
-            agree += (gpu_new != valid) as u32;
+            cpu_new += new as u32;
+            agree += (gpu_new == new) as u32;
             total += 1;
         }
     }

@@ -1,8 +1,8 @@
 #version 460
 // CCIPCA's warp (Chen et al. section 3.4): every basis and each pixel's sample count follow the
-// pixel's surface from last frame's screen to this one's (eq 1, the nearest texel; kept where
-// it holds the same surface by eq 3's test and faces the same way). A pixel new to the view
-// is a new dimension: zero in every basis, no samples, so per-pixel weighting lets it take
+// pixel's surface from last frame's screen to this one's (previous_texel.glsl: eq 1, the
+// nearest texel, kept where eq 3's test holds and it faces the same way). A pixel new to the
+// view is a new dimension: zero in every basis, no samples, so per-pixel weighting lets it take
 // full steps. Stores the group's part of the warped bases' Gram matrix, which the
 // orthogonalization works from.
 #extension GL_GOOGLE_include_directive : require
@@ -21,27 +21,7 @@ layout(set = 1, binding = 1) uniform texture2D g_normal;
 layout(set = 1, binding = 2) uniform texture2D prev_position;
 layout(set = 1, binding = 3) uniform texture2D prev_normal;
 layout(set = 1, binding = 4) uniform texture2D g_motion; // world-space motion since last frame
-
-// As the reprojection's facing test (shaders/reproject.comp): within 60 degrees.
-const float FACING_ACCEPT = 0.5;
-
-// Last frame's texel holding this pixel's surface, or (-1, -1); on a moving object, where its
-// point was last frame (the G-buffer's motion).
-ivec2 previous_texel(ivec2 pixel) {
-    vec4 g = texelFetch(g_position, pixel, 0);
-    if (g.w == 0.0) return ivec2(-1);
-    g.xyz -= texelFetch(g_motion, pixel, 0).xyz;
-    vec4 c = frame.prev_view_proj * vec4(g.xyz, 1.0);
-    if (!(c.w > 0.0)) return ivec2(-1);
-    vec2 f = (c.xy / c.w * 0.5 + 0.5) * vec2(frame.size);
-    if (!(all(greaterThanEqual(f, vec2(0.0))) && all(lessThan(f, vec2(frame.size))))) return ivec2(-1);
-    ivec2 t = ivec2(f);
-    vec4 h = texelFetch(prev_position, t, 0);
-    vec3 n = texelFetch(g_normal, pixel, 0).xyz;
-    bool same = h.w != 0.0 && distance(h.xyz, g.xyz) <= disocclusion_epsilon(g.xyz, n) &&
-                dot(texelFetch(prev_normal, t, 0).xyz, n) >= FACING_ACCEPT;
-    return same ? t : ivec2(-1);
-}
+#include "previous_texel.glsl"
 
 void main() {
     ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);

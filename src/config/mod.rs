@@ -10,6 +10,7 @@ use crate::effects::ao::config::AoConfig;
 use crate::effects::ccipca::config::CcipcaConfig;
 pub use crate::effects::indirect::config::{IndirectConfig, IndirectFilter, IndirectInput};
 use crate::effects::ssdo::config::SsdoConfig;
+use crate::effects::svgf::config::SvgfConfig;
 use crate::error::{Error, Result};
 pub use antialias::{AaConfig, AaMode};
 use pcf::Pcf;
@@ -322,6 +323,7 @@ pub struct RenderConfig {
     pub ao: AoConfig,
     pub indirect: IndirectConfig,
     pub ccipca: CcipcaConfig,
+    pub svgf: SvgfConfig,
     pub ssdo: SsdoConfig,
     pub temporal: TemporalConfig,
     pub aa: AaConfig,
@@ -342,6 +344,7 @@ impl Default for RenderConfig {
             ao: AoConfig::default(),
             indirect: IndirectConfig::default(),
             ccipca: CcipcaConfig::default(),
+            svgf: SvgfConfig::default(),
             ssdo: SsdoConfig::default(),
             temporal: TemporalConfig::default(),
             aa: AaConfig::default(),
@@ -389,6 +392,7 @@ impl RenderConfig {
             .validate(self.effects.ssdo, self.effects.ao, self.temporal.reuse)?;
         self.indirect.validate()?;
         self.ccipca.validate()?;
+        self.svgf.validate()?;
         if self.indirect.vpls == 0 && self.rsm_size > 128 {
             return bad(format!(
                 "--vpls all gathers every RSM texel: use --rsm-size 128 or less (got {})",

@@ -1,5 +1,5 @@
 //! Effects: direct light with PCF shadows, SSAO, one-bounce indirect light (accumulated, or
-//! filtered by CCIPCA or a joint bilateral filter), SSDO. Each is a folder here (its shaders in
+//! filtered by CCIPCA, a joint bilateral filter or SVGF), SSDO. Each is a folder here (its shaders in
 //! `shaders/<effect>/`) that owns its passes, its size-dependent images, its temporal history
 //! and counters, its debug views and its contribution to the composite, and is registered in
 //! [`create`] with one line. The renderer only walks the list (see docs/ARCHITECTURE.md).
@@ -13,6 +13,7 @@ pub mod jbf;
 pub mod normals;
 pub mod resolve;
 pub mod ssdo;
+pub mod svgf;
 
 pub use effect::{
     every_pixel, refresh_dispatch, Effect, EffectId, FrameInfo, Recording, Registration, Setup,
@@ -34,6 +35,7 @@ pub const REGISTRY: &[Registration] = &[
     indirect::REGISTRATION,
     ccipca::REGISTRATION,
     jbf::REGISTRATION,
+    svgf::REGISTRATION,
     ssdo::REGISTRATION,
     normals::REGISTRATION,
 ];
@@ -129,6 +131,8 @@ pub struct EffectArgs {
     #[command(flatten)]
     pub ccipca: ccipca::args::CcipcaArgs,
     #[command(flatten)]
+    pub svgf: svgf::args::SvgfArgs,
+    #[command(flatten)]
     pub ssdo: ssdo::args::SsdoArgs,
 }
 
@@ -138,6 +142,7 @@ impl EffectArgs {
         config.ao = self.ao.config();
         config.indirect = self.indirect.config();
         config.ccipca = self.ccipca.config();
+        config.svgf = self.svgf.config();
         config.ssdo = self.ssdo.config();
     }
 }
@@ -179,7 +184,11 @@ mod tests {
         assert_eq!(terms("all", |_| {}), Terms::ALL);
         assert_eq!(terms("ao", |_| {}), Terms::AMBIENT_OCCLUSION);
         assert_eq!(terms("direct,normals", |_| {}), Terms::DIRECT);
-        for filter in [IndirectFilter::Ccipca, IndirectFilter::Jbf11] {
+        for filter in [
+            IndirectFilter::Ccipca,
+            IndirectFilter::Jbf11,
+            IndirectFilter::Svgf,
+        ] {
             let t = terms("indirect", |c| c.indirect.filter = filter);
             assert_eq!(t, Terms::INDIRECT, "{filter:?}");
         }

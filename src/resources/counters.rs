@@ -211,3 +211,41 @@ impl CounterReadback {
             .collect()
     }
 }
+
+/// The counters of an effect without the temporal machinery (a header, no work lists): its
+/// device buffer, bound as the effect's own, with the readback and the fields it reports.
+pub struct OwnCounters {
+    pub gpu: Buffer,
+    readback: CounterReadback,
+    fields: &'static [(&'static str, Counter)],
+}
+
+impl OwnCounters {
+    pub fn new(
+        ctx: &Arc<Context>,
+        name: &str,
+        fields: &'static [(&'static str, Counter)],
+    ) -> Result<Self> {
+        Ok(Self {
+            gpu: create_gpu_buffer(ctx, name, 0, 0)?,
+            readback: CounterReadback::new(ctx, crate::config::FRAMES_IN_FLIGHT)?,
+            fields,
+        })
+    }
+
+    /// Zero them before the frame's passes count.
+    pub fn reset(&self, rec: &Recorder<'_>, tracker: &mut Tracker) {
+        record_reset(rec, tracker, &self.gpu, 0, 0);
+    }
+
+    /// Copy them at the end of the frame recorded in `slot`.
+    pub fn copy(&mut self, rec: &Recorder<'_>, tracker: &mut Tracker, slot: usize) {
+        self.readback
+            .record_copy(rec, tracker, &self.gpu, slot, self.fields);
+    }
+
+    /// Those of the frame last recorded in `slot` (its fence has signalled).
+    pub fn collect(&mut self, slot: usize) -> Vec<(&'static str, u64)> {
+        self.readback.collect(slot)
+    }
+}

@@ -218,6 +218,7 @@ fn filters_and_resampling() -> Vec<Case> {
         converged("indirect-ccipca", group, filtered(IndirectFilter::Ccipca)),
         converged("indirect-jbf11", group, filtered(IndirectFilter::Jbf11)),
         converged("indirect-jbf17", group, filtered(IndirectFilter::Jbf17)),
+        converged("indirect-svgf", group, filtered(IndirectFilter::Svgf)),
         converged("indirect-interleave2", group, interleaved),
         moved("bilinear", HistoryResample::Bilinear),
         moved("point", HistoryResample::Point),

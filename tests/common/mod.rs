@@ -9,7 +9,7 @@ use ssgi::config::pcf::Pcf;
 use ssgi::renderer::{RenderConfig, Renderer};
 use ssgi::resources::targets::Target;
 use ssgi::scene::{Camera, Scene};
-use ssgi::vk::{Context, ContextOptions, ImageData};
+use ssgi::vk::{Context, ContextOptions, FrameTiming, ImageData};
 use std::sync::Arc;
 
 pub fn context() -> Arc<Context> {
@@ -18,6 +18,61 @@ pub fn context() -> Arc<Context> {
         ..Default::default()
     })
     .expect("Vulkan context with validation layers (run tools/setup-vulkan)")
+}
+
+/// A counter's value in a frame's timing.
+pub fn counter(t: &FrameTiming, name: &str) -> Option<u64> {
+    t.counters.iter().find(|(n, _)| *n == name).map(|(_, v)| *v)
+}
+
+/// Per pixel of the frame seen from `c1`, whether it is new to the view since the frame seen
+/// from `c0` (None over the background): eqs 1-3 applied on the CPU to the two G-buffers (the
+/// nearest texel, the default scale-free epsilon of 2 footprints) and the facing test
+/// (normals within 60 degrees), as the reprojection does it for a still scene.
+pub fn cpu_disocclusion(
+    [pos0, pos1]: [&ImageData; 2],
+    [nrm0, nrm1]: [&ImageData; 2],
+    (c0, c1): (Camera, Camera),
+) -> Vec<Option<bool>> {
+    use glam::{Vec3, Vec4};
+    let (width, height) = (pos1.width, pos1.height);
+    let vp0 = c0.view_proj(width as f32 / height as f32);
+    let tan_half = (0.5 * c1.vfov_deg).to_radians().tan();
+    let texel = |img: &ImageData, x: i64, y: i64| {
+        (x >= 0 && y >= 0 && x < width as i64 && y < height as i64)
+            .then(|| img.texel(x as u32, y as u32))
+    };
+    let mut mask = Vec::with_capacity((width * height) as usize);
+    for y in 0..height {
+        for x in 0..width {
+            let p = pos1.texel(x, y);
+            if p[3] == 0.0 {
+                mask.push(None);
+                continue;
+            }
+            let w = Vec3::new(p[0], p[1], p[2]);
+            let n = Vec3::from_slice(&nrm1.texel(x, y)[..3]);
+            let to_eye = c1.position - w;
+            let dist = to_eye.length();
+            let footprint = 2.0 * dist * tan_half / height as f32;
+            let eps = 2.0 * footprint / n.dot(to_eye / dist).abs().max(0.1);
+            let clip = vp0 * Vec4::new(w.x, w.y, w.z, 1.0);
+            let valid = clip.w > 0.0 && {
+                let (tx, ty) = (
+                    ((clip.x / clip.w * 0.5 + 0.5) * width as f32).floor() as i64,
+                    ((clip.y / clip.w * 0.5 + 0.5) * height as f32).floor() as i64,
+                );
+                let facing = |t: [f32; 4]| Vec3::from_slice(&t[..3]).dot(n) >= 0.5;
+                texel(pos0, tx, ty).is_some_and(|h| {
+                    h[3] != 0.0
+                        && Vec3::new(h[0], h[1], h[2]).distance(w) <= eps
+                        && texel(nrm0, tx, ty).is_some_and(facing)
+                })
+            };
+            mask.push(Some(!valid));
+        }
+    }
+    mask
 }
 
 /// Fail the test if the validation layers reported anything.

@@ -322,6 +322,7 @@ pub fn filter_name(f: IndirectFilter) -> &'static str {
         IndirectFilter::Ccipca => "ccipca",
         IndirectFilter::Jbf11 => "jbf11",
         IndirectFilter::Jbf17 => "jbf17",
+        IndirectFilter::Svgf => "svgf",
     }
 }
 

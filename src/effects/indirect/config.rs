@@ -51,6 +51,9 @@ pub enum IndirectFilter {
     Jbf11,
     /// The same with a 17x17 window.
     Jbf17,
+    /// Schied et al. 2017: the same noisy gather accumulated over time with its luminance
+    /// moments, then an edge-avoiding a-trous wavelet guided by their variance (SVGF).
+    Svgf,
 }
 
 /// The value the indirect passes compute for a pixel before upsampling and accumulation.

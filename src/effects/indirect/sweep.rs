@@ -3,7 +3,8 @@
 
 use crate::config::parse::{parse_count, parse_on_off, parse_vpls};
 use crate::config::sweep_key::SweepKey;
-use crate::config::IndirectConfig;
+use crate::config::{IndirectConfig, IndirectFilter};
+use clap::ValueEnum;
 
 pub const SWEEP_KEYS: &[SweepKey] = &[
     SweepKey {
@@ -34,6 +35,15 @@ pub const SWEEP_KEYS: &[SweepKey] = &[
         },
     },
     SweepKey {
+        name: "indirect.filter",
+        syntax: "accumulate|ccipca|jbf11|jbf17|svgf",
+        description: "what makes indirect light smooth over time (--indirect-filter)",
+        set: |c, v| {
+            c.indirect.filter = IndirectFilter::from_str(v, false)?;
+            Ok(())
+        },
+    },
+    SweepKey {
         name: "indirect.half_res",
         syntax: "on|off",
         description: "indirect gather at half resolution (--half-res)",
@@ -56,6 +66,9 @@ mod tests {
             ("indirect.interleave", "2", |c| c.indirect.interleave = 2),
             ("indirect.visibility", "on", |c| {
                 c.indirect.visibility = true
+            }),
+            ("indirect.filter", "svgf", |c| {
+                c.indirect.filter = IndirectFilter::Svgf
             }),
             ("indirect.half_res", "off", |c| c.indirect.half_res = false),
         ];

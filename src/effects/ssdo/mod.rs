@@ -20,13 +20,12 @@ use super::effect::{
 };
 use super::resolve::EffectResources;
 use crate::config::RenderConfig;
-use crate::config::FRAMES_IN_FLIGHT;
 use crate::error::Result;
 use crate::passes::compute::{ComputePass, Dispatch, PassDecl};
 use crate::passes::decl::{Bind, Slot, Use};
 use crate::passes::{PassId, PassLayout};
 use crate::reference::compose::Terms;
-use crate::resources::counters::{self, Counter, CounterReadback, Role};
+use crate::resources::counters::{Counter, OwnCounters, Role};
 use crate::resources::targets::{EffectView, Look, Target, Targets, AO_FORMAT};
 use crate::resources::temporal::Sampling;
 use crate::resources::temporal_effect::{EffectKind, MovedReach, ScreenReach, TemporalEffect};
@@ -409,11 +408,6 @@ struct Sized {
 }
 
 /// The counters header the uncached passes fill, and its per-slot host copies.
-struct OwnCounters {
-    gpu: Buffer,
-    readback: CounterReadback,
-}
-
 pub struct SsdoEffect {
     form: Form,
     /// Horizontal and vertical bilateral passes (`--bilateral` not off).
@@ -495,10 +489,7 @@ impl SsdoEffect {
             own_counters: if s.config.temporal.reuse {
                 None
             } else {
-                Some(OwnCounters {
-                    gpu: counters::create_gpu_buffer(s.ctx, "ssdo.counters", 0, 0)?,
-                    readback: CounterReadback::new(s.ctx, FRAMES_IN_FLIGHT)?,
-                })
+                Some(OwnCounters::new(s.ctx, "ssdo.counters", SSDO_COUNTERS)?)
             },
             params: params::buffer(s.ctx, s.tracker, s.config)?,
             sized: Self::create_sized(s.ctx, s.config)?,
@@ -677,15 +668,14 @@ impl Effect for SsdoEffect {
             t.copy_counters(rec, tracker, slot);
         }
         if let Some(c) = &mut self.own_counters {
-            c.readback
-                .record_copy(rec, tracker, &c.gpu, slot, SSDO_COUNTERS);
+            c.copy(rec, tracker, slot);
         }
     }
 
     fn collect_counters(&mut self, slot: usize) -> Vec<(&'static str, u64)> {
         match (&mut self.sized.temporal, &mut self.own_counters) {
             (Some(t), _) => t.readback.collect(slot),
-            (None, Some(c)) => c.readback.collect(slot),
+            (None, Some(c)) => c.collect(slot),
             (None, None) => Vec::new(),
         }
     }
@@ -721,7 +711,7 @@ impl Effect for SsdoEffect {
         let grid = &self.sized.images[1].desc;
         // With the cache the reprojection resets the temporal counters.
         if let Some(c) = &self.own_counters {
-            counters::record_reset(&r.rec, r.tracker, &c.gpu, 0, 0);
+            c.reset(&r.rec, r.tracker);
         }
         let all = Dispatch::Pixels {
             width: grid.width,

@@ -1,0 +1,196 @@
+//! SVGF (`--indirect-filter svgf`): the a-trous passes against the CPU evaluation in
+//! src/effects/svgf/model.rs, the variance against the moments it comes from, and the temporal
+//! moments restarting exactly where a CPU reprojection finds the surface new to the view.
+
+mod common;
+
+use common::counter;
+use glam::{Vec3, Vec4};
+use ssgi::config::pcf::Pcf;
+use ssgi::config::{Effects, IndirectConfig, IndirectFilter, RenderConfig};
+use ssgi::effects::svgf::config::SvgfConfig;
+use ssgi::effects::svgf::model::{filter, Surface};
+use ssgi::effects::svgf::{HISTORY_VIEW, INTEGRATED_VIEW};
+use ssgi::renderer::Renderer;
+use ssgi::resources::targets::Target;
+use ssgi::scene::{cornell_box, Camera};
+use ssgi::vk::ImageData;
+
+fn config(size: u32, vpls: u32, svgf: SvgfConfig) -> RenderConfig {
+    RenderConfig {
+        width: size,
+        height: size,
+        rsm_size: 64,
+        pcf: Pcf::HARD,
+        effects: Effects {
+            indirect: true,
+            ..Effects::NONE
+        },
+        indirect: IndirectConfig {
+            vpls,
+            filter: IndirectFilter::Svgf,
+            ..Default::default()
+        },
+        svgf,
+        // Every frame takes a new sample (tests/skip.rs covers skipping).
+        skip_unchanged: false,
+        ..Default::default()
+    }
+}
+
+fn texels(image: &ImageData) -> Vec<Vec4> {
+    (0..image.height)
+        .flat_map(|y| (0..image.width).map(move |x| (x, y)))
+        .map(|(x, y)| Vec4::from(image.texel(x, y)))
+        .collect()
+}
+
+fn luminance(v: Vec4) -> f32 {
+    v.truncate().dot(Vec3::new(0.2126, 0.7152, 0.0722))
+}
+
+/// The output after `frames` still frames equals the CPU's a-trous iterations of the read-back
+/// integrated colour and variance, on the read-back G-buffer; where a pixel holds 4 samples
+/// or more its variance is its moments' E[l^2] - E[l]^2. Once with the article's parameters
+/// after 6 frames, once with others after 2 (the variance then estimated spatially).
+#[test]
+fn atrous_iterations_match_a_cpu_evaluation() {
+    let ctx = common::context();
+    let size = 48;
+    let other = SvgfConfig {
+        iterations: 3,
+        sigma_luminance: 1.0,
+        sigma_normal: 0.0,
+        sigma_depth: 2.0,
+        ..SvgfConfig::default()
+    };
+    for (frames, svgf) in [(6, SvgfConfig::default()), (2, other)] {
+        let mut r = Renderer::new(&ctx, cornell_box(), config(size, 4, svgf)).unwrap();
+        let camera = r.scene.camera;
+        for _ in 0..frames {
+            r.render_frame(&camera).unwrap();
+        }
+        let integrated = texels(&common::read(&mut r, Target::Effect(&INTEGRATED_VIEW)));
+        let history = texels(&common::read(&mut r, Target::Effect(&HISTORY_VIEW)));
+        let gpu = texels(&common::read(&mut r, Target::Indirect));
+        let position = texels(&common::read(&mut r, Target::GPosition));
+        let normal: Vec<Vec3> = texels(&common::read(&mut r, Target::GNormal))
+            .into_iter()
+            .map(|n| n.truncate())
+            .collect();
+        r.finish().unwrap();
+        let surface = Surface::new(size, size, &position, &normal, camera.view_proj(1.0));
+        let cpu = filter(&svgf, &surface, &integrated, svgf.iterations);
+        let (mut worst, mut largest, mut checked_variance) = (0.0f32, 0.0f32, 0);
+        for (i, p) in position.iter().enumerate() {
+            if p.w == 0.0 {
+                assert_eq!(gpu[i], Vec4::ZERO, "background pixel {i}");
+                continue;
+            }
+            let (got, want) = (gpu[i].truncate(), cpu[i].truncate());
+            worst = worst.max((got - want).abs().max_element());
+            largest = largest.max(want.max_element());
+            let (n, m1, m2) = (history[i].x, history[i].y, history[i].z);
+            assert_eq!(n, frames as f32, "pixel {i}: samples in its history");
+            let variance = integrated[i].w;
+            assert!(
+                variance.is_finite() && variance >= 0.0,
+                "pixel {i}: {variance}"
+            );
+            if n >= 4.0 {
+                let want = (m2 - m1 * m1).max(0.0);
+                assert!(
+                    (variance - want).abs() <= 1e-5 * m2 + 1e-30,
+                    "pixel {i}: variance {variance}, moments give {want}"
+                );
+                checked_variance += 1;
+            }
+        }
+        eprintln!(
+            "{frames} frames, {} iterations: largest difference {worst:.3e} of {largest:.3e}, \
+             {checked_variance} temporal variances checked",
+            svgf.iterations
+        );
+        assert!(
+            largest > 0.0 && worst <= 1e-4 * largest,
+            "{worst} of {largest}"
+        );
+        assert!(frames < 4 || checked_variance > 1000, "{checked_variance}");
+    }
+    common::assert_clean(&ctx);
+}
+
+/// After three still frames the camera moves sideways: the pixels whose history restarts (one
+/// sample, moments of the new sample alone) are those a CPU reprojection of the two
+/// G-buffers finds new to the view, the others hold four samples, and the disocclusion
+/// counter counts the restarted pixels exactly.
+#[test]
+fn moments_restart_where_the_surface_is_new_to_the_view() {
+    let ctx = common::context();
+    let size = 64;
+    let mut r = Renderer::new(&ctx, cornell_box(), config(size, 4, SvgfConfig::default())).unwrap();
+    let c0 = r.scene.camera;
+    let shift = Vec3::new(0.12, 0.03, -0.05);
+    let c1 = Camera {
+        position: c0.position + shift,
+        target: c0.target + shift,
+        ..c0
+    };
+    let mut timings = Vec::new();
+    for camera in [c0, c0, c0, c1] {
+        timings.extend(r.render_frame(&camera).unwrap());
+    }
+    let history = texels(&common::read(&mut r, Target::Effect(&HISTORY_VIEW)));
+    let noisy = texels(&common::read(&mut r, Target::IndirectNoisy));
+    let pos1 = common::read(&mut r, Target::GPosition);
+    let pos0 = common::read(&mut r, Target::GPositionHistory);
+    let nrm1 = common::read(&mut r, Target::GNormal);
+    let nrm0 = common::read(&mut r, Target::GNormalHistory);
+    timings.extend(r.finish().unwrap());
+    let last = timings.last().unwrap();
+    let counted = counter(last, "svgf_disoccluded_pixels").expect("svgf's counter");
+    let cpu = common::cpu_disocclusion([&pos0, &pos1], [&nrm0, &nrm1], (c0, c1));
+    let (mut agree, mut total, mut restarted, mut cpu_new) = (0u64, 0u64, 0u64, 0u64);
+    for (i, new) in cpu.iter().enumerate() {
+        let Some(new) = *new else {
+            assert_eq!(history[i], Vec4::ZERO, "background pixel {i}");
+            continue;
+        };
+        let h = history[i];
+        let gpu_new = h.x == 1.0;
+        assert!(gpu_new || h.x == 4.0, "pixel {i}: {} samples", h.x);
+        if gpu_new {
+            // The new sample's moments alone.
+            let l = luminance(noisy[i]);
+            assert!(
+                (h.y - l).abs() <= 1e-6 * l,
+                "pixel {i}: E[l] {} for {l}",
+                h.y
+            );
+            assert!(
+                (h.z - l * l).abs() <= 1e-5 * l * l,
+                "pixel {i}: E[l^2] {}",
+                h.z
+            );
+        }
+        restarted += gpu_new as u64;
+        cpu_new += new as u64;
+        agree += (gpu_new == new) as u64;
+        total += 1;
+    }
+    let fraction = agree as f64 / total as f64;
+    eprintln!(
+        "restarted {restarted} (counter {counted}), CPU new {cpu_new}, agreement {fraction:.5} \
+         over {total} pixels"
+    );
+    assert_eq!(
+        counted, restarted,
+        "the counter counts the restarted pixels"
+    );
+    assert!(
+        cpu_new as f64 > 0.01 * total as f64 && cpu_new < total / 2,
+        "the move should disocclude some pixels: {cpu_new} of {total}"
+    );
+    assert!(fraction >= 0.995, "restarts agree on {fraction}");
+    common::assert_clean(&ctx);
+}
