@@ -1,6 +1,7 @@
 //! `ssgi table chang-flicker`: Chen, Lei & Chang's flicker comparison (section 4.2, Figure 7)
-//! and error (Figure 10): CCIPCA, the 11x11 and 17x17 joint bilateral filters and the thesis's
-//! accumulation, each from 1, 3, 10, 32 and 64 VPLs per pixel, on the Cornell box held still
+//! and error (Figure 10): CCIPCA, the 11x11 and 17x17 joint bilateral filters, the thesis's
+//! accumulation and SVGF (Schied et al. 2017, today's standard), each from 1, 3, 10, 32 and
+//! 64 VPLs per pixel, on the Cornell box held still
 //! and along a slow orbit. Per row: the flicker measure (mean squared difference of
 //! consecutive output frames, and of the indirect light), whether it is under the article's
 //! "barely notable" 2.5e-5, and the error of the last frame against the exact gather (every
@@ -32,9 +33,10 @@ use std::sync::Arc;
 
 pub const TABLE: TableDef = TableDef {
     name: "chang-flicker",
-    summary: "Chen et al.'s flicker comparison: CCIPCA, 11x11 and 17x17 joint bilateral filters \
-              and accumulation from 1-64 VPLs per pixel, static and moving: flicker and error.",
-    title: "Chen et al. section 4.2: flicker and error of CCIPCA, joint bilateral filters and accumulation against VPLs per pixel (Cornell box)",
+    summary: "Chen et al.'s flicker comparison: CCIPCA, 11x11 and 17x17 joint bilateral filters, \
+              accumulation and SVGF from 1-64 VPLs per pixel, static and moving: flicker, error \
+              and cost.",
+    title: "Chen et al. section 4.2: flicker and error of CCIPCA, joint bilateral filters, accumulation and SVGF against VPLs per pixel (Cornell box)",
     size: (128, 128),
     frames: 16,
     warmup: Warmup::Frames(64),
@@ -49,11 +51,12 @@ pub const TABLE: TableDef = TableDef {
 
 /// The article's sample counts.
 pub const VPLS: [u32; 5] = [1, 3, 10, 32, 64];
-pub const FILTERS: [IndirectFilter; 4] = [
+pub const FILTERS: [IndirectFilter; 5] = [
     IndirectFilter::Ccipca,
     IndirectFilter::Jbf11,
     IndirectFilter::Jbf17,
     IndirectFilter::Accumulate,
+    IndirectFilter::Svgf,
 ];
 /// "The flickering becomes barely notable when the measured difference is less than 2.5e-5."
 pub const THRESHOLD: f64 = 2.5e-5;
@@ -77,6 +80,8 @@ pub struct RowResult {
     pub final_rmse: Option<f64>,
     /// Median GPU ms of the frame.
     pub frame_ms: Option<f64>,
+    /// Sum of the median GPU ms of the indirect light's passes (the gather and the filter).
+    pub indirect_ms: Option<f64>,
     /// The per-frame measures.
     pub flicker: Flicker,
 }
@@ -217,6 +222,7 @@ fn run(
                     indirect_relative_rmse,
                     final_rmse,
                     frame_ms: m.report.total.median_ms,
+                    indirect_ms: indirect_ms(&m.report, &config(opts, filter, vpls)),
                     flicker,
                 };
                 eprintln!("{}", summary_line(&row));
@@ -242,9 +248,10 @@ fn run(
          indirect light (linear). Error: the last frame against the exact gather (every RSM \
          texel, no reuse) at the same camera, over the pixels with geometry."
             .into(),
-        "ccipca, jbf11 and jbf17 filter the same input: a new gather of N VPLs per pixel each \
-         frame; accumulate is the thesis's cache (half resolution, N VPLs per pattern, rotated \
-         patterns, refresh)."
+        "ccipca, jbf11, jbf17 and svgf filter the same input: a new gather of N VPLs per pixel \
+         each frame; accumulate is the thesis's cache (half resolution, N VPLs per pattern, \
+         rotated patterns, refresh). Indirect ms: the median GPU time of the indirect light's \
+         passes summed (the gather and the filter), beside the whole frame's."
             .into(),
     ];
     let report = TableReport {
@@ -270,6 +277,23 @@ fn run(
     let mut written = write_reports(out, TABLE.name, &report, markdown(&report), csv(&report))?;
     written.extend(plots(&report, out)?);
     Ok(written)
+}
+
+/// The summed median GPU time of the passes of the indirect light's effect under `config`
+/// (None when none of them was timed).
+fn indirect_ms(report: &crate::bench::report::Report, config: &RenderConfig) -> Option<f64> {
+    let passes: Vec<&str> = crate::effects::REGISTRY
+        .iter()
+        .filter(|r| r.switch == "indirect" && (r.enabled)(config))
+        .flat_map(|r| r.passes.iter().map(|p| p.name()))
+        .collect();
+    let times: Vec<f64> = report
+        .passes
+        .iter()
+        .filter(|p| passes.contains(&p.name.as_str()))
+        .filter_map(|p| p.median_ms)
+        .collect();
+    (!times.is_empty()).then(|| times.iter().sum())
 }
 
 /// Flicker and error against VPLs per pixel, one plot each per motion, log y.
@@ -365,6 +389,9 @@ fn sheet() -> Sheet<'static, RowResult> {
         ),
         Column::new("final_rmse", "Output RMSE", |r: &RowResult| {
             Cell::num(r.final_rmse, 4)
+        }),
+        Column::new("indirect_ms", "Indirect ms", |r: &RowResult| {
+            Cell::num(r.indirect_ms, 2)
         }),
         Column::new("frame_ms", "Frame ms", |r: &RowResult| {
             Cell::num(r.frame_ms, 2)
