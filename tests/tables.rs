@@ -533,6 +533,45 @@ fn szentandrasi_1_end_to_end() {
     std::fs::remove_dir_all(&out).ok();
 }
 
+/// `ssgi table ao` at 32x32 under validation: every scene with every estimator, with and
+/// without the cache, in order; every time, error and flicker finite and positive (the
+/// reprojection's time only with the cache); the ground truth's quality per scene.
+#[test]
+fn ao_end_to_end() {
+    let out = out_dir("ao");
+    let report = own_format_table(
+        &["ao", "--size", "32x32", "--frames", "3", "--warmup", "2"],
+        &out,
+        "ao-table",
+    );
+    let scenes = report["scenes"].as_array().unwrap();
+    assert_eq!(
+        scenes.len(),
+        8,
+        "Cornell box, 4 Table 4.1 scenes, 3 walkthroughs"
+    );
+    for s in scenes {
+        assert!(num(&s["truth"]["standard_error"]) >= 0.0, "{s}");
+    }
+    let rows = report["rows"].as_array().unwrap();
+    assert_eq!(rows.len(), 8 * 4 * 2);
+    let estimators = ["thesis", "crytek", "szentandrasi", "gtao"];
+    for (i, r) in rows.iter().enumerate() {
+        assert_eq!(r["scene"], scenes[i / 8]["scene"], "{r}");
+        assert_eq!(r["estimator"], estimators[i % 8 / 2], "{r}");
+        let cache = i % 2 == 0;
+        assert_eq!(r["cache"].as_bool().unwrap(), cache, "{r}");
+        for key in ["ao_ms", "frame_ms", "ao_rmse", "flicker"] {
+            let v = num(&r[key]);
+            assert!(v.is_finite() && v >= 0.0, "{key}: {r}");
+        }
+        assert!(num(&r["ao_ms"]) > 0.0 && num(&r["ao_rmse"]) > 0.0, "{r}");
+        assert_eq!(r["reproject_ms"].is_null(), !cache, "{r}");
+    }
+    assert!(out.join("ao.csv").is_file());
+    std::fs::remove_dir_all(&out).ok();
+}
+
 /// `ssgi table chang-flicker` at 32x32 under validation: every filter at every VPL count,
 /// still and moving, with per-frame flicker measures, errors and the indirect light's time;
 /// more VPLs give the joint bilateral filter less flicker.

@@ -3,6 +3,7 @@
 //! here and one file beside it. Every table writes `report.json`, `report.md` and
 //! `<name>.csv` through `run::write_reports`, its Markdown and CSV from one `Sheet`.
 
+pub mod ao;
 pub mod chang1;
 pub mod chang_flicker;
 pub mod chiu1;
@@ -18,7 +19,7 @@ pub mod walkthroughs;
 pub use def::TableDef;
 
 /// Every table, in the order `--help` lists them.
-pub const TABLES: [&TableDef; 7] = [
+pub const TABLES: [&TableDef; 8] = [
     &thesis41::TABLE,
     &walkthroughs::TABLE,
     &szentandrasi::TABLE,
@@ -26,6 +27,7 @@ pub const TABLES: [&TableDef; 7] = [
     &chang1::TABLE,
     &chang_flicker::TABLE,
     &dynamic::TABLE,
+    &ao::TABLE,
 ];
 
 /// The table called `name`.
