@@ -8,18 +8,30 @@ use serde::Serialize;
 use std::collections::BTreeMap;
 
 /// A named group of passes whose summed per-frame time is compared (`total`: every pass).
-pub type Group = (&'static str, &'static [PassId]);
+pub type Group = (&'static str, Vec<PassId>);
 
 /// The groups compared, in report order: the reprojection, each effect's (its registration's
-/// `timing_groups`, in registry order), the total.
+/// `timing_groups`, in registry order; effects that do one job by other means, like the
+/// indirect light's filters, share a group's name, and the group holds all their passes: a
+/// run records one effect's), the total.
 pub fn groups() -> Vec<Group> {
-    let mut v: Vec<Group> = vec![("reproject", &[PassId::REPROJECT])];
-    v.extend(
-        crate::effects::REGISTRY
-            .iter()
-            .flat_map(|r| r.timing_groups.iter().copied()),
-    );
-    v.push(("total", &[]));
+    let mut v: Vec<Group> = vec![("reproject", vec![PassId::REPROJECT])];
+    let declared = crate::effects::REGISTRY
+        .iter()
+        .flat_map(|r| r.timing_groups.iter());
+    for &(name, passes) in declared {
+        match v.iter_mut().find(|(n, _)| *n == name) {
+            Some((_, all)) => {
+                for p in passes {
+                    if !all.contains(p) {
+                        all.push(*p);
+                    }
+                }
+            }
+            None => v.push((name, passes.to_vec())),
+        }
+    }
+    v.push(("total", Vec::new()));
     v
 }
 

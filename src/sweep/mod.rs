@@ -3,6 +3,7 @@
 //! with its median GPU time per pass group and the error of its last frame against the CPU
 //! ground truth and against the converged estimator of the same technique.
 
+pub mod answers;
 pub mod keys;
 pub mod report;
 
@@ -76,7 +77,12 @@ pub fn time_group(b: Buffer) -> Vec<&'static str> {
 
 /// Milliseconds of `b`'s time axis in `row` (None if a group never ran).
 pub fn time_of(row: &SweepRow, b: Buffer) -> Option<f64> {
-    let ms = |g: &&str| row.ms.get(*g).copied().flatten();
+    time_from(|g| row.ms.get(g).copied().flatten(), b)
+}
+
+/// Milliseconds of `b`'s time axis from each group's (`group_ms`; None: it never ran).
+pub fn time_from(group_ms: impl Fn(&str) -> Option<f64>, b: Buffer) -> Option<f64> {
+    let ms = |g: &&str| group_ms(g);
     if b == Buffer::Ao {
         return time_group(b).iter().find_map(ms);
     }

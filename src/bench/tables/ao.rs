@@ -287,7 +287,7 @@ fn measure_scene(
                 scene: scene.name.clone(),
                 estimator: estimator_name(estimator),
                 cache,
-                ao_ms: ao_group.and_then(|p| group_median(&m.report, p)),
+                ao_ms: ao_group.as_deref().and_then(|p| group_median(&m.report, p)),
                 reproject_ms: cache.then(|| group_median(&m.report, &reproject)).flatten(),
                 frame_ms: m.report.total.median_ms,
                 ao_rmse: None,

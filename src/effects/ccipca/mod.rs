@@ -64,8 +64,9 @@ pub mod pass {
         CCIPCA_BASIS_FILTER,
     ];
 
-    /// The timing groups `bench --compare-reuse`, tables and sweeps compare (summed per frame).
-    pub const GROUPS: &[(&str, &[PassId])] = &[];
+    /// The timing groups `bench --compare-reuse`, tables and sweeps compare (summed per frame):
+    /// the indirect light's, which every way of making it shares.
+    pub const GROUPS: &[(&str, &[PassId])] = &[("indirect", ALL)];
 }
 
 /// This frame's noisy gather (rgb).

@@ -33,8 +33,9 @@ pub mod pass {
     /// Every pass the effect may record, in recording order.
     pub const ALL: &[PassId] = &[crate::effects::indirect::pass::INDIRECT_NOISY, INDIRECT_JBF];
 
-    /// The timing groups `bench --compare-reuse`, tables and sweeps compare (summed per frame).
-    pub const GROUPS: &[(&str, &[PassId])] = &[];
+    /// The timing groups `bench --compare-reuse`, tables and sweeps compare (summed per frame):
+    /// the indirect light's, which every way of making it shares.
+    pub const GROUPS: &[(&str, &[PassId])] = &[("indirect", ALL)];
 }
 
 const NOISY: Slot = Slot::Own("noisy");

@@ -51,8 +51,9 @@ pub mod pass {
     /// Every pass the effect may record, in recording order.
     pub const ALL: &[PassId] = &[INDIRECT_NOISY, SVGF_TEMPORAL, SVGF_VARIANCE, SVGF_ATROUS];
 
-    /// The timing groups `bench --compare-reuse`, tables and sweeps compare (summed per frame).
-    pub const GROUPS: &[(&str, &[PassId])] = &[];
+    /// The timing groups `bench --compare-reuse`, tables and sweeps compare (summed per frame):
+    /// the indirect light's, which every way of making it shares.
+    pub const GROUPS: &[(&str, &[PassId])] = &[("indirect", ALL)];
 }
 
 /// The a-trous input: the integrated colour (rgb) and its luminance variance (a).
