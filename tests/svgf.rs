@@ -194,3 +194,46 @@ fn moments_restart_where_the_surface_is_new_to_the_view() {
     assert!(fraction >= 0.995, "restarts agree on {fraction}");
     common::assert_clean(&ctx);
 }
+
+/// With `--skip-unchanged on` and a still view the filter keeps recording until its running
+/// means have forgotten their first samples (`SvgfConfig::settle_frames`: 6 for alpha 0.5),
+/// then two more frames for both halves of the ping-ponged images; after that frames record
+/// nothing and the output stays the last one.
+#[test]
+fn skipping_waits_until_the_means_settle() {
+    let ctx = common::context();
+    let svgf = SvgfConfig {
+        alpha: 0.5,
+        alpha_moments: 0.5,
+        ..SvgfConfig::default()
+    };
+    assert_eq!(svgf.settle_frames(), 6);
+    let mut c = config(32, 4, svgf);
+    c.skip_unchanged = true;
+    let mut r = Renderer::new(&ctx, cornell_box(), c).unwrap();
+    let camera = r.scene.camera;
+    let mut timings = Vec::new();
+    let mut outputs = Vec::new();
+    for _ in 0..14 {
+        timings.extend(r.render_frame(&camera).unwrap());
+        outputs.push(common::read(&mut r, Target::Indirect).bytes);
+    }
+    timings.extend(r.finish().unwrap());
+    let filtered: Vec<u64> = timings
+        .iter()
+        .filter(|t| {
+            t.passes
+                .iter()
+                .any(|(p, ms)| *p == "svgf_temporal" && ms.is_some())
+        })
+        .map(|t| t.frame)
+        .collect();
+    eprintln!("frames that filtered: {filtered:?}");
+    assert!(
+        filtered.contains(&5) && !filtered.contains(&13),
+        "{filtered:?}"
+    );
+    assert!(filtered.len() < 12, "{filtered:?}");
+    assert_eq!(outputs[12], outputs[13], "a skipped frame keeps the output");
+    common::assert_clean(&ctx);
+}

@@ -492,7 +492,8 @@ impl Effect for CcipcaEffect {
     /// Every frame adds a sample until the memory is full; with unchanged inputs the bases
     /// then only wander with the noise, so the filter has settled.
     fn settling(&self, config: &RenderConfig) -> bool {
-        self.age < config.ccipca.max_age
+        // Without reuse the bases restart every frame: a frame is as good as the next.
+        config.temporal.reuse && self.age < config.ccipca.max_age
     }
 
     fn prepare(&mut self, info: &FrameInfo<'_>) {

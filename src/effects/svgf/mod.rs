@@ -185,6 +185,20 @@ fn layouts() -> Vec<PassLayout> {
     PASSES.iter().map(|d| d.layout()).collect()
 }
 
+/// The passes in `SvgfEffect::passes` order.
+#[derive(Clone, Copy)]
+enum Step {
+    Noisy,
+    Temporal,
+    Variance,
+    /// The first a-trous iteration, into `atrous[0]` and the colour history.
+    Feedback,
+    /// An iteration from `atrous[0]` into `atrous[1]`.
+    Forth,
+    /// An iteration from `atrous[1]` into `atrous[0]`.
+    Back,
+}
+
 struct Sized {
     noisy: Image,
     color: [Image; 2],
@@ -270,7 +284,7 @@ impl SvgfEffect {
         ]
     }
 
-    /// Each pass with the a-trous images it reads and writes.
+    /// Each pass with the a-trous images it reads and writes, indexed by `Step`.
     fn passes(&self) -> [(&ComputePass, &Image, &Image); 6] {
         let s = &self.sized;
         let [a0, a1] = &s.atrous;
@@ -339,9 +353,9 @@ impl Effect for SvgfEffect {
 
     /// A new sample every frame: with unchanged inputs the running means still move until
     /// their first samples are forgotten (`SvgfConfig::settle_frames`), then only wander with
-    /// the noise.
+    /// the noise. Without reuse nothing is kept: a frame is as good as the next.
     fn settling(&self, config: &RenderConfig) -> bool {
-        self.age < config.svgf.settle_frames()
+        config.temporal.reuse && self.age < config.svgf.settle_frames()
     }
 
     fn copy_counters(
@@ -385,8 +399,8 @@ impl Effect for SvgfEffect {
         let buffers = self.buffers();
         let pixels = every_pixel(info);
         let passes = self.passes();
-        let run = |i: usize, push: &[u8], rec: &Recorder<'_>, tr: &mut Tracker| {
-            let (p, input, output) = passes[i];
+        let run = |step: Step, push: &[u8], rec: &Recorder<'_>, tr: &mut Tracker| {
+            let (p, input, output) = passes[step as usize];
             let own = self.own(input, output);
             let res = EffectResources {
                 targets: info.targets,
@@ -398,16 +412,26 @@ impl Effect for SvgfEffect {
         };
         self.counters.reset(&r.rec, r.tracker);
         let push = self.push_bytes(1);
-        r.timed(pass::INDIRECT_NOISY, |rec, tr| run(0, &[], rec, tr));
-        r.timed(pass::SVGF_TEMPORAL, |rec, tr| run(1, &push, rec, tr));
-        r.timed(pass::SVGF_VARIANCE, |rec, tr| run(2, &push, rec, tr));
+        r.timed(pass::INDIRECT_NOISY, |rec, tr| {
+            run(Step::Noisy, &[], rec, tr)
+        });
+        r.timed(pass::SVGF_TEMPORAL, |rec, tr| {
+            run(Step::Temporal, &push, rec, tr)
+        });
+        r.timed(pass::SVGF_VARIANCE, |rec, tr| {
+            run(Step::Variance, &push, rec, tr)
+        });
         let iterations = self.iterations;
         if iterations > 0 {
             r.timed(pass::SVGF_ATROUS, |rec, tr| {
                 for i in 0..iterations {
                     // The first with feedback, then back and forth between the two images.
-                    let pass = if i == 0 { 3 } else { 4 + (i as usize + 1) % 2 };
-                    run(pass, &self.push_bytes(1 << i), rec, tr);
+                    let step = match i {
+                        0 => Step::Feedback,
+                        i if i % 2 == 1 => Step::Forth,
+                        _ => Step::Back,
+                    };
+                    run(step, &self.push_bytes(1 << i), rec, tr);
                 }
             });
         }

@@ -113,6 +113,10 @@ impl RowKind {
                 c.ao.patterns = REFERENCE_AO_PATTERNS;
                 c.pcf = REFERENCE_PCF;
                 c.indirect.vpls = REFERENCE_VPLS;
+                // Without reuse CCIPCA's bases restart every frame: projected on last frame's
+                // (none) its image would be black. Projected after the update, the one sample
+                // of 16384 VPLs is its own first basis: the filter's converged value.
+                c.ccipca.project = crate::effects::ccipca::config::CcipcaProject::After;
             }
         }
         c
