@@ -35,4 +35,7 @@ vec3 finite_or_zero(vec3 x) {
     return mix(vec3(0.0), x, lessThan(abs(x), vec3(FLOAT_MAX)));
 }
 
+// Rec. 709 luminance weights of linear RGB.
+const vec3 LUMA = vec3(0.2126, 0.7152, 0.0722);
+
 #endif // COMMON_GLSL

@@ -43,8 +43,6 @@ const float GATE_MIN_COUNT = 4.0;
 // Largest stored value: the squared luminance of the second moment stays finite in fp32.
 const float HISTORY_MAX = 1.0e18;
 
-const vec3 LUMA = vec3(0.2126, 0.7152, 0.0722);
-
 // Weight of a fresh estimate in the merge with a history of `n` estimates (n >= 1); `change`
 // is the thesis's |V_old - V_new| on the effect's own scale, `l_old` / `l_fresh` the
 // luminances (the value itself for scalar effects). `moments` holds the mean squared luminance

@@ -5,7 +5,6 @@
 #define SVGF_GLSL
 
 #include "frame.glsl"
-#include "temporal.glsl"
 
 layout(push_constant) uniform Svgf {
     uint history_valid;    // 0: every pixel starts over (first frame, resize, --reuse off)

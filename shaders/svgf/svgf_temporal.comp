@@ -30,8 +30,6 @@ layout(set = 1, binding = 10, rgba32f) uniform writeonly image2D depth; // z, dz
 
 // Past 1/alpha samples the weights are alpha's: the count only has to stay finite.
 const float HISTORY_CAP = 65536.0;
-// Largest luminance merged: its square stays finite in fp32.
-const float LUMINANCE_MAX = 1.0e18;
 
 shared uint group_new;
 shared uint group_geometry;
@@ -69,7 +67,8 @@ void main() {
         imageStore(depth, pixel, vec4(0.0));
     } else if (z > 0.0) {
         vec3 x = finite_or_zero(texelFetch(noisy, pixel, 0).rgb);
-        float l = clamp(svgf_luminance(x), 0.0, LUMINANCE_MAX);
+        // At most HISTORY_MAX (temporal.glsl): its square stays finite in fp32.
+        float l = clamp(svgf_luminance(x), 0.0, HISTORY_MAX);
         vec2 fresh = vec2(l, l * l);
         ivec2 t = svgf.history_valid != 0u ? previous_texel(pixel) : ivec2(-1);
         vec3 c;
