@@ -689,15 +689,7 @@ fn skipping_waits_until_the_memory_is_full() {
         outputs.push(common::read(&mut r, Target::Indirect).bytes);
     }
     timings.extend(r.finish().unwrap());
-    let gathered: Vec<u64> = timings
-        .iter()
-        .filter(|t| {
-            t.passes
-                .iter()
-                .any(|(p, ms)| *p == "indirect_noisy" && ms.is_some())
-        })
-        .map(|t| t.frame)
-        .collect();
+    let gathered = common::frames_recording(&timings, "indirect_noisy");
     eprintln!("frames that gathered: {gathered:?}");
     // Six samples, then two more frames for both halves of the ping-ponged G-buffer.
     assert!(

@@ -219,15 +219,7 @@ fn skipping_waits_until_the_means_settle() {
         outputs.push(common::read(&mut r, Target::Indirect).bytes);
     }
     timings.extend(r.finish().unwrap());
-    let filtered: Vec<u64> = timings
-        .iter()
-        .filter(|t| {
-            t.passes
-                .iter()
-                .any(|(p, ms)| *p == "svgf_temporal" && ms.is_some())
-        })
-        .map(|t| t.frame)
-        .collect();
+    let filtered = common::frames_recording(&timings, "svgf_temporal");
     eprintln!("frames that filtered: {filtered:?}");
     assert!(
         filtered.contains(&5) && !filtered.contains(&13),

@@ -25,6 +25,15 @@ pub fn counter(t: &FrameTiming, name: &str) -> Option<u64> {
     t.counters.iter().find(|(n, _)| *n == name).map(|(_, v)| *v)
 }
 
+/// The frames of `timings` that recorded `pass` (a skipped frame records nothing).
+pub fn frames_recording(timings: &[FrameTiming], pass: &str) -> Vec<u64> {
+    timings
+        .iter()
+        .filter(|t| t.passes.iter().any(|(p, ms)| *p == pass && ms.is_some()))
+        .map(|t| t.frame)
+        .collect()
+}
+
 /// Per pixel of the frame seen from `c1`, whether it is new to the view since the frame seen
 /// from `c0` (None over the background): eqs 1-3 applied on the CPU to the two G-buffers (the
 /// nearest texel, the default scale-free epsilon of 2 footprints) and the facing test

@@ -368,12 +368,8 @@ fn sheet() -> Sheet<'static, RowResult> {
 }
 
 fn markdown(r: &TableReport) -> String {
-    let mut md = format!("# {}\n\nCommand: `{}`\n\n", TABLE.title, r.run.command);
-    md += &format!(
-        "Device: {} ({}), {}x{}, {} frames measured per row after {} warmup frames, ssgi \
-         {}.\n\n",
-        r.run.device, r.run.driver, r.width, r.height, r.frames, r.warmup, r.run.ssgi_version
-    );
+    let size = (r.width, r.height);
+    let mut md = r.run.markdown_header(TABLE.title, size, r.frames, r.warmup);
     md += &sheet().markdown(&r.rows);
     md + "\n" + &notes_section(&r.notes)
 }

@@ -19,6 +19,22 @@ pub struct TableRun {
 }
 
 impl TableRun {
+    /// report.md's heading for rows that share one size, frame count and warmup: the title,
+    /// the command, and where and how it ran.
+    pub fn markdown_header(
+        &self,
+        title: &str,
+        size: (u32, u32),
+        frames: u32,
+        warmup: u32,
+    ) -> String {
+        format!(
+            "# {title}\n\nCommand: `{}`\n\nDevice: {} ({}), {}x{}, {frames} frames measured per row \
+             after {warmup} warmup frames, ssgi {}.\n\n",
+            self.command, self.device, self.driver, size.0, size.1, self.ssgi_version
+        )
+    }
+
     /// Version 1 of `table`'s format, run by `command` on `device`; `present_mode` is the
     /// window's (`None` offscreen).
     pub fn new(
