@@ -29,6 +29,13 @@ step val-gtao 40 $SSGI --validation bench --scene box:bunny --path paths/box.jso
 step gtao512 90 $SSGI sweep --scene cornell-box --size $S512 --path orbit --effects ao \
   --frames 120 --warmup converged --vary ao.estimator=thesis,gtao --vary temporal.reuse=on,off \
   --out $R/gtao512
+# SVGF beside CCIPCA and the joint bilateral filters (issue 47: its cost on a GPU, where the
+# filters' full-screen passes are priced by bandwidth, not by lavapipe's CPU time), under
+# validation first; then the AO estimators' table (its ground truth is traced on the CPU).
+step val-svgf 40 $SSGI --validation bench --scene cornell-box --path orbit \
+  --indirect-filter svgf --vpls 4 --frames 20 --warmup 5
+step flicker 90 $SSGI table chang-flicker --out $R/chang-flicker
+step t-ao 150 $SSGI table ao --out $R/ao
 step t41 120 $SSGI table thesis-4.1 --size $S512 --out $R/thesis-4.1
 step walk 150 $SSGI table thesis-walkthroughs --size $S512 --out $R/walkthroughs
 step orbit512-budget1 30 $SSGI bench --scene cornell-box --size $S512 --path orbit \
