@@ -43,6 +43,25 @@ pub fn smallest_rmse<'a>(errors: impl Iterator<Item = &'a FrameError>) -> Option
         .min_by(f64::total_cmp)
 }
 
+/// The ground truth's accuracy for buffer `b` over the pixels `mask` compares, against the
+/// bound a tenth of `smallest` (the smallest error measured against it; None: no bound).
+pub fn quality(
+    reference: &Reference,
+    b: RefBuffer,
+    mask: &[bool],
+    smallest: Option<f64>,
+) -> TruthQuality {
+    let e = reference.estimate(b);
+    let standard_error = e.standard_error(mask);
+    let bound = smallest.map(|s| s / 10.0);
+    TruthQuality {
+        samples_per_pixel: 2 * e.per_half as u64,
+        standard_error,
+        bound,
+        bound_met: bound.is_none_or(|b| standard_error <= b),
+    }
+}
+
 /// The reference buffer a rendered buffer estimates (`None` for the final image).
 pub fn reference_buffer(b: Buffer) -> Option<RefBuffer> {
     match b {

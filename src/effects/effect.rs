@@ -163,9 +163,14 @@ pub trait Effect {
     /// Point every descriptor set at this size's images.
     fn bind(&self, ctx: &Context, targets: &Targets) -> Result<()>;
 
-    /// The effect's temporal machinery (history, state, work lists, counters), if it has one.
-    fn temporal(&self) -> Option<&TemporalEffect>;
-    fn temporal_mut(&mut self) -> Option<&mut TemporalEffect>;
+    /// The effect's temporal machinery (history, state, work lists, counters), if it has one
+    /// (by default none: the per-frame filters keep their own histories).
+    fn temporal(&self) -> Option<&TemporalEffect> {
+        None
+    }
+    fn temporal_mut(&mut self) -> Option<&mut TemporalEffect> {
+        None
+    }
 
     /// Whether this frame uses the temporal machinery (its counters are reset, filled and read
     /// back). The viewer changes the PCF kernel in place, so it is asked per frame.

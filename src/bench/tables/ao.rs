@@ -308,22 +308,14 @@ fn measure_scene(
         eprintln!("{}", summary_line(&row));
         rows.push(row);
     }
+    let smallest = rows
+        .iter()
+        .filter_map(|r| r.ao_rmse)
+        .filter(|e| *e > 0.0)
+        .min_by(f64::total_cmp);
     let quality = lasts.first().map(|first| {
-        let e = truth.reference.estimate(RefBuffer::Ao);
         let mask = ground_truth::mask(Buffer::Ao, &truth.reference, scene, &first.geometry);
-        let bound = rows
-            .iter()
-            .filter_map(|r| r.ao_rmse)
-            .filter(|e| *e > 0.0)
-            .fold(None, |m: Option<f64>, e| Some(m.map_or(e, |m| m.min(e))))
-            .map(|e| e / 10.0);
-        let standard_error = e.standard_error(&mask);
-        TruthQuality {
-            samples_per_pixel: 2 * e.per_half as u64,
-            standard_error,
-            bound,
-            bound_met: bound.is_none_or(|b| standard_error <= b),
-        }
+        ground_truth::quality(&truth.reference, RefBuffer::Ao, &mask, smallest)
     });
     Ok((rows, quality))
 }

@@ -19,14 +19,13 @@ use crate::config::{IndirectFilter, RenderConfig};
 use crate::effects::ccipca::config::{
     CcipcaOrthogonalize, CcipcaProject, CcipcaStages, CcipcaWeighting,
 };
-use crate::effects::indirect::{params, VPL_PARAMS};
+use crate::effects::indirect::{params, NOISY, VPL_PARAMS};
 use crate::error::Result;
 use crate::passes::compute::{ComputePass, Dispatch, PassDecl};
 use crate::passes::decl::{Bind, Slot, Use};
 use crate::passes::{PassId, PassLayout};
 use crate::reference::compose::Terms;
 use crate::resources::targets::{Target, Targets};
-use crate::resources::temporal_effect::TemporalEffect;
 use crate::shaders::{self, CcipcaPush};
 use crate::vk::recorder::Recorder;
 use crate::vk::{Buffer, Context, DescriptorPool, Image, Tracker};
@@ -69,8 +68,6 @@ pub mod pass {
     pub const GROUPS: &[(&str, &[PassId])] = &[("indirect", ALL)];
 }
 
-/// This frame's noisy gather (rgb).
-const NOISY: Slot = Slot::Own("noisy");
 /// The projection on the bases: the indirect light the composite adds.
 const FILTERED: Slot = Slot::Own("filtered");
 /// k basis images, vec4 per pixel, basis-major (basis 0's a: the pixel's sample count).
@@ -479,14 +476,6 @@ impl Effect for CcipcaEffect {
             }
         }
         Ok(())
-    }
-
-    fn temporal(&self) -> Option<&TemporalEffect> {
-        None
-    }
-
-    fn temporal_mut(&mut self) -> Option<&mut TemporalEffect> {
-        None
     }
 
     /// Every frame adds a sample until the memory is full; with unchanged inputs the bases

@@ -192,6 +192,26 @@ macro_rules! gather_inputs {
 /// The gather's parameters (params.rs), bound in every pass.
 pub const VPL_PARAMS: Slot = Slot::OwnBuffer("vpl_params");
 
+/// The per-frame filters' input image: a new noisy gather each frame (`indirect_noisy`).
+pub const NOISY: Slot = Slot::Own("noisy");
+
+/// The noisy gather the per-frame filters without state of their own in it share (the joint
+/// bilateral filters, SVGF): the plain permutation of shaders/ccipca/indirect_noisy.comp into
+/// `NOISY`. CCIPCA's permutation also updates its bases and declares its own.
+pub const NOISY_GATHER: PassDecl = PassDecl::new(
+    pass::INDIRECT_NOISY,
+    &shaders::INDIRECT_NOISY_COMP_PLAIN,
+    &[
+        Bind::new(0, Slot::GPosition, Use::Sampled),
+        Bind::new(1, Slot::GNormal, Use::Sampled),
+        Bind::new(2, Slot::RsmPosition, Use::Sampled),
+        Bind::new(3, Slot::RsmNormal, Use::Sampled),
+        Bind::new(4, Slot::RsmFlux, Use::Sampled),
+        Bind::new(5, NOISY, Use::StorageWrite),
+        Bind::new(params::BINDING, VPL_PARAMS, Use::BufferRead),
+    ],
+);
+
 const CLASSIFY: &[Bind] = &[
     Bind::new(0, Slot::GPosition, Use::Sampled),
     Bind::new(5, Slot::Counters, Use::WorkList),

@@ -8,14 +8,13 @@ use super::effect::{
 };
 use super::resolve::EffectResources;
 use crate::config::{IndirectFilter, RenderConfig};
-use crate::effects::indirect::{params, VPL_PARAMS};
+use crate::effects::indirect::{params, NOISY, NOISY_GATHER, VPL_PARAMS};
 use crate::error::Result;
 use crate::passes::compute::{ComputePass, PassDecl};
 use crate::passes::decl::{Bind, Slot, Use};
 use crate::passes::{PassId, PassLayout};
 use crate::reference::compose::Terms;
 use crate::resources::targets::{Target, Targets};
-use crate::resources::temporal_effect::TemporalEffect;
 use crate::shaders;
 use crate::vk::{Buffer, Context, Image};
 use std::sync::Arc;
@@ -38,18 +37,7 @@ pub mod pass {
     pub const GROUPS: &[(&str, &[PassId])] = &[("indirect", ALL)];
 }
 
-const NOISY: Slot = Slot::Own("noisy");
 const FILTERED: Slot = Slot::Own("filtered");
-
-const NOISY_GATHER: &[Bind] = &[
-    Bind::new(0, Slot::GPosition, Use::Sampled),
-    Bind::new(1, Slot::GNormal, Use::Sampled),
-    Bind::new(2, Slot::RsmPosition, Use::Sampled),
-    Bind::new(3, Slot::RsmNormal, Use::Sampled),
-    Bind::new(4, Slot::RsmFlux, Use::Sampled),
-    Bind::new(5, NOISY, Use::StorageWrite),
-    Bind::new(params::BINDING, VPL_PARAMS, Use::BufferRead),
-];
 
 const FILTER: &[Bind] = &[
     Bind::new(0, Slot::GPosition, Use::Sampled),
@@ -74,16 +62,11 @@ pub const REGISTRATION: Registration = Registration {
 };
 
 // Every pass of the effect, declared once (`PassDecl`): `layouts` and `new` both read these.
-const INDIRECT_NOISY_PLAIN: PassDecl = PassDecl::new(
-    crate::effects::indirect::pass::INDIRECT_NOISY,
-    &shaders::INDIRECT_NOISY_COMP_PLAIN,
-    NOISY_GATHER,
-);
 const INDIRECT_JBF: PassDecl =
     PassDecl::new(pass::INDIRECT_JBF, &shaders::INDIRECT_JBF_COMP, FILTER);
 
 fn layouts() -> Vec<PassLayout> {
-    vec![INDIRECT_NOISY_PLAIN.layout(), INDIRECT_JBF.layout()]
+    vec![NOISY_GATHER.layout(), INDIRECT_JBF.layout()]
 }
 
 /// Half the window's side of a joint bilateral filter.
@@ -113,7 +96,7 @@ impl JbfEffect {
     pub fn new(s: &mut Setup<'_>) -> Result<Self> {
         let r = radius(s.config.indirect.filter).unwrap_or(5);
         Ok(Self {
-            noisy: ComputePass::declared(s.ctx, s.pool, &INDIRECT_NOISY_PLAIN)?,
+            noisy: ComputePass::declared(s.ctx, s.pool, &NOISY_GATHER)?,
             filter: ComputePass::declared_with(s.ctx, s.pool, &INDIRECT_JBF, &[r])?,
             sized: Self::create_sized(s.ctx, s.config)?,
             vpl_params: params::buffer(s.ctx, s.tracker, "jbf.vpl_params", s.config)?,
@@ -161,14 +144,6 @@ impl Effect for JbfEffect {
         };
         self.noisy.bind(ctx, &res)?;
         self.filter.bind(ctx, &res)
-    }
-
-    fn temporal(&self) -> Option<&TemporalEffect> {
-        None
-    }
-
-    fn temporal_mut(&mut self) -> Option<&mut TemporalEffect> {
-        None
     }
 
     /// A new sample every frame and nothing kept: the output never settles, but with

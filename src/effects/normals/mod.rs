@@ -13,7 +13,6 @@ use crate::passes::decl::{Bind, Slot, Use};
 use crate::passes::PassId;
 use crate::reference::compose::Terms;
 use crate::resources::targets::{Target, Targets};
-use crate::resources::temporal_effect::TemporalEffect;
 use crate::shaders;
 use crate::vk::{Context, Image};
 use std::sync::Arc;
@@ -102,14 +101,6 @@ impl Effect for NormalsEffect {
     fn bind(&self, ctx: &Context, targets: &Targets) -> Result<()> {
         let own = [(OUT, [&self.out, &self.out])];
         self.pass.bind(ctx, &self.resources(targets, &own))
-    }
-
-    fn temporal(&self) -> Option<&TemporalEffect> {
-        None
-    }
-
-    fn temporal_mut(&mut self) -> Option<&mut TemporalEffect> {
-        None
     }
 
     fn prepare(&mut self, _info: &FrameInfo<'_>) {}

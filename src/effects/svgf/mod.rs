@@ -17,7 +17,7 @@ use super::effect::{
 };
 use super::resolve::EffectResources;
 use crate::config::{IndirectFilter, RenderConfig};
-use crate::effects::indirect::{params, VPL_PARAMS};
+use crate::effects::indirect::{params, NOISY, NOISY_GATHER, VPL_PARAMS};
 use crate::error::Result;
 use crate::passes::compute::{ComputePass, PassDecl};
 use crate::passes::decl::{Bind, Slot, Use};
@@ -25,7 +25,6 @@ use crate::passes::{PassId, PassLayout};
 use crate::reference::compose::Terms;
 use crate::resources::counters::{Counter, OwnCounters};
 use crate::resources::targets::{EffectView, Look, Target, Targets};
-use crate::resources::temporal_effect::TemporalEffect;
 use crate::shaders::{self, SvgfPush};
 use crate::vk::recorder::Recorder;
 use crate::vk::{Buffer, Context, Image, Tracker};
@@ -77,7 +76,6 @@ pub const SVGF_COUNTERS: &[(&str, Counter)] = &[
     ("svgf_computed_pixels", Counter::Computed),
 ];
 
-const NOISY: Slot = Slot::Own("noisy");
 /// This frame's colour (rgb), and last frame's.
 const COLOR: Slot = Slot::Own("color");
 const COLOR_PREV: Slot = Slot::Own("color_prev");
@@ -91,16 +89,6 @@ const INTEGRATED: Slot = Slot::Own("integrated");
 const ATROUS_IN: Slot = Slot::Own("atrous_in");
 const ATROUS_OUT: Slot = Slot::Own("atrous_out");
 const COUNTERS: Slot = Slot::OwnBuffer("counters");
-
-const NOISY_GATHER: &[Bind] = &[
-    Bind::new(0, Slot::GPosition, Use::Sampled),
-    Bind::new(1, Slot::GNormal, Use::Sampled),
-    Bind::new(2, Slot::RsmPosition, Use::Sampled),
-    Bind::new(3, Slot::RsmNormal, Use::Sampled),
-    Bind::new(4, Slot::RsmFlux, Use::Sampled),
-    Bind::new(5, NOISY, Use::StorageWrite),
-    Bind::new(params::BINDING, VPL_PARAMS, Use::BufferRead),
-];
 
 const TEMPORAL: &[Bind] = &[
     Bind::new(0, Slot::GPosition, Use::Sampled),
@@ -142,11 +130,6 @@ const ATROUS_FEEDBACK: &[Bind] = &[
 ];
 
 // Every pass, declared once (`PassDecl`): `layouts` and `new` both read these.
-const NOISY_PASS: PassDecl = PassDecl::new(
-    pass::INDIRECT_NOISY,
-    &shaders::INDIRECT_NOISY_COMP_PLAIN,
-    NOISY_GATHER,
-);
 const TEMPORAL_PASS: PassDecl =
     PassDecl::new(pass::SVGF_TEMPORAL, &shaders::SVGF_TEMPORAL_COMP, TEMPORAL);
 const VARIANCE_PASS: PassDecl =
@@ -159,7 +142,7 @@ const FEEDBACK_PASS: PassDecl = PassDecl::new(
 const ATROUS_PASS: PassDecl =
     PassDecl::new(pass::SVGF_ATROUS, &shaders::SVGF_ATROUS_COMP_PLAIN, ATROUS);
 const PASSES: [&PassDecl; 5] = [
-    &NOISY_PASS,
+    &NOISY_GATHER,
     &TEMPORAL_PASS,
     &VARIANCE_PASS,
     &FEEDBACK_PASS,
@@ -232,7 +215,7 @@ impl SvgfEffect {
         let atrous = ComputePass::declared(s.ctx, s.pool, &ATROUS_PASS)?;
         let back = atrous.instance(s.pool, "svgf_atrous (back)")?;
         Ok(Self {
-            noisy: ComputePass::declared(s.ctx, s.pool, &NOISY_PASS)?,
+            noisy: ComputePass::declared(s.ctx, s.pool, &NOISY_GATHER)?,
             temporal: ComputePass::declared(s.ctx, s.pool, &TEMPORAL_PASS)?,
             variance: ComputePass::declared(s.ctx, s.pool, &VARIANCE_PASS)?,
             feedback: ComputePass::declared(s.ctx, s.pool, &FEEDBACK_PASS)?,
@@ -341,14 +324,6 @@ impl Effect for SvgfEffect {
             p.bind(ctx, &res)?;
         }
         Ok(())
-    }
-
-    fn temporal(&self) -> Option<&TemporalEffect> {
-        None
-    }
-
-    fn temporal_mut(&mut self) -> Option<&mut TemporalEffect> {
-        None
     }
 
     /// A new sample every frame: with unchanged inputs the running means still move until

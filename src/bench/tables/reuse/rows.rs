@@ -378,23 +378,12 @@ fn truth_quality(
         if !rows.iter().any(|r| r.truth.contains_key(b.name())) {
             continue;
         }
-        let e = truth.reference.estimate(rb);
-        let se = e.standard_error(&ground_truth::mask(
-            b,
-            &truth.reference,
-            scene,
-            &frame.geometry,
-        ));
-        let bound = ground_truth::smallest_rmse(rows.iter().filter_map(|r| r.truth.get(b.name())))
-            .map(|e| e / 10.0);
+        let mask = ground_truth::mask(b, &truth.reference, scene, &frame.geometry);
+        let smallest =
+            ground_truth::smallest_rmse(rows.iter().filter_map(|r| r.truth.get(b.name())));
         out.insert(
             b.name().to_string(),
-            TruthQuality {
-                samples_per_pixel: 2 * e.per_half as u64,
-                standard_error: se,
-                bound,
-                bound_met: bound.is_none_or(|b| se <= b),
-            },
+            ground_truth::quality(&truth.reference, rb, &mask, smallest),
         );
     }
     out
