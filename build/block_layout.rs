@@ -23,6 +23,7 @@ pub const GENERATED: &[(&str, &str)] = &[
     ("Reproject", "ReprojectPush"),
     ("ImageStats", "ImageStatsPush"),
     ("GBufferResolve", "GBufferResolvePush"),
+    ("Overlay", "OverlayPush"),
 ];
 
 #[derive(Clone, Debug, PartialEq)]

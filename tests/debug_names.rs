@@ -4,11 +4,11 @@
 mod common;
 
 use ssgi::config::Effects;
+use ssgi::effects::Recording;
 use ssgi::renderer::{FrameHook, RenderConfig, Renderer};
 use ssgi::resources::targets::Target;
 use ssgi::scene::cornell_box;
-use ssgi::vk::recorder::Recorder;
-use ssgi::vk::{Buffer, Image, SubmitSync, Tracker};
+use ssgi::vk::{Buffer, Image, SubmitSync};
 
 #[test]
 fn a_validation_error_names_the_image_and_the_pass() {
@@ -34,8 +34,8 @@ fn a_validation_error_names_the_image_and_the_pass() {
     .unwrap();
     // The mistake under test: copying the output without telling the tracker, so no barrier
     // orders it after the composite's storage write and the image is still in GENERAL.
-    let mut record = |rec: &Recorder<'_>, _tracker: &mut Tracker, image: &Image| {
-        rec.copy_image_to_buffer(image, &staging);
+    let mut record = |r: &mut Recording<'_>, image: &Image| {
+        r.rec.copy_image_to_buffer(image, &staging);
     };
     let camera = r.scene.camera;
     r.render_frame_with(

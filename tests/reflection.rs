@@ -5,9 +5,16 @@ use ssgi::renderer::{all_layouts, all_passes};
 use ssgi::shaders::{DescriptorKind, ReflectedBinding, ALL};
 use ssgi::vk::pipeline::check_bindings;
 
+/// The renderer's pipelines and the viewer overlay's.
+fn every_layout() -> Vec<ssgi::passes::layout::PassLayout> {
+    let mut v = all_layouts();
+    v.push(ssgi::frontend::overlay::layout());
+    v
+}
+
 #[test]
 fn every_pass_layout_matches_reflection() {
-    for layout in all_layouts() {
+    for layout in every_layout() {
         check_bindings(layout.pass.name(), &layout.modules, &layout.declared)
             .unwrap_or_else(|e| panic!("{e}"));
     }
@@ -15,7 +22,7 @@ fn every_pass_layout_matches_reflection() {
 
 #[test]
 fn every_shader_module_is_used_by_a_pass() {
-    let layouts = all_layouts();
+    let layouts = every_layout();
     for module in ALL {
         let used = layouts
             .iter()
@@ -98,8 +105,8 @@ mod block_layout;
 
 use ssgi::shaders::{
     AoParams, BlockMember, CcipcaPush, CountersHeader, EffectPush, FrameBlock, GBufferResolvePush,
-    ImageStatsPush, MaterialPush, ProbePush, ReprojectPush, SraaPush, SsdoParams, SvgfPush,
-    VplParams, PROBES,
+    ImageStatsPush, MaterialPush, OverlayPush, ProbePush, ReprojectPush, SraaPush, SsdoParams,
+    SvgfPush, VplParams, PROBES,
 };
 
 /// The generated struct of a GLSL block: its members and size.
@@ -119,6 +126,7 @@ fn generated(name: &str) -> (&'static [BlockMember], usize) {
         "Reproject" => (ReprojectPush::MEMBERS, ReprojectPush::SIZE),
         "ImageStats" => (ImageStatsPush::MEMBERS, ImageStatsPush::SIZE),
         "GBufferResolve" => (GBufferResolvePush::MEMBERS, GBufferResolvePush::SIZE),
+        "Overlay" => (OverlayPush::MEMBERS, OverlayPush::SIZE),
         other => panic!("block {other} has no generated struct"),
     }
 }

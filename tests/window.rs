@@ -235,7 +235,7 @@ fn displayed_buffer_is_the_headless_g_buffer() {
     let shot = tmp("albedo-presented.png");
     let dump = tmp("albedo-dump");
     let common = ["--size", "64x48", "--rsm-size", "128", "--frames", "3"];
-    let mut args = vec!["--validation", "view"];
+    let mut args = vec!["--validation", "view", "--overlay", "off"];
     args.extend(common);
     args.extend(["--script", "0:display=albedo", "--capture"]);
     args.push(shot.to_str().unwrap());
@@ -276,6 +276,8 @@ fn presented_frame_matches_the_headless_render() {
         &[
             "--validation",
             "view",
+            "--overlay",
+            "off",
             "--size",
             size,
             "--rsm-size",
@@ -494,6 +496,8 @@ fn effect_keys_rebuild_the_renderer() {
         &[
             "--validation",
             "view",
+            "--overlay",
+            "off",
             "--size",
             size,
             "--rsm-size",
@@ -528,5 +532,78 @@ fn effect_keys_rebuild_the_renderer() {
     assert!(
         differing_pixels(&shot, &unswitched) * 50 > total,
         "the switches did not change the picture"
+    );
+}
+
+/// The overlay is drawn in the frame and nowhere else: a capture with it differs from one
+/// with `--overlay off` only inside the rectangle the viewer reports for it, and it does
+/// differ there (text and bars over a dimmed frame). `H` (the script's `key=overlay`) hides it:
+/// the capture then equals the one without.
+#[test]
+fn overlay_changes_only_its_rectangle() {
+    let display = display();
+    let run = |name: &str, extra: &[&str]| {
+        let shot = tmp(name);
+        let mut args = vec![
+            "--validation",
+            "view",
+            "--size",
+            "320x240",
+            "--rsm-size",
+            "128",
+            "--frames",
+            "4",
+        ];
+        args.extend(extra);
+        args.extend(["--capture", shot.to_str().unwrap()]);
+        let out = ssgi(&display, &args);
+        let stderr = assert_clean_run(&out, &format!("view {extra:?}"));
+        (load_rgba(&shot), stderr)
+    };
+    let (with, stderr) = run("overlay-on.png", &[]);
+    let (without, _) = run("overlay-off.png", &["--overlay", "off"]);
+    let (hidden, hidden_err) = run("overlay-hidden.png", &["--script", "1:key=overlay"]);
+    assert!(hidden_err.contains("overlay: hidden"), "{hidden_err}");
+    let line = stderr
+        .lines()
+        .find_map(|l| l.strip_prefix("overlay rectangle: "))
+        .unwrap_or_else(|| panic!("no overlay rectangle reported:\n{stderr}"));
+    let r: Vec<u32> = line
+        .split_whitespace()
+        .take(4)
+        .map(|v| v.parse().expect("rectangle coordinate"))
+        .collect();
+    let (x0, y0, x1, y1) = (r[0], r[1], r[2], r[3]);
+    assert!(x0 < x1 && y0 < y1 && x1 <= 320 && y1 <= 240, "{line}");
+    let area = ((x1 - x0) * (y1 - y0)) as usize;
+    assert!(
+        area < 320 * 240,
+        "the overlay covers the whole frame: {line}"
+    );
+    let (mut inside, mut outside) = (0usize, Vec::new());
+    for (x, y, p) in with.enumerate_pixels() {
+        let q = without.get_pixel(x, y);
+        if (0..3).any(|c| p[c] != q[c]) {
+            if (x0..x1).contains(&x) && (y0..y1).contains(&y) {
+                inside += 1;
+            } else {
+                outside.push((x, y));
+            }
+        }
+    }
+    assert!(
+        outside.is_empty(),
+        "{} pixels outside the overlay rectangle {line} differ, first {:?}",
+        outside.len(),
+        &outside[..outside.len().min(5)]
+    );
+    assert!(
+        inside * 2 > area,
+        "only {inside} of the rectangle's {area} pixels changed: is the overlay drawn?"
+    );
+    assert_eq!(
+        differing_pixels(&hidden, &without),
+        0,
+        "a hidden overlay still changes the frame"
     );
 }

@@ -46,7 +46,7 @@ pub enum Command {
     Render(RenderArgs),
     /// Run a camera path and report per-pass GPU times (table + JSON).
     Bench(BenchArgs),
-    /// Open a window with a fly camera (press H in the window for the keys).
+    /// Open a window with a fly camera (press F1 in the window for the keys).
     View(ViewArgs),
     /// Reproduce one of the papers' tables (or the dynamic scene's): report.md, report.json,
     /// CSV and PNG files in --out.
@@ -337,6 +337,10 @@ pub struct ViewArgs {
     /// Exit by itself after this many presented frames (at least 1).
     #[arg(long, value_parser = parse_frame_count_u64)]
     pub frames: Option<u64>,
+    /// The overlay over the frame: GPU time per pass and group (median and p95 over the last
+    /// second), counters, device; `H` hides it. `off` draws none (no `overlay` timing row).
+    #[arg(long, default_value = "on", value_parser = parse_on_off, action = clap::ArgAction::Set)]
+    pub overlay: bool,
     /// Test script: FRAME:resize=WxH, FRAME:zero=N, FRAME:key=NAME, comma-separated.
     #[arg(long, hide = true)]
     pub script: Option<String>,

@@ -3,6 +3,7 @@
 
 pub mod display;
 pub mod headless;
+pub mod overlay;
 pub mod png;
 pub mod progress;
 pub mod sink;

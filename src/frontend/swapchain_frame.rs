@@ -2,12 +2,16 @@
 //! runs driven from outside the event loop (`window_sink.rs`): bring a stale swapchain up to
 //! date, and render one frame into an acquired swapchain image and present it.
 
+use crate::effects::Recording;
 use crate::error::Result;
+use crate::passes::PassId;
 use crate::renderer::{FrameHook, Renderer};
 use crate::resources::targets::Target;
 use crate::scene::Camera;
 use crate::vk::recorder::Recorder;
+use crate::vk::swapchain::SwapchainImage;
 use crate::vk::{Buffer, FrameTiming, Image, Swapchain, Tracker};
+use ash::vk;
 
 /// What [`recreate`] did.
 pub enum Recreated {
@@ -43,15 +47,21 @@ pub enum Presented {
     OutOfDate,
 }
 
+/// Records the viewer's overlay over the blitted frame: the swapchain image and its extent
+/// (timed as `PassId::OVERLAY`).
+pub type OverlayDraw<'a> =
+    &'a mut dyn FnMut(&Recorder<'_>, &mut Tracker, &SwapchainImage, vk::Extent2D);
+
 /// Render one frame of `renderer` at `camera` with `source` blitted into the next swapchain
-/// image, then present it. With `capture`, the presented image is also copied into that
-/// buffer (read it after the frame completed).
+/// image, `overlay` drawn over it, then present it. With `capture`, the presented image is
+/// also copied into that buffer (read it after the frame completed).
 pub fn render_and_present(
     swapchain: &mut Swapchain,
     renderer: &mut Renderer,
     camera: &Camera,
     source: Target,
     capture: Option<&Buffer>,
+    mut overlay: Option<OverlayDraw<'_>>,
 ) -> Result<Presented> {
     // The slot's previous submission waited on the slot's acquire semaphore: it must be done
     // before the semaphore is handed to vkAcquireNextImageKHR again.
@@ -60,12 +70,18 @@ pub fn render_and_present(
         return Ok(Presented::OutOfDate);
     };
     let chain = &*swapchain;
-    let mut record = |rec: &Recorder<'_>, tracker: &mut Tracker, src: &Image| {
-        chain.record_blit(rec, tracker, src, image.index);
-        if let Some(buffer) = capture {
-            chain.record_copy(rec, tracker, image.index, buffer);
+    let mut record = |r: &mut Recording<'_>, src: &Image| {
+        chain.record_blit(&r.rec, r.tracker, src, image.index);
+        if let Some(draw) = overlay.as_mut() {
+            let target = chain.image(image.index);
+            r.timed(PassId::OVERLAY, |rec, tracker| {
+                draw(rec, tracker, target, chain.extent)
+            });
         }
-        chain.record_present_barrier(rec, tracker, image.index);
+        if let Some(buffer) = capture {
+            chain.record_copy(&r.rec, r.tracker, image.index, buffer);
+        }
+        chain.record_present_barrier(&r.rec, r.tracker, image.index);
     };
     let timing = renderer.render_frame_with(
         camera,

@@ -20,7 +20,7 @@ pub fn effect_keys() -> &'static [&'static str] {
     })
 }
 
-/// The viewer's keys, printed by `H` and documented in docs/cli.md: the digits toggle
+/// The viewer's keys, printed by `F1` and documented in docs/cli.md: the digits toggle
 /// [`effect_keys`], then the effects' own settings (`effects::toggles`).
 pub fn help() -> String {
     let buffers: Vec<&str> = display_cycle().iter().map(|(_, n)| *n).collect();
@@ -50,7 +50,9 @@ pub fn help() -> String {
                                  (each digit rebuilds the renderer: histories start over)
   R                              temporal reuse on / off (rebuilds the renderer)
   C                              print the camera as a keyframe (for --path files)
-  H                              print this help
+  H                              show / hide the overlay (GPU time per pass and group,
+                                 median and p95 over the last second; counters; device)
+  F1                             print this help
   Esc                            quit",
         buffers.join(", ")
     )
@@ -196,13 +198,15 @@ pub enum Action {
     ToggleSetting(usize),
     ToggleReuse,
     PrintCamera,
+    /// Show or hide the overlay (timings, counters, device).
+    ToggleOverlay,
     Help,
     Quit,
 }
 
 impl Action {
     /// The action a test script names (`key=NAME`): cycle, pcf, an effect switch, an effect's
-    /// setting, reuse, camera, help, quit.
+    /// setting, reuse, camera, overlay, help, quit.
     pub fn from_name(name: &str) -> Option<Action> {
         if let Some(e) = effect_keys().iter().copied().find(|e| *e == name) {
             return Some(Action::ToggleEffect(e));
@@ -215,6 +219,7 @@ impl Action {
             "pcf" => Action::ToggleShadows,
             "reuse" => Action::ToggleReuse,
             "camera" => Action::PrintCamera,
+            "overlay" => Action::ToggleOverlay,
             "help" => Action::Help,
             "quit" => Action::Quit,
             _ => return None,

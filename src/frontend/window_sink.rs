@@ -243,7 +243,14 @@ impl FrameSink for WindowPresenter {
         for _ in 0..MAX_OUT_OF_DATE {
             self.pump(Duration::ZERO)?;
             timings.extend(self.ready_swapchain(renderer)?);
-            match render_and_present(&mut self.swapchain, renderer, camera, Target::Output, None)? {
+            match render_and_present(
+                &mut self.swapchain,
+                renderer,
+                camera,
+                Target::Output,
+                None,
+                None,
+            )? {
                 Presented::Frame(t) => {
                     timings.extend(t);
                     self.presented += 1;

@@ -70,6 +70,10 @@ impl PassId {
     /// Composite + tonemap into the output image (display-linear for antialiasing).
     pub const COMPOSITE: PassId = PassId::new("composite", &[Change::Light, Change::Config]);
 
+    /// The viewer's overlay over the presented frame (recorded in the window's frame hook;
+    /// not a renderer pass, so not in `renderer::all_passes`).
+    pub const OVERLAY: PassId = PassId::new("overlay", &[]);
+
     /// The frame's passes recorded before the effects', in recording order.
     pub const BEFORE_EFFECTS: [PassId; 4] = [
         PassId::LIGHT_VIEW,

@@ -9,7 +9,7 @@ use crate::resources::scene_gpu::{Draw, SceneGpu};
 use crate::shaders::{DescriptorKind, ReflectedBinding, ShaderModuleInfo};
 use crate::vk::recorder::Recorder;
 use crate::vk::Tracker;
-use crate::vk::{Context, GraphicsDesc, Pipeline};
+use crate::vk::{Blend, Context, GraphicsDesc, Pipeline};
 use ash::vk;
 use std::sync::Arc;
 
@@ -106,6 +106,7 @@ impl MaterialPipelines {
             vertex_attributes: &VERTEX_ATTRIBUTES,
             color_formats,
             depth_format,
+            blend: Blend::Replace,
         };
         let name = pass.name();
         let flat = Pipeline::graphics(

@@ -47,9 +47,10 @@ use std::sync::Arc;
 
 /// Extra recording at the end of a frame plus the frame's submit semaphores.
 pub struct FrameHook<'a> {
-    /// Called with the target named by `source` (the window frontend blits it into the
-    /// swapchain image there), inside the command label `frame_hook`.
-    pub record: &'a mut dyn FnMut(&Recorder<'_>, &mut Tracker, &crate::vk::Image),
+    /// Called with the frame's recording and the target named by `source` (the window
+    /// frontend blits it into the swapchain image there, and times the viewer's overlay with
+    /// `Recording::timed`), inside the command label `frame_hook`.
+    pub record: &'a mut dyn FnMut(&mut Recording<'_>, &crate::vk::Image),
     pub sync: SubmitSync,
     /// Which target `record` receives: `Target::Output` (the final RGBA8 image), or another
     /// one for the viewer's buffer display.
@@ -184,7 +185,8 @@ impl Renderer {
             timer: GpuTimer::new(
                 ctx,
                 FRAMES_IN_FLIGHT,
-                catalog::all_passes().len() as u32 + 2,
+                // + the frontend's overlay (`PassId::OVERLAY`, in the frame hook).
+                catalog::all_passes().len() as u32 + 3,
             )?,
             tracker,
             frame_index: 0,
@@ -740,7 +742,7 @@ fn record_hook<'a>(
         return SubmitSync::default();
     };
     r.rec.begin_label("frame_hook");
-    (h.record)(&r.rec, r.tracker, source(h.source).unwrap_or(output));
+    (h.record)(r, source(h.source).unwrap_or(output));
     r.rec.end_label();
     h.sync.clone()
 }

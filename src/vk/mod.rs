@@ -21,7 +21,7 @@ pub use context::{Context, ContextOptions, DeviceInfo, SubmitSync};
 pub use descriptor_counts::DescriptorCounts;
 pub use descriptors::{DescriptorPool, SetWriter};
 pub use memory::{Buffer, Image, ImageDesc};
-pub use pipeline::{GraphicsDesc, Pipeline};
+pub use pipeline::{Blend, GraphicsDesc, Pipeline};
 pub use readback::{read_buffer, read_image, ImageData};
 pub use sampler::Sampler;
 pub use submission::{one_shot, FrameSlots};

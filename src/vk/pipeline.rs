@@ -291,16 +291,29 @@ impl Pipeline {
             .line_width(1.0);
         let multisample = vk::PipelineMultisampleStateCreateInfo::default()
             .rasterization_samples(vk::SampleCountFlags::TYPE_1);
+        let depth_test = desc.depth_format != vk::Format::UNDEFINED;
         let depth = vk::PipelineDepthStencilStateCreateInfo::default()
-            .depth_test_enable(true)
-            .depth_write_enable(true)
+            .depth_test_enable(depth_test)
+            .depth_write_enable(depth_test)
             .depth_compare_op(vk::CompareOp::LESS);
         let blend_attachments: Vec<_> = desc
             .color_formats
             .iter()
             .map(|_| {
-                vk::PipelineColorBlendAttachmentState::default()
-                    .color_write_mask(vk::ColorComponentFlags::RGBA)
+                let state = vk::PipelineColorBlendAttachmentState::default()
+                    .color_write_mask(vk::ColorComponentFlags::RGBA);
+                match desc.blend {
+                    Blend::Replace => state,
+                    // out = src + (1 - src.a) * dst, colour and alpha alike.
+                    Blend::Premultiplied => state
+                        .blend_enable(true)
+                        .src_color_blend_factor(vk::BlendFactor::ONE)
+                        .dst_color_blend_factor(vk::BlendFactor::ONE_MINUS_SRC_ALPHA)
+                        .color_blend_op(vk::BlendOp::ADD)
+                        .src_alpha_blend_factor(vk::BlendFactor::ONE)
+                        .dst_alpha_blend_factor(vk::BlendFactor::ONE_MINUS_SRC_ALPHA)
+                        .alpha_blend_op(vk::BlendOp::ADD),
+                }
             })
             .collect();
         let blend =
@@ -348,13 +361,24 @@ impl Pipeline {
     }
 }
 
-/// Fixed-function description of a raster pass (dynamic rendering, depth test LESS, no culling:
-/// OBJ winding is not trusted).
+/// How a graphics pipeline writes its colour attachments.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Blend {
+    /// The fragment replaces the attachment (the raster passes).
+    Replace,
+    /// Premultiplied-alpha "over" (the viewer's overlay: egui's colours are premultiplied).
+    Premultiplied,
+}
+
+/// Fixed-function description of a raster pass (dynamic rendering, depth test LESS unless
+/// `depth_format` is UNDEFINED, no culling: OBJ winding is not trusted).
 pub struct GraphicsDesc<'a> {
     pub vertex: &'a ShaderModuleInfo,
     pub fragment: &'a ShaderModuleInfo,
     pub vertex_bindings: &'a [vk::VertexInputBindingDescription],
     pub vertex_attributes: &'a [vk::VertexInputAttributeDescription],
     pub color_formats: &'a [vk::Format],
+    /// UNDEFINED: no depth attachment and no depth test.
     pub depth_format: vk::Format,
+    pub blend: Blend,
 }

@@ -195,21 +195,78 @@ impl<'a> Recorder<'a> {
             .layer_count(1)
             .color_attachments(&color_infos)
             .depth_attachment(&depth_info);
-        let viewport = vk::Viewport {
-            x: 0.0,
-            y: 0.0,
-            width: extent.width as f32,
-            height: extent.height as f32,
-            min_depth: 0.0,
-            max_depth: 1.0,
-        };
         // SAFETY: recording; attachments are in the layouts named above (the tracker
         // transitioned them before this call).
         unsafe {
             self.device.cmd_begin_rendering(self.cmd, &info);
-            self.device.cmd_set_viewport(self.cmd, 0, &[viewport]);
+            self.device
+                .cmd_set_viewport(self.cmd, 0, &[full_viewport(extent)]);
             self.device.cmd_set_scissor(self.cmd, 0, &[area]);
         }
+    }
+
+    /// Begin dynamic rendering into one colour `view` of `extent` over its contents (loaded,
+    /// not cleared; no depth): the viewer's overlay over the blitted frame. Viewport covers
+    /// the extent; set scissors per draw.
+    pub fn begin_rendering_over(&self, view: vk::ImageView, extent: vk::Extent2D) {
+        let color = [vk::RenderingAttachmentInfo::default()
+            .image_view(view)
+            .image_layout(vk::ImageLayout::COLOR_ATTACHMENT_OPTIMAL)
+            .load_op(vk::AttachmentLoadOp::LOAD)
+            .store_op(vk::AttachmentStoreOp::STORE)];
+        let area = vk::Rect2D {
+            offset: vk::Offset2D { x: 0, y: 0 },
+            extent,
+        };
+        let info = vk::RenderingInfo::default()
+            .render_area(area)
+            .layer_count(1)
+            .color_attachments(&color);
+        // SAFETY: recording; the view's image is in COLOR_ATTACHMENT_OPTIMAL (the tracker
+        // transitioned it before this call).
+        unsafe {
+            self.device.cmd_begin_rendering(self.cmd, &info);
+            self.device
+                .cmd_set_viewport(self.cmd, 0, &[full_viewport(extent)]);
+        }
+    }
+
+    /// Restrict the following draws to `rect` (inside the render area).
+    pub fn set_scissor(&self, rect: vk::Rect2D) {
+        // SAFETY: recording with a pipeline whose scissor is dynamic.
+        unsafe { self.device.cmd_set_scissor(self.cmd, 0, &[rect]) };
+    }
+
+    /// Bind `vertices` from byte `vertex_offset` and 32-bit `indices` from `index_offset`.
+    pub fn bind_mesh_at(
+        &self,
+        vertices: &Buffer,
+        vertex_offset: u64,
+        indices: &Buffer,
+        index_offset: u64,
+    ) {
+        // SAFETY: recording; buffers are live, created with vertex/index usage, and the
+        // offsets lie inside them (caller).
+        unsafe {
+            self.device
+                .cmd_bind_vertex_buffers(self.cmd, 0, &[vertices.raw], &[vertex_offset]);
+            self.device.cmd_bind_index_buffer(
+                self.cmd,
+                indices.raw,
+                index_offset,
+                vk::IndexType::UINT32,
+            );
+        }
+    }
+
+    /// `index_count` indices from `first_index`, each added to `vertex_offset`.
+    pub fn draw_indexed_offset(&self, first_index: u32, index_count: u32, vertex_offset: i32) {
+        // SAFETY: recording inside rendering with a graphics pipeline and mesh bound; the
+        // indices (plus the offset) address vertices inside the bound range (caller).
+        unsafe {
+            self.device
+                .cmd_draw_indexed(self.cmd, index_count, 1, first_index, vertex_offset, 0)
+        };
     }
 
     pub fn end_rendering(&self) {
@@ -243,5 +300,17 @@ impl<'a> Recorder<'a> {
             self.device
                 .cmd_draw_indexed(self.cmd, index_count, 1, first_index, 0, 0)
         };
+    }
+}
+
+/// A viewport covering `extent` with the full depth range.
+fn full_viewport(extent: vk::Extent2D) -> vk::Viewport {
+    vk::Viewport {
+        x: 0.0,
+        y: 0.0,
+        width: extent.width as f32,
+        height: extent.height as f32,
+        min_depth: 0.0,
+        max_depth: 1.0,
     }
 }

@@ -116,6 +116,8 @@ pub fn choose_extent(
 /// One image of the swapchain, followed by the sync tracker like any other image.
 pub struct SwapchainImage {
     pub raw: vk::Image,
+    /// A colour view, for passes that draw over the blitted frame (the viewer's overlay).
+    pub view: vk::ImageView,
     state: Cell<ResourceState>,
 }
 
@@ -322,7 +324,9 @@ impl Swapchain {
         let Some(extent) = choose_extent(&caps, window) else {
             return Ok(false);
         };
-        let mut usage = vk::ImageUsageFlags::TRANSFER_DST;
+        // COLOR_ATTACHMENT: the viewer's overlay draws over the blitted frame (every surface
+        // supports it: VkSurfaceCapabilitiesKHR::supportedUsageFlags must include it).
+        let mut usage = vk::ImageUsageFlags::TRANSFER_DST | vk::ImageUsageFlags::COLOR_ATTACHMENT;
         if self.options.readable {
             usage |= vk::ImageUsageFlags::TRANSFER_SRC;
         }
@@ -390,19 +394,29 @@ impl Swapchain {
             // SAFETY: device idle (waited above); its images are not used after this.
             unsafe { self.loader.destroy_swapchain(old, None) };
             self.raw = vk::SwapchainKHR::null();
+            self.destroy_views();
             self.images.clear();
         }
         self.raw = created.vk("vkCreateSwapchainKHR")?;
         // SAFETY: the swapchain was just created.
         let images =
             unsafe { self.loader.get_swapchain_images(self.raw) }.vk("vkGetSwapchainImagesKHR")?;
-        self.images = images
-            .into_iter()
-            .map(|raw| SwapchainImage {
+        for raw in images {
+            let info = vk::ImageViewCreateInfo::default()
+                .image(raw)
+                .view_type(vk::ImageViewType::TYPE_2D)
+                .format(format.format)
+                .subresource_range(color_range());
+            // SAFETY: `raw` is an image of the live swapchain, created with this format;
+            // destroyed in `destroy_views` before the swapchain goes.
+            let view = unsafe { self.ctx.device.create_image_view(&info, None) }
+                .vk("vkCreateImageView")?;
+            self.images.push(SwapchainImage {
                 raw,
+                view,
                 state: Cell::new(ResourceState::default()),
-            })
-            .collect();
+            });
+        }
         while self.render_finished.len() < self.images.len() {
             let s = create_semaphore(&self.ctx)?;
             self.render_finished.push(s);
@@ -591,6 +605,19 @@ impl Swapchain {
     }
 }
 
+impl Swapchain {
+    /// Destroy the images' views (the device is idle: nothing records or reads them).
+    fn destroy_views(&mut self) {
+        for image in &mut self.images {
+            if image.view != vk::ImageView::null() {
+                // SAFETY: callers wait for the device first; the view is not used again.
+                unsafe { self.ctx.device.destroy_image_view(image.view, None) };
+                image.view = vk::ImageView::null();
+            }
+        }
+    }
+}
+
 impl Drop for Swapchain {
     fn drop(&mut self) {
         // SAFETY: wait for the device first (frames in flight may still wait on the
@@ -598,6 +625,10 @@ impl Drop for Swapchain {
         // surface field drops after this body, so the swapchain goes before its surface.
         unsafe {
             let _ = self.ctx.device.device_wait_idle();
+        }
+        self.destroy_views();
+        // SAFETY: as above: the device is idle.
+        unsafe {
             if self.raw != vk::SwapchainKHR::null() {
                 self.loader.destroy_swapchain(self.raw, None);
             }

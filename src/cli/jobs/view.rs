@@ -24,6 +24,7 @@ pub fn view(cli: &Cli, args: &ViewArgs) -> Result<()> {
             frames: args.frames,
             script,
             capture: args.capture.clone(),
+            overlay: args.overlay,
         },
         context_options(cli),
         move |ctx| Renderer::new(ctx, scene, config),

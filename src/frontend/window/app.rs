@@ -16,15 +16,19 @@ use super::script::{self, ScriptOp, ScriptStep};
 use super::stats::Stats;
 use crate::error::{Error, Result};
 use crate::frontend::display::{new_event_loop, presenting_context};
-use crate::frontend::swapchain_frame::{recreate, render_and_present, Presented, Recreated};
+use crate::frontend::overlay::Overlay;
+use crate::frontend::swapchain_frame::{
+    recreate, render_and_present, OverlayDraw, Presented, Recreated,
+};
 use crate::frontend::view_state::{display_cycle, help, needs_rebuild, Action, ViewState};
 use crate::renderer::{Renderer, FRAMES_IN_FLIGHT};
 use crate::resources::targets::Target;
 use crate::scene::Camera;
+use crate::vk::recorder::Recorder;
 use crate::vk::swapchain::present_mode_name;
 use crate::vk::{
     Buffer, Context, ContextOptions, FrameTiming, ImageData, PresentPolicy, Surface, Swapchain,
-    SwapchainOptions,
+    SwapchainOptions, Tracker,
 };
 use glam::Vec3;
 use std::path::PathBuf;
@@ -49,6 +53,8 @@ pub struct WindowOptions {
     /// Write the last presented image (read back from the swapchain) here as PNG; needs a
     /// frame count.
     pub capture: Option<PathBuf>,
+    /// Draw the overlay (timings, counters, device; `H` hides it).
+    pub overlay: bool,
 }
 
 /// What a windowed run leaves: the renderer (for PNG output; drop it before `ctx`), every
@@ -117,6 +123,8 @@ pub fn run(
 /// Objects that live while the window is open. Field order is drop order: the swapchain
 /// (and its surface) before the window.
 struct Live {
+    /// Before the swapchain: its input state holds the window's display connection.
+    overlay: Option<Overlay>,
     swapchain: Swapchain,
     window: Arc<Window>,
     capture: Option<Buffer>,
@@ -190,20 +198,29 @@ impl App {
             .ok_or_else(|| Error::Window("no renderer".into()))?;
         let displayable = displayable(renderer, &swapchain);
         self.view = Some(ViewState::new(&renderer.config));
+        let overlay = match self.options.overlay {
+            true => Some(Overlay::new(&self.ctx, &window, swapchain.format)?),
+            false => None,
+        };
         let live = Live {
+            overlay,
             swapchain,
             window,
             capture: None,
             displayable,
         };
-        self.on_swapchain(&live)?;
+        let mut live = live;
+        self.on_swapchain(&mut live)?;
         self.live = Some(live);
-        eprintln!("press H in the window for the viewer keys");
+        eprintln!("press F1 in the window for the viewer keys, H to hide the overlay");
         Ok(())
     }
 
     /// After (re)creating the swapchain: match the renderer to it and report it.
-    fn on_swapchain(&mut self, live: &Live) -> Result<()> {
+    fn on_swapchain(&mut self, live: &mut Live) -> Result<()> {
+        if let Some(overlay) = live.overlay.as_mut() {
+            overlay.set_format(live.swapchain.format)?;
+        }
         let sc = &live.swapchain;
         let (w, h) = (sc.extent.width, sc.extent.height);
         let renderer = self
@@ -247,6 +264,16 @@ impl App {
                 }
             }
             Action::ToggleReuse => view.temporal_reuse = !view.temporal_reuse,
+            Action::ToggleOverlay => match self.live.as_mut().and_then(|l| l.overlay.as_mut()) {
+                Some(overlay) => {
+                    overlay.toggle();
+                    eprintln!(
+                        "overlay: {}",
+                        if overlay.visible() { "shown" } else { "hidden" }
+                    );
+                }
+                None => eprintln!("overlay: off for this run (--overlay off)"),
+            },
             Action::PrintCamera => {
                 if let Some(c) = self
                     .camera
@@ -268,7 +295,11 @@ impl App {
         }
         if !matches!(
             action,
-            Action::CycleDisplay(_) | Action::PrintCamera | Action::Help | Action::Quit
+            Action::CycleDisplay(_)
+                | Action::PrintCamera
+                | Action::ToggleOverlay
+                | Action::Help
+                | Action::Quit
         ) {
             eprintln!("effects: {}", view.summary());
         }
@@ -422,7 +453,7 @@ impl App {
                 .as_mut()
                 .ok_or_else(|| Error::Window("no renderer".into()))?;
             match recreate(&mut live.swapchain, window, renderer)? {
-                Recreated::Ready(pending) => self.absorb(pending),
+                Recreated::Ready(pending) => self.absorb_into(live, pending),
                 Recreated::ZeroExtent => {
                     self.minimised = true;
                     return Ok(());
@@ -455,31 +486,70 @@ impl App {
         }
         let capture = live.capture.as_ref().filter(|_| capture_now);
         renderer.set_time(self.scene_time);
-        let timing =
-            match render_and_present(&mut live.swapchain, renderer, &camera, source, capture)? {
-                Presented::Frame(timing) => timing,
-                Presented::OutOfDate => return Ok(()), // recreated on the next redraw
-            };
-        self.presented += 1;
-        if let Some(t) = timing {
-            self.absorb(vec![t]);
-        }
-        if let Some(last) = self.last_frame {
-            self.stats.add_wall((now - last).as_secs_f64() * 1e3);
-        }
-        self.last_frame = Some(now);
-        let prefix = format!(
-            "{} | {}x{} | {} | {}",
-            self.options.title,
-            renderer_size(self.renderer.as_ref()).0,
-            renderer_size(self.renderer.as_ref()).1,
+        let (w, h) = (renderer.config.width, renderer.config.height);
+        let shown = format!(
+            "{w}x{h} | {} | {}",
             self.view.as_ref().map_or("final", |v| v.display_name()),
             self.view.as_ref().map_or(String::new(), |v| v.summary()),
         );
+        let draws = live.overlay.as_ref().is_some_and(|o| o.visible());
+        let mut overlay = live.overlay.as_mut().filter(|o| o.visible());
+        let mut pending = Vec::new();
+        if let Some(o) = overlay.as_mut() {
+            pending = o.prepare(&live.window, renderer, &shown, live.swapchain.extent)?;
+        }
+        let mut draw = |rec: &Recorder<'_>, tracker: &mut Tracker, target: &_, extent| {
+            if let Some(o) = overlay.as_mut() {
+                o.record(rec, tracker, target, extent);
+            }
+        };
+        let presented = render_and_present(
+            &mut live.swapchain,
+            renderer,
+            &camera,
+            source,
+            capture,
+            draws.then_some(&mut draw as OverlayDraw<'_>),
+        )?;
+        self.absorb_into(live, pending);
+        let timing = match presented {
+            Presented::Frame(timing) => timing,
+            Presented::OutOfDate => return Ok(()), // recreated on the next redraw
+        };
+        if let Some(o) = live.overlay.as_mut() {
+            o.take_error()?;
+            if let (true, Some([x0, y0, x1, y1])) = (capture_now, o.rect().filter(|_| o.visible()))
+            {
+                // For the window test: the capture differs from one without the overlay only
+                // inside this rectangle.
+                eprintln!("overlay rectangle: {x0} {y0} {x1} {y1} (pixels, x1 and y1 exclusive)");
+            }
+        }
+        self.presented += 1;
+        self.absorb_into(live, timing.into_iter().collect());
+        if let Some(last) = self.last_frame {
+            let ms = (now - last).as_secs_f64() * 1e3;
+            self.stats.add_wall(ms);
+            if let Some(o) = live.overlay.as_mut() {
+                o.add_wall(ms);
+            }
+        }
+        self.last_frame = Some(now);
+        let prefix = format!("{} | {shown}", self.options.title);
         if let Some(title) = self.stats.title(&prefix) {
             live.window.set_title(&title);
         }
         Ok(())
+    }
+
+    /// As `absorb`, also into the overlay's history.
+    fn absorb_into(&mut self, live: &mut Live, timings: Vec<FrameTiming>) {
+        if let Some(o) = live.overlay.as_mut() {
+            for t in &timings {
+                o.add_gpu(t);
+            }
+        }
+        self.absorb(timings);
     }
 
     fn absorb(&mut self, timings: Vec<FrameTiming>) {
@@ -522,8 +592,14 @@ impl App {
     }
 }
 
-fn renderer_size(r: Option<&Renderer>) -> (u32, u32) {
-    r.map_or((0, 0), |r| (r.config.width, r.config.height))
+/// Mouse buttons and wheel, which the overlay may take; keys always reach the viewer (the
+/// overlay has no text fields), and so do cursor moves (a drag begun outside the panel keeps
+/// turning the camera across it).
+fn is_pointer(event: &WindowEvent) -> bool {
+    matches!(
+        event,
+        WindowEvent::MouseInput { .. } | WindowEvent::MouseWheel { .. }
+    )
 }
 
 /// Per display-cycle entry, whether it can be shown: the target exists in this run (the
@@ -555,6 +631,14 @@ impl ApplicationHandler for App {
     }
 
     fn window_event(&mut self, event_loop: &ActiveEventLoop, _id: WindowId, event: WindowEvent) {
+        if let Some(live) = self.live.as_mut() {
+            let window = live.window.clone();
+            if let Some(o) = live.overlay.as_mut() {
+                if o.on_window_event(&window, &event) && is_pointer(&event) {
+                    return; // a drag or click on the panel does not turn the camera
+                }
+            }
+        }
         match event {
             WindowEvent::CloseRequested => event_loop.exit(),
             WindowEvent::Resized(_) => {

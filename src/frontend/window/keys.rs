@@ -22,7 +22,8 @@ pub fn action(key: KeyCode, mods: ModifiersState) -> Option<Action> {
         KeyCode::Digit9 => return Action::from_digit(9),
         KeyCode::KeyR => Action::ToggleReuse,
         KeyCode::KeyC => Action::PrintCamera,
-        KeyCode::KeyH | KeyCode::F1 => Action::Help,
+        KeyCode::KeyH => Action::ToggleOverlay,
+        KeyCode::F1 => Action::Help,
         KeyCode::Escape => Action::Quit,
         _ => return None,
     })

@@ -23,7 +23,7 @@ use crate::resources::scene_gpu::SceneGpu;
 use crate::resources::targets::{DEPTH_FORMAT, GBUFFER_COLOR_FORMATS};
 use crate::shaders::{self, SraaPush};
 use crate::vk::recorder::Recorder;
-use crate::vk::{Context, DescriptorPool, GraphicsDesc, Pipeline, Tracker};
+use crate::vk::{Blend, Context, DescriptorPool, GraphicsDesc, Pipeline, Tracker};
 use std::sync::Arc;
 
 /// The stage's passes (timing rows and the scene inputs each reads).
@@ -110,6 +110,7 @@ impl SraaPass {
             vertex_attributes: &VERTEX_ATTRIBUTES,
             color_formats: &COLOR_FORMATS,
             depth_format: DEPTH_FORMAT,
+            blend: Blend::Replace,
         };
         let name = pass::SRAA_GEOMETRY.name();
         Ok(Self {

@@ -1,0 +1,225 @@
+//! The viewer's overlay: GPU time per pass and per timing group (median and p95 over the last
+//! second), the frame rate, the counters and lane efficiency, the device and driver, drawn in
+//! the frame over the presented image. egui (a maintained immediate-mode UI) lays it out and
+//! tessellates it; `painter.rs` draws the meshes with our own pipeline, so its barriers go
+//! through the sync tracker and its cost is its own timing row (`overlay`, in the frame's
+//! command buffer between timestamps). egui-ash-renderer was the ready-made alternative: it
+//! needs another gpu-allocator major version than ours and records its own barriers.
+//!
+//! Per frame: `prepare` runs egui (input gathered from window events), applies texture
+//! changes (the font atlas; they wait for the frames in flight, which happens when new glyphs
+//! appear) and lays the meshes out for the coming frame's slot; `record`, called from the
+//! frame hook after the blit, writes the slot's buffers and draws.
+
+mod history;
+mod painter;
+mod panel;
+
+pub use history::History;
+pub use painter::layout;
+
+use crate::error::{Error, Result};
+use crate::renderer::Renderer;
+use crate::vk::recorder::Recorder;
+use crate::vk::swapchain::SwapchainImage;
+use crate::vk::{Context, FrameTiming, Tracker};
+use ash::vk;
+use painter::Painter;
+use std::sync::Arc;
+use std::time::Instant;
+use winit::window::Window;
+
+/// Where the panel sits: this many points from the top-left corner.
+const MARGIN: f32 = 6.0;
+
+pub struct Overlay {
+    egui: egui::Context,
+    input: egui_winit::State,
+    painter: Painter,
+    history: History,
+    visible: bool,
+    device: String,
+    format: vk::Format,
+    /// Textures egui freed last frame (freed before the next frame's changes).
+    to_free: Vec<egui::TextureId>,
+    /// The slot `prepare` laid the meshes out for.
+    slot: usize,
+    /// The panel's rectangle in pixels last frame: x0, y0, x1, y1 (exclusive), widened by the
+    /// anti-aliasing fringe.
+    rect: Option<[u32; 4]>,
+    /// An error while recording (reported after the frame).
+    error: Option<Error>,
+}
+
+impl Overlay {
+    /// An overlay for `window`, drawn into swapchain images of `format`.
+    pub fn new(ctx: &Arc<Context>, window: &Window, format: vk::Format) -> Result<Self> {
+        let egui = egui::Context::default();
+        egui.set_visuals(egui::Visuals::dark());
+        egui.all_styles_mut(|s| {
+            // Small, fixed-width numbers: the panel keeps its size as the values change.
+            for (style, size) in [
+                (egui::TextStyle::Body, 11.0),
+                (egui::TextStyle::Monospace, 11.0),
+                (egui::TextStyle::Button, 11.0),
+                (egui::TextStyle::Small, 9.0),
+            ] {
+                s.text_styles.insert(style, egui::FontId::monospace(size));
+            }
+            s.spacing.item_spacing = egui::vec2(4.0, 1.0);
+            // Rows as tall as the text (the default fits a button).
+            s.spacing.interact_size.y = 12.0;
+        });
+        // Every Vulkan device takes 4096-texel images (maxImageDimension2D's minimum).
+        let max_side = 4096;
+        let input = egui_winit::State::new(
+            egui.clone(),
+            egui::ViewportId::ROOT,
+            window,
+            Some(window.scale_factor() as f32),
+            None,
+            Some(max_side),
+        );
+        Ok(Self {
+            egui,
+            input,
+            painter: Painter::new(ctx, format)?,
+            history: History::default(),
+            visible: true,
+            device: format!("{} ({})", ctx.info.name, ctx.info.driver),
+            format,
+            to_free: Vec::new(),
+            slot: 0,
+            rect: None,
+            error: None,
+        })
+    }
+
+    pub fn visible(&self) -> bool {
+        self.visible
+    }
+
+    pub fn toggle(&mut self) {
+        self.visible = !self.visible;
+        self.rect = None;
+    }
+
+    /// A window event; true when egui takes it (a drag over the panel does not turn the
+    /// camera).
+    pub fn on_window_event(&mut self, window: &Window, event: &winit::event::WindowEvent) -> bool {
+        self.visible && self.input.on_window_event(window, event).consumed
+    }
+
+    /// The swapchain was recreated, possibly with another format.
+    pub fn set_format(&mut self, format: vk::Format) -> Result<()> {
+        if format != self.format {
+            self.painter.set_format(format)?;
+            self.format = format;
+        }
+        Ok(())
+    }
+
+    pub fn add_gpu(&mut self, t: &FrameTiming) {
+        self.history.add_gpu(Instant::now(), t.clone());
+    }
+
+    pub fn add_wall(&mut self, ms: f64) {
+        self.history.add_wall(Instant::now(), ms);
+    }
+
+    /// The panel's rectangle in the last prepared frame, in pixels (x0, y0, x1, y1 exclusive).
+    pub fn rect(&self) -> Option<[u32; 4]> {
+        self.rect
+    }
+
+    /// Lay out the panel for the renderer's next frame on an `extent` swapchain image. `view`
+    /// says what is shown (size, buffer, switches). Texture changes wait for the frames in
+    /// flight: their timings are returned.
+    pub fn prepare(
+        &mut self,
+        window: &Window,
+        renderer: &mut Renderer,
+        view: &str,
+        extent: vk::Extent2D,
+    ) -> Result<Vec<FrameTiming>> {
+        if !self.visible {
+            return Ok(Vec::new());
+        }
+        let stats = self.history.window(Instant::now());
+        let raw = self.input.take_egui_input(window);
+        let header = panel::Header {
+            device: &self.device,
+            view,
+        };
+        let mut rect = None;
+        let mut out = self.egui.run_pass(raw, |ctx| {
+            let shown = egui::Area::new(egui::Id::unique("ssgi overlay"))
+                .fixed_pos(egui::pos2(MARGIN, MARGIN))
+                .show(ctx, |ui| {
+                    egui::Frame::new()
+                        .fill(egui::Color32::from_black_alpha(200))
+                        .inner_margin(6.0)
+                        .corner_radius(3.0)
+                        .show(ui, |ui| panel::show(ui, &header, &stats));
+                });
+            rect = Some(shown.response.rect);
+        });
+        self.input
+            .handle_platform_output(window, out.platform_output);
+        let ppp = out.pixels_per_point;
+        let mut pending = Vec::new();
+        let free = std::mem::take(&mut self.to_free);
+        let set: Vec<_> = std::mem::take(&mut out.textures_delta.set)
+            .into_iter()
+            .flat_map(|(id, deltas)| deltas.into_iter().map(move |d| (id, d)))
+            .collect();
+        if !set.is_empty() || !free.is_empty() {
+            // The textures and their descriptor sets are rewritten in place.
+            pending = renderer.finish()?;
+            self.painter.free_textures(&free);
+            self.painter.update_textures(&set)?;
+        }
+        self.to_free = std::mem::take(&mut out.textures_delta.free)
+            .into_iter()
+            .collect();
+        let primitives = self.egui.tessellate(out.shapes, ppp);
+        self.slot = renderer.next_slot();
+        self.painter
+            .prepare(self.slot, &primitives, ppp, [extent.width, extent.height])?;
+        self.rect = rect.map(|r| pixel_rect(r, ppp, [extent.width, extent.height]));
+        Ok(pending)
+    }
+
+    /// Record the prepared panel over `target` (the frame hook calls this after the blit).
+    pub fn record(
+        &mut self,
+        rec: &Recorder<'_>,
+        tracker: &mut Tracker,
+        target: &SwapchainImage,
+        extent: vk::Extent2D,
+    ) {
+        if let Err(e) = self.painter.record(rec, tracker, self.slot, target, extent) {
+            self.error.get_or_insert(e);
+        }
+    }
+
+    /// An error from the last `record`.
+    pub fn take_error(&mut self) -> Result<()> {
+        match self.error.take() {
+            Some(e) => Err(e),
+            None => Ok(()),
+        }
+    }
+}
+
+/// egui's rectangle (points) in pixels, widened by one pixel for the anti-aliasing fringe
+/// egui feathers shapes with, clamped to the image.
+fn pixel_rect(r: egui::Rect, ppp: f32, size: [u32; 2]) -> [u32; 4] {
+    let px = |v: f32, max: u32| (v * ppp).clamp(0.0, max as f32);
+    [
+        (px(r.min.x, size[0]).floor() as u32).saturating_sub(1),
+        (px(r.min.y, size[1]).floor() as u32).saturating_sub(1),
+        (px(r.max.x, size[0]).ceil() as u32 + 1).min(size[0]),
+        (px(r.max.y, size[1]).ceil() as u32 + 1).min(size[1]),
+    ]
+}
