@@ -607,3 +607,55 @@ fn overlay_changes_only_its_rectangle() {
         "a hidden overlay still changes the frame"
     );
 }
+
+/// The screenshot key (F12; the script's `key=screenshot`) writes the presented frame, overlay
+/// included, and the last second's timings as a bench report (docs/formats.md) with the
+/// overlay's own timing row.
+#[test]
+fn screenshot_key_writes_the_frame_and_a_bench_report() {
+    let display = display();
+    let dir = tmp("shots");
+    let shot = tmp("shot-capture.png");
+    let out = ssgi(
+        &display,
+        &[
+            "--validation",
+            "view",
+            "--size",
+            "160x120",
+            "--rsm-size",
+            "128",
+            "--frames",
+            "4",
+            "--script",
+            "3:key=screenshot",
+            "--screenshot-dir",
+            dir.to_str().unwrap(),
+            "--capture",
+            shot.to_str().unwrap(),
+        ],
+    );
+    let stderr = assert_clean_run(&out, "view with the screenshot key");
+    assert!(stderr.contains("screenshot: wrote"), "{stderr}");
+    // The key fired before the fourth frame, which --capture also reads back.
+    let png = load_rgba(&dir.join("view-000004.png"));
+    assert_eq!(differing_pixels(&png, &load_rgba(&shot)), 0);
+    let text = std::fs::read_to_string(dir.join("view-000004.json")).expect("report");
+    let report: serde_json::Value = serde_json::from_str(&text).expect("JSON");
+    schema::assert_follows("bench", &report);
+    assert_eq!(report["config"]["path"], "view (fly camera)");
+    assert_eq!(
+        (report["width"].as_u64(), report["height"].as_u64()),
+        (Some(160), Some(120))
+    );
+    let overlay = report["passes"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|p| p["name"] == "overlay")
+        .unwrap_or_else(|| panic!("no overlay row:\n{text}"));
+    assert!(
+        overlay["median_ms"].as_f64().is_some_and(|ms| ms > 0.0),
+        "{overlay}"
+    );
+}

@@ -341,6 +341,10 @@ pub struct ViewArgs {
     /// second), counters, device; `H` hides it. `off` draws none (no `overlay` timing row).
     #[arg(long, default_value = "on", value_parser = parse_on_off, action = clap::ArgAction::Set)]
     pub overlay: bool,
+    /// Where F12 writes the presented frame (`view-<frame>.png`) and the last second's GPU
+    /// timings in the bench report format (`view-<frame>.json`).
+    #[arg(long, value_name = "DIR", default_value = "out/view")]
+    pub screenshot_dir: PathBuf,
     /// Test script: FRAME:resize=WxH, FRAME:zero=N, FRAME:key=NAME, comma-separated.
     #[arg(long, hide = true)]
     pub script: Option<String>,

@@ -52,6 +52,8 @@ pub fn help() -> String {
   C                              print the camera as a keyframe (for --path files)
   H                              show / hide the overlay (GPU time per pass and group,
                                  median and p95 over the last second; counters; device)
+  F12                            write the frame as PNG and the last second's GPU
+                                 timings as JSON (bench format) into --screenshot-dir
   F1                             print this help
   Esc                            quit",
         buffers.join(", ")
@@ -200,13 +202,15 @@ pub enum Action {
     PrintCamera,
     /// Show or hide the overlay (timings, counters, device).
     ToggleOverlay,
+    /// Write the presented frame (PNG) and the last second's timings (bench JSON).
+    Screenshot,
     Help,
     Quit,
 }
 
 impl Action {
     /// The action a test script names (`key=NAME`): cycle, pcf, an effect switch, an effect's
-    /// setting, reuse, camera, overlay, help, quit.
+    /// setting, reuse, camera, overlay, screenshot, help, quit.
     pub fn from_name(name: &str) -> Option<Action> {
         if let Some(e) = effect_keys().iter().copied().find(|e| *e == name) {
             return Some(Action::ToggleEffect(e));
@@ -220,6 +224,7 @@ impl Action {
             "reuse" => Action::ToggleReuse,
             "camera" => Action::PrintCamera,
             "overlay" => Action::ToggleOverlay,
+            "screenshot" => Action::Screenshot,
             "help" => Action::Help,
             "quit" => Action::Quit,
             _ => return None,

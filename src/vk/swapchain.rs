@@ -193,7 +193,8 @@ pub struct SwapchainOptions {
     pub policy: PresentPolicy,
     /// Frame slots of the renderer: one acquire semaphore each.
     pub frames_in_flight: usize,
-    /// Also request TRANSFER_SRC usage so presented images can be read back (screenshots).
+    /// Also request TRANSFER_SRC usage, where the surface allows it, so presented images can
+    /// be read back (screenshots).
     pub readable: bool,
 }
 
@@ -209,6 +210,8 @@ pub struct Swapchain {
     acquire_semaphores: Vec<vk::Semaphore>,
     render_finished: Vec<vk::Semaphore>,
     stale: bool,
+    /// The images can be read back (asked for and allowed by the surface).
+    readable: bool,
     /// Declared last: destroyed after the swapchain (see `Drop`).
     surface: Surface,
 }
@@ -256,6 +259,7 @@ impl Swapchain {
             acquire_semaphores: Vec::new(),
             render_finished: Vec::new(),
             stale: false,
+            readable: false,
             surface,
         };
         for _ in 0..options.frames_in_flight.max(1) {
@@ -327,7 +331,13 @@ impl Swapchain {
         // COLOR_ATTACHMENT: the viewer's overlay draws over the blitted frame (every surface
         // supports it: VkSurfaceCapabilitiesKHR::supportedUsageFlags must include it).
         let mut usage = vk::ImageUsageFlags::TRANSFER_DST | vk::ImageUsageFlags::COLOR_ATTACHMENT;
-        if self.options.readable {
+        // Reading back is asked for where the surface allows it (`readback_buffer` says so
+        // where it does not): a screenshot must not keep the viewer from opening.
+        let readable = self.options.readable
+            && caps
+                .supported_usage_flags
+                .contains(vk::ImageUsageFlags::TRANSFER_SRC);
+        if readable {
             usage |= vk::ImageUsageFlags::TRANSFER_SRC;
         }
         if !caps.supported_usage_flags.contains(usage) {
@@ -422,6 +432,7 @@ impl Swapchain {
             self.render_finished.push(s);
         }
         self.format = format.format;
+        self.readable = readable;
         self.extent = extent;
         self.present_mode = present_mode;
         self.stale = false;
@@ -535,6 +546,13 @@ impl Swapchain {
 
     /// A host-visible buffer large enough for one swapchain image (see [`Self::record_copy`]).
     pub fn readback_buffer(&self) -> Result<Buffer> {
+        if !self.readable {
+            return Err(Error::MissingFeature(
+                "reading back presented images: the surface does not allow TRANSFER_SRC usage \
+                 on swapchain images"
+                    .into(),
+            ));
+        }
         let size = self.extent.width as u64 * self.extent.height as u64 * 4;
         Buffer::new(
             &self.ctx,

@@ -78,6 +78,16 @@ impl History {
         }
     }
 
+    /// The GPU timings within the window before `now`, oldest first, and the seconds they
+    /// span (from the oldest's arrival).
+    pub fn frames(&mut self, now: Instant) -> (Vec<FrameTiming>, f64) {
+        self.trim(now);
+        let span = self.gpu.front().map_or(0.0, |(t, _)| {
+            now.saturating_duration_since(*t).as_secs_f64()
+        });
+        (self.gpu.iter().map(|(_, t)| t.clone()).collect(), span)
+    }
+
     /// The statistics of the frames within the window before `now`.
     pub fn window(&mut self, now: Instant) -> Window {
         self.trim(now);

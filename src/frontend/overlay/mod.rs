@@ -15,7 +15,7 @@ mod history;
 mod painter;
 mod panel;
 
-pub use history::History;
+pub use history::{History, Window as Stats};
 pub use painter::layout;
 
 use crate::error::{Error, Result};
@@ -26,7 +26,6 @@ use crate::vk::{Context, FrameTiming, Tracker};
 use ash::vk;
 use painter::Painter;
 use std::sync::Arc;
-use std::time::Instant;
 use winit::window::Window;
 
 /// Where the panel sits: this many points from the top-left corner.
@@ -36,7 +35,6 @@ pub struct Overlay {
     egui: egui::Context,
     input: egui_winit::State,
     painter: Painter,
-    history: History,
     visible: bool,
     device: String,
     format: vk::Format,
@@ -84,7 +82,6 @@ impl Overlay {
             egui,
             input,
             painter: Painter::new(ctx, format)?,
-            history: History::default(),
             visible: true,
             device: format!("{} ({})", ctx.info.name, ctx.info.driver),
             format,
@@ -119,33 +116,24 @@ impl Overlay {
         Ok(())
     }
 
-    pub fn add_gpu(&mut self, t: &FrameTiming) {
-        self.history.add_gpu(Instant::now(), t.clone());
-    }
-
-    pub fn add_wall(&mut self, ms: f64) {
-        self.history.add_wall(Instant::now(), ms);
-    }
-
     /// The panel's rectangle in the last prepared frame, in pixels (x0, y0, x1, y1 exclusive).
     pub fn rect(&self) -> Option<[u32; 4]> {
         self.rect
     }
 
-    /// Lay out the panel for the renderer's next frame on an `extent` swapchain image. `view`
-    /// says what is shown (size, buffer, switches). Texture changes wait for the frames in
-    /// flight: their timings are returned.
+    /// Lay out the panel of `stats` for the renderer's next frame on an `extent` swapchain
+    /// image. `view` says what is shown (size, buffer, switches). Texture changes wait for
+    /// the frames in flight: their timings are returned.
     pub fn prepare(
         &mut self,
         window: &Window,
         renderer: &mut Renderer,
-        view: &str,
+        (view, stats): (&str, &Stats),
         extent: vk::Extent2D,
     ) -> Result<Vec<FrameTiming>> {
         if !self.visible {
             return Ok(Vec::new());
         }
-        let stats = self.history.window(Instant::now());
         let raw = self.input.take_egui_input(window);
         let header = panel::Header {
             device: &self.device,
@@ -160,7 +148,7 @@ impl Overlay {
                         .fill(egui::Color32::from_black_alpha(200))
                         .inner_margin(6.0)
                         .corner_radius(3.0)
-                        .show(ui, |ui| panel::show(ui, &header, &stats));
+                        .show(ui, |ui| panel::show(ui, &header, stats));
                 });
             rect = Some(shown.response.rect);
         });

@@ -12,11 +12,12 @@
 
 use super::fly_camera;
 use super::keys;
+use super::screenshot;
 use super::script::{self, ScriptOp, ScriptStep};
 use super::stats::Stats;
 use crate::error::{Error, Result};
 use crate::frontend::display::{new_event_loop, presenting_context};
-use crate::frontend::overlay::Overlay;
+use crate::frontend::overlay::{History, Overlay};
 use crate::frontend::swapchain_frame::{
     recreate, render_and_present, OverlayDraw, Presented, Recreated,
 };
@@ -55,6 +56,8 @@ pub struct WindowOptions {
     pub capture: Option<PathBuf>,
     /// Draw the overlay (timings, counters, device; `H` hides it).
     pub overlay: bool,
+    /// Where the screenshot key writes.
+    pub screenshot_dir: PathBuf,
 }
 
 /// What a windowed run leaves: the renderer (for PNG output; drop it before `ctx`), every
@@ -92,6 +95,8 @@ pub fn run(
         captured: None,
         input: keys::Input::default(),
         stats: Stats::new(),
+        history: History::default(),
+        shot_pending: false,
         zero_ticks: 0,
         minimised: false,
         last_frame: None,
@@ -143,6 +148,10 @@ struct App {
     captured: Option<ImageData>,
     input: keys::Input,
     stats: Stats,
+    /// The last second of frames (the overlay's statistics, the screenshot's report).
+    history: History,
+    /// The screenshot key was pressed: the next presented frame is written.
+    shot_pending: bool,
     /// Event-loop iterations left of a scripted zero extent.
     zero_ticks: u32,
     /// The window has a zero extent: nothing is rendered until it has one again.
@@ -189,7 +198,7 @@ impl App {
             SwapchainOptions {
                 policy: PresentPolicy::Vsync,
                 frames_in_flight: FRAMES_IN_FLIGHT,
-                readable: self.options.capture.is_some(),
+                readable: true, // --capture and the screenshot key
             },
         )?;
         let renderer = self
@@ -264,6 +273,7 @@ impl App {
                 }
             }
             Action::ToggleReuse => view.temporal_reuse = !view.temporal_reuse,
+            Action::Screenshot => self.shot_pending = true,
             Action::ToggleOverlay => match self.live.as_mut().and_then(|l| l.overlay.as_mut()) {
                 Some(overlay) => {
                     overlay.toggle();
@@ -298,6 +308,7 @@ impl App {
             Action::CycleDisplay(_)
                 | Action::PrintCamera
                 | Action::ToggleOverlay
+                | Action::Screenshot
                 | Action::Help
                 | Action::Quit
         ) {
@@ -453,7 +464,7 @@ impl App {
                 .as_mut()
                 .ok_or_else(|| Error::Window("no renderer".into()))?;
             match recreate(&mut live.swapchain, window, renderer)? {
-                Recreated::Ready(pending) => self.absorb_into(live, pending),
+                Recreated::Ready(pending) => self.absorb(pending),
                 Recreated::ZeroExtent => {
                     self.minimised = true;
                     return Ok(());
@@ -481,10 +492,12 @@ impl App {
             .renderer
             .as_mut()
             .ok_or_else(|| Error::Window("no renderer".into()))?;
-        if capture_now && live.capture.is_none() {
+        let shoot = std::mem::take(&mut self.shot_pending);
+        let bytes = live.swapchain.extent.width as u64 * live.swapchain.extent.height as u64 * 4;
+        if (capture_now || shoot) && live.capture.as_ref().is_none_or(|b| b.size != bytes) {
             live.capture = Some(live.swapchain.readback_buffer()?);
         }
-        let capture = live.capture.as_ref().filter(|_| capture_now);
+        let capture = live.capture.as_ref().filter(|_| capture_now || shoot);
         renderer.set_time(self.scene_time);
         let (w, h) = (renderer.config.width, renderer.config.height);
         let shown = format!(
@@ -496,7 +509,9 @@ impl App {
         let mut overlay = live.overlay.as_mut().filter(|o| o.visible());
         let mut pending = Vec::new();
         if let Some(o) = overlay.as_mut() {
-            pending = o.prepare(&live.window, renderer, &shown, live.swapchain.extent)?;
+            let stats = self.history.window(Instant::now());
+            let panel = (shown.as_str(), &stats);
+            pending = o.prepare(&live.window, renderer, panel, live.swapchain.extent)?;
         }
         let mut draw = |rec: &Recorder<'_>, tracker: &mut Tracker, target: &_, extent| {
             if let Some(o) = overlay.as_mut() {
@@ -511,7 +526,7 @@ impl App {
             capture,
             draws.then_some(&mut draw as OverlayDraw<'_>),
         )?;
-        self.absorb_into(live, pending);
+        self.absorb(pending);
         let timing = match presented {
             Presented::Frame(timing) => timing,
             Presented::OutOfDate => return Ok(()), // recreated on the next redraw
@@ -526,13 +541,14 @@ impl App {
             }
         }
         self.presented += 1;
-        self.absorb_into(live, timing.into_iter().collect());
+        self.absorb(timing.into_iter().collect());
         if let Some(last) = self.last_frame {
             let ms = (now - last).as_secs_f64() * 1e3;
             self.stats.add_wall(ms);
-            if let Some(o) = live.overlay.as_mut() {
-                o.add_wall(ms);
-            }
+            self.history.add_wall(Instant::now(), ms);
+        }
+        if shoot {
+            self.screenshot(live)?;
         }
         self.last_frame = Some(now);
         let prefix = format!("{} | {shown}", self.options.title);
@@ -542,21 +558,48 @@ impl App {
         Ok(())
     }
 
-    /// As `absorb`, also into the overlay's history.
-    fn absorb_into(&mut self, live: &mut Live, timings: Vec<FrameTiming>) {
-        if let Some(o) = live.overlay.as_mut() {
-            for t in &timings {
-                o.add_gpu(t);
-            }
-        }
-        self.absorb(timings);
-    }
-
     fn absorb(&mut self, timings: Vec<FrameTiming>) {
         for t in timings {
             self.stats.add_gpu(&t);
+            self.history.add_gpu(Instant::now(), t.clone());
             self.timings.push(t);
         }
+    }
+
+    /// The screenshot key: wait for the frame just presented (its copy into the readback
+    /// buffer), then write it and the last second's report.
+    fn screenshot(&mut self, live: &mut Live) -> Result<()> {
+        let renderer = self
+            .renderer
+            .as_mut()
+            .ok_or_else(|| Error::Window("no renderer".into()))?;
+        let pending = renderer.finish()?;
+        self.absorb(pending);
+        let buffer = live
+            .capture
+            .as_ref()
+            .ok_or_else(|| Error::Window("no readback buffer".into()))?;
+        let image = live.swapchain.read_buffer(buffer)?;
+        let (timings, seconds) = self.history.frames(Instant::now());
+        let renderer = self
+            .renderer
+            .as_ref()
+            .ok_or_else(|| Error::Window("no renderer".into()))?;
+        let mode = present_mode_name(live.swapchain.present_mode);
+        let report = screenshot::report(&self.ctx, renderer, &timings, seconds, mode);
+        let (png, json) = screenshot::write(
+            &self.options.screenshot_dir,
+            self.presented,
+            &image,
+            &report,
+        )?;
+        eprintln!(
+            "screenshot: wrote {} and {} ({} frames timed over {seconds:.2} s)",
+            png.display(),
+            json.display(),
+            timings.len()
+        );
+        Ok(())
     }
 
     /// Wait for the GPU, read back a capture, destroy the swapchain, surface and window.

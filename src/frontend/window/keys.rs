@@ -24,6 +24,7 @@ pub fn action(key: KeyCode, mods: ModifiersState) -> Option<Action> {
         KeyCode::KeyC => Action::PrintCamera,
         KeyCode::KeyH => Action::ToggleOverlay,
         KeyCode::F1 => Action::Help,
+        KeyCode::F12 => Action::Screenshot,
         KeyCode::Escape => Action::Quit,
         _ => return None,
     })

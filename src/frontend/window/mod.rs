@@ -6,11 +6,12 @@
 //!
 //! Files: `app.rs` the application and frame loop, `keys.rs` window input to viewer input,
 //! `fly_camera.rs` the camera step, `script.rs` the test script, `stats.rs` the title's
-//! timings. Viewer keys: see [`help`] (`view_state.rs`).
+//! timings, `screenshot.rs` the screenshot key's PNG and report. Viewer keys: see [`help`] (`view_state.rs`).
 
 mod app;
 pub mod fly_camera;
 pub mod keys;
+mod screenshot;
 pub mod script;
 mod stats;
 
