@@ -544,6 +544,8 @@ fn overlay_changes_only_its_rectangle() {
     let display = display();
     let run = |name: &str, extra: &[&str]| {
         let shot = tmp(name);
+        // Direct light only: a short list of passes, so the panel leaves part of the
+        // 320x240 frame uncovered.
         let mut args = vec![
             "--validation",
             "view",
@@ -551,6 +553,8 @@ fn overlay_changes_only_its_rectangle() {
             "320x240",
             "--rsm-size",
             "128",
+            "--effects",
+            "direct",
             "--frames",
             "4",
         ];
@@ -658,4 +662,98 @@ fn screenshot_key_writes_the_frame_and_a_bench_report() {
         overlay["median_ms"].as_f64().is_some_and(|ms| ms > 0.0),
         "{overlay}"
     );
+}
+
+/// A live setting (the overlay's controls; the script's `set=KEY:VALUE`) goes through the
+/// command line's parser: switching the AO estimator and the indirect filter gives the
+/// configuration and records exactly the passes a headless run with `--ao gtao
+/// --indirect-filter svgf` does, and a refused value prints the command line's reason and
+/// changes nothing.
+#[test]
+fn live_settings_match_the_command_line() {
+    let display = display();
+    let dir = tmp("settings-shots");
+    let out = ssgi(
+        &display,
+        &[
+            "--validation",
+            "view",
+            "--size",
+            "64x48",
+            "--rsm-size",
+            "128",
+            "--skip-unchanged",
+            "off",
+            "--frames",
+            "6",
+            "--script",
+            "1:set=indirect.vpls:0,2:set=ao.estimator:gtao,2:set=indirect.filter:svgf,5:key=screenshot",
+            "--screenshot-dir",
+            dir.to_str().unwrap(),
+        ],
+    );
+    let stderr = assert_clean_run(&out, "view with live settings");
+    // The refused value: the command line's own reason.
+    let cli = Command::new(env!("CARGO_BIN_EXE_ssgi"))
+        .args(["render", "--vpls", "0"])
+        .output()
+        .unwrap();
+    let cli_err = String::from_utf8_lossy(&cli.stderr);
+    let why = cli_err
+        .lines()
+        .next()
+        .and_then(|l| l.split_once("': "))
+        .map(|(_, why)| why.to_string())
+        .unwrap_or_else(|| panic!("no reason in {cli_err}"));
+    assert!(
+        stderr.contains("cannot set indirect.vpls=0: ") && stderr.contains(&why),
+        "the viewer did not print the command line's reason {why:?}:\n{stderr}"
+    );
+    assert!(
+        stderr.contains("renderer rebuilt: ao.estimator=gtao"),
+        "{stderr}"
+    );
+    let report: serde_json::Value = serde_json::from_str(
+        &std::fs::read_to_string(dir.join("view-000006.json")).expect("screenshot report"),
+    )
+    .unwrap();
+    let recorded = |r: &serde_json::Value| -> Vec<String> {
+        r["passes"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .filter(|p| p["recorded"].as_u64() > Some(0) && p["name"] != "overlay")
+            .map(|p| p["name"].as_str().unwrap().to_string())
+            .collect()
+    };
+    let json = tmp("settings-bench.json");
+    let bench = Command::new(env!("CARGO_BIN_EXE_ssgi"))
+        .args([
+            "--validation",
+            "bench",
+            "--size",
+            "64x48",
+            "--rsm-size",
+            "128",
+            "--skip-unchanged",
+            "off",
+            "--ao",
+            "gtao",
+            "--indirect-filter",
+            "svgf",
+            "--frames",
+            "3",
+            "--warmup",
+            "0",
+            "--json",
+            json.to_str().unwrap(),
+        ])
+        .output()
+        .unwrap();
+    assert_clean_run(&bench, "bench --ao gtao");
+    let headless: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+    assert_eq!(report["config"]["render"], headless["config"]["render"]);
+    assert_eq!(recorded(&report), recorded(&headless));
+    assert!(recorded(&report).iter().any(|p| p == "svgf_temporal"));
 }

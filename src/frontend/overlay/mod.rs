@@ -14,10 +14,13 @@
 mod history;
 mod painter;
 mod panel;
+mod settings;
 
 pub use history::{History, Window as Stats};
 pub use painter::layout;
+pub use settings::{command_line, Request};
 
+use crate::config::RenderConfig;
 use crate::error::{Error, Result};
 use crate::renderer::Renderer;
 use crate::vk::recorder::Recorder;
@@ -30,6 +33,8 @@ use winit::window::Window;
 
 /// Where the panel sits: this many points from the top-left corner.
 const MARGIN: f32 = 6.0;
+/// The widest the panel grows, in points.
+const PANEL_WIDTH: f32 = 460.0;
 
 pub struct Overlay {
     egui: egui::Context,
@@ -47,6 +52,18 @@ pub struct Overlay {
     rect: Option<[u32; 4]>,
     /// An error while recording (reported after the frame).
     error: Option<Error>,
+    /// The settings' edit fields (VPLs, refresh budget in percent), and the configuration
+    /// they were last read from.
+    edits: (u32, f32),
+    synced: Option<RenderConfig>,
+}
+
+/// What the panel shows besides the statistics.
+pub struct PanelText<'a> {
+    /// Render size, displayed buffer and switches.
+    pub view: &'a str,
+    /// The last message (a refused setting, say).
+    pub message: Option<&'a str>,
 }
 
 impl Overlay {
@@ -89,6 +106,8 @@ impl Overlay {
             slot: 0,
             rect: None,
             error: None,
+            edits: (0, 0.0),
+            synced: None,
         })
     }
 
@@ -122,22 +141,29 @@ impl Overlay {
     }
 
     /// Lay out the panel of `stats` for the renderer's next frame on an `extent` swapchain
-    /// image. `view` says what is shown (size, buffer, switches). Texture changes wait for
-    /// the frames in flight: their timings are returned.
+    /// image. Returns the timings of frames waited for (texture changes wait for the frames
+    /// in flight) and what the settings' widgets ask for (the caller applies it).
     pub fn prepare(
         &mut self,
         window: &Window,
         renderer: &mut Renderer,
-        (view, stats): (&str, &Stats),
+        (text, stats): (&PanelText<'_>, &Stats),
         extent: vk::Extent2D,
-    ) -> Result<Vec<FrameTiming>> {
+    ) -> Result<(Vec<FrameTiming>, Vec<Request>)> {
         if !self.visible {
-            return Ok(Vec::new());
+            return Ok((Vec::new(), Vec::new()));
         }
+        let config = renderer.config;
+        if self.synced != Some(config) {
+            self.edits = (config.indirect.vpls, 100.0 * config.temporal.refresh_budget);
+            self.synced = Some(config);
+        }
+        let mut requests = Vec::new();
+        let edits = &mut self.edits;
         let raw = self.input.take_egui_input(window);
         let header = panel::Header {
             device: &self.device,
-            view,
+            view: text.view,
         };
         let mut rect = None;
         let mut out = self.egui.run_pass(raw, |ctx| {
@@ -148,7 +174,18 @@ impl Overlay {
                         .fill(egui::Color32::from_black_alpha(200))
                         .inner_margin(6.0)
                         .corner_radius(3.0)
-                        .show(ui, |ui| panel::show(ui, &header, stats));
+                        .show(ui, |ui| {
+                            // Long lines (a printed command line) wrap.
+                            ui.set_max_width(PANEL_WIDTH);
+                            panel::show(ui, &header, stats);
+                            if let Some(m) = text.message {
+                                ui.label(egui::RichText::new(m).weak());
+                            }
+                            ui.collapsing("settings", |ui| {
+                                let fields = (&mut edits.0, &mut edits.1);
+                                settings::show(ui, &config, fields, &mut requests);
+                            });
+                        });
                 });
             rect = Some(shown.response.rect);
         });
@@ -175,7 +212,7 @@ impl Overlay {
         self.painter
             .prepare(self.slot, &primitives, ppp, [extent.width, extent.height])?;
         self.rect = rect.map(|r| pixel_rect(r, ppp, [extent.width, extent.height]));
-        Ok(pending)
+        Ok((pending, requests))
     }
 
     /// Record the prepared panel over `target` (the frame hook calls this after the blit).

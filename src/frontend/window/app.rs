@@ -17,12 +17,12 @@ use super::script::{self, ScriptOp, ScriptStep};
 use super::stats::Stats;
 use crate::error::{Error, Result};
 use crate::frontend::display::{new_event_loop, presenting_context};
-use crate::frontend::overlay::{History, Overlay};
+use crate::frontend::overlay::{command_line, History, Overlay, PanelText, Request};
 use crate::frontend::swapchain_frame::{
     recreate, render_and_present, OverlayDraw, Presented, Recreated,
 };
 use crate::frontend::view_state::{display_cycle, help, needs_rebuild, Action, ViewState};
-use crate::renderer::{Renderer, FRAMES_IN_FLIGHT};
+use crate::renderer::{RenderConfig, Renderer, FRAMES_IN_FLIGHT};
 use crate::resources::targets::Target;
 use crate::scene::Camera;
 use crate::vk::recorder::Recorder;
@@ -97,6 +97,10 @@ pub fn run(
         stats: Stats::new(),
         history: History::default(),
         shot_pending: false,
+        settings: Vec::new(),
+        message: None,
+        requests: Vec::new(),
+        command: std::env::args().collect(),
         zero_ticks: 0,
         minimised: false,
         last_frame: None,
@@ -152,6 +156,14 @@ struct App {
     history: History,
     /// The screenshot key was pressed: the next presented frame is written.
     shot_pending: bool,
+    /// Live settings applied (sweep key, value), latest last: the command line's additions.
+    settings: Vec<(String, String)>,
+    /// The last message for the overlay's status line (a refused setting, say).
+    message: Option<String>,
+    /// What the overlay's widgets asked for last frame (applied after it).
+    requests: Vec<Request>,
+    /// The command line the viewer started with (the base of the printed one).
+    command: Vec<String>,
     /// Event-loop iterations left of a scripted zero extent.
     zero_ticks: u32,
     /// The window has a zero extent: nothing is rendered until it has one again.
@@ -323,31 +335,78 @@ impl App {
     /// and reuse rebuild the renderer on the same context and size (histories start over). A
     /// configuration the renderer rejects is reported and the switch undone.
     fn apply_view(&mut self) -> Result<()> {
-        let (Some(view), Some(renderer)) = (self.view.as_mut(), self.renderer.as_mut()) else {
+        let (Some(view), Some(renderer)) = (self.view.as_ref(), self.renderer.as_ref()) else {
             return Ok(());
         };
         let wanted = view.config(&renderer.config);
-        if !needs_rebuild(&renderer.config, &wanted) {
-            renderer.config = wanted;
+        let what = view.summary();
+        if !self.apply_config(wanted, &what)? {
+            self.reset_view();
+        }
+        Ok(())
+    }
+
+    /// A live setting (the overlay's controls, a script's `set=KEY:VALUE`): `name` is a sweep
+    /// key and `value` goes through the same parser as the command line's option, then the
+    /// configuration through `RenderConfig::validate`. A refused value is reported (stderr and
+    /// the overlay) and changes nothing.
+    fn set_setting(&mut self, name: &str, value: &str) -> Result<()> {
+        let Some(renderer) = self.renderer.as_ref() else {
+            return Ok(());
+        };
+        let mut wanted = renderer.config;
+        let checked = crate::sweep::keys::parse_key(name).and_then(|key| {
+            (key.set)(&mut wanted, value.trim()).map_err(|why| {
+                Error::Config(format!(
+                    "invalid value {value:?} for {name} ({why}); expected {}",
+                    key.syntax
+                ))
+            })?;
+            wanted.validate()
+        });
+        if let Err(e) = checked {
+            self.report(format!("cannot set {name}={value}: {e}"));
             return Ok(());
         }
+        if self.apply_config(wanted, &format!("{name}={value}"))? {
+            self.settings.retain(|(n, _)| n != name);
+            self.settings
+                .push((name.to_string(), value.trim().to_string()));
+            self.report(format!("set {name}={value}"));
+        }
+        self.reset_view();
+        Ok(())
+    }
+
+    /// Make the renderer's configuration `wanted` (`what` names the change): in place when
+    /// only the PCF kernel differs, else by rebuilding the renderer on the same context and
+    /// size (histories and the last second's statistics start over). False when the renderer
+    /// rejected it (reported; the old one stays).
+    fn apply_config(&mut self, wanted: RenderConfig, what: &str) -> Result<bool> {
+        let Some(renderer) = self.renderer.as_mut() else {
+            return Ok(false);
+        };
+        if !needs_rebuild(&renderer.config, &wanted) {
+            renderer.config = wanted;
+            return Ok(true);
+        }
         let pending = renderer.finish()?;
-        match Renderer::new(&self.ctx, renderer.scene.clone(), wanted) {
+        let rebuilt = Renderer::new(&self.ctx, renderer.scene.clone(), wanted);
+        self.absorb(pending);
+        let applied = match rebuilt {
             Ok(rebuilt) => {
-                *renderer = rebuilt;
-                eprintln!("renderer rebuilt: {}", view.summary());
+                if let Some(r) = self.renderer.as_mut() {
+                    *r = rebuilt;
+                }
+                self.history = History::default();
+                eprintln!("renderer rebuilt: {what}");
+                true
             }
             Err(e) => {
-                eprintln!(
-                    "cannot switch to \"{}\": {e}; switch undone",
-                    view.summary()
-                );
-                let display = view.display;
-                *view = ViewState::new(&renderer.config);
-                view.display = display;
+                self.report(format!("cannot switch to \"{what}\": {e}; switch undone"));
+                false
             }
-        }
-        self.absorb(pending);
+        };
         // Buffers of effects that are off are not written: step off them.
         if let (Some(live), Some(view), Some(renderer)) = (
             self.live.as_mut(),
@@ -360,7 +419,22 @@ impl App {
                 eprintln!("display: {}", view.display_name());
             }
         }
-        Ok(())
+        Ok(applied)
+    }
+
+    /// The viewer's switches from the renderer's configuration, keeping the displayed buffer.
+    fn reset_view(&mut self) {
+        if let (Some(view), Some(renderer)) = (self.view.as_mut(), self.renderer.as_ref()) {
+            let display = view.display;
+            *view = ViewState::new(&renderer.config);
+            view.display = display;
+        }
+    }
+
+    /// A message for the user: stderr, and the overlay's status line.
+    fn report(&mut self, message: String) {
+        eprintln!("{message}");
+        self.message = Some(message);
     }
 
     fn run_script(&mut self, event_loop: &ActiveEventLoop) {
@@ -390,6 +464,11 @@ impl App {
                             eprintln!("display: {name}");
                         }
                         _ => eprintln!("display: {name} is not available in this run"),
+                    }
+                }
+                ScriptOp::Set(key, value) => {
+                    if let Err(e) = self.set_setting(&key, &value) {
+                        self.fail(event_loop, e);
                     }
                 }
             }
@@ -426,6 +505,18 @@ impl App {
             }
         }
         self.run_script(event_loop);
+        for request in std::mem::take(&mut self.requests) {
+            match request {
+                Request::Action(a) => self.act(event_loop, a),
+                Request::Set(key, value) => self.set_setting(key, &value)?,
+                Request::CommandLine => {
+                    if let Some(r) = self.renderer.as_ref() {
+                        let line = command_line(&self.command, &r.config, &self.settings);
+                        self.report(line);
+                    }
+                }
+            }
+        }
         if event_loop.exiting() {
             return Ok(());
         }
@@ -507,11 +598,19 @@ impl App {
         );
         let draws = live.overlay.as_ref().is_some_and(|o| o.visible());
         let mut overlay = live.overlay.as_mut().filter(|o| o.visible());
-        let mut pending = Vec::new();
+        let (mut pending, mut requests) = (Vec::new(), Vec::new());
         if let Some(o) = overlay.as_mut() {
             let stats = self.history.window(Instant::now());
-            let panel = (shown.as_str(), &stats);
-            pending = o.prepare(&live.window, renderer, panel, live.swapchain.extent)?;
+            let text = PanelText {
+                view: &shown,
+                message: self.message.as_deref(),
+            };
+            (pending, requests) = o.prepare(
+                &live.window,
+                renderer,
+                (&text, &stats),
+                live.swapchain.extent,
+            )?;
         }
         let mut draw = |rec: &Recorder<'_>, tracker: &mut Tracker, target: &_, extent| {
             if let Some(o) = overlay.as_mut() {
@@ -550,6 +649,7 @@ impl App {
         if shoot {
             self.screenshot(live)?;
         }
+        self.requests.extend(requests);
         self.last_frame = Some(now);
         let prefix = format!("{} | {shown}", self.options.title);
         if let Some(title) = self.stats.title(&prefix) {

@@ -24,15 +24,17 @@ pub enum ScriptOp {
     Key(String),
     /// Show this buffer of the display cycle by name.
     Display(String),
+    /// A live setting: sweep key and value (checked when applied, as the overlay's are).
+    Set(String, String),
 }
 
 /// Parse `FRAME:OP[,FRAME:OP...]` with OP one of `resize=WxH`, `zero=N`, `key=NAME`,
-/// `display=NAME`.
+/// `display=NAME`, `set=KEY:VALUE`.
 pub fn parse_script(s: &str) -> std::result::Result<Vec<ScriptStep>, String> {
     let mut steps = Vec::new();
     for part in s.split(',').map(str::trim).filter(|p| !p.is_empty()) {
         let bad = || {
-            format!("bad script step {part:?}: expected FRAME:resize=WxH, FRAME:zero=N, FRAME:key=NAME or FRAME:display=NAME")
+            format!("bad script step {part:?}: expected FRAME:resize=WxH, FRAME:zero=N, FRAME:key=NAME, FRAME:display=NAME or FRAME:set=KEY:VALUE")
         };
         let (frame, op) = part.split_once(':').ok_or_else(bad)?;
         let frame: u64 = frame.trim().parse().map_err(|_| bad())?;
@@ -61,6 +63,10 @@ pub fn parse_script(s: &str) -> std::result::Result<Vec<ScriptStep>, String> {
                     return Err(format!("{part:?}: unknown buffer {name:?}"));
                 }
                 ScriptOp::Display(name.to_string())
+            }
+            "set" => {
+                let (key, value) = value.split_once(':').ok_or_else(bad)?;
+                ScriptOp::Set(key.trim().to_string(), value.trim().to_string())
             }
             _ => return Err(bad()),
         };
@@ -108,6 +114,11 @@ mod tests {
         assert!(parse_script("x:zero=1").is_err());
         assert!(parse_script("1:key=explode").is_err());
         assert!(parse_script("1:fly=1").is_err());
+        assert_eq!(
+            parse_script("4:set=ao.estimator:gtao").unwrap()[0].op,
+            ScriptOp::Set("ao.estimator".into(), "gtao".into())
+        );
+        assert!(parse_script("4:set=ao.estimator").is_err());
     }
 
     #[test]
