@@ -85,6 +85,22 @@ fn ssgi(display: &Display, args: &[&str]) -> Output {
         .expect("run ssgi")
 }
 
+/// `ssgi --validation view --size SIZE --rsm-size 128 --frames FRAMES` and `extra`.
+fn view(display: &Display, size: &str, frames: &str, extra: &[&str]) -> Output {
+    let mut args = vec![
+        "--validation",
+        "view",
+        "--size",
+        size,
+        "--rsm-size",
+        "128",
+        "--frames",
+        frames,
+    ];
+    args.extend(extra);
+    ssgi(display, &args)
+}
+
 fn tmp(name: &str) -> PathBuf {
     let dir = std::env::temp_dir().join(format!("ssgi-window-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
@@ -546,21 +562,9 @@ fn overlay_changes_only_its_rectangle() {
         let shot = tmp(name);
         // Direct light only: a short list of passes, so the panel leaves part of the
         // 320x240 frame uncovered.
-        let mut args = vec![
-            "--validation",
-            "view",
-            "--size",
-            "320x240",
-            "--rsm-size",
-            "128",
-            "--effects",
-            "direct",
-            "--frames",
-            "4",
-        ];
+        let mut args = vec!["--effects", "direct", "--capture", shot.to_str().unwrap()];
         args.extend(extra);
-        args.extend(["--capture", shot.to_str().unwrap()]);
-        let out = ssgi(&display, &args);
+        let out = view(&display, "320x240", "4", &args);
         let stderr = assert_clean_run(&out, &format!("view {extra:?}"));
         (load_rgba(&shot), stderr)
     };
@@ -620,17 +624,11 @@ fn screenshot_key_writes_the_frame_and_a_bench_report() {
     let display = display();
     let dir = tmp("shots");
     let shot = tmp("shot-capture.png");
-    let out = ssgi(
+    let out = view(
         &display,
+        "160x120",
+        "4",
         &[
-            "--validation",
-            "view",
-            "--size",
-            "160x120",
-            "--rsm-size",
-            "128",
-            "--frames",
-            "4",
             "--script",
             "3:key=screenshot",
             "--screenshot-dir",
@@ -673,19 +671,13 @@ fn screenshot_key_writes_the_frame_and_a_bench_report() {
 fn live_settings_match_the_command_line() {
     let display = display();
     let dir = tmp("settings-shots");
-    let out = ssgi(
+    let out = view(
         &display,
+        "64x48",
+        "6",
         &[
-            "--validation",
-            "view",
-            "--size",
-            "64x48",
-            "--rsm-size",
-            "128",
             "--skip-unchanged",
             "off",
-            "--frames",
-            "6",
             "--script",
             "1:set=indirect.vpls:0,2:set=ao.estimator:gtao,2:set=indirect.filter:svgf,5:key=screenshot",
             "--screenshot-dir",

@@ -140,7 +140,7 @@ fn counter_means(measured: &[&FrameTiming]) -> BTreeMap<String, f64> {
 /// Per pass with work-efficiency counters (`<pass>_invocations`, `<pass>_active_invocations`):
 /// active over launched lanes, a ratio of sums over the frames (frames weigh by their lanes).
 /// A GPU charges a launched lane whether or not it works; lavapipe charges the work.
-fn lane_efficiencies(sums: &BTreeMap<String, (f64, usize)>) -> Vec<(String, f64)> {
+pub(crate) fn lane_efficiencies(sums: &BTreeMap<String, (f64, usize)>) -> Vec<(String, f64)> {
     sums.iter()
         .filter_map(|(name, (launched, _))| {
             let pass = name.strip_suffix("_invocations")?;

@@ -3,9 +3,10 @@
 //! efficiency of the passes that count their invocations.
 
 use crate::bench::compare::{groups, in_group};
+use crate::bench::report::lane_efficiencies;
 use crate::bench::stats::{summarize, Summary};
 use crate::vk::FrameTiming;
-use std::collections::VecDeque;
+use std::collections::{BTreeMap, VecDeque};
 use std::time::{Duration, Instant};
 
 /// How far back the overlay's statistics reach.
@@ -163,34 +164,20 @@ impl History {
                 .iter()
                 .flat_map(|t| t.counters.iter().map(|(n, _)| *n)),
         );
+        let mut sums = BTreeMap::new();
         for name in counter_names {
             let values: Vec<u64> = recorded
                 .iter()
                 .filter_map(|t| t.counters.iter().find(|(n, _)| *n == name).map(|c| c.1))
                 .collect();
-            let mean = values.iter().sum::<u64>() as f64 / values.len().max(1) as f64;
-            w.counters.push((name, mean));
+            let sum = values.iter().sum::<u64>() as f64;
+            w.counters.push((name, sum / values.len().max(1) as f64));
+            sums.insert(name.to_string(), (sum, values.len()));
         }
-        w.lane_efficiency = lane_efficiency(&w.counters);
+        // As the bench report computes it: a ratio of sums over the frames.
+        w.lane_efficiency = lane_efficiencies(&sums);
         w
     }
-}
-
-/// Active over launched invocations for each `<pass>_invocations` counter that has a
-/// `<pass>_active_invocations` partner (means over the same frames, so the ratio of sums).
-fn lane_efficiency(counters: &[(&'static str, f64)]) -> Vec<(String, f64)> {
-    counters
-        .iter()
-        .filter_map(|(name, launched)| {
-            let pass = name.strip_suffix("_invocations")?;
-            if pass.ends_with("_active") || *launched <= 0.0 {
-                return None;
-            }
-            let active_name = format!("{pass}_active_invocations");
-            let active = counters.iter().find(|(n, _)| *n == active_name)?.1;
-            Some((pass.to_string(), active / launched))
-        })
-        .collect()
 }
 
 fn first_seen(names: impl Iterator<Item = &'static str>) -> Vec<&'static str> {
