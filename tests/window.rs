@@ -749,3 +749,111 @@ fn live_settings_match_the_command_line() {
     assert_eq!(recorded(&report), recorded(&headless));
     assert!(recorded(&report).iter().any(|p| p == "svgf_temporal"));
 }
+
+/// The ground-truth key (G; the script's `key=truth`, then `wait=truth`) scores the frame on
+/// screen as `ssgi reference` and the sweep's metric do: here the same frame is rendered
+/// headless, the reference traced at `ssgi reference`'s default sample counts, and each
+/// buffer's RMSE computed with `bench::ground_truth::errors`; they agree within 1e-6. A camera
+/// move while the tracer runs cancels it: no result is printed.
+#[test]
+fn ground_truth_key_scores_like_the_reference_and_the_sweep() {
+    use ssgi::bench::{ground_truth, measure::read_frame};
+    use ssgi::cli::args::{Cli, Command as Job};
+    use ssgi::reference::run::Session;
+    use ssgi::reference::trace::{
+        DEFAULT_AO_SAMPLES, DEFAULT_INDIRECT_SAMPLES, DEFAULT_SOFT_SHADOW_SAMPLES,
+    };
+    use ssgi::reference::{RefBuffer, Settings};
+
+    let display = display();
+    let cache = tmp("truth-cache");
+    let args = ["--size", "48x36", "--rsm-size", "128"];
+    let run = |frames: &str, script: &str| {
+        let mut all = vec![
+            "--validation",
+            "view",
+            "--frames",
+            frames,
+            "--script",
+            script,
+        ];
+        all.extend(args);
+        Command::new(env!("CARGO_BIN_EXE_ssgi"))
+            .args(&all)
+            .env("DISPLAY", &display.name)
+            .env("SSGI_CACHE", &cache)
+            .env_remove("WAYLAND_DISPLAY")
+            .output()
+            .expect("run ssgi")
+    };
+    // Cancelled: the camera moves on the frame after the tracer starts.
+    let out = run("8", "3:key=truth,4:move=0.01");
+    let stderr = assert_clean_run(&out, "view, ground truth cancelled");
+    assert!(
+        stderr.contains("ground truth cancelled: the camera moved"),
+        "{stderr}"
+    );
+    assert!(!stderr.contains(" rmse "), "{stderr}");
+    // Completed: 30 frames presented, then traced and scored.
+    let out = run("32", "30:key=truth,30:wait=truth");
+    let stderr = assert_clean_run(&out, "view, ground truth");
+    let viewer: Vec<(String, f64)> = stderr
+        .lines()
+        .filter_map(|l| l.strip_prefix("ground truth: "))
+        .filter_map(|l| {
+            let mut w = l.split_whitespace();
+            let name = w.next()?.to_string();
+            (w.next()? == "rmse").then_some(())?;
+            Some((name, w.next()?.parse().ok()?))
+        })
+        .collect();
+    assert!(viewer.len() >= 4, "no RMSE lines:\n{stderr}");
+
+    // The same frame headless, with the viewer's own configuration (the command line's).
+    let cli = <Cli as clap::Parser>::parse_from(["ssgi", "view"].into_iter().chain(args));
+    let Job::View(view_args) = &cli.command else {
+        unreachable!()
+    };
+    let config = view_args.scene.render_config();
+    let scene = ssgi::scene::load_scene("cornell-box", None).unwrap();
+    let ctx = ssgi::vk::Context::new(&ssgi::vk::ContextOptions {
+        validation: true,
+        ..Default::default()
+    })
+    .unwrap();
+    let mut renderer = ssgi::renderer::Renderer::new(&ctx, scene.clone(), config).unwrap();
+    let camera = scene.camera;
+    for _ in 0..30 {
+        renderer.render_frame(&camera).unwrap();
+    }
+    renderer.finish().unwrap();
+    let last = read_frame(&mut renderer, camera).unwrap();
+    // `ssgi reference`'s way: one refinement per buffer to its default count, no cache.
+    let settings = Settings::for_render(&config, &scene);
+    let mut session = Session::start(&scene, camera, 48, 36, settings, None, false).unwrap();
+    session.ensure(RefBuffer::Ao, DEFAULT_AO_SAMPLES).unwrap();
+    session
+        .ensure(RefBuffer::Direct, DEFAULT_SOFT_SHADOW_SAMPLES)
+        .unwrap();
+    session
+        .ensure(RefBuffer::Indirect, DEFAULT_INDIRECT_SAMPLES)
+        .unwrap();
+    let terms = ssgi::effects::estimated_terms(&config);
+    let errors = ground_truth::errors(&last, &session.reference, &scene, terms).unwrap();
+    assert_eq!(viewer.len(), errors.len(), "{stderr}");
+    for (b, e) in &errors {
+        let got = viewer
+            .iter()
+            .find(|(n, _)| n == b.name())
+            .unwrap_or_else(|| panic!("no {} line:\n{stderr}", b.name()))
+            .1;
+        let want = e.error.rmse;
+        assert!(
+            (got - want).abs() <= 1e-6 * want.abs().max(1e-12),
+            "{}: viewer {got:e}, reference + sweep metric {want:e}",
+            b.name()
+        );
+    }
+    drop(renderer);
+    ctx.wait_idle().unwrap();
+}

@@ -423,7 +423,7 @@ fn ambient_visibility(renderer: &mut Renderer) -> Result<ImageData> {
 }
 
 /// Every buffer of the frame last rendered (the GPU must be idle: after `finish`).
-fn read_frame(renderer: &mut Renderer, camera: Camera) -> Result<LastFrame> {
+pub fn read_frame(renderer: &mut Renderer, camera: Camera) -> Result<LastFrame> {
     let config = renderer.config;
     let mut buffers = Vec::new();
     for b in Buffer::ALL {

@@ -52,6 +52,9 @@ pub fn help() -> String {
   C                              print the camera as a keyframe (for --path files)
   H                              show / hide the overlay (GPU time per pass and group,
                                  median and p95 over the last second; counters; device)
+  G                              ground truth of the held view: `ssgi reference`'s
+                                 tracer in the background, then each buffer's RMSE and the
+                                 final image's FLIP against it (moving cancels; G again too)
   F12                            write the frame as PNG and the last second's GPU
                                  timings as JSON (bench format) into --screenshot-dir
   F1                             print this help
@@ -204,13 +207,15 @@ pub enum Action {
     ToggleOverlay,
     /// Write the presented frame (PNG) and the last second's timings (bench JSON).
     Screenshot,
+    /// Start (or cancel) the ground truth of the current view.
+    GroundTruth,
     Help,
     Quit,
 }
 
 impl Action {
     /// The action a test script names (`key=NAME`): cycle, pcf, an effect switch, an effect's
-    /// setting, reuse, camera, overlay, screenshot, help, quit.
+    /// setting, reuse, camera, overlay, screenshot, truth, help, quit.
     pub fn from_name(name: &str) -> Option<Action> {
         if let Some(e) = effect_keys().iter().copied().find(|e| *e == name) {
             return Some(Action::ToggleEffect(e));
@@ -225,6 +230,7 @@ impl Action {
             "camera" => Action::PrintCamera,
             "overlay" => Action::ToggleOverlay,
             "screenshot" => Action::Screenshot,
+            "truth" => Action::GroundTruth,
             "help" => Action::Help,
             "quit" => Action::Quit,
             _ => return None,

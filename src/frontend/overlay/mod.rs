@@ -64,6 +64,8 @@ pub struct PanelText<'a> {
     pub view: &'a str,
     /// The last message (a refused setting, say).
     pub message: Option<&'a str>,
+    /// The ground truth's progress or result lines.
+    pub truth: &'a [String],
 }
 
 impl Overlay {
@@ -180,6 +182,9 @@ impl Overlay {
                             panel::show(ui, &header, stats);
                             if let Some(m) = text.message {
                                 ui.label(egui::RichText::new(m).weak());
+                            }
+                            for line in text.truth {
+                                ui.label(line.as_str());
                             }
                             ui.collapsing("settings", |ui| {
                                 let fields = (&mut edits.0, &mut edits.1);

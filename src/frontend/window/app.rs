@@ -15,6 +15,9 @@ use super::keys;
 use super::screenshot;
 use super::script::{self, ScriptOp, ScriptStep};
 use super::stats::Stats;
+use super::truth::TruthJob;
+use crate::bench::ground_truth;
+use crate::bench::measure::read_frame;
 use crate::error::{Error, Result};
 use crate::frontend::display::{new_event_loop, presenting_context};
 use crate::frontend::overlay::{command_line, History, Overlay, PanelText, Request};
@@ -22,6 +25,8 @@ use crate::frontend::swapchain_frame::{
     recreate, render_and_present, OverlayDraw, Presented, Recreated,
 };
 use crate::frontend::view_state::{display_cycle, help, needs_rebuild, Action, ViewState};
+use crate::reference::store::default_dir;
+use crate::reference::{Reference, Settings};
 use crate::renderer::{RenderConfig, Renderer, FRAMES_IN_FLIGHT};
 use crate::resources::targets::Target;
 use crate::scene::Camera;
@@ -101,6 +106,8 @@ pub fn run(
         message: None,
         requests: Vec::new(),
         command: std::env::args().collect(),
+        truth: None,
+        truth_text: Vec::new(),
         zero_ticks: 0,
         minimised: false,
         last_frame: None,
@@ -164,6 +171,9 @@ struct App {
     requests: Vec<Request>,
     /// The command line the viewer started with (the base of the printed one).
     command: Vec<String>,
+    /// The ground truth being traced (G), and what the overlay says of it.
+    truth: Option<TruthJob>,
+    truth_text: Vec<String>,
     /// Event-loop iterations left of a scripted zero extent.
     zero_ticks: u32,
     /// The window has a zero extent: nothing is rendered until it has one again.
@@ -262,6 +272,10 @@ impl App {
     }
 
     fn act(&mut self, event_loop: &ActiveEventLoop, action: Action) {
+        if action == Action::GroundTruth {
+            self.toggle_truth();
+            return;
+        }
         let Some(view) = self.view.as_mut() else {
             return;
         };
@@ -286,6 +300,7 @@ impl App {
             }
             Action::ToggleReuse => view.temporal_reuse = !view.temporal_reuse,
             Action::Screenshot => self.shot_pending = true,
+            Action::GroundTruth => {} // above: it needs the whole viewer
             Action::ToggleOverlay => match self.live.as_mut().and_then(|l| l.overlay.as_mut()) {
                 Some(overlay) => {
                     overlay.toggle();
@@ -321,6 +336,7 @@ impl App {
                 | Action::PrintCamera
                 | Action::ToggleOverlay
                 | Action::Screenshot
+                | Action::GroundTruth
                 | Action::Help
                 | Action::Quit
         ) {
@@ -431,6 +447,98 @@ impl App {
         }
     }
 
+    /// G: trace the ground truth of the held view in the background, or cancel the tracing.
+    fn toggle_truth(&mut self) {
+        if let Some(job) = self.truth.take() {
+            job.cancel();
+            self.truth_text.clear();
+            self.report("ground truth cancelled (G)".into());
+            return;
+        }
+        let Some(r) = self.renderer.as_ref() else {
+            return;
+        };
+        let camera = self.camera.unwrap_or(r.scene.camera);
+        let scene = r.scene.posed(self.scene_time);
+        let settings = Settings::for_render(&r.config, &scene);
+        let (w, h) = (r.config.width, r.config.height);
+        eprintln!(
+            "ground truth: tracing {w}x{h} from the held camera on {} threads (G or moving \
+             cancels)",
+            rayon::current_num_threads()
+        );
+        self.truth = Some(TruthJob::start(
+            scene,
+            camera,
+            (w, h),
+            settings,
+            Some(default_dir()),
+        ));
+    }
+
+    /// Each frame: a camera other than the traced one cancels the job; a finished one scores
+    /// the frame.
+    fn check_truth(&mut self, camera: &Camera) -> Result<()> {
+        let Some(job) = self.truth.as_mut() else {
+            return Ok(());
+        };
+        if job.camera() != *camera {
+            if let Some(job) = self.truth.take() {
+                job.cancel();
+            }
+            self.truth_text.clear();
+            self.report("ground truth cancelled: the camera moved".into());
+            return Ok(());
+        }
+        let progress = job.progress();
+        match job.poll() {
+            None => {
+                self.truth_text = vec![format!(
+                    "ground truth: {:.0}% traced (G cancels)",
+                    100.0 * progress
+                )];
+                Ok(())
+            }
+            Some(result) => match self.truth.take() {
+                Some(job) => self.score_truth(&job, result),
+                None => Ok(()),
+            },
+        }
+    }
+
+    /// The frame now on screen against the traced reference, as the sweep scores it.
+    fn score_truth(&mut self, job: &TruthJob, result: Result<Reference>) -> Result<()> {
+        let reference = match result {
+            Ok(r) => r,
+            Err(e) => {
+                self.truth_text.clear();
+                self.report(format!("ground truth failed: {e}"));
+                return Ok(());
+            }
+        };
+        let renderer = self
+            .renderer
+            .as_mut()
+            .ok_or_else(|| Error::Window("no renderer".into()))?;
+        let pending = renderer.finish()?;
+        let last = read_frame(renderer, job.camera())?;
+        let terms = crate::effects::estimated_terms(&renderer.config);
+        let errors = ground_truth::errors(&last, &reference, job.scene(), terms)?;
+        self.absorb(pending);
+        self.truth_text = errors
+            .iter()
+            .map(|(b, e)| {
+                let flip = e.flip.map_or(String::new(), |f| format!(" flip {f:.9e}"));
+                format!("ground truth: {} rmse {:.9e}{flip}", b.name(), e.error.rmse)
+            })
+            .collect();
+        for line in &self.truth_text {
+            eprintln!("{line}");
+        }
+        self.message = None;
+        Ok(())
+    }
+
     /// A message for the user: stderr, and the overlay's status line.
     fn report(&mut self, message: String) {
         eprintln!("{message}");
@@ -464,6 +572,31 @@ impl App {
                             eprintln!("display: {name}");
                         }
                         _ => eprintln!("display: {name} is not available in this run"),
+                    }
+                }
+                ScriptOp::WaitTruth => {
+                    let result = self.truth.take().and_then(|mut job| {
+                        let result = job.wait()?;
+                        Some((job, result))
+                    });
+                    match result {
+                        Some((job, result)) => {
+                            if let Err(e) = self.score_truth(&job, result) {
+                                self.fail(event_loop, e);
+                            }
+                        }
+                        None => eprintln!("script: no ground truth is being traced"),
+                    }
+                }
+                ScriptOp::Move(fraction) => {
+                    if let Some(r) = self.renderer.as_ref() {
+                        let c = self.camera.unwrap_or(r.scene.camera);
+                        let step = c.frame().0 * fraction * r.scene.mesh.bounds.radius();
+                        let mut moved = c;
+                        moved.position += step;
+                        moved.target += step;
+                        self.camera = Some(moved);
+                        eprintln!("script: camera moved forward by {fraction} scene radii");
                     }
                 }
                 ScriptOp::Set(key, value) => {
@@ -572,6 +705,7 @@ impl App {
             .last_frame
             .map_or(0.0, |t| (now - t).as_secs_f32().min(0.1));
         let camera = self.update_camera(dt);
+        self.check_truth(&camera)?;
         self.scene_time += dt;
         let capture_now =
             self.options.capture.is_some() && self.total_frames() == Some(self.presented + 1);
@@ -604,6 +738,7 @@ impl App {
             let text = PanelText {
                 view: &shown,
                 message: self.message.as_deref(),
+                truth: &self.truth_text,
             };
             (pending, requests) = o.prepare(
                 &live.window,

@@ -25,6 +25,7 @@ pub fn action(key: KeyCode, mods: ModifiersState) -> Option<Action> {
         KeyCode::KeyH => Action::ToggleOverlay,
         KeyCode::F1 => Action::Help,
         KeyCode::F12 => Action::Screenshot,
+        KeyCode::KeyG => Action::GroundTruth,
         KeyCode::Escape => Action::Quit,
         _ => return None,
     })

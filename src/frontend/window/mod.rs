@@ -6,7 +6,8 @@
 //!
 //! Files: `app.rs` the application and frame loop, `keys.rs` window input to viewer input,
 //! `fly_camera.rs` the camera step, `script.rs` the test script, `stats.rs` the title's
-//! timings, `screenshot.rs` the screenshot key's PNG and report. Viewer keys: see [`help`] (`view_state.rs`).
+//! timings, `screenshot.rs` the screenshot key's PNG and report, `truth.rs` the ground
+//! truth on demand. Viewer keys: see [`help`] (`view_state.rs`).
 
 mod app;
 pub mod fly_camera;
@@ -14,6 +15,7 @@ pub mod keys;
 mod screenshot;
 pub mod script;
 mod stats;
+mod truth;
 
 pub use super::view_state::{display_cycle, help, Action, ViewState};
 pub use app::{run, WindowOptions, WindowRun};

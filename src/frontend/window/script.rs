@@ -26,15 +26,20 @@ pub enum ScriptOp {
     Display(String),
     /// A live setting: sweep key and value (checked when applied, as the overlay's are).
     Set(String, String),
+    /// Wait for the ground-truth job (`key=truth` starts it) and score the frame.
+    WaitTruth,
+    /// Move the camera forward by this fraction of the scene's bounding radius (as a held
+    /// `W` would).
+    Move(f32),
 }
 
 /// Parse `FRAME:OP[,FRAME:OP...]` with OP one of `resize=WxH`, `zero=N`, `key=NAME`,
-/// `display=NAME`, `set=KEY:VALUE`.
+/// `display=NAME`, `set=KEY:VALUE`, `wait=truth`, `move=FRACTION`.
 pub fn parse_script(s: &str) -> std::result::Result<Vec<ScriptStep>, String> {
     let mut steps = Vec::new();
     for part in s.split(',').map(str::trim).filter(|p| !p.is_empty()) {
         let bad = || {
-            format!("bad script step {part:?}: expected FRAME:resize=WxH, FRAME:zero=N, FRAME:key=NAME, FRAME:display=NAME or FRAME:set=KEY:VALUE")
+            format!("bad script step {part:?}: expected FRAME:resize=WxH, FRAME:zero=N, FRAME:key=NAME, FRAME:display=NAME, FRAME:set=KEY:VALUE, FRAME:wait=truth or FRAME:move=FRACTION")
         };
         let (frame, op) = part.split_once(':').ok_or_else(bad)?;
         let frame: u64 = frame.trim().parse().map_err(|_| bad())?;
@@ -63,6 +68,14 @@ pub fn parse_script(s: &str) -> std::result::Result<Vec<ScriptStep>, String> {
                     return Err(format!("{part:?}: unknown buffer {name:?}"));
                 }
                 ScriptOp::Display(name.to_string())
+            }
+            "wait" if value.trim() == "truth" => ScriptOp::WaitTruth,
+            "move" => {
+                let d: f32 = value.trim().parse().map_err(|_| bad())?;
+                if !d.is_finite() {
+                    return Err(bad());
+                }
+                ScriptOp::Move(d)
             }
             "set" => {
                 let (key, value) = value.split_once(':').ok_or_else(bad)?;
@@ -119,6 +132,12 @@ mod tests {
             ScriptOp::Set("ao.estimator".into(), "gtao".into())
         );
         assert!(parse_script("4:set=ao.estimator").is_err());
+        assert_eq!(
+            parse_script("5:wait=truth,6:move=-0.5").unwrap()[1].op,
+            ScriptOp::Move(-0.5)
+        );
+        assert!(parse_script("5:wait=frames").is_err());
+        assert!(parse_script("6:move=nan").is_err());
     }
 
     #[test]
