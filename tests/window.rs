@@ -753,8 +753,10 @@ fn live_settings_match_the_command_line() {
 /// The ground-truth key (G; the script's `key=truth`, then `wait=truth`) scores the frame on
 /// screen as `ssgi reference` and the sweep's metric do: here the same frame is rendered
 /// headless, the reference traced at `ssgi reference`'s default sample counts, and each
-/// buffer's RMSE computed with `bench::ground_truth::errors`; they agree within 1e-6. A camera
-/// move while the tracer runs cancels it: no result is printed.
+/// buffer's RMSE computed with `bench::ground_truth::errors`; they agree within 1e-6. The error
+/// map key (M) then shows the final image's FLIP map the sweep writes
+/// (`<stem>-final-flip.png`). A camera move while the tracer runs cancels it: no result is
+/// printed.
 #[test]
 fn ground_truth_key_scores_like_the_reference_and_the_sweep() {
     use ssgi::bench::{ground_truth, measure::read_frame};
@@ -768,6 +770,7 @@ fn ground_truth_key_scores_like_the_reference_and_the_sweep() {
     let display = display();
     let cache = tmp("truth-cache");
     let args = ["--size", "48x36", "--rsm-size", "128"];
+    let shot = tmp("truth-map.png");
     let run = |frames: &str, script: &str| {
         let mut all = vec![
             "--validation",
@@ -778,6 +781,7 @@ fn ground_truth_key_scores_like_the_reference_and_the_sweep() {
             script,
         ];
         all.extend(args);
+        all.extend(["--overlay", "off", "--capture", shot.to_str().unwrap()]);
         Command::new(env!("CARGO_BIN_EXE_ssgi"))
             .args(&all)
             .env("DISPLAY", &display.name)
@@ -795,7 +799,7 @@ fn ground_truth_key_scores_like_the_reference_and_the_sweep() {
     );
     assert!(!stderr.contains(" rmse "), "{stderr}");
     // Completed: 30 frames presented, then traced and scored.
-    let out = run("32", "30:key=truth,30:wait=truth");
+    let out = run("32", "30:key=truth,30:wait=truth,30:key=errormap");
     let stderr = assert_clean_run(&out, "view, ground truth");
     let viewer: Vec<(String, f64)> = stderr
         .lines()
@@ -854,6 +858,15 @@ fn ground_truth_key_scores_like_the_reference_and_the_sweep() {
             b.name()
         );
     }
+    let maps = tmp("truth-maps");
+    std::fs::create_dir_all(&maps).unwrap();
+    ground_truth::write_error_maps(&last, &session.reference, &scene, terms, &maps, "t").unwrap();
+    let flip = load_rgba(&maps.join("t-final-flip.png"));
+    assert_eq!(
+        differing_pixels(&load_rgba(&shot), &flip),
+        0,
+        "the shown map is not the sweep's"
+    );
     drop(renderer);
     ctx.wait_idle().unwrap();
 }

@@ -282,6 +282,25 @@ fn map_scale(b: Buffer, truth: &[f32], mask: &[bool]) -> f32 {
     }
 }
 
+/// The final image's FLIP per pixel against the ground truth as the magma map
+/// `write_error_maps` writes (`<stem>-final-flip.png`): RGBA8 pixels of the frame's size.
+pub fn final_flip_map(
+    last: &LastFrame,
+    reference: &Reference,
+    scene: &Scene,
+    terms: Terms,
+) -> Result<Option<(Vec<u8>, u32, u32)>> {
+    let Some(image) = last.buffer(Buffer::Final) else {
+        return Ok(None);
+    };
+    let Compared { got, truth, .. } = compared(Buffer::Final, image, last, reference, scene, terms);
+    let (w, h) = (image.width, image.height);
+    let f = flip_ldr(&to_rgb8(&got), &to_rgb8(&truth), w, h)?;
+    let rgba = crate::reference::error_metrics::error_map_rgba(&f.per_pixel, w, h, 1.0)
+        .map_err(Error::Config)?;
+    Ok(Some((rgba, w, h)))
+}
+
 /// Error maps of `last` against the ground truth: `<stem>-<buffer>.png` (absolute error per
 /// pixel, magma ramp, see `map_scale`) and `<stem>-final-flip.png` (FLIP per pixel, 0..1).
 pub fn write_error_maps(

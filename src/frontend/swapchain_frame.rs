@@ -52,14 +52,15 @@ pub enum Presented {
 pub type OverlayDraw<'a> =
     &'a mut dyn FnMut(&Recorder<'_>, &mut Tracker, &SwapchainImage, vk::Extent2D);
 
-/// Render one frame of `renderer` at `camera` with `source` blitted into the next swapchain
-/// image, `overlay` drawn over it, then present it. With `capture`, the presented image is
-/// also copied into that buffer (read it after the frame completed).
+/// Render one frame of `renderer` at `camera` with `source` (or `replace`, an image of the
+/// frontend's: the viewer's error map) blitted into the next swapchain image, `overlay` drawn
+/// over it, then present it. With `capture`, the presented image is also copied into that
+/// buffer (read it after the frame completed).
 pub fn render_and_present(
     swapchain: &mut Swapchain,
     renderer: &mut Renderer,
     camera: &Camera,
-    source: Target,
+    (source, replace): (Target, Option<&Image>),
     capture: Option<&Buffer>,
     mut overlay: Option<OverlayDraw<'_>>,
 ) -> Result<Presented> {
@@ -71,7 +72,7 @@ pub fn render_and_present(
     };
     let chain = &*swapchain;
     let mut record = |r: &mut Recording<'_>, src: &Image| {
-        chain.record_blit(&r.rec, r.tracker, src, image.index);
+        chain.record_blit(&r.rec, r.tracker, replace.unwrap_or(src), image.index);
         if let Some(draw) = overlay.as_mut() {
             let target = chain.image(image.index);
             r.timed(PassId::OVERLAY, |rec, tracker| {

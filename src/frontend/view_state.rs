@@ -55,6 +55,8 @@ pub fn help() -> String {
   G                              ground truth of the held view: `ssgi reference`'s
                                  tracer in the background, then each buffer's RMSE and the
                                  final image's FLIP against it (moving cancels; G again too)
+  M                              show the final image's FLIP map against the ground truth
+                                 in place of the image (after G; moving drops it)
   F12                            write the frame as PNG and the last second's GPU
                                  timings as JSON (bench format) into --screenshot-dir
   F1                             print this help
@@ -209,13 +211,15 @@ pub enum Action {
     Screenshot,
     /// Start (or cancel) the ground truth of the current view.
     GroundTruth,
+    /// Show the final image's FLIP map against the ground truth in place of the image.
+    ErrorMap,
     Help,
     Quit,
 }
 
 impl Action {
     /// The action a test script names (`key=NAME`): cycle, pcf, an effect switch, an effect's
-    /// setting, reuse, camera, overlay, screenshot, truth, help, quit.
+    /// setting, reuse, camera, overlay, screenshot, truth, errormap, help, quit.
     pub fn from_name(name: &str) -> Option<Action> {
         if let Some(e) = effect_keys().iter().copied().find(|e| *e == name) {
             return Some(Action::ToggleEffect(e));
@@ -231,6 +235,7 @@ impl Action {
             "overlay" => Action::ToggleOverlay,
             "screenshot" => Action::Screenshot,
             "truth" => Action::GroundTruth,
+            "errormap" => Action::ErrorMap,
             "help" => Action::Help,
             "quit" => Action::Quit,
             _ => return None,

@@ -247,7 +247,7 @@ impl FrameSink for WindowPresenter {
                 &mut self.swapchain,
                 renderer,
                 camera,
-                Target::Output,
+                (Target::Output, None),
                 None,
                 None,
             )? {

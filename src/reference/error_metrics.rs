@@ -9,7 +9,7 @@
 mod error_map;
 mod flip;
 
-pub use error_map::{write_error_map, NAN_COLOUR};
+pub use error_map::{error_map_rgba, write_error_map, NAN_COLOUR};
 pub use flip::{flip_ldr, masked_mean, FlipResult, PIXELS_PER_DEGREE};
 
 use crate::error::{Error, Result};

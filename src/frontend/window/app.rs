@@ -33,8 +33,8 @@ use crate::scene::Camera;
 use crate::vk::recorder::Recorder;
 use crate::vk::swapchain::present_mode_name;
 use crate::vk::{
-    Buffer, Context, ContextOptions, FrameTiming, ImageData, PresentPolicy, Surface, Swapchain,
-    SwapchainOptions, Tracker,
+    upload_image, Access, Buffer, Context, ContextOptions, FrameTiming, Image, ImageData,
+    ImageDesc, PresentPolicy, Surface, Swapchain, SwapchainOptions, Tracker,
 };
 use glam::Vec3;
 use std::path::PathBuf;
@@ -108,6 +108,8 @@ pub fn run(
         command: std::env::args().collect(),
         truth: None,
         truth_text: Vec::new(),
+        error_map: None,
+        show_error_map: false,
         zero_ticks: 0,
         minimised: false,
         last_frame: None,
@@ -174,6 +176,10 @@ struct App {
     /// The ground truth being traced (G), and what the overlay says of it.
     truth: Option<TruthJob>,
     truth_text: Vec<String>,
+    /// The final image's FLIP map from the last ground truth, the camera it belongs to, and
+    /// whether it is shown in place of the image (M).
+    error_map: Option<(Image, Camera)>,
+    show_error_map: bool,
     /// Event-loop iterations left of a scripted zero extent.
     zero_ticks: u32,
     /// The window has a zero extent: nothing is rendered until it has one again.
@@ -272,9 +278,18 @@ impl App {
     }
 
     fn act(&mut self, event_loop: &ActiveEventLoop, action: Action) {
-        if action == Action::GroundTruth {
-            self.toggle_truth();
-            return;
+        match action {
+            Action::GroundTruth => return self.toggle_truth(),
+            Action::ErrorMap => {
+                self.show_error_map = self.error_map.is_some() && !self.show_error_map;
+                return match (&self.error_map, self.show_error_map) {
+                    (None, _) => self.report("no error map: press G for the ground truth".into()),
+                    (Some(_), on) => {
+                        eprintln!("error map: {}", if on { "shown" } else { "hidden" })
+                    }
+                };
+            }
+            _ => {}
         }
         let Some(view) = self.view.as_mut() else {
             return;
@@ -300,7 +315,7 @@ impl App {
             }
             Action::ToggleReuse => view.temporal_reuse = !view.temporal_reuse,
             Action::Screenshot => self.shot_pending = true,
-            Action::GroundTruth => {} // above: it needs the whole viewer
+            Action::GroundTruth | Action::ErrorMap => {} // above: they need the whole viewer
             Action::ToggleOverlay => match self.live.as_mut().and_then(|l| l.overlay.as_mut()) {
                 Some(overlay) => {
                     overlay.toggle();
@@ -337,6 +352,7 @@ impl App {
                 | Action::ToggleOverlay
                 | Action::Screenshot
                 | Action::GroundTruth
+                | Action::ErrorMap
                 | Action::Help
                 | Action::Quit
         ) {
@@ -416,6 +432,9 @@ impl App {
                 }
                 self.history = History::default();
                 eprintln!("renderer rebuilt: {what}");
+                if self.error_map.is_some() {
+                    self.drop_error_map("the configuration changed");
+                }
                 true
             }
             Err(e) => {
@@ -524,7 +543,35 @@ impl App {
         let last = read_frame(renderer, job.camera())?;
         let terms = crate::effects::estimated_terms(&renderer.config);
         let errors = ground_truth::errors(&last, &reference, job.scene(), terms)?;
+        let map = ground_truth::final_flip_map(&last, &reference, job.scene(), terms)?;
         self.absorb(pending);
+        self.error_map = match map {
+            Some((rgba, w, h)) => {
+                let image = Image::new(
+                    &self.ctx,
+                    "ground truth FLIP map",
+                    ImageDesc {
+                        width: w,
+                        height: h,
+                        format: ash::vk::Format::R8G8B8A8_UNORM,
+                        // SAMPLED: every image gets a view (memory.rs), which needs a
+                        // view-compatible usage; the map is only blitted.
+                        usage: ash::vk::ImageUsageFlags::TRANSFER_SRC
+                            | ash::vk::ImageUsageFlags::TRANSFER_DST
+                            | ash::vk::ImageUsageFlags::SAMPLED,
+                    },
+                )?;
+                upload_image(
+                    &self.ctx,
+                    &mut Tracker::default(),
+                    &image,
+                    &rgba,
+                    Access::TransferSrc,
+                )?;
+                Some((image, job.camera()))
+            }
+            None => None,
+        };
         self.truth_text = errors
             .iter()
             .map(|(b, e)| {
@@ -537,6 +584,14 @@ impl App {
         }
         self.message = None;
         Ok(())
+    }
+
+    /// The error map no longer matches the view (`why`): drop it, and the scores with it.
+    fn drop_error_map(&mut self, why: &str) {
+        self.error_map = None;
+        self.show_error_map = false;
+        self.truth_text.clear();
+        self.report(format!("ground truth dropped: {why}"));
     }
 
     /// A message for the user: stderr, and the overlay's status line.
@@ -706,6 +761,9 @@ impl App {
             .map_or(0.0, |t| (now - t).as_secs_f32().min(0.1));
         let camera = self.update_camera(dt);
         self.check_truth(&camera)?;
+        if self.error_map.as_ref().is_some_and(|(_, c)| *c != camera) {
+            self.drop_error_map("the camera moved");
+        }
         self.scene_time += dt;
         let capture_now =
             self.options.capture.is_some() && self.total_frames() == Some(self.presented + 1);
@@ -752,11 +810,16 @@ impl App {
                 o.record(rec, tracker, target, extent);
             }
         };
+        let replace = self
+            .error_map
+            .as_ref()
+            .filter(|_| self.show_error_map)
+            .map(|(image, _)| image);
         let presented = render_and_present(
             &mut live.swapchain,
             renderer,
             &camera,
-            source,
+            (source, replace),
             capture,
             draws.then_some(&mut draw as OverlayDraw<'_>),
         )?;

@@ -26,6 +26,7 @@ pub fn action(key: KeyCode, mods: ModifiersState) -> Option<Action> {
         KeyCode::F1 => Action::Help,
         KeyCode::F12 => Action::Screenshot,
         KeyCode::KeyG => Action::GroundTruth,
+        KeyCode::KeyM => Action::ErrorMap,
         KeyCode::Escape => Action::Quit,
         _ => return None,
     })

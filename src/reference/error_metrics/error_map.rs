@@ -17,23 +17,35 @@ pub fn write_error_map(
     height: u32,
     max: f32,
 ) -> Result<()> {
-    let invalid = |message: String| Error::ImageWrite {
-        path: path.to_path_buf(),
-        message,
-    };
+    let rgba =
+        error_map_rgba(per_pixel, width, height, max).map_err(|message| Error::ImageWrite {
+            path: path.to_path_buf(),
+            message,
+        })?;
+    crate::files::write_png_rgba8(path, width, height, &rgba)
+}
+
+/// The map [`write_error_map`] writes, as RGBA8 (sRGB-encoded) pixels; the error says why
+/// the values or the scale cannot make one.
+pub fn error_map_rgba(
+    per_pixel: &[f32],
+    width: u32,
+    height: u32,
+    max: f32,
+) -> std::result::Result<Vec<u8>, String> {
     if per_pixel.len() as u64 != u64::from(width) * u64::from(height) {
-        return Err(invalid(format!(
+        return Err(format!(
             "{} error values for a {width}x{height} map",
             per_pixel.len()
-        )));
+        ));
     }
     if !(max.is_finite() && max > 0.0) {
-        return Err(invalid(format!("error map scale {max} is not positive")));
+        return Err(format!("error map scale {max} is not positive"));
     }
     // nv_flip's `apply_color_lut` indexes modulo the LUT size, wrapping errors above 1 back
     // to black, so the ramp is read out and indexed here with clamping.
     let lut = nv_flip::magma_lut().to_vec();
-    let rgba: Vec<u8> = per_pixel
+    Ok(per_pixel
         .iter()
         .flat_map(|&v| {
             let [r, g, b] = if v.is_nan() {
@@ -44,8 +56,7 @@ pub fn write_error_map(
             };
             [r, g, b, 255]
         })
-        .collect();
-    crate::files::write_png_rgba8(path, width, height, &rgba)
+        .collect())
 }
 
 #[cfg(test)]
