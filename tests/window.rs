@@ -870,3 +870,51 @@ fn ground_truth_key_scores_like_the_reference_and_the_sweep() {
     drop(renderer);
     ctx.wait_idle().unwrap();
 }
+
+/// The render scale (the overlay's setting, `--render-scale`): the renderer renders at that
+/// fraction of the window and the window still shows the whole frame; a refused value gives
+/// the command line's reason.
+#[test]
+fn render_scale_setting_resizes_the_renderer() {
+    let display = display();
+    let dir = tmp("scale-shots");
+    let out = view(
+        &display,
+        "64x48",
+        "4",
+        &[
+            "--script",
+            "1:set=render_scale:2,1:set=render_scale:0.5,3:key=screenshot",
+            "--screenshot-dir",
+            dir.to_str().unwrap(),
+        ],
+    );
+    let stderr = assert_clean_run(&out, "view with a render scale");
+    let cli = Command::new(env!("CARGO_BIN_EXE_ssgi"))
+        .args(["view", "--render-scale", "2"])
+        .output()
+        .unwrap();
+    let cli_err = String::from_utf8_lossy(&cli.stderr);
+    let why = cli_err
+        .lines()
+        .next()
+        .and_then(|l| l.split_once("': "))
+        .map(|(_, why)| why.to_string())
+        .unwrap_or_else(|| panic!("no reason in {cli_err}"));
+    assert!(
+        stderr.contains("cannot set render_scale=2: ") && stderr.contains(&why),
+        "{stderr}"
+    );
+    let report: serde_json::Value = serde_json::from_str(
+        &std::fs::read_to_string(dir.join("view-000004.json")).expect("screenshot report"),
+    )
+    .unwrap();
+    assert_eq!(
+        (report["width"].as_u64(), report["height"].as_u64()),
+        (Some(32), Some(24))
+    );
+    assert_eq!(
+        load_rgba(&dir.join("view-000004.png")).dimensions(),
+        (64, 48)
+    );
+}

@@ -228,6 +228,16 @@ impl SceneArgs {
     }
 }
 
+/// `--render-scale`: the render size as a fraction of the window's, 0.1 to 1.
+pub fn parse_render_scale(s: &str) -> std::result::Result<f32, String> {
+    match s.trim().parse::<f32>() {
+        Ok(f) if (0.1..=1.0).contains(&f) => Ok(f),
+        _ => Err(format!(
+            "--render-scale takes a fraction of the window's size in 0.1..=1, not {s:?}"
+        )),
+    }
+}
+
 fn parse_frame_count_u64(s: &str) -> std::result::Result<u64, String> {
     parse_frame_count(s).map(u64::from)
 }
@@ -341,6 +351,10 @@ pub struct ViewArgs {
     /// second), counters, device; `H` hides it. `off` draws none (no `overlay` timing row).
     #[arg(long, default_value = "on", value_parser = parse_on_off, action = clap::ArgAction::Set)]
     pub overlay: bool,
+    /// Render at this fraction of the window's size (0.1 to 1); the presented image is
+    /// scaled up to the window. The overlay's settings change it live.
+    #[arg(long, default_value_t = 1.0, value_parser = parse_render_scale)]
+    pub render_scale: f32,
     /// Where F12 writes the presented frame (`view-<frame>.png`) and the last second's GPU
     /// timings in the bench report format (`view-<frame>.json`).
     #[arg(long, value_name = "DIR", default_value = "out/view")]

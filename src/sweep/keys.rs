@@ -4,6 +4,7 @@
 //! (the cache's, the shadow map's size) are here; each effect declares its own in its folder
 //! (`effects/<effect>/sweep.rs`) and the registry lists them.
 
+use crate::config::antialias::AaMode;
 use crate::config::parse::{
     parse_bias, parse_count, parse_ema_alpha, parse_epsilon, parse_fraction, parse_gate,
     parse_on_off, parse_pattern_count, AccumulateMode,
@@ -33,7 +34,7 @@ pub const ACCUMULATE: SweepKey = SweepKey {
     },
 };
 
-/// The frame-wide keys: the cache's and the shadow map's size.
+/// The frame-wide keys: the cache's, the shadow map's size, the antialiasing.
 pub const FRAME_KEYS: &[SweepKey] = &[
     SweepKey {
         name: "temporal.reuse",
@@ -105,6 +106,15 @@ pub const FRAME_KEYS: &[SweepKey] = &[
         description: "side of the (reflective) shadow map in texels (--rsm-size)",
         set: |c, v| {
             c.rsm_size = parse_count(v, 1, crate::renderer::MAX_SIZE)?;
+            Ok(())
+        },
+    },
+    SweepKey {
+        name: "aa",
+        syntax: "none|sraa|sraa-shadow|ssaa16",
+        description: "antialiasing; ssaa16 renders 16 samples per pixel, the reference (--aa)",
+        set: |c, v| {
+            c.aa.mode = AaMode::from_str(v, false)?;
             Ok(())
         },
     },
@@ -378,6 +388,7 @@ mod tests {
                 c.temporal.epsilon = Epsilon::Absolute { epsilon: 0.1 }
             }),
             ("rsm_size", "1024", |c| c.rsm_size = 1024),
+            ("aa", "sraa", |c| c.aa.mode = AaMode::Sraa),
         ];
         assert_eq!(cases.len(), FRAME_KEYS.len(), "a key without a test");
         for (name, value, set) in cases {

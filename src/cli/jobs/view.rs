@@ -25,6 +25,7 @@ pub fn view(cli: &Cli, args: &ViewArgs) -> Result<()> {
             script,
             capture: args.capture.clone(),
             overlay: args.overlay,
+            render_scale: args.render_scale,
             screenshot_dir: args.screenshot_dir.clone(),
         },
         context_options(cli),

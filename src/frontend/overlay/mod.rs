@@ -18,7 +18,7 @@ mod settings;
 
 pub use history::{History, Window as Stats};
 pub use painter::layout;
-pub use settings::{command_line, Request};
+pub use settings::{command_line, Request, RENDER_SCALE};
 
 use crate::config::RenderConfig;
 use crate::error::{Error, Result};
@@ -54,8 +54,8 @@ pub struct Overlay {
     error: Option<Error>,
     /// The settings' edit fields (VPLs, refresh budget in percent), and the configuration
     /// they were last read from.
-    edits: (u32, f32),
-    synced: Option<RenderConfig>,
+    edits: (u32, f32, f32),
+    synced: Option<(RenderConfig, f32)>,
 }
 
 /// What the panel shows besides the statistics.
@@ -66,6 +66,8 @@ pub struct PanelText<'a> {
     pub message: Option<&'a str>,
     /// The ground truth's progress or result lines.
     pub truth: &'a [String],
+    /// The render size as a fraction of the window's.
+    pub render_scale: f32,
 }
 
 impl Overlay {
@@ -108,7 +110,7 @@ impl Overlay {
             slot: 0,
             rect: None,
             error: None,
-            edits: (0, 0.0),
+            edits: (0, 0.0, 1.0),
             synced: None,
         })
     }
@@ -156,9 +158,13 @@ impl Overlay {
             return Ok((Vec::new(), Vec::new()));
         }
         let config = renderer.config;
-        if self.synced != Some(config) {
-            self.edits = (config.indirect.vpls, 100.0 * config.temporal.refresh_budget);
-            self.synced = Some(config);
+        if self.synced != Some((config, text.render_scale)) {
+            self.edits = (
+                config.indirect.vpls,
+                100.0 * config.temporal.refresh_budget,
+                text.render_scale,
+            );
+            self.synced = Some((config, text.render_scale));
         }
         let mut requests = Vec::new();
         let edits = &mut self.edits;
@@ -187,7 +193,11 @@ impl Overlay {
                                 ui.label(line.as_str());
                             }
                             ui.collapsing("settings", |ui| {
-                                let fields = (&mut edits.0, &mut edits.1);
+                                let fields = settings::Fields {
+                                    vpls: &mut edits.0,
+                                    budget: &mut edits.1,
+                                    scale: (&mut edits.2, text.render_scale),
+                                };
                                 settings::show(ui, &config, fields, &mut requests);
                             });
                         });

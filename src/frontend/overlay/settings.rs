@@ -19,7 +19,7 @@ pub enum Request {
 }
 
 /// Keys offered as a choice among their plain values.
-const CHOICES: [(&str, &str, &[&str]); 3] = [
+const CHOICES: [(&str, &str, &[&str]); 4] = [
     (
         "AO",
         "ao.estimator",
@@ -35,6 +35,11 @@ const CHOICES: [(&str, &str, &[&str]); 3] = [
         "temporal.accumulate",
         &["gated", "confidence", "ema", "mean"],
     ),
+    (
+        "antialias",
+        "aa",
+        &["none", "sraa", "sraa-shadow", "ssaa16"],
+    ),
 ];
 
 /// Which of `values` of sweep key `key` the configuration holds: the one whose parser turns
@@ -47,14 +52,26 @@ pub fn current<'a>(config: &RenderConfig, key: &str, values: &[&'a str]) -> Opti
     })
 }
 
-/// The settings section; `vpls` and `budget` are the edit fields' values (kept between frames
-/// so a drag applies once, on release).
-pub fn show(
-    ui: &mut egui::Ui,
-    config: &RenderConfig,
-    (vpls, budget): (&mut u32, &mut f32),
-    out: &mut Vec<Request>,
-) {
+/// The viewer's own setting (not a sweep key): the render size as a fraction of the
+/// window's, `--render-scale`.
+pub const RENDER_SCALE: &str = "render_scale";
+
+/// The edit fields' values, kept between frames so a drag applies once, on release.
+pub struct Fields<'a> {
+    pub vpls: &'a mut u32,
+    /// Refresh budget, percent.
+    pub budget: &'a mut f32,
+    /// The render scale being edited, and the one in use.
+    pub scale: (&'a mut f32, f32),
+}
+
+/// The settings section.
+pub fn show(ui: &mut egui::Ui, config: &RenderConfig, f: Fields<'_>, out: &mut Vec<Request>) {
+    let Fields {
+        vpls,
+        budget,
+        scale: (scale, scale_now),
+    } = f;
     ui.horizontal_wrapped(|ui| {
         for name in effect_keys() {
             let mut on = config.effects.has(name);
@@ -101,6 +118,12 @@ pub fn show(
                 ));
             }
             ui.end_row();
+            ui.label("render scale");
+            let r = ui.add(egui::DragValue::new(scale).range(0.1..=1.0).speed(0.01));
+            if released(&r) && (*scale - scale_now).abs() > 1e-4 {
+                out.push(Request::Set(RENDER_SCALE, format!("{scale}")));
+            }
+            ui.end_row();
         });
     if ui.button("print the command line").clicked() {
         out.push(Request::CommandLine);
@@ -122,7 +145,11 @@ pub fn command_line(
 ) -> String {
     let mut args: Vec<String> = base.to_vec();
     for (key, value) in settings {
-        match parse_key(key).ok().and_then(|k| option_of(k.description)) {
+        let option = match key.as_str() {
+            RENDER_SCALE => Some("--render-scale"),
+            _ => parse_key(key).ok().and_then(|k| option_of(k.description)),
+        };
+        match option {
             Some(option) => {
                 args.push(option.to_string());
                 args.push(value.clone());

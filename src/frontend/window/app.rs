@@ -18,9 +18,10 @@ use super::stats::Stats;
 use super::truth::TruthJob;
 use crate::bench::ground_truth;
 use crate::bench::measure::read_frame;
+use crate::cli::args::parse_render_scale;
 use crate::error::{Error, Result};
 use crate::frontend::display::{new_event_loop, presenting_context};
-use crate::frontend::overlay::{command_line, History, Overlay, PanelText, Request};
+use crate::frontend::overlay::{command_line, History, Overlay, PanelText, Request, RENDER_SCALE};
 use crate::frontend::swapchain_frame::{
     recreate, render_and_present, OverlayDraw, Presented, Recreated,
 };
@@ -63,6 +64,8 @@ pub struct WindowOptions {
     pub overlay: bool,
     /// Where the screenshot key writes.
     pub screenshot_dir: PathBuf,
+    /// The render size as a fraction of the window's (`--render-scale`).
+    pub render_scale: f32,
 }
 
 /// What a windowed run leaves: the renderer (for PNG output; drop it before `ctx`), every
@@ -260,20 +263,30 @@ impl App {
         }
         let sc = &live.swapchain;
         let (w, h) = (sc.extent.width, sc.extent.height);
-        let renderer = self
-            .renderer
-            .as_mut()
-            .ok_or_else(|| Error::Window("no renderer".into()))?;
-        if (renderer.config.width, renderer.config.height) != (w, h) {
-            let pending = renderer.resize(w, h)?;
-            self.timings.extend(pending);
-        }
+        self.fit_renderer((w, h))?;
+        let sc = &live.swapchain;
         eprintln!(
             "swapchain: {w}x{h} {:?}, {} images, present mode {}",
             sc.format,
             sc.image_count(),
             present_mode_name(sc.present_mode)
         );
+        Ok(())
+    }
+
+    /// Size the renderer to `window` times the render scale (at least a pixel each way).
+    fn fit_renderer(&mut self, (w, h): (u32, u32)) -> Result<()> {
+        let s = self.options.render_scale;
+        let scaled = |n: u32| ((n as f32 * s).round() as u32).max(1);
+        let (w, h) = (scaled(w), scaled(h));
+        let renderer = self
+            .renderer
+            .as_mut()
+            .ok_or_else(|| Error::Window("no renderer".into()))?;
+        if (renderer.config.width, renderer.config.height) != (w, h) {
+            let pending = renderer.resize(w, h)?;
+            self.absorb(pending);
+        }
         Ok(())
     }
 
@@ -383,6 +396,9 @@ impl App {
     /// configuration through `RenderConfig::validate`. A refused value is reported (stderr and
     /// the overlay) and changes nothing.
     fn set_setting(&mut self, name: &str, value: &str) -> Result<()> {
+        if name == RENDER_SCALE {
+            return self.set_render_scale(value);
+        }
         let Some(renderer) = self.renderer.as_ref() else {
             return Ok(());
         };
@@ -407,6 +423,25 @@ impl App {
             self.report(format!("set {name}={value}"));
         }
         self.reset_view();
+        Ok(())
+    }
+
+    /// The viewer's own setting: the render scale (`--render-scale`'s parser).
+    fn set_render_scale(&mut self, value: &str) -> Result<()> {
+        match parse_render_scale(value) {
+            Ok(scale) => {
+                self.options.render_scale = scale;
+                if let Some(extent) = self.live.as_ref().map(|l| l.swapchain.extent) {
+                    self.fit_renderer((extent.width, extent.height))?;
+                }
+                self.history = History::default();
+                self.settings.retain(|(n, _)| n != RENDER_SCALE);
+                self.settings
+                    .push((RENDER_SCALE.to_string(), value.trim().to_string()));
+                self.report(format!("set {RENDER_SCALE}={value}"));
+            }
+            Err(why) => self.report(format!("cannot set {RENDER_SCALE}={value}: {why}")),
+        }
         Ok(())
     }
 
@@ -797,6 +832,7 @@ impl App {
                 view: &shown,
                 message: self.message.as_deref(),
                 truth: &self.truth_text,
+                render_scale: self.options.render_scale,
             };
             (pending, requests) = o.prepare(
                 &live.window,
