@@ -101,6 +101,21 @@ fn view(display: &Display, size: &str, frames: &str, extra: &[&str]) -> Output {
     ssgi(display, &args)
 }
 
+/// The reason the command line gives for refusing `args` (clap's first line, after the
+/// option's name).
+fn cli_reason(args: &[&str]) -> String {
+    let out = Command::new(env!("CARGO_BIN_EXE_ssgi"))
+        .args(args)
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&out.stderr);
+    err.lines()
+        .next()
+        .and_then(|l| l.split_once("': "))
+        .map(|(_, why)| why.to_string())
+        .unwrap_or_else(|| panic!("no reason in {err}"))
+}
+
 fn tmp(name: &str) -> PathBuf {
     let dir = std::env::temp_dir().join(format!("ssgi-window-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
@@ -686,17 +701,7 @@ fn live_settings_match_the_command_line() {
     );
     let stderr = assert_clean_run(&out, "view with live settings");
     // The refused value: the command line's own reason.
-    let cli = Command::new(env!("CARGO_BIN_EXE_ssgi"))
-        .args(["render", "--vpls", "0"])
-        .output()
-        .unwrap();
-    let cli_err = String::from_utf8_lossy(&cli.stderr);
-    let why = cli_err
-        .lines()
-        .next()
-        .and_then(|l| l.split_once("': "))
-        .map(|(_, why)| why.to_string())
-        .unwrap_or_else(|| panic!("no reason in {cli_err}"));
+    let why = cli_reason(&["render", "--vpls", "0"]);
     assert!(
         stderr.contains("cannot set indirect.vpls=0: ") && stderr.contains(&why),
         "the viewer did not print the command line's reason {why:?}:\n{stderr}"
@@ -890,17 +895,7 @@ fn render_scale_setting_resizes_the_renderer() {
         ],
     );
     let stderr = assert_clean_run(&out, "view with a render scale");
-    let cli = Command::new(env!("CARGO_BIN_EXE_ssgi"))
-        .args(["view", "--render-scale", "2"])
-        .output()
-        .unwrap();
-    let cli_err = String::from_utf8_lossy(&cli.stderr);
-    let why = cli_err
-        .lines()
-        .next()
-        .and_then(|l| l.split_once("': "))
-        .map(|(_, why)| why.to_string())
-        .unwrap_or_else(|| panic!("no reason in {cli_err}"));
+    let why = cli_reason(&["view", "--render-scale", "2"]);
     assert!(
         stderr.contains("cannot set render_scale=2: ") && stderr.contains(&why),
         "{stderr}"

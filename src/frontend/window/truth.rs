@@ -100,8 +100,8 @@ impl TruthJob {
     }
 }
 
-/// The tracer: each buffer refined in doubling steps to its target (cancellation is checked
-/// between steps), then saved to the cache. `None` when cancelled.
+/// The tracer: each buffer refined in steps to its target (cancellation is checked between
+/// steps), then saved to the cache. `None` when cancelled.
 fn trace(
     scene: &Scene,
     camera: Camera,
@@ -125,8 +125,9 @@ fn trace(
             if have >= target {
                 break;
             }
-            // Steps of at least 8 samples, doubling: few checks, a prompt cancel.
-            let next = (have * 2).clamp(have + 8, target);
+            // Sixteen steps per buffer (at least 8 samples each): a cancel waits for at most
+            // a sixteenth of a buffer's tracing.
+            let next = (have + (target / 16).max(8)).min(target);
             session.ensure(buffer, next)?;
             // Exact direct light needs one sample: `ensure` stops there.
             if session.reference.estimate(buffer).per_half == have {
