@@ -4,7 +4,7 @@
 use crate::bench::warmup::Warmup;
 pub use crate::config::parse::{
     parse_bias, parse_ema_alpha, parse_epsilon, parse_fraction, parse_gate, parse_on_off,
-    parse_pattern_count, parse_vpls, AccumulateMode,
+    parse_pattern_count, parse_render_scale, parse_vpls, AccumulateMode,
 };
 use crate::config::{
     Accumulate, Effects, Epsilon, GBufferMode, HistoryResample, Refresh, TemporalConfig,
@@ -225,16 +225,6 @@ impl SceneArgs {
         self.effect_options.apply(&mut config);
         self.post_options.apply(&mut config);
         config
-    }
-}
-
-/// `--render-scale`: the render size as a fraction of the window's, 0.1 to 1.
-pub fn parse_render_scale(s: &str) -> std::result::Result<f32, String> {
-    match s.trim().parse::<f32>() {
-        Ok(f) if (0.1..=1.0).contains(&f) => Ok(f),
-        _ => Err(format!(
-            "--render-scale takes a fraction of the window's size in 0.1..=1, not {s:?}"
-        )),
     }
 }
 

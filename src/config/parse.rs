@@ -79,6 +79,16 @@ pub fn parse_vpls(s: &str) -> Result<u32, String> {
 }
 
 /// `on`/`off` (also yes/no, true/false); shared with `ssgi sweep --vary`.
+/// `--render-scale`: the render size as a fraction of the window's, 0.1 to 1.
+pub fn parse_render_scale(s: &str) -> std::result::Result<f32, String> {
+    match s.trim().parse::<f32>() {
+        Ok(f) if (0.1..=1.0).contains(&f) => Ok(f),
+        _ => Err(format!(
+            "--render-scale takes a fraction of the window's size in 0.1..=1, not {s:?}"
+        )),
+    }
+}
+
 pub fn parse_on_off(s: &str) -> Result<bool, String> {
     match s {
         "on" | "yes" | "true" => Ok(true),

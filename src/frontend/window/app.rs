@@ -18,7 +18,7 @@ use super::stats::Stats;
 use super::truth::TruthJob;
 use crate::bench::ground_truth;
 use crate::bench::measure::read_frame;
-use crate::cli::args::parse_render_scale;
+use crate::config::parse::parse_render_scale;
 use crate::error::{Error, Result};
 use crate::frontend::display::{new_event_loop, presenting_context};
 use crate::frontend::overlay::{command_line, History, Overlay, PanelText, Request, RENDER_SCALE};
