@@ -681,14 +681,7 @@ fn skipping_waits_until_the_memory_is_full() {
     c.ccipca.max_age = 6;
     c.skip_unchanged = true;
     let mut r = Renderer::new(&ctx, cornell_box(), c).unwrap();
-    let camera = r.scene.camera;
-    let mut timings = Vec::new();
-    let mut outputs = Vec::new();
-    for _ in 0..14 {
-        timings.extend(r.render_frame(&camera).unwrap());
-        outputs.push(common::read(&mut r, Target::Indirect).bytes);
-    }
-    timings.extend(r.finish().unwrap());
+    let (timings, outputs) = common::held_frames(&mut r, 14, Target::Indirect);
     let gathered = common::frames_recording(&timings, "indirect_noisy");
     eprintln!("frames that gathered: {gathered:?}");
     // Six samples, then two more frames for both halves of the ping-ponged G-buffer.

@@ -211,14 +211,7 @@ fn skipping_waits_until_the_means_settle() {
     let mut c = config(32, 4, svgf);
     c.skip_unchanged = true;
     let mut r = Renderer::new(&ctx, cornell_box(), c).unwrap();
-    let camera = r.scene.camera;
-    let mut timings = Vec::new();
-    let mut outputs = Vec::new();
-    for _ in 0..14 {
-        timings.extend(r.render_frame(&camera).unwrap());
-        outputs.push(common::read(&mut r, Target::Indirect).bytes);
-    }
-    timings.extend(r.finish().unwrap());
+    let (timings, outputs) = common::held_frames(&mut r, 14, Target::Indirect);
     let filtered = common::frames_recording(&timings, "svgf_temporal");
     eprintln!("frames that filtered: {filtered:?}");
     assert!(

@@ -256,3 +256,21 @@ pub fn msd(a: &ImageData, b: &ImageData) -> f64 {
     }
     sum / n as f64
 }
+
+/// `frames` frames of a held camera (the scene's): every timing, and `target` read back after
+/// each frame.
+pub fn held_frames(
+    r: &mut Renderer,
+    frames: usize,
+    target: Target,
+) -> (Vec<FrameTiming>, Vec<Vec<u8>>) {
+    let camera = r.scene.camera;
+    let mut timings = Vec::new();
+    let mut outputs = Vec::new();
+    for _ in 0..frames {
+        timings.extend(r.render_frame(&camera).unwrap());
+        outputs.push(read(r, target).bytes);
+    }
+    timings.extend(r.finish().unwrap());
+    (timings, outputs)
+}

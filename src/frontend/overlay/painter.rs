@@ -225,10 +225,13 @@ impl Painter {
         pixels: [u32; 2],
     ) -> Result<()> {
         let ppp = pixels_per_point.max(1e-3);
-        let mut p = Prepared {
-            screen_points: [pixels[0] as f32 / ppp, pixels[1] as f32 / ppp],
-            ..Prepared::default()
-        };
+        // Last frame's vectors, cleared: their capacity carries over (no per-frame
+        // allocation once the panel's size is reached).
+        let mut p = std::mem::take(&mut self.prepared);
+        p.vertex_bytes.clear();
+        p.index_bytes.clear();
+        p.draws.clear();
+        p.screen_points = [pixels[0] as f32 / ppp, pixels[1] as f32 / ppp];
         for prim in primitives {
             let Primitive::Mesh(mesh) = &prim.primitive else {
                 continue; // paint callbacks: the overlay adds none
@@ -296,7 +299,7 @@ impl Painter {
         target: &SwapchainImage,
         extent: vk::Extent2D,
     ) -> Result<()> {
-        let p = std::mem::take(&mut self.prepared);
+        let p = &mut self.prepared;
         if p.draws.is_empty() {
             return Ok(());
         }
@@ -330,6 +333,8 @@ impl Painter {
             rec.draw_indexed_offset(d.first_index, d.index_count, d.vertex_offset);
         }
         rec.end_rendering();
+        // Drawn once: a frame that `prepare` skipped draws nothing.
+        p.draws.clear();
         Ok(())
     }
 }
