@@ -341,6 +341,42 @@ fn zero_frames_is_refused_everywhere() {
     }
 }
 
+/// `table --set` takes only the keys a table lets change, with `--vary`'s value checks, before
+/// anything runs (no device needed).
+#[test]
+fn table_set_is_refused_where_the_table_does_not_take_it() {
+    for (table, set, reason) in [
+        (
+            "thesis-4.1",
+            "svgf.alpha=0.1",
+            "table thesis-4.1 sets svgf.alpha itself or does not use it: --set takes only none",
+        ),
+        (
+            "chang-flicker",
+            "indirect.vpls=3",
+            "table chang-flicker sets indirect.vpls itself or does not use it: --set takes only svgf., ccipca.",
+        ),
+        ("chang-flicker", "svgf.alpha=2", "--set svgf.alpha=2: "),
+        ("chang-flicker", "svgf.alpha", "--set takes KEY=VALUE, not \"svgf.alpha\""),
+        ("ao", "ao.radius=0.5", "table ao sets ao.radius itself"),
+        ("ao", "no.such=1", "--set \"no.such\": no such key"),
+    ] {
+        let out = ssgi()
+            .args(["table", table, "--set", set])
+            .output()
+            .unwrap();
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert!(!out.status.success(), "{table} --set {set}");
+        assert!(stderr.contains(reason), "{table} --set {set}: {stderr}");
+    }
+    let out = ssgi()
+        .args(["table", "ao", "--set", "ao.steps=4", "--set", "ao.steps=8"])
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(stderr.contains("--set ao.steps is given twice"), "{stderr}");
+}
+
 /// `bench --compare-reuse --json` writes docs/formats.md's compare-reuse format (both runs in the
 /// bench format, the groups' ratios).
 #[test]

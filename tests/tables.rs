@@ -587,10 +587,14 @@ fn chang_flicker_end_to_end() {
             "3",
             "--warmup",
             "2",
+            "--set",
+            "svgf.iterations=4",
         ],
         &out,
         "chang-flicker-table",
     );
+    let notes = report["notes"].to_string();
+    assert!(notes.contains("(--set): svgf.iterations=4."), "{notes}");
     let rows = report["rows"].as_array().unwrap();
     assert_eq!(rows.len(), 2 * 5 * 5);
     for r in rows {

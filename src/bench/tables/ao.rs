@@ -44,6 +44,7 @@ pub const TABLE: TableDef = TableDef {
     warmup: Warmup::Frames(40),
     sizes: &[],
     effects: None,
+    settable: &["ao.samples", "ao.steps", "ao.position_mips"],
     run,
 };
 
@@ -109,7 +110,7 @@ fn estimator_name(e: AoEstimator) -> &'static str {
 
 /// A row's configuration: AO alone with `estimator`, the thesis's reuse row (the cache) or its
 /// no-reuse row (one fixed pattern, the 5x5 blur).
-fn config(opts: &TableOptions, estimator: AoEstimator, cache: bool) -> RenderConfig {
+fn config(opts: &TableOptions, estimator: AoEstimator, cache: bool) -> Result<RenderConfig> {
     let mut base = base_config(
         opts.size.0,
         opts.size.1,
@@ -119,12 +120,13 @@ fn config(opts: &TableOptions, estimator: AoEstimator, cache: bool) -> RenderCon
         },
     );
     base.ao.estimator = estimator;
+    let base = opts.with_sets(base)?;
     let kind = if cache {
         RowKind::Reuse
     } else {
         RowKind::NoReuse
     };
-    kind.config(&base)
+    Ok(kind.config(&base))
 }
 
 /// Every scene with its path: `--path` for all, else each one's table's.
@@ -166,7 +168,7 @@ fn run(
     // Load every scene before rendering anything: a missing file fails in seconds.
     let loaded = scenes(opts)?;
     super::run::create_out(out)?;
-    let base = config(opts, AoEstimator::Thesis, true);
+    let base = config(opts, AoEstimator::Thesis, true)?;
     let (warmup, warmup_along_path) = before_path(opts.warmup, base.temporal.rotation_limit);
     let mut rows = Vec::new();
     let mut truths = Vec::new();
@@ -200,6 +202,10 @@ fn run(
          cache: its no-reuse row (one fixed pattern each frame, the 5x5 blur). Every estimator \
          shares the radius and eq 7's attenuation, which the ground truth's AO follows."
             .into(),
+        format!(
+            "Parameters changed from the defaults for every row (--set): {}.",
+            opts.sets_text()
+        ),
         "AO RMSE: the last frame's ambient visibility against the ray-traced AO of the same \
          camera over the pixels with geometry (the truth's standard error per scene is in \
          report.json). Flicker: the mean squared difference of consecutive outputs (0..1 as \
@@ -237,7 +243,7 @@ fn measure_scene(
     path: &CameraPath,
     (warmup, warmup_along_path): (u32, bool),
 ) -> Result<(Vec<RowResult>, Option<TruthQuality>)> {
-    let base = config(opts, AoEstimator::Thesis, true);
+    let base = config(opts, AoEstimator::Thesis, true)?;
     let camera = last_camera(scene, path, opts.frames, opts.fps);
     let settings = crate::reference::Settings::for_render(&base, scene);
     let cache = Some(crate::reference::store::default_dir());
@@ -259,7 +265,7 @@ fn measure_scene(
     let mut measured: Vec<(RowResult, LastFrame)> = Vec::new();
     for estimator in ESTIMATORS {
         for cache in [true, false] {
-            let c = config(opts, estimator, cache);
+            let c = config(opts, estimator, cache)?;
             let label = format!(
                 "{} {} {}",
                 scene.name,

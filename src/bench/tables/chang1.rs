@@ -40,6 +40,7 @@ pub const TABLE: TableDef = TableDef {
         indirect: true,
         ..Effects::NONE
     }),
+    settable: &[],
     run,
 };
 

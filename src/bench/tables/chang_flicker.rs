@@ -46,6 +46,7 @@ pub const TABLE: TableDef = TableDef {
         indirect: true,
         ..Effects::NONE
     }),
+    settable: &["svgf.", "ccipca."],
     run,
 };
 
@@ -104,8 +105,8 @@ pub struct TableReport {
     pub rows: Vec<RowResult>,
 }
 
-fn config(opts: &TableOptions, filter: IndirectFilter, vpls: u32) -> RenderConfig {
-    RenderConfig {
+fn config(opts: &TableOptions, filter: IndirectFilter, vpls: u32) -> Result<RenderConfig> {
+    opts.with_sets(RenderConfig {
         width: opts.size.0,
         height: opts.size.1,
         rsm_size: RSM_SIZE,
@@ -118,7 +119,7 @@ fn config(opts: &TableOptions, filter: IndirectFilter, vpls: u32) -> RenderConfi
             ..IndirectConfig::default()
         },
         ..RenderConfig::default()
-    }
+    })
 }
 
 /// The exact gather's indirect light and output at `camera` (every RSM texel, no reuse).
@@ -128,7 +129,7 @@ fn reference(
     scene: &Scene,
     camera: &Camera,
 ) -> Result<(ImageData, ImageData, Vec<bool>)> {
-    let mut c = config(opts, IndirectFilter::Accumulate, 0);
+    let mut c = config(opts, IndirectFilter::Accumulate, 0)?;
     c.indirect.half_res = false;
     c.temporal = TemporalConfig {
         reuse: false,
@@ -180,13 +181,14 @@ fn run(
         for filter in FILTERS {
             for vpls in VPLS {
                 let label = format!("{motion} {} {vpls} VPLs", filter_name(filter));
+                let config = config(opts, filter, vpls)?;
                 let m = measure(
                     ctx,
                     sink,
                     &scene,
                     &RunSpec {
                         label: &label,
-                        config: config(opts, filter, vpls),
+                        config,
                         path,
                         frames: opts.frames,
                         warmup,
@@ -222,7 +224,7 @@ fn run(
                     indirect_relative_rmse,
                     final_rmse,
                     frame_ms: m.report.total.median_ms,
-                    indirect_ms: indirect_ms(&m.report, &config(opts, filter, vpls)),
+                    indirect_ms: indirect_ms(&m.report, &config),
                     flicker,
                 };
                 eprintln!("{}", summary_line(&row));
@@ -253,6 +255,10 @@ fn run(
          rotated patterns, refresh). Indirect ms: the median GPU time of the indirect light's \
          passes summed (the gather and the filter), beside the whole frame's."
             .into(),
+        format!(
+            "Parameters changed from the defaults for every row (--set): {}.",
+            opts.sets_text()
+        ),
     ];
     let report = TableReport {
         run: TableRun::new(

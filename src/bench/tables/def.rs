@@ -30,10 +30,18 @@ pub struct TableDef {
     /// The effects rows render unless `--effects` says; `None`: the rows choose their own and
     /// `--effects` is refused.
     pub effects: Option<Effects>,
+    /// Prefixes of the sweep keys `--set` may change (`svgf.`, or a whole key): parameters of
+    /// the compared techniques that no row sets itself. Empty: `--set` is refused.
+    pub settable: &'static [&'static str],
     pub run: RunTable,
 }
 
 impl TableDef {
+    /// Whether `--set` may change `key` (a sweep key's name).
+    pub fn settable(&self, key: &str) -> bool {
+        self.settable.iter().any(|prefix| key.starts_with(prefix))
+    }
+
     /// The sizes to measure: `--size`, else the paper's, else the default.
     pub fn sizes(&self, given: Option<(u32, u32)>) -> Vec<(u32, u32)> {
         match given {

@@ -31,6 +31,7 @@ pub const TABLE: TableDef = TableDef {
     warmup: Warmup::Frames(10),
     sizes: &[],
     effects: Some(Effects::ALL),
+    settable: &[],
     run,
 };
 

@@ -2,14 +2,15 @@
 //! presented, and write its report, CSV and plots.
 
 use super::common::{context_options, finish};
-use crate::bench::tables::find;
+use crate::bench::tables::{find, TableDef};
 use crate::bench::warmup::Warmup;
 use crate::bench::TableOptions;
 use crate::cli::args::{Cli, TableArgs};
-use crate::config::Effects;
+use crate::config::{Effects, RenderConfig};
 use crate::error::{Error, Result};
 use crate::frontend::window_sink::open_sink;
 use crate::scene::asset_dir_from_env;
+use crate::sweep::keys::{all_keys, Key};
 use std::path::PathBuf;
 
 /// Most frames a table accepts per row (a typo guard, as for `bench`).
@@ -27,6 +28,51 @@ fn command_line() -> String {
         })
         .collect::<Vec<_>>()
         .join(" ")
+}
+
+/// `--set KEY=VALUE`s: sweep keys the table lets change, each value checked as `--vary`'s.
+fn sets(def: &TableDef, given: &[String]) -> Result<Vec<(Key, String)>> {
+    let mut sets: Vec<(Key, String)> = Vec::new();
+    for s in given {
+        let (name, value) = s.split_once('=').ok_or_else(|| {
+            Error::Config(format!(
+                "--set takes KEY=VALUE, not {:?} (no '=')",
+                s.trim()
+            ))
+        })?;
+        let name = name.trim();
+        let key = all_keys()
+            .into_iter()
+            .find(|k| k.name == name)
+            .ok_or_else(|| {
+                Error::Config(format!(
+                    "--set {name:?}: no such key (`ssgi sweep --list-keys` lists them)"
+                ))
+            })?;
+        if !def.settable(key.name) {
+            let allowed = if def.settable.is_empty() {
+                "none".to_string()
+            } else {
+                def.settable.join(", ")
+            };
+            return Err(Error::Config(format!(
+                "table {} sets {key} itself or does not use it: --set takes only {allowed}",
+                def.name
+            )));
+        }
+        if sets.iter().any(|(k, _)| *k == key) {
+            return Err(Error::Config(format!("--set {key} is given twice")));
+        }
+        let value = value.trim().to_string();
+        (key.set)(&mut RenderConfig::default(), &value).map_err(|why| {
+            Error::Config(format!(
+                "--set {key}={value}: {why}; expected {}",
+                key.syntax
+            ))
+        })?;
+        sets.push((key, value));
+    }
+    Ok(sets)
 }
 
 pub fn table(cli: &Cli, args: &TableArgs) -> Result<()> {
@@ -65,6 +111,7 @@ pub fn table(cli: &Cli, args: &TableArgs) -> Result<()> {
         assets: cli.assets.clone().or_else(asset_dir_from_env),
         progress: true,
         command: command_line(),
+        sets: sets(def, &args.set)?,
     };
     let window = args.window.then(|| format!("ssgi table {}", def.name));
     let (ctx, mut sink) = open_sink(window, size, context_options(cli))?;

@@ -41,6 +41,7 @@ pub const TABLE: TableDef = TableDef {
         direct: true,
         ..Effects::NONE
     }),
+    settable: &[],
     run,
 };
 

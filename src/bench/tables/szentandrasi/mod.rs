@@ -49,6 +49,7 @@ pub const TABLE: TableDef = TableDef {
     sizes: &[],
     // The rows choose theirs: direct light and SSDO.
     effects: None,
+    settable: &[],
     run,
 };
 
