@@ -10,6 +10,7 @@ pub mod estimators;
 pub mod output;
 pub mod run;
 pub mod sampling;
+pub mod screen_space;
 pub mod store;
 pub mod surface;
 pub mod trace;

@@ -81,6 +81,10 @@ pub struct SceneTruth {
     pub scene: String,
     pub path: String,
     pub triangles: usize,
+    /// RMSE against the ray-traced AO of the screen-space bound (reference::screen_space: the
+    /// AO integral against the last frame's visible surfaces, thick, nothing off the image):
+    /// the part of any thick screen-space estimator's error that sampling cannot remove.
+    pub screen_space_rmse: Option<f64>,
     pub truth: Option<TruthQuality>,
 }
 
@@ -173,12 +177,13 @@ fn run(
     let mut rows = Vec::new();
     let mut truths = Vec::new();
     for (scene, path, path_name) in &loaded {
-        let (scene_rows, truth) =
+        let (scene_rows, truth, screen_space_rmse) =
             measure_scene(ctx, sink, opts, scene, path, (warmup, warmup_along_path))?;
         truths.push(SceneTruth {
             scene: scene.name.clone(),
             path: path_name.clone(),
             triangles: scene.mesh.triangle_count(),
+            screen_space_rmse,
             truth,
         });
         rows.extend(scene_rows);
@@ -242,7 +247,7 @@ fn measure_scene(
     scene: &Scene,
     path: &CameraPath,
     (warmup, warmup_along_path): (u32, bool),
-) -> Result<(Vec<RowResult>, Option<TruthQuality>)> {
+) -> Result<(Vec<RowResult>, Option<TruthQuality>, Option<f64>)> {
     let base = config(opts, AoEstimator::Thesis, true)?;
     let camera = last_camera(scene, path, opts.frames, opts.fps);
     let settings = crate::reference::Settings::for_render(&base, scene);
@@ -319,11 +324,34 @@ fn measure_scene(
         .filter_map(|r| r.ao_rmse)
         .filter(|e| *e > 0.0)
         .min_by(f64::total_cmp);
-    let quality = lasts.first().map(|first| {
-        let mask = ground_truth::mask(Buffer::Ao, &truth.reference, scene, &first.geometry);
-        ground_truth::quality(&truth.reference, RefBuffer::Ao, &mask, smallest)
-    });
-    Ok((rows, quality))
+    let Some(first) = lasts.first() else {
+        return Ok((rows, None, None));
+    };
+    let mask = ground_truth::mask(Buffer::Ao, &truth.reference, scene, &first.geometry);
+    let quality = ground_truth::quality(&truth.reference, RefBuffer::Ao, &mask, smallest);
+    let bound = screen_space_rmse(&truth.reference, &mask);
+    eprintln!(
+        "{}: screen-space bound, AO RMSE {}",
+        scene.name,
+        bound.map_or("-".into(), |e| format!("{e:.4}"))
+    );
+    Ok((rows, Some(quality), bound))
+}
+
+/// RMSE over `mask` of the screen-space bound against the traced AO (None: no pixel).
+fn screen_space_rmse(reference: &crate::reference::Reference, mask: &[bool]) -> Option<f64> {
+    use crate::reference::screen_space::{screen_space_ao, DIRECTIONS, STEPS};
+    let bound = screen_space_ao(reference, &reference.settings.ao, DIRECTIONS, STEPS);
+    let truth = reference.ao.mean();
+    let (sum, n) = bound
+        .iter()
+        .zip(&truth)
+        .zip(mask)
+        .filter(|(_, m)| **m)
+        .fold((0.0f64, 0usize), |(s, n), ((b, t), _)| {
+            (s + ((b - t) as f64).powi(2), n + 1)
+        });
+    (n > 0).then(|| (sum / n as f64).sqrt())
 }
 
 fn summary_line(r: &RowResult) -> String {
@@ -369,6 +397,23 @@ fn markdown(r: &TableReport) -> String {
     let size = (r.width, r.height);
     let mut md = r.run.markdown_header(TABLE.title, size, r.frames, r.warmup);
     md += &sheet().markdown(&r.rows);
+    md += "\nThe screen-space bound (the AO integral against the last frame's visible surfaces, \
+           thick, nothing off the image) and the most accurate estimator, AO RMSE against the \
+           ray-traced AO:\n\n| scene | screen-space bound | best estimator |\n|---|---|---|\n";
+    for s in &r.scenes {
+        let best = r
+            .rows
+            .iter()
+            .filter(|row| row.scene == s.scene)
+            .filter_map(|row| row.ao_rmse.map(|e| (e, row)))
+            .min_by(|a, b| a.0.total_cmp(&b.0));
+        let f = |v: Option<f64>| v.map_or("-".into(), |v| format!("{v:.4}"));
+        let best = best.map_or("-".into(), |(e, row)| {
+            let cache = if row.cache { "cache" } else { "no cache" };
+            format!("{} ({}, {cache})", f(Some(e)), row.estimator)
+        });
+        md += &format!("| {} | {} | {best} |\n", s.scene, f(s.screen_space_rmse));
+    }
     md + "\n" + &notes_section(&r.notes)
 }
 
