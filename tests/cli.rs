@@ -208,6 +208,10 @@ fn bad_flags_get_clear_errors() {
     fails_with(&["render", "--pcf", "50"], "square");
     fails_with(&["render", "--pcf", "soft"], "--pcf");
     fails_with(&["render", "--ao-attenuation", "-1:0"], "A:B, each finite");
+    fails_with(
+        &["reference", "--ao-attenuation", "0,1"],
+        "--ao-attenuation takes A:B",
+    );
     fails_with(&["render", "--ao-steps", "0"], "GTAO steps");
     fails_with(&["bench", "--frames", "0"], "at least 1");
     fails_with(&["render", "--frames", "0"], "at least 1");

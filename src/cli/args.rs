@@ -545,8 +545,9 @@ pub struct ReferenceArgs {
     /// AO radius as a fraction of the scene's bounding radius (the renderer's --ao radius).
     #[arg(long, default_value_t = AoConfig::default().radius, value_parser = parse_ao_radius)]
     pub ao_radius: f32,
-    /// AO attenuation D(x) = 1 + a x + b x^2 as A,B (eq 7; the renderer's default 0,1).
-    #[arg(long, default_value = "0,1", value_parser = parse_attenuation)]
+    /// AO attenuation D(x) = 1 + a x + b x^2 as A:B (eq 7; the renderer's --ao-attenuation and
+    /// its default 0:1).
+    #[arg(long, default_value = "0:1", value_parser = parse_attenuation, value_name = "A:B")]
     pub ao_attenuation: [f32; 2],
     /// Radius of a spherical light for soft shadows, world units (0: the point light).
     #[arg(long, default_value_t = 0.0, value_parser = parse_light_radius)]
@@ -581,14 +582,10 @@ fn parse_ao_radius(s: &str) -> std::result::Result<f32, String> {
     }
 }
 
+/// `reference --ao-attenuation`: the renderer's syntax, A:B.
 fn parse_attenuation(s: &str) -> std::result::Result<[f32; 2], String> {
-    let parts: Vec<Option<f32>> = s.split(',').map(|p| p.trim().parse().ok()).collect();
-    match parts[..] {
-        [Some(a), Some(b)] if a.is_finite() && b.is_finite() && a >= 0.0 && b >= 0.0 => Ok([a, b]),
-        _ => Err(format!(
-            "--ao-attenuation takes A,B (finite, >= 0) for D(x) = 1 + A x + B x^2, not {s:?}"
-        )),
-    }
+    crate::config::parse::parse_attenuation(s)
+        .map_err(|why| format!("--ao-attenuation takes A:B for D(x) = 1 + A x + B x^2 ({why})"))
 }
 
 fn parse_light_radius(s: &str) -> std::result::Result<f32, String> {

@@ -42,22 +42,32 @@ pub struct Primary {
 
 /// One sample of ambient visibility.
 pub fn ao_sample(accel: &Accel, p: &Primary, def: &AoDefinition, u: Vec2) -> f32 {
+    match ao_sample_hit(accel, p, def, u) {
+        Some((_, occlusion)) => 1.0 - occlusion,
+        None => 1.0,
+    }
+}
+
+/// The occluder one AO sample meets within the radius, if any: its position and triangle, and
+/// its occlusion 1 / D(t / R).
+pub fn ao_sample_hit(
+    accel: &Accel,
+    p: &Primary,
+    def: &AoDefinition,
+    u: Vec2,
+) -> Option<((Vec3, usize), f32)> {
     let (dir, _) = cosine_hemisphere(p.normal, u);
     let pos = p.surface.position;
-    match accel.closest(
+    let hit = accel.closest(
         pos,
         dir,
         ray_start(pos),
         def.radius,
         Some(p.surface.triangle),
-    ) {
-        Some(hit) => {
-            let x = hit.t / def.radius;
-            let d = 1.0 + def.attenuation[0] * x + def.attenuation[1] * x * x;
-            1.0 - 1.0 / d
-        }
-        None => 1.0,
-    }
+    )?;
+    let x = hit.t / def.radius;
+    let d = 1.0 + def.attenuation[0] * x + def.attenuation[1] * x * x;
+    Some(((hit.position, hit.triangle), 1.0 / d))
 }
 
 /// One sample of direct radiance and light visibility.

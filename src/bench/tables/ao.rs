@@ -82,8 +82,8 @@ pub struct SceneTruth {
     pub path: String,
     pub triangles: usize,
     /// RMSE against the ray-traced AO of the screen-space bound (reference::screen_space: the
-    /// AO integral against the last frame's visible surfaces, thick, nothing off the image):
-    /// the part of any thick screen-space estimator's error that sampling cannot remove.
+    /// AO integral with only the occluders the camera sees): the part of any screen-space
+    /// estimator's error that sampling cannot remove.
     pub screen_space_rmse: Option<f64>,
     pub truth: Option<TruthQuality>,
 }
@@ -329,7 +329,7 @@ fn measure_scene(
     };
     let mask = ground_truth::mask(Buffer::Ao, &truth.reference, scene, &first.geometry);
     let quality = ground_truth::quality(&truth.reference, RefBuffer::Ao, &mask, smallest);
-    let bound = screen_space_rmse(&truth.reference, &mask);
+    let bound = screen_space_rmse(&truth.accel, &truth.reference, &mask);
     eprintln!(
         "{}: screen-space bound, AO RMSE {}",
         scene.name,
@@ -339,9 +339,13 @@ fn measure_scene(
 }
 
 /// RMSE over `mask` of the screen-space bound against the traced AO (None: no pixel).
-fn screen_space_rmse(reference: &crate::reference::Reference, mask: &[bool]) -> Option<f64> {
-    use crate::reference::screen_space::{screen_space_ao, DIRECTIONS, STEPS};
-    let bound = screen_space_ao(reference, &reference.settings.ao, DIRECTIONS, STEPS);
+fn screen_space_rmse(
+    accel: &crate::reference::Accel,
+    reference: &crate::reference::Reference,
+    mask: &[bool],
+) -> Option<f64> {
+    use crate::reference::screen_space::{screen_space_ao, DIRECTIONS};
+    let bound = screen_space_ao(accel, reference, &reference.settings.ao, DIRECTIONS);
     let truth = reference.ao.mean();
     let (sum, n) = bound
         .iter()
@@ -397,9 +401,8 @@ fn markdown(r: &TableReport) -> String {
     let size = (r.width, r.height);
     let mut md = r.run.markdown_header(TABLE.title, size, r.frames, r.warmup);
     md += &sheet().markdown(&r.rows);
-    md += "\nThe screen-space bound (the AO integral against the last frame's visible surfaces, \
-           thick, nothing off the image) and the most accurate estimator, AO RMSE against the \
-           ray-traced AO:\n\n| scene | screen-space bound | best estimator |\n|---|---|---|\n";
+    md += "\nThe screen-space bound (the AO integral with only the occluders the camera sees) \
+           and the most accurate estimator, AO RMSE against the ray-traced AO:\n\n| scene | screen-space bound | best estimator |\n|---|---|---|\n";
     for s in &r.scenes {
         let best = r
             .rows
