@@ -10,10 +10,10 @@ pub mod estimators;
 pub mod output;
 pub mod run;
 pub mod sampling;
-pub mod screen_space;
 pub mod store;
 pub mod surface;
 pub mod trace;
+pub mod visible_occluders;
 
 pub use crate::scene::accel::Accel;
 pub use estimators::AoDefinition;

@@ -81,10 +81,9 @@ pub struct SceneTruth {
     pub scene: String,
     pub path: String,
     pub triangles: usize,
-    /// RMSE against the ray-traced AO of the screen-space bound (reference::screen_space: the
-    /// AO integral with only the occluders the camera sees): the part of any screen-space
-    /// estimator's error that sampling cannot remove.
-    pub screen_space_rmse: Option<f64>,
+    /// RMSE against the ray-traced AO of the AO with only the occluders the camera sees
+    /// (reference::visible_occluders): how much occlusion no estimator observes in the G-buffer.
+    pub visible_occluders_rmse: Option<f64>,
     pub truth: Option<TruthQuality>,
 }
 
@@ -177,13 +176,13 @@ fn run(
     let mut rows = Vec::new();
     let mut truths = Vec::new();
     for (scene, path, path_name) in &loaded {
-        let (scene_rows, truth, screen_space_rmse) =
+        let (scene_rows, truth, visible_occluders_rmse) =
             measure_scene(ctx, sink, opts, scene, path, (warmup, warmup_along_path))?;
         truths.push(SceneTruth {
             scene: scene.name.clone(),
             path: path_name.clone(),
             triangles: scene.mesh.triangle_count(),
-            screen_space_rmse,
+            visible_occluders_rmse,
             truth,
         });
         rows.extend(scene_rows);
@@ -329,25 +328,25 @@ fn measure_scene(
     };
     let mask = ground_truth::mask(Buffer::Ao, &truth.reference, scene, &first.geometry);
     let quality = ground_truth::quality(&truth.reference, RefBuffer::Ao, &mask, smallest);
-    let bound = screen_space_rmse(&truth.accel, &truth.reference, &mask);
+    let visible = visible_occluders_rmse(&truth.accel, &truth.reference, &mask);
     eprintln!(
-        "{}: screen-space bound, AO RMSE {}",
+        "{}: AO of the visible occluders alone, RMSE {}",
         scene.name,
-        bound.map_or("-".into(), |e| format!("{e:.4}"))
+        visible.map_or("-".into(), |e| format!("{e:.4}"))
     );
-    Ok((rows, Some(quality), bound))
+    Ok((rows, Some(quality), visible))
 }
 
-/// RMSE over `mask` of the screen-space bound against the traced AO (None: no pixel).
-fn screen_space_rmse(
+/// RMSE over `mask` of the visible occluders' AO against the traced AO (None: no pixel).
+fn visible_occluders_rmse(
     accel: &crate::reference::Accel,
     reference: &crate::reference::Reference,
     mask: &[bool],
 ) -> Option<f64> {
-    use crate::reference::screen_space::{screen_space_ao, DIRECTIONS};
-    let bound = screen_space_ao(accel, reference, &reference.settings.ao, DIRECTIONS);
+    use crate::reference::visible_occluders::{visible_occluder_ao, DIRECTIONS};
+    let visible = visible_occluder_ao(accel, reference, &reference.settings.ao, DIRECTIONS);
     let truth = reference.ao.mean();
-    let (sum, n) = bound
+    let (sum, n) = visible
         .iter()
         .zip(&truth)
         .zip(mask)
@@ -401,8 +400,10 @@ fn markdown(r: &TableReport) -> String {
     let size = (r.width, r.height);
     let mut md = r.run.markdown_header(TABLE.title, size, r.frames, r.warmup);
     md += &sheet().markdown(&r.rows);
-    md += "\nThe screen-space bound (the AO integral with only the occluders the camera sees) \
-           and the most accurate estimator, AO RMSE against the ray-traced AO:\n\n| scene | screen-space bound | best estimator |\n|---|---|---|\n";
+    md += "\nAO RMSE against the ray-traced AO of the AO with only the occluders the camera sees \
+           (what no estimator observes in the G-buffer: occluders hidden or off the image; \
+           estimators that take surfaces as thick guess part of it) and of the most accurate \
+           estimator:\n\n| scene | visible occluders alone | best estimator |\n|---|---|---|\n";
     for s in &r.scenes {
         let best = r
             .rows
@@ -415,7 +416,11 @@ fn markdown(r: &TableReport) -> String {
             let cache = if row.cache { "cache" } else { "no cache" };
             format!("{} ({}, {cache})", f(Some(e)), row.estimator)
         });
-        md += &format!("| {} | {} | {best} |\n", s.scene, f(s.screen_space_rmse));
+        md += &format!(
+            "| {} | {} | {best} |\n",
+            s.scene,
+            f(s.visible_occluders_rmse)
+        );
     }
     md + "\n" + &notes_section(&r.notes)
 }

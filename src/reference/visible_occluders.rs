@@ -1,11 +1,10 @@
-//! The screen-space bound of AO: the ground truth's AO integral (estimators.rs) with only the
-//! occluders the camera sees. Rays leave each visible point as the reference's do; a hit counts
-//! (with eq 7's weight at its distance) only where the camera sees that very point, inside the
-//! image and unoccluded on the way from the eye. An estimator that reads only the G-buffer can
-//! at best know those occluders (and their true thickness); what the others add (occluders
-//! hidden behind the visible surfaces or off the image) it can only guess. So the bound's
-//! error against the traced AO is the part of any screen-space estimator's error that better
-//! sampling or a thickness heuristic cannot remove.
+//! AO with only the occluders the camera sees: the ground truth's AO integral (estimators.rs)
+//! where a ray's hit counts (with eq 7's weight at its distance) only if the camera sees that
+//! very point, inside the image and unoccluded on the way from the eye. Its error against the
+//! traced AO is the occlusion an estimator reading only the G-buffer never observes: occluders
+//! hidden behind the visible surfaces or off the image. It is not a bound: estimators that take
+//! each visible surface as infinitely thick (all of ours) guess some hidden occluders, rightly
+//! where something does stand behind the surface, and can have less error.
 
 use super::estimators::{ao_sample_hit, AoDefinition, Primary};
 use super::trace::Reference;
@@ -66,7 +65,7 @@ fn hammersley(k: u32, n: u32) -> Vec2 {
 /// Ambient visibility (1 - occlusion, as the reference's AO buffer) of every pixel of `r`'s
 /// primary hits with only the occluders the camera sees; 1 where a pixel has no geometry (the
 /// reference's masks leave those out).
-pub fn screen_space_ao(
+pub fn visible_occluder_ao(
     accel: &Accel,
     r: &Reference,
     def: &AoDefinition,
@@ -132,7 +131,7 @@ mod tests {
             radius,
             attenuation: [0.0, 0.0],
         };
-        let ao = screen_space_ao(&accel, &r, &def, DIRECTIONS);
+        let ao = visible_occluder_ao(&accel, &r, &def, DIRECTIONS);
         assert!(ao.iter().all(|v| (0.0..=1.0).contains(v)));
         let mut checked = 0;
         for (v, p) in ao.iter().zip(&r.primary) {
@@ -160,7 +159,7 @@ mod tests {
         );
         let (accel, r) = primaries(&scene, down, 64);
         let wide = AoDefinition { radius: 1.0, ..def };
-        let ao = screen_space_ao(&accel, &r, &wide, 64);
+        let ao = visible_occluder_ao(&accel, &r, &wide, 64);
         let mut off_image = 0;
         for (v, p) in ao.iter().zip(&r.primary) {
             let Some(p) = p else { continue };
