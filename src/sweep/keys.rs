@@ -129,20 +129,22 @@ pub fn all_keys() -> Vec<Key> {
         .collect()
 }
 
+/// The key called `name` (trimmed), if there is one.
+pub fn find_key(name: &str) -> Option<Key> {
+    let name = name.trim();
+    all_keys().into_iter().find(|k| k.name == name)
+}
+
 /// The key called `name`; an unknown name gets every valid key in the error.
 pub fn parse_key(name: &str) -> Result<Key> {
     let name = name.trim();
-    let keys = all_keys();
-    keys.iter()
-        .copied()
-        .find(|k| k.name == name)
-        .ok_or_else(|| {
-            let known: Vec<&str> = keys.iter().map(|k| k.name).collect();
-            Error::Config(format!(
-                "unknown --vary key {name:?}; valid keys: {}",
-                known.join(", ")
-            ))
-        })
+    find_key(name).ok_or_else(|| {
+        let known: Vec<&str> = all_keys().iter().map(|k| k.name).collect();
+        Error::Config(format!(
+            "unknown --vary key {name:?}; valid keys: {}",
+            known.join(", ")
+        ))
+    })
 }
 
 /// One `--vary KEY=V1,V2,...`: the values stay strings (trimmed) so reports can label each

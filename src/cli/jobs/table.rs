@@ -10,7 +10,7 @@ use crate::config::{Effects, RenderConfig};
 use crate::error::{Error, Result};
 use crate::frontend::window_sink::open_sink;
 use crate::scene::asset_dir_from_env;
-use crate::sweep::keys::{all_keys, Key};
+use crate::sweep::keys::{find_key, Key};
 use std::path::PathBuf;
 
 /// Most frames a table accepts per row (a typo guard, as for `bench`).
@@ -41,14 +41,11 @@ fn sets(def: &TableDef, given: &[String]) -> Result<Vec<(Key, String)>> {
             ))
         })?;
         let name = name.trim();
-        let key = all_keys()
-            .into_iter()
-            .find(|k| k.name == name)
-            .ok_or_else(|| {
-                Error::Config(format!(
-                    "--set {name:?}: no such key (`ssgi sweep --list-keys` lists them)"
-                ))
-            })?;
+        let key = find_key(name).ok_or_else(|| {
+            Error::Config(format!(
+                "--set {name:?}: no such key (`ssgi sweep --list-keys` lists them)"
+            ))
+        })?;
         if !def.settable(key.name) {
             let allowed = if def.settable.is_empty() {
                 "none".to_string()
