@@ -290,7 +290,7 @@ fn check_mask(
     (c0, c1): (Camera, Camera),
 ) {
     let size = state.width;
-    let cpu = common::cpu_disocclusion([pos0, pos1], [nrm0, nrm1], (c0, c1));
+    let cpu = common::cpu_disocclusion([pos0, pos1], [nrm0, nrm1], (c0, c1), 0);
     let (mut agree, mut total, mut cpu_new) = (0, 0, 0);
     for y in 0..size {
         for x in 0..size {

@@ -4,11 +4,11 @@
 
 mod common;
 
-use common::counter;
+use common::{counter, CpuReprojection};
 use glam::{Vec3, Vec4};
 use ssgi::config::pcf::Pcf;
 use ssgi::config::{Effects, IndirectConfig, IndirectFilter, RenderConfig};
-use ssgi::effects::svgf::config::SvgfConfig;
+use ssgi::effects::svgf::config::{SvgfConfig, SvgfHistory};
 use ssgi::effects::svgf::model::{filter, Surface};
 use ssgi::effects::svgf::{HISTORY_VIEW, INTEGRATED_VIEW};
 use ssgi::renderer::Renderer;
@@ -122,77 +122,161 @@ fn atrous_iterations_match_a_cpu_evaluation() {
 
 /// After three still frames the camera moves sideways: the pixels whose history restarts (one
 /// sample, moments of the new sample alone) are those a CPU reprojection of the two
-/// G-buffers finds new to the view, the others hold four samples, and the disocclusion
-/// counter counts the restarted pixels exactly.
+/// G-buffers finds new to the view (the nearest texel does not hold the surface; with the
+/// bilinear tap and its fallback, no texel of the 3x3 block around it), the others hold four
+/// samples, and the disocclusion counter counts the restarted pixels exactly. The kept pixels'
+/// first moment is the CPU's reading of the still frames' moments (`history_taps`) merged with
+/// the new sample. Once for each way of reading the history.
 #[test]
 fn moments_restart_where_the_surface_is_new_to_the_view() {
     let ctx = common::context();
     let size = 64;
-    let mut r = Renderer::new(&ctx, cornell_box(), config(size, 4, SvgfConfig::default())).unwrap();
-    let c0 = r.scene.camera;
-    let shift = Vec3::new(0.12, 0.03, -0.05);
-    let c1 = Camera {
-        position: c0.position + shift,
-        target: c0.target + shift,
-        ..c0
-    };
-    let mut timings = Vec::new();
-    for camera in [c0, c0, c0, c1] {
-        timings.extend(r.render_frame(&camera).unwrap());
-    }
-    let history = texels(&common::read(&mut r, Target::Effect(&HISTORY_VIEW)));
-    let noisy = texels(&common::read(&mut r, Target::IndirectNoisy));
-    let pos1 = common::read(&mut r, Target::GPosition);
-    let pos0 = common::read(&mut r, Target::GPositionHistory);
-    let nrm1 = common::read(&mut r, Target::GNormal);
-    let nrm0 = common::read(&mut r, Target::GNormalHistory);
-    timings.extend(r.finish().unwrap());
-    let last = timings.last().unwrap();
-    let counted = counter(last, "svgf_disoccluded_pixels").expect("svgf's counter");
-    let cpu = common::cpu_disocclusion([&pos0, &pos1], [&nrm0, &nrm1], (c0, c1));
-    let (mut agree, mut total, mut restarted, mut cpu_new) = (0u64, 0u64, 0u64, 0u64);
-    for (i, new) in cpu.iter().enumerate() {
-        let Some(new) = *new else {
-            assert_eq!(history[i], Vec4::ZERO, "background pixel {i}");
-            continue;
+    for history in [SvgfHistory::Nearest, SvgfHistory::Bilinear] {
+        let svgf = SvgfConfig {
+            history,
+            ..SvgfConfig::default()
         };
-        let h = history[i];
-        let gpu_new = h.x == 1.0;
-        assert!(gpu_new || h.x == 4.0, "pixel {i}: {} samples", h.x);
-        if gpu_new {
-            // The new sample's moments alone.
-            let l = luminance(noisy[i]);
-            assert!(
-                (h.y - l).abs() <= 1e-6 * l,
-                "pixel {i}: E[l] {} for {l}",
-                h.y
-            );
-            assert!(
-                (h.z - l * l).abs() <= 1e-5 * l * l,
-                "pixel {i}: E[l^2] {}",
-                h.z
-            );
+        let reach = (history == SvgfHistory::Bilinear) as i64;
+        let mut r = Renderer::new(&ctx, cornell_box(), config(size, 4, svgf)).unwrap();
+        let c0 = r.scene.camera;
+        let shift = Vec3::new(0.12, 0.03, -0.05);
+        let c1 = Camera {
+            position: c0.position + shift,
+            target: c0.target + shift,
+            ..c0
+        };
+        let mut timings = Vec::new();
+        for camera in [c0, c0, c0] {
+            timings.extend(r.render_frame(&camera).unwrap());
         }
-        restarted += gpu_new as u64;
-        cpu_new += new as u64;
-        agree += (gpu_new == new) as u64;
-        total += 1;
+        let still = texels(&common::read(&mut r, Target::Effect(&HISTORY_VIEW)));
+        timings.extend(r.render_frame(&c1).unwrap());
+        let history = texels(&common::read(&mut r, Target::Effect(&HISTORY_VIEW)));
+        let noisy = texels(&common::read(&mut r, Target::IndirectNoisy));
+        let pos1 = common::read(&mut r, Target::GPosition);
+        let pos0 = common::read(&mut r, Target::GPositionHistory);
+        let nrm1 = common::read(&mut r, Target::GNormal);
+        let nrm0 = common::read(&mut r, Target::GNormalHistory);
+        timings.extend(r.finish().unwrap());
+        let last = timings.last().unwrap();
+        let counted = counter(last, "svgf_disoccluded_pixels").expect("svgf's counter");
+        let cpu = common::cpu_disocclusion([&pos0, &pos1], [&nrm0, &nrm1], (c0, c1), reach);
+        let reprojection = CpuReprojection::new([&pos0, &pos1], [&nrm0, &nrm1], (c0, c1));
+        let (mut resampled, mut resampled_right, mut fallback) = (0u64, 0u64, 0u64);
+        let (mut agree, mut total, mut restarted, mut cpu_new) = (0u64, 0u64, 0u64, 0u64);
+        for (i, new) in cpu.iter().enumerate() {
+            let Some(new) = *new else {
+                assert_eq!(history[i], Vec4::ZERO, "background pixel {i}");
+                continue;
+            };
+            let h = history[i];
+            let gpu_new = h.x == 1.0;
+            assert!(gpu_new || h.x == 4.0, "pixel {i}: {} samples", h.x);
+            if gpu_new {
+                // The new sample's moments alone.
+                let l = luminance(noisy[i]);
+                assert!(
+                    (h.y - l).abs() <= 1e-6 * l,
+                    "pixel {i}: E[l] {} for {l}",
+                    h.y
+                );
+                assert!(
+                    (h.z - l * l).abs() <= 1e-5 * l * l,
+                    "pixel {i}: E[l^2] {}",
+                    h.z
+                );
+            }
+            let (x, y) = (i as u32 % size, i as u32 / size);
+            if let (false, Some((taps, from_block))) =
+                (gpu_new, history_taps(&reprojection, x, y, svgf.history))
+            {
+                // n = 4: the new sample's weight is max(alpha, 1/4) = 1/4.
+                let previous: f32 = taps
+                    .iter()
+                    .map(|&((tx, ty), w)| w * still[(ty * size as i64 + tx) as usize].y)
+                    .sum();
+                let want = previous + (luminance(noisy[i]) - previous) * 0.25;
+                let scale = taps
+                    .iter()
+                    .map(|&((tx, ty), _)| still[(ty * size as i64 + tx) as usize].y)
+                    .fold(luminance(noisy[i]), f32::max);
+                resampled += 1;
+                resampled_right += ((h.y - want).abs() <= 1e-5 * scale + 1e-30) as u64;
+                fallback += from_block as u64;
+            }
+            restarted += gpu_new as u64;
+            cpu_new += new as u64;
+            agree += (gpu_new == new) as u64;
+            total += 1;
+        }
+        let fraction = agree as f64 / total as f64;
+        eprintln!(
+            "{:?}: restarted {restarted} (counter {counted}), CPU new {cpu_new}, agreement {fraction:.5} \
+             over {total} pixels; first moment as the CPU resamples it at {resampled_right} of \
+             {resampled} kept pixels ({fallback} from the 3x3 fallback)",
+            svgf.history
+        );
+        assert!(
+            resampled > total / 2 && resampled_right as f64 >= 0.995 * resampled as f64,
+            "resampled moments right at {resampled_right} of {resampled}"
+        );
+        assert_eq!(
+            counted, restarted,
+            "the counter counts the restarted pixels"
+        );
+        assert!(
+            cpu_new as f64 > 0.01 * total as f64 && cpu_new < total / 2,
+            "the move should disocclude some pixels: {cpu_new} of {total}"
+        );
+        assert!(fraction >= 0.995, "restarts agree on {fraction}");
     }
-    let fraction = agree as f64 / total as f64;
-    eprintln!(
-        "restarted {restarted} (counter {counted}), CPU new {cpu_new}, agreement {fraction:.5} \
-         over {total} pixels"
-    );
-    assert_eq!(
-        counted, restarted,
-        "the counter counts the restarted pixels"
-    );
-    assert!(
-        cpu_new as f64 > 0.01 * total as f64 && cpu_new < total / 2,
-        "the move should disocclude some pixels: {cpu_new} of {total}"
-    );
-    assert!(fraction >= 0.995, "restarts agree on {fraction}");
     common::assert_clean(&ctx);
+}
+
+/// A texel of last frame and its weight.
+type Tap = ((i64, i64), f32);
+
+/// svgf_temporal.comp's history taps for pixel (x, y): last frame's texels with their
+/// weights, summing to 1. The nearest texel where it holds the surface; with `Bilinear` the
+/// bilinear tap around its previous position, renormalised over the texels that hold its
+/// surface, and where none does the equal mean of those of the 3x3 block around the nearest
+/// (then `true`). None where nothing holds it (the history restarts).
+fn history_taps(
+    cpu: &CpuReprojection,
+    x: u32,
+    y: u32,
+    history: SvgfHistory,
+) -> Option<(Vec<Tap>, bool)> {
+    let f = cpu.previous(x, y)??;
+    if history == SvgfHistory::Nearest {
+        let t = (f.x.floor() as i64, f.y.floor() as i64);
+        return cpu.holds((x, y), t).then(|| (vec![(t, 1.0)], false));
+    }
+    let corner = f - 0.5;
+    let base = corner.floor();
+    let a = corner - base;
+    let (bx, by) = (base.x as i64, base.y as i64);
+    let mut taps: Vec<Tap> = [(0, 0), (1, 0), (0, 1), (1, 1)]
+        .into_iter()
+        .map(|(ox, oy)| {
+            let w = if ox == 1 { a.x } else { 1.0 - a.x } * if oy == 1 { a.y } else { 1.0 - a.y };
+            ((bx + ox, by + oy), w)
+        })
+        .filter(|&(t, w)| w > 0.0 && cpu.holds((x, y), t))
+        .collect();
+    let fallback = taps.is_empty();
+    if fallback {
+        let (tx, ty) = (f.x.floor() as i64, f.y.floor() as i64);
+        taps = (0..9)
+            .map(|i| ((tx + i % 3 - 1, ty + i / 3 - 1), 1.0))
+            .filter(|&(t, _)| cpu.holds((x, y), t))
+            .collect();
+    }
+    let total: f32 = taps.iter().map(|t| t.1).sum();
+    (total > 0.0).then(|| {
+        let taps = taps.into_iter().map(|(t, w)| (t, w / total)).collect();
+        (taps, fallback)
+    })
 }
 
 /// With `--skip-unchanged on` and a still view the filter keeps recording until its running

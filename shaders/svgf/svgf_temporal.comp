@@ -1,9 +1,13 @@
 #version 460
 // SVGF's temporal accumulation (Schied et al. section 4.1): this frame's noisy gather merged
 // into the colour and into the first and second moments of its luminance that the pixel's
-// surface held last frame (previous_texel.glsl: the nearest texel, eq 3's test and the facing
-// test), each with weight max(alpha, 1/n) for a history of n samples; where the surface is new
-// to the view (or nothing is kept) everything starts over from the sample alone, n = 1. Also
+// surface held last frame, each with weight max(alpha, 1/n) for a history of n samples. The
+// history is last frame's nearest texel where it holds the surface (previous_texel.glsl: eq 3's
+// test and the facing test), or with `bilinear` the article's tap: the four texels around the
+// previous position, each tested and renormalised over those that hold it; where none does,
+// the equal mean of those of the 3x3 block around the nearest that do (thin geometry). Where
+// nothing holds it (or nothing is kept), the surface is new to the view and everything starts
+// over from the sample alone, n = 1. Also
 // stores each pixel's reciprocal depth and its screen-space gradient for the spatial passes,
 // and counts the pixels that started over.
 #extension GL_GOOGLE_include_directive : require
@@ -30,6 +34,56 @@ layout(set = 1, binding = 10, rgba32f) uniform writeonly image2D depth; // z, dz
 
 // Past 1/alpha samples the weights are alpha's: the count only has to stay finite.
 const float HISTORY_CAP = 65536.0;
+
+// Last frame's colour, and its moments (n, E[l], E[l^2]), read at this pixel's surface;
+// false where no texel held the surface.
+bool history(ivec2 pixel, out vec3 c, out vec3 m) {
+    c = vec3(0.0);
+    m = vec3(0.0);
+    vec3 p;
+    vec2 f;
+    if (svgf.history_valid == 0u || !previous_position(pixel, p, f)) return false;
+    vec3 n = texelFetch(g_normal, pixel, 0).xyz;
+    if (svgf.bilinear == 0u) {
+        ivec2 t = ivec2(f);
+        if (!previous_holds(t, p, n)) return false;
+        c = texelFetch(color_prev, t, 0).rgb;
+        m = texelFetch(moments_prev, t, 0).rgb;
+        return true;
+    }
+    // The 2x2 texels whose centres surround f, and f's bilinear weights among them.
+    vec2 corner = f - 0.5;
+    ivec2 base = ivec2(floor(corner));
+    vec2 a = corner - vec2(base);
+    float total = 0.0;
+    for (int i = 0; i < 4; ++i) {
+        ivec2 o = ivec2(i & 1, i >> 1);
+        float w = (o.x == 1 ? a.x : 1.0 - a.x) * (o.y == 1 ? a.y : 1.0 - a.y);
+        if (w > 0.0 && previous_holds(base + o, p, n)) {
+            c += w * texelFetch(color_prev, base + o, 0).rgb;
+            m += w * texelFetch(moments_prev, base + o, 0).rgb;
+            total += w;
+        }
+    }
+    if (total == 0.0) {
+        ivec2 t = ivec2(f);
+        for (int i = 0; i < 9; ++i) {
+            ivec2 q = t + ivec2(i % 3 - 1, i / 3 - 1);
+            if (previous_holds(q, p, n)) {
+                c += texelFetch(color_prev, q, 0).rgb;
+                m += texelFetch(moments_prev, q, 0).rgb;
+                total += 1.0;
+            }
+        }
+    }
+    // total is a sum of positive weights, each above 0, or nothing was found: no 0/0.
+    if (total == 0.0) return false;
+    c /= total;
+    m /= total;
+    // A count of samples, blended between neighbours: the nearest whole count.
+    m.x = max(floor(m.x + 0.5), 1.0);
+    return true;
+}
 
 shared uint group_new;
 shared uint group_geometry;
@@ -70,14 +124,14 @@ void main() {
         // At most HISTORY_MAX (temporal.glsl): its square stays finite in fp32.
         float l = clamp(svgf_luminance(x), 0.0, HISTORY_MAX);
         vec2 fresh = vec2(l, l * l);
-        ivec2 t = svgf.history_valid != 0u ? previous_texel(pixel) : ivec2(-1);
         vec3 c;
         vec3 m;
-        if (t.x >= 0) {
-            vec4 mp = texelFetch(moments_prev, t, 0);
-            float n = min(mp.r + 1.0, HISTORY_CAP);
-            c = mix(texelFetch(color_prev, t, 0).rgb, x, max(svgf.alpha, 1.0 / n));
-            m = vec3(n, mix(mp.gb, fresh, max(svgf.alpha_moments, 1.0 / n)));
+        vec3 cp;
+        vec3 mp;
+        if (history(pixel, cp, mp)) {
+            float n = min(mp.x + 1.0, HISTORY_CAP);
+            c = mix(cp, x, max(svgf.alpha, 1.0 / n));
+            m = vec3(n, mix(mp.yz, fresh, max(svgf.alpha_moments, 1.0 / n)));
         } else {
             c = x;
             m = vec3(1.0, fresh);

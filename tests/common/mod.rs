@@ -34,51 +34,94 @@ pub fn frames_recording(timings: &[FrameTiming], pass: &str) -> Vec<u64> {
         .collect()
 }
 
+/// Reverse reprojection on the CPU from the G-buffers of two frames of a still scene, seen
+/// from `c0` and then `c1`: eq 1 (where a pixel's surface was in the first frame) and eqs 2-3
+/// with the facing test (whether a texel of the first frame held it: the default scale-free
+/// epsilon of 2 footprints, normals within 60 degrees), as the GPU's reprojections do it.
+pub struct CpuReprojection<'a> {
+    pos: [&'a ImageData; 2],
+    nrm: [&'a ImageData; 2],
+    c1: Camera,
+    vp0: glam::Mat4,
+}
+
+impl<'a> CpuReprojection<'a> {
+    pub fn new(
+        pos: [&'a ImageData; 2],
+        nrm: [&'a ImageData; 2],
+        (c0, c1): (Camera, Camera),
+    ) -> Self {
+        let vp0 = c0.view_proj(pos[1].width as f32 / pos[1].height as f32);
+        Self { pos, nrm, c1, vp0 }
+    }
+
+    /// Pixel (x, y)'s surface in the second frame: None over the background, else its
+    /// continuous pixel coordinates in the first frame (texel centres at half-integers), None
+    /// where it was behind that camera or off its image.
+    pub fn previous(&self, x: u32, y: u32) -> Option<Option<glam::Vec2>> {
+        let p = self.pos[1].texel(x, y);
+        if p[3] == 0.0 {
+            return None;
+        }
+        let (width, height) = (self.pos[1].width as f32, self.pos[1].height as f32);
+        let clip = self.vp0 * glam::Vec4::new(p[0], p[1], p[2], 1.0);
+        // Behind the camera, or NaN: no previous position.
+        if clip.w.is_nan() || clip.w <= 0.0 {
+            return Some(None);
+        }
+        let f = glam::Vec2::new(
+            (clip.x / clip.w * 0.5 + 0.5) * width,
+            (clip.y / clip.w * 0.5 + 0.5) * height,
+        );
+        let inside = f.x >= 0.0 && f.y >= 0.0 && f.x < width && f.y < height;
+        Some(inside.then_some(f))
+    }
+
+    /// Whether the first frame's texel (tx, ty) held pixel (x, y)'s surface (false off the
+    /// image).
+    pub fn holds(&self, (x, y): (u32, u32), (tx, ty): (i64, i64)) -> bool {
+        use glam::Vec3;
+        let (width, height) = (self.pos[1].width, self.pos[1].height);
+        if tx < 0 || ty < 0 || tx >= width as i64 || ty >= height as i64 {
+            return false;
+        }
+        let p = self.pos[1].texel(x, y);
+        let w = Vec3::new(p[0], p[1], p[2]);
+        let n = Vec3::from_slice(&self.nrm[1].texel(x, y)[..3]);
+        let to_eye = self.c1.position - w;
+        let dist = to_eye.length();
+        let tan_half = (0.5 * self.c1.vfov_deg).to_radians().tan();
+        let footprint = 2.0 * dist * tan_half / height as f32;
+        let eps = 2.0 * footprint / n.dot(to_eye / dist).abs().max(0.1);
+        let h = self.pos[0].texel(tx as u32, ty as u32);
+        let facing = Vec3::from_slice(&self.nrm[0].texel(tx as u32, ty as u32)[..3]).dot(n) >= 0.5;
+        h[3] != 0.0 && Vec3::new(h[0], h[1], h[2]).distance(w) <= eps && facing
+    }
+}
+
 /// Per pixel of the frame seen from `c1`, whether it is new to the view since the frame seen
-/// from `c0` (None over the background): eqs 1-3 applied on the CPU to the two G-buffers (the
-/// nearest texel, the default scale-free epsilon of 2 footprints) and the facing test
-/// (normals within 60 degrees), as the reprojection does it for a still scene.
+/// from `c0` (None over the background): `CpuReprojection`'s nearest texel does not hold its
+/// surface. With `reach` above 0 a pixel is kept where any texel of the (2 reach + 1)-square
+/// block around the nearest holds it (SVGF's bilinear tap and its 3x3 fallback: reach 1).
 pub fn cpu_disocclusion(
-    [pos0, pos1]: [&ImageData; 2],
-    [nrm0, nrm1]: [&ImageData; 2],
-    (c0, c1): (Camera, Camera),
+    pos: [&ImageData; 2],
+    nrm: [&ImageData; 2],
+    cameras: (Camera, Camera),
+    reach: i64,
 ) -> Vec<Option<bool>> {
-    use glam::{Vec3, Vec4};
-    let (width, height) = (pos1.width, pos1.height);
-    let vp0 = c0.view_proj(width as f32 / height as f32);
-    let tan_half = (0.5 * c1.vfov_deg).to_radians().tan();
-    let texel = |img: &ImageData, x: i64, y: i64| {
-        (x >= 0 && y >= 0 && x < width as i64 && y < height as i64)
-            .then(|| img.texel(x as u32, y as u32))
-    };
+    let cpu = CpuReprojection::new(pos, nrm, cameras);
+    let (width, height) = (pos[1].width, pos[1].height);
     let mut mask = Vec::with_capacity((width * height) as usize);
     for y in 0..height {
         for x in 0..width {
-            let p = pos1.texel(x, y);
-            if p[3] == 0.0 {
-                mask.push(None);
-                continue;
-            }
-            let w = Vec3::new(p[0], p[1], p[2]);
-            let n = Vec3::from_slice(&nrm1.texel(x, y)[..3]);
-            let to_eye = c1.position - w;
-            let dist = to_eye.length();
-            let footprint = 2.0 * dist * tan_half / height as f32;
-            let eps = 2.0 * footprint / n.dot(to_eye / dist).abs().max(0.1);
-            let clip = vp0 * Vec4::new(w.x, w.y, w.z, 1.0);
-            let valid = clip.w > 0.0 && {
-                let (tx, ty) = (
-                    ((clip.x / clip.w * 0.5 + 0.5) * width as f32).floor() as i64,
-                    ((clip.y / clip.w * 0.5 + 0.5) * height as f32).floor() as i64,
-                );
-                let facing = |t: [f32; 4]| Vec3::from_slice(&t[..3]).dot(n) >= 0.5;
-                texel(pos0, tx, ty).is_some_and(|h| {
-                    h[3] != 0.0
-                        && Vec3::new(h[0], h[1], h[2]).distance(w) <= eps
-                        && texel(nrm0, tx, ty).is_some_and(facing)
-                })
-            };
-            mask.push(Some(!valid));
+            mask.push(cpu.previous(x, y).map(|f| {
+                let kept = f.is_some_and(|f| {
+                    let (tx, ty) = (f.x.floor() as i64, f.y.floor() as i64);
+                    (-reach..=reach)
+                        .any(|dy| (-reach..=reach).any(|dx| cpu.holds((x, y), (tx + dx, ty + dy))))
+                });
+                !kept
+            }));
         }
     }
     mask

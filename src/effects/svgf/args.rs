@@ -1,7 +1,7 @@
 //! SVGF's command-line options (flattened into every subcommand that renders, through the
 //! registry's `EffectArgs`) and what they make of `SvgfConfig`.
 
-use super::config::{parse_sigma, parse_weight, SvgfConfig};
+use super::config::{parse_sigma, parse_weight, SvgfConfig, SvgfHistory};
 use clap::Args;
 
 #[derive(Args, Debug, Clone)]
@@ -17,6 +17,10 @@ pub struct SvgfArgs {
     /// SVGF: the same for the luminance moments that give the variance.
     #[arg(long, default_value_t = SvgfConfig::default().alpha_moments, value_parser = parse_weight)]
     pub svgf_alpha_moments: f32,
+    /// SVGF: how last frame's colour and moments are read at the pixel's surface: `nearest`
+    /// texel, or the article's `bilinear` tap tested per texel (blurs a long history).
+    #[arg(long, value_enum, default_value_t = SvgfConfig::default().history)]
+    pub svgf_history: SvgfHistory,
     /// SVGF luminance edge-stopping sigma_l, in standard deviations of the filtered variance
     /// (the article: 4).
     #[arg(long, default_value_t = SvgfConfig::default().sigma_luminance, value_parser = parse_sigma)]
@@ -38,6 +42,7 @@ impl SvgfArgs {
             iterations: self.svgf_iterations,
             alpha: self.svgf_alpha,
             alpha_moments: self.svgf_alpha_moments,
+            history: self.svgf_history,
             sigma_luminance: self.svgf_sigma_luminance,
             sigma_normal: self.svgf_sigma_normal,
             sigma_depth: self.svgf_sigma_depth,

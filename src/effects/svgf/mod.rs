@@ -1,10 +1,10 @@
 //! Indirect light filtered by SVGF (Schied et al. 2017, "Spatiotemporal Variance-Guided
 //! Filtering", `--indirect-filter svgf`): the same noisy gather as the other per-frame filters
 //! (`indirect_noisy`, --vpls per pixel, new VPLs every frame), accumulated over time with the
-//! first and second moments of its luminance along the nearest-texel reprojection, its variance
-//! estimated from the moments (spatially while a pixel has few samples), then filtered by
-//! `--svgf-iterations` iterations of an edge-avoiding a-trous wavelet whose luminance
-//! edge-stopping follows the variance. The first iteration's output is the next frame's
+//! first and second moments of its luminance along the reprojection (a bilinear tap tested per
+//! texel, as the article's), its variance estimated from the moments (spatially while a pixel
+//! has few samples), then filtered by `--svgf-iterations` iterations of an edge-avoiding
+//! a-trous wavelet whose luminance edge-stopping follows the variance. The first iteration's output is the next frame's
 //! history. model.rs is the CPU evaluation the a-trous passes are checked against.
 
 pub mod args;
@@ -359,6 +359,7 @@ impl Effect for SvgfEffect {
             history_valid: reusing as u32,
             alpha: c.alpha,
             alpha_moments: c.alpha_moments,
+            bilinear: c.history.code(),
             step: 1,
             sigma_luminance: c.sigma_luminance,
             sigma_normal: c.sigma_normal,

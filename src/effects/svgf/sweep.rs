@@ -1,8 +1,9 @@
 //! SVGF's keys for `ssgi sweep --vary` (the registry hands them to the sweep).
 
-use super::config::{parse_sigma, parse_weight, SvgfConfig};
+use super::config::{parse_sigma, parse_weight, SvgfConfig, SvgfHistory};
 use crate::config::parse::parse_count;
 use crate::config::sweep_key::SweepKey;
+use clap::ValueEnum;
 
 pub const SWEEP_KEYS: &[SweepKey] = &[
     SweepKey {
@@ -29,6 +30,15 @@ pub const SWEEP_KEYS: &[SweepKey] = &[
         description: "the same for the luminance moments (--svgf-alpha-moments)",
         set: |c, v| {
             c.svgf.alpha_moments = parse_weight(v)?;
+            Ok(())
+        },
+    },
+    SweepKey {
+        name: "svgf.history",
+        syntax: "nearest|bilinear",
+        description: "how SVGF reads last frame's values (--svgf-history)",
+        set: |c, v| {
+            c.svgf.history = SvgfHistory::from_str(v, false)?;
             Ok(())
         },
     },
