@@ -55,7 +55,10 @@ pub struct AoConfig {
     /// default, two slices of the default 32 samples: on the Cornell box (256x256, static) 4
     /// steps miss horizons near the radius (AO RMSE 0.118 against the ray-traced AO), 8 reach
     /// 0.101, 16 0.092 and 128 0.087; one slice per pattern (16 steps) leaves the cache 0.010
-    /// from its converged value after the 36 patterns, two 0.002 (docs/results).
+    /// from its converged value after the 36 patterns, two 0.002. In `table ao` 16 steps lower
+    /// the cached error by 1-5% but raise the flicker under motion 1.1-6.0x (a noisier
+    /// pattern enters the moving pixels' running means; docs/results,
+    /// lavapipe-ao-16-steps-2026-12-07).
     pub steps: u32,
 }
 
