@@ -32,6 +32,16 @@ float gtao_arc(float h, float n) {
     return (cos(n) + 2.0 * h * sin(n) - cos(2.0 * h - n)) * 0.25;
 }
 
+// Rank of the pixel in the 4x4 Bayer (ordered dither) matrix, 0-15: 0 8 2 10 / 12 4 14 6 /
+// 3 11 1 9 / 15 7 13 5 down the rows.
+float gtao_bayer(ivec2 pixel) {
+    uint x = uint(pixel.x) & 3u, y = uint(pixel.y) & 3u;
+    // Interleaving the bits of (x ^ y, y), low bit first: the recursive Bayer construction.
+    uint xy = x ^ y;
+    uint rank = ((xy & 1u) << 3) | ((y & 1u) << 2) | ((xy & 2u) >> 0) | ((y & 2u) >> 1);
+    return float(rank);
+}
+
 // The surface point the view ray through screen point `s` [px] meets: the plane of the
 // G-buffer texel it falls in (position q, normal n_q). A texel's centre lies up to half a
 // pixel off the slice's line, and its direction to the pixel then leaves the slice: on a plane
@@ -70,9 +80,12 @@ float ao_gtao_taps(ivec2 pixel, vec3 p, vec3 n, uint pattern, uint first, uint e
     // tap is off the image.
     float radius_px = max(min(radius * px_per_world, 4.0 * float(frame.size.y)), ao.near_px);
     vec2 u = pattern_point(pattern);
-    // Pixel rotation (4x4 unit vectors) as an angle in [0, 2 pi): slices cover a half turn.
-    vec2 r = pixel_rotation(pixel);
-    float base = atan(r.y, r.x) + PI * u.x / float(slices);
+    // The pixel's share of the slices' half turn: its rank in a 4x4 Bayer matrix, k / 16 of
+    // the spacing between slices, so that the 16 pixels of a tile turn their slices to 16
+    // evenly spread angles (a fixed pattern filtered over a 4x4 window sees 16 x slices
+    // directions; random rotations clump) and neighbours differ by at least a quarter turn of
+    // the spacing.
+    float base = PI * (gtao_bayer(pixel) / 16.0 + u.x) / float(slices);
     vec3 v = safe_normalize(frame.camera_pos - p, n);
     // Camera right and image-down in world space: rows 0 and 1 of view_proj (no roll or
     // skew in a perspective projection's first two rows beyond the scale).

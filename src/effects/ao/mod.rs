@@ -1,7 +1,8 @@
 //! SSAO (Lin 2013 eqs 6-8, or Mittring's sphere). With reuse: an indirect dispatch over the
 //! blocks the reprojection listed, one pattern per pixel merged into the AO history (the
 //! gated running mean, or eqs 4-5), refresh tiles recomputed as the mean of every pattern. Without reuse: every pixel with a fixed
-//! pattern (or many patterns, for references), then the thesis's 5x5 Gaussian blur. With
+//! pattern (or many patterns, for references), then the thesis's 5x5 Gaussian blur (GTAO: its
+//! own edge-aware denoise, shaders/ao/gtao_denoise.comp). With
 //! `--ao-position-mips`, a pass first writes point-sampled levels of the G-buffer position that
 //! far taps read.
 
@@ -10,6 +11,7 @@ pub mod config;
 pub mod params;
 pub mod sweep;
 
+use self::config::AoEstimator;
 use super::effect::{
     every_pixel, refresh_dispatch, Effect, EffectId, FrameInfo, Recording, Registration, Setup,
     TermKind,
@@ -90,9 +92,11 @@ pub mod pass {
     pub const SSAO_REFRESH: PassId = PassId::new("ssao_refresh", &[Change::Camera, Change::Config]);
     /// 5x5 Gaussian blur of the AO (no-reuse baseline only).
     pub const BLUR: PassId = PassId::new("blur", &[Change::Config]);
+    /// GTAO's edge-aware 5x5 denoise, in place of the blur (no-reuse only).
+    pub const GTAO_DENOISE: PassId = PassId::new("gtao_denoise", &[Change::Camera, Change::Config]);
 
     /// Every pass the effect may record, in recording order.
-    pub const ALL: &[PassId] = &[AO_POSITION_CHAIN, SSAO, SSAO_REFRESH, BLUR];
+    pub const ALL: &[PassId] = &[AO_POSITION_CHAIN, SSAO, SSAO_REFRESH, BLUR, GTAO_DENOISE];
 
     /// The timing groups `bench --compare-reuse`, tables and sweeps compare (summed per frame).
     pub const GROUPS: &[(&str, &[PassId])] = &[("ao", ALL)];
@@ -149,6 +153,13 @@ const BLUR: &[Bind] = &[
     Bind::new(2, BLURRED, Use::StorageWrite),
 ];
 
+const DENOISE: &[Bind] = &[
+    Bind::new(0, Slot::GPosition, Use::Sampled),
+    Bind::new(1, Slot::GNormal, Use::Sampled),
+    Bind::new(2, RAW, Use::Sampled),
+    Bind::new(3, BLURRED, Use::StorageWrite),
+];
+
 pub const REGISTRATION: Registration = Registration {
     id: ID,
     switch: "ao",
@@ -159,17 +170,29 @@ pub const REGISTRATION: Registration = Registration {
     timing_groups: pass::GROUPS,
     sweep_keys: sweep::SWEEP_KEYS,
     ambient: true,
-    views: &POSITION_LEVELS,
+    views: &VIEWS,
     estimates: |_| Terms::AMBIENT_OCCLUSION,
     toggles: &[],
 };
 
-/// The point-sampled G-buffer position levels the far taps read (`--ao-position-mips`).
-pub const POSITION_LEVELS: [EffectView; 3] = [
+/// Without reuse: this frame's AO before the blur or GTAO's denoise (only when one runs).
+pub const RAW_VIEW: EffectView = EffectView {
+    name: "ao_raw",
+    look: Look::Red,
+    in_viewer: false,
+};
+
+/// The effect's views: the point-sampled G-buffer position levels the far taps read
+/// (`--ao-position-mips`), then the raw AO.
+const VIEWS: [EffectView; 4] = [
     level_view("ao_position_level1"),
     level_view("ao_position_level2"),
     level_view("ao_position_level3"),
+    RAW_VIEW,
 ];
+
+/// The position levels (the first three views).
+pub const POSITION_LEVELS: &[EffectView] = VIEWS.split_at(3).0;
 
 const fn level_view(name: &'static str) -> EffectView {
     EffectView {
@@ -192,6 +215,8 @@ const SSAO_ACCUMULATE_REFRESH: PassDecl = PassDecl::new(
 );
 const SSAO_FULL: PassDecl = PassDecl::new(pass::SSAO, &shaders::SSAO_FULL_COMP, FULL);
 const BLUR_PASS: PassDecl = PassDecl::new(pass::BLUR, &shaders::BLUR_COMP, BLUR);
+const GTAO_DENOISE_PASS: PassDecl =
+    PassDecl::new(pass::GTAO_DENOISE, &shaders::GTAO_DENOISE_COMP, DENOISE);
 const AO_POSITION_CHAIN: PassDecl = PassDecl::new(
     pass::AO_POSITION_CHAIN,
     &shaders::AO_POSITION_CHAIN_COMP,
@@ -204,6 +229,7 @@ fn layouts() -> Vec<PassLayout> {
         SSAO_ACCUMULATE_REFRESH.layout(),
         SSAO_FULL.layout(),
         BLUR_PASS.layout(),
+        GTAO_DENOISE_PASS.layout(),
         AO_POSITION_CHAIN.layout(),
     ]
 }
@@ -223,7 +249,8 @@ pub struct AoEffect {
     ssao: ComputePass,
     /// With reuse: the refresh tile, one workgroup per pixel.
     refresh: Option<ComputePass>,
-    /// The no-reuse baseline's blur (single-pattern runs only; references are not blurred).
+    /// The no-reuse baseline's blur, GTAO's denoise (single-pattern runs only; references are
+    /// not blurred).
     blur: Option<ComputePass>,
     /// Writes the position levels (`--ao-position-mips` above 0).
     chain: Option<ComputePass>,
@@ -259,7 +286,11 @@ impl AoEffect {
             &SSAO_FULL
         };
         let blur = if !reuse && s.config.ao.patterns == 1 {
-            Some(ComputePass::declared(s.ctx, s.pool, &BLUR_PASS)?)
+            let decl = match s.config.ao.estimator {
+                AoEstimator::Gtao => &GTAO_DENOISE_PASS,
+                _ => &BLUR_PASS,
+            };
+            Some(ComputePass::declared(s.ctx, s.pool, decl)?)
         } else {
             None
         };
@@ -460,7 +491,7 @@ impl Effect for AoEffect {
             });
         }
         if let Some(blur) = &self.blur {
-            r.timed(pass::BLUR, |rec, tr| {
+            r.timed(blur.id, |rec, tr| {
                 blur.record(rec, tr, info.frame, &res, &[], every_pixel(info))
             });
         }
@@ -474,6 +505,7 @@ impl Effect for AoEffect {
         match target {
             Target::Ao => Some(self.visibility(parity)),
             Target::State => Some(&self.sized.temporal.state),
+            Target::Effect(v) if *v == RAW_VIEW => self.blur.as_ref().map(|_| &self.sized.raw),
             // Only when the chain writes them (otherwise they hold nothing).
             Target::Effect(v) if self.chain.is_some() => POSITION_LEVELS
                 .iter()
