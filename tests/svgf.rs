@@ -131,12 +131,12 @@ fn atrous_iterations_match_a_cpu_evaluation() {
 fn moments_restart_where_the_surface_is_new_to_the_view() {
     let ctx = common::context();
     let size = 64;
-    for history in [SvgfHistory::Nearest, SvgfHistory::Bilinear] {
+    for mode in [SvgfHistory::Nearest, SvgfHistory::Bilinear] {
         let svgf = SvgfConfig {
-            history,
+            history: mode,
             ..SvgfConfig::default()
         };
-        let reach = (history == SvgfHistory::Bilinear) as i64;
+        let reach = (mode == SvgfHistory::Bilinear) as i64;
         let mut r = Renderer::new(&ctx, cornell_box(), config(size, 4, svgf)).unwrap();
         let c0 = r.scene.camera;
         let shift = Vec3::new(0.12, 0.03, -0.05);
@@ -188,7 +188,7 @@ fn moments_restart_where_the_surface_is_new_to_the_view() {
             }
             let (x, y) = (i as u32 % size, i as u32 / size);
             if let (false, Some((taps, from_block))) =
-                (gpu_new, history_taps(&reprojection, x, y, svgf.history))
+                (gpu_new, history_taps(&reprojection, x, y, mode))
             {
                 // n = 4: the new sample's weight is max(alpha, 1/4) = 1/4.
                 let previous: f32 = taps

@@ -38,7 +38,7 @@ float gtao_bayer(ivec2 pixel) {
     uint x = uint(pixel.x) & 3u, y = uint(pixel.y) & 3u;
     // Interleaving the bits of (x ^ y, y), low bit first: the recursive Bayer construction.
     uint xy = x ^ y;
-    uint rank = ((xy & 1u) << 3) | ((y & 1u) << 2) | ((xy & 2u) >> 0) | ((y & 2u) >> 1);
+    uint rank = ((xy & 1u) << 3) | ((y & 1u) << 2) | (xy & 2u) | ((y & 2u) >> 1);
     return float(rank);
 }
 

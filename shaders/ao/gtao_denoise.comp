@@ -3,10 +3,10 @@
 // edge-aware, before any temporal step): a 5x5 window whose screen weights are 1 2 2 2 1 along
 // each axis, times the tap's normal agreement (max(0, n . n_q)^16) and its distance from the
 // centre's tangent plane in pixel footprints (a Gaussian of sigma 2), the joint bilateral
-// filter's edge terms (shaders/jbf). The screen weights give each of the 16 pixel rotations of
-// the 4x4 pattern (patterns.glsl) the same total weight, the two end taps sharing one rotation,
-// so on a plane the filter averages every slice direction; the thesis's 5x5 Gaussian weighs
-// them 1 to 36 and blurs across depth edges.
+// filter's edge terms (shaders/jbf). The screen weights give each of the 16 slice rotations of
+// a 4x4 tile (gtao.glsl's Bayer ranks) the same total weight, the two end taps of a row sharing
+// one rotation, so on a plane the filter averages every slice direction; the thesis's 5x5
+// Gaussian weighs them 1 to 36 and blurs across depth edges.
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_samplerless_texture_functions : require
 #include "frame.glsl"

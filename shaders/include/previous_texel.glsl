@@ -1,7 +1,7 @@
 // Reverse reprojection (Lin 2013 eqs 1-3) for the per-frame filters that keep a history of
 // their own (CCIPCA's bases, SVGF's moments): where a pixel's surface was last frame, and
-// whether a texel of last frame held it (eq 3's test, and it faces the same way). The includer declares the
-// textures g_position, g_normal, prev_position, prev_normal and g_motion.
+// whether a texel of last frame held it (eq 3's test, and it faces the same way). The includer
+// declares the textures g_position, g_normal, prev_position, prev_normal and g_motion.
 #ifndef PREVIOUS_TEXEL_GLSL
 #define PREVIOUS_TEXEL_GLSL
 

@@ -7,9 +7,8 @@
 // previous position, each tested and renormalised over those that hold it; where none does,
 // the equal mean of those of the 3x3 block around the nearest that do (thin geometry). Where
 // nothing holds it (or nothing is kept), the surface is new to the view and everything starts
-// over from the sample alone, n = 1. Also
-// stores each pixel's reciprocal depth and its screen-space gradient for the spatial passes,
-// and counts the pixels that started over.
+// over from the sample alone, n = 1. Also stores each pixel's reciprocal depth and its
+// screen-space gradient for the spatial passes, and counts the pixels that started over.
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_samplerless_texture_functions : require
 #include "frame.glsl"
