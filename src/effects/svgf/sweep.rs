@@ -82,6 +82,9 @@ mod tests {
             ("svgf.iterations", "2", |c| c.svgf.iterations = 2),
             ("svgf.alpha", "0.5", |c| c.svgf.alpha = 0.5),
             ("svgf.alpha_moments", "0.1", |c| c.svgf.alpha_moments = 0.1),
+            ("svgf.history", "bilinear", |c| {
+                c.svgf.history = SvgfHistory::Bilinear
+            }),
             ("svgf.sigma_luminance", "8", |c| {
                 c.svgf.sigma_luminance = 8.0
             }),
