@@ -9,9 +9,12 @@
 // Relation to the ground truth (src/reference/estimators.rs): a sample farther than the radius
 // R does not raise the horizon, so with attenuation (0, 0) GTAO estimates the reference's
 // binary visibility within R exactly wherever the occluders are a height field as seen along
-// each slice (a floor beside a wall: tests/gtao.rs). With eq 7's attenuation a horizon sample
-// at x = d/R is pulled down towards the tangent plane by 1/D(x) (XeGTAO's falloff with the
-// thesis's D): an approximation of the reference's weighting, not the same integral. Like
+// each slice (a floor beside a wall: tests/gtao.rs). With eq 7's attenuation each rise of a
+// horizon, from the sample at x = d/R, occludes the arc it covers by 1/D(x) (the rays of that
+// arc meet the surface near that sample in a height field), where XeGTAO's falloff pulls the
+// horizon towards the tangent plane: against the ray-traced AO along paths/box.json the arcs
+// measured 0.29-0.33x the thesis estimator's error on the Table 4.1 scenes, the falloff
+// 0.46-0.55x (lavapipe-gtao-arcs-2026-12-07). Like
 // every screen-space estimator it sees no occluder that is hidden or off screen, and it takes
 // the visible surface for an infinitely thick one (the space behind it counts as occluded).
 #ifndef GTAO_GLSL
@@ -40,6 +43,14 @@ float gtao_bayer(ivec2 pixel) {
     uint xy = x ^ y;
     uint rank = ((xy & 1u) << 3) | ((y & 1u) << 2) | (xy & 2u) | ((y & 2u) >> 1);
     return float(rank);
+}
+
+// One side's visible arc (eq 10's inner integral) for a horizon of cosine `h` to the view
+// vector, on the side `sign` (+1 towards the slice's direction, -1 away), the horizon kept
+// within a quarter turn of the projected normal (angle n).
+float gtao_side_arc(float h, float sign, float n) {
+    float angle = sign * gtao_acos(h);
+    return gtao_arc(n + clamp(angle - n, -HALF_PI, HALF_PI), n);
 }
 
 // The surface point the view ray through screen point `s` [px] meets: the plane of the
@@ -130,6 +141,15 @@ float ao_gtao_taps(ivec2 pixel, vec3 p, vec3 n, uint pattern, uint first, uint e
         float low_neg = cos(ang_n - HALF_PI);
         float h_pos = low_pos;
         float h_neg = low_neg;
+        // Each side's visible arc: from the tangent plane's, each rise of the horizon takes
+        // away the arc it covers, weighted by eq 7's attenuation of the sample that raised it
+        // (outward, the rays between the old and the new horizon pass over every nearer sample
+        // and meet the surface near this one). With attenuation (0, 0) every weight is 1 and
+        // the sum is the arc below the final horizon, eq 10 exactly.
+        float arc_pos = gtao_side_arc(low_pos, 1.0, ang_n);
+        float arc_neg = gtao_side_arc(low_neg, -1.0, ang_n);
+        float vis_pos = arc_pos;
+        float vis_neg = arc_neg;
         for (uint i = 0u; marches && i < steps; ++i) {
             float t = (float(i) + u.y) / float(steps);
             float s_px = max(radius_px * pow(t, GTAO_DISTRIBUTION_POWER), ao.near_px);
@@ -155,18 +175,22 @@ float ao_gtao_taps(ivec2 pixel, vec3 p, vec3 n, uint pattern, uint first, uint e
                 float x = len * inv_radius;
                 if (!(len > 0.0) || x > 1.0) continue;
                 float shc = dot(w, v) / len;
-                // Eq 7's attenuation as a falloff towards the tangent plane (1 with (0, 0)).
+                // Eq 7's attenuation of a hit at x (1 with (0, 0)).
                 float weight = 1.0 / (1.0 + ao.atten_a * x + ao.atten_b * x * x);
-                if (side == 0) h_pos = max(h_pos, mix(low_pos, shc, weight));
-                else h_neg = max(h_neg, mix(low_neg, shc, weight));
+                if (side == 0 && shc > h_pos) {
+                    float arc = gtao_side_arc(shc, 1.0, ang_n);
+                    vis_pos -= weight * (arc_pos - arc);
+                    arc_pos = arc;
+                    h_pos = shc;
+                } else if (side == 1 && shc > h_neg) {
+                    float arc = gtao_side_arc(shc, -1.0, ang_n);
+                    vis_neg -= weight * (arc_neg - arc);
+                    arc_neg = arc;
+                    h_neg = shc;
+                }
             }
         }
-        // Angles from the view vector: positive towards the slice's direction.
-        float h1 = gtao_acos(h_pos);
-        float h0 = -gtao_acos(h_neg);
-        h0 = ang_n + clamp(h0 - ang_n, -HALF_PI, HALF_PI);
-        h1 = ang_n + clamp(h1 - ang_n, -HALF_PI, HALF_PI);
-        float visibility = np_len * (gtao_arc(h0, ang_n) + gtao_arc(h1, ang_n));
+        float visibility = np_len * (vis_pos + vis_neg);
         sum += 1.0 - visibility;
     }
     return sum;
