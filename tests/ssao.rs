@@ -255,12 +255,7 @@ fn translation_recompute_mask_matches_cpu_reprojection() {
         },
     );
     let c0 = r.scene.camera;
-    let shift = Vec3::new(0.12, 0.03, -0.05);
-    let c1 = Camera {
-        position: c0.position + shift,
-        target: c0.target + shift,
-        ..c0
-    };
+    let c1 = common::moved_sideways(c0);
     r.render_frame(&c0).unwrap();
     r.render_frame(&c1).unwrap();
     r.finish().unwrap();

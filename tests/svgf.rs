@@ -13,7 +13,7 @@ use ssgi::effects::svgf::model::{filter, Surface};
 use ssgi::effects::svgf::{HISTORY_VIEW, INTEGRATED_VIEW};
 use ssgi::renderer::Renderer;
 use ssgi::resources::targets::Target;
-use ssgi::scene::{cornell_box, Camera};
+use ssgi::scene::cornell_box;
 use ssgi::vk::ImageData;
 
 fn config(size: u32, vpls: u32, svgf: SvgfConfig) -> RenderConfig {
@@ -139,12 +139,7 @@ fn moments_restart_where_the_surface_is_new_to_the_view() {
         let reach = (mode == SvgfHistory::Bilinear) as i64;
         let mut r = Renderer::new(&ctx, cornell_box(), config(size, 4, svgf)).unwrap();
         let c0 = r.scene.camera;
-        let shift = Vec3::new(0.12, 0.03, -0.05);
-        let c1 = Camera {
-            position: c0.position + shift,
-            target: c0.target + shift,
-            ..c0
-        };
+        let c1 = common::moved_sideways(c0);
         let mut timings = Vec::new();
         for camera in [c0, c0, c0] {
             timings.extend(r.render_frame(&camera).unwrap());

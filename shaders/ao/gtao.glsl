@@ -136,20 +136,16 @@ float ao_gtao_taps(ivec2 pixel, vec3 p, vec3 n, uint pattern, uint first, uint e
         float cos_n = clamp(dot(np, v) / np_len, -1.0, 1.0);
         float sign_n = dot(ortho, np) < 0.0 ? -1.0 : 1.0;
         float ang_n = sign_n * gtao_acos(cos_n);
-        // Horizon cosines (to the view vector) start at the tangent plane on each side.
-        float low_pos = cos(ang_n + HALF_PI);
-        float low_neg = cos(ang_n - HALF_PI);
-        float h_pos = low_pos;
-        float h_neg = low_neg;
+        // Per side (x: towards the slice's direction, y: away), the horizon's cosine to the
+        // view vector, starting at the tangent plane.
+        vec2 h = vec2(cos(ang_n + HALF_PI), cos(ang_n - HALF_PI));
         // Each side's visible arc: from the tangent plane's, each rise of the horizon takes
         // away the arc it covers, weighted by eq 7's attenuation of the sample that raised it
         // (outward, the rays between the old and the new horizon pass over every nearer sample
         // and meet the surface near this one). With attenuation (0, 0) every weight is 1 and
         // the sum is the arc below the final horizon, eq 10 exactly.
-        float arc_pos = gtao_side_arc(low_pos, 1.0, ang_n);
-        float arc_neg = gtao_side_arc(low_neg, -1.0, ang_n);
-        float vis_pos = arc_pos;
-        float vis_neg = arc_neg;
+        vec2 arc = vec2(gtao_side_arc(h.x, 1.0, ang_n), gtao_side_arc(h.y, -1.0, ang_n));
+        vec2 vis = arc;
         for (uint i = 0u; marches && i < steps; ++i) {
             float t = (float(i) + u.y) / float(steps);
             float s_px = max(radius_px * pow(t, GTAO_DISTRIBUTION_POWER), ao.near_px);
@@ -177,20 +173,15 @@ float ao_gtao_taps(ivec2 pixel, vec3 p, vec3 n, uint pattern, uint first, uint e
                 float shc = dot(w, v) / len;
                 // Eq 7's attenuation of a hit at x (1 with (0, 0)).
                 float weight = 1.0 / (1.0 + ao.atten_a * x + ao.atten_b * x * x);
-                if (side == 0 && shc > h_pos) {
-                    float arc = gtao_side_arc(shc, 1.0, ang_n);
-                    vis_pos -= weight * (arc_pos - arc);
-                    arc_pos = arc;
-                    h_pos = shc;
-                } else if (side == 1 && shc > h_neg) {
-                    float arc = gtao_side_arc(shc, -1.0, ang_n);
-                    vis_neg -= weight * (arc_neg - arc);
-                    arc_neg = arc;
-                    h_neg = shc;
+                if (shc > h[side]) {
+                    float a = gtao_side_arc(shc, side == 0 ? 1.0 : -1.0, ang_n);
+                    vis[side] -= weight * (arc[side] - a);
+                    arc[side] = a;
+                    h[side] = shc;
                 }
             }
         }
-        float visibility = np_len * (vis_pos + vis_neg);
+        float visibility = np_len * (vis.x + vis.y);
         sum += 1.0 - visibility;
     }
     return sum;

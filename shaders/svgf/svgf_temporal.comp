@@ -39,17 +39,18 @@ const float HISTORY_CAP = 65536.0;
 bool history(ivec2 pixel, out vec3 c, out vec3 m) {
     c = vec3(0.0);
     m = vec3(0.0);
-    vec3 p;
-    vec2 f;
-    if (svgf.history_valid == 0u || !previous_position(pixel, p, f)) return false;
-    vec3 n = texelFetch(g_normal, pixel, 0).xyz;
+    if (svgf.history_valid == 0u) return false;
     if (svgf.bilinear == 0u) {
-        ivec2 t = ivec2(f);
-        if (!previous_holds(t, p, n)) return false;
+        ivec2 t = previous_texel(pixel);
+        if (t.x < 0) return false;
         c = texelFetch(color_prev, t, 0).rgb;
         m = texelFetch(moments_prev, t, 0).rgb;
         return true;
     }
+    vec3 p;
+    vec2 f;
+    if (!previous_position(pixel, p, f)) return false;
+    vec3 n = texelFetch(g_normal, pixel, 0).xyz;
     // The 2x2 texels whose centres surround f, and f's bilinear weights among them.
     vec2 corner = f - 0.5;
     ivec2 base = ivec2(floor(corner));

@@ -34,6 +34,17 @@ pub fn frames_recording(timings: &[FrameTiming], pass: &str) -> Vec<u64> {
         .collect()
 }
 
+/// `c` moved sideways (and a little up and back) without turning: the move the CPU
+/// reprojection checks use, which uncovers some of the Cornell box's surfaces.
+pub fn moved_sideways(c: Camera) -> Camera {
+    let shift = glam::Vec3::new(0.12, 0.03, -0.05);
+    Camera {
+        position: c.position + shift,
+        target: c.target + shift,
+        ..c
+    }
+}
+
 /// Reverse reprojection on the CPU from the G-buffers of two frames of a still scene, seen
 /// from `c0` and then `c1`: eq 1 (where a pixel's surface was in the first frame) and eqs 2-3
 /// with the facing test (whether a texel of the first frame held it: the default scale-free
