@@ -6,7 +6,10 @@
 // tile (refresh.glsl, each lane a range of one pattern's taps) recomputes it from scratch as
 // the mean of every pattern up to the rotation limit, the estimator accumulation converges to, blended in along the tile's feather
 // ramp (refresh_weight); it runs after `blocks`, which leaves refresh pixels alone.
+// `split`: `blocks` under camera motion with GTAO's per-pattern denoise (--gtao-moving-denoise):
+// writes each fresh pattern to `raw` and leaves the merge to gtao_moving.comp.
 // @permutation blocks: BLOCKS
+// @permutation split: BLOCKS SPLIT
 // @permutation refresh: REFRESH
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_samplerless_texture_functions : require
@@ -24,8 +27,14 @@ layout(set = 1, binding = 7) uniform texture2D g_position_1;
 layout(set = 1, binding = 8) uniform texture2D g_position_2;
 layout(set = 1, binding = 9) uniform texture2D g_position_3;
 layout(set = 1, binding = 3, r32ui) uniform readonly uimage2D state_in;
+#ifdef SPLIT
+layout(set = 1, binding = 4, rgba32f) uniform readonly image2D history;
+// This frame's fresh visibility of each listed pixel, for gtao_moving.comp.
+layout(set = 1, binding = 10, rgba16f) uniform writeonly image2D raw;
+#else
 layout(set = 1, binding = 4, rgba32f) uniform image2D history;
 layout(set = 1, binding = 6, rgba32f) uniform image2D moments;
+#endif
 
 #include "ao.glsl"
 
@@ -116,12 +125,16 @@ void main() {
             vec3 p = texelFetch(g_position, pixel, 0).xyz;
             vec3 n = texelFetch(g_normal, pixel, 0).xyz;
             vec4 h = imageLoad(history, pixel);
-            vec4 m = imageLoad(moments, pixel);
             // Each pixel walks through patterns 0, 1, ... in the order it accumulates them.
             float fresh = 1.0 - ao_estimate(pixel, p, n, h.a, 1u);
+#ifdef SPLIT
+            imageStore(raw, pixel, vec4(fresh, 0.0, 0.0, 1.0));
+#else
+            vec4 m = imageLoad(moments, pixel);
             vec2 result = accumulate(h.r, h.a, fresh, m);
             imageStore(history, pixel, vec4(clamp(result.x, 0.0, 1.0), 0.0, 0.0, result.y));
             imageStore(moments, pixel, m);
+#endif
             atomicAdd(group_computed, 1u);
         }
     }

@@ -407,7 +407,7 @@ pub struct TableArgs {
     /// KEY=VALUE: a parameter every row uses in place of its default, with `ssgi sweep`'s keys
     /// and values (repeatable). Each table accepts the keys of the techniques it compares that
     /// its rows do not set themselves (chang-flicker: svgf.* and ccipca.*; ao: ao.samples,
-    /// ao.steps, ao.position_mips); the report lists them.
+    /// ao.steps, ao.position_mips, ao.moving_denoise); the report lists them.
     #[arg(long = "set", value_name = "KEY=VALUE")]
     pub set: Vec<String>,
 }

@@ -44,7 +44,12 @@ pub const TABLE: TableDef = TableDef {
     warmup: Warmup::Frames(40),
     sizes: &[],
     effects: None,
-    settable: &["ao.samples", "ao.steps", "ao.position_mips"],
+    settable: &[
+        "ao.samples",
+        "ao.steps",
+        "ao.position_mips",
+        "ao.moving_denoise",
+    ],
     run,
 };
 

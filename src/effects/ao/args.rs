@@ -2,7 +2,7 @@
 //! registry's `EffectArgs`) and what they make of `AoConfig`.
 
 use super::config::{AoConfig, AoEstimator};
-use crate::config::parse::parse_attenuation;
+use crate::config::parse::{parse_attenuation, parse_on_off};
 use clap::Args;
 
 #[derive(Args, Debug, Clone)]
@@ -25,6 +25,10 @@ pub struct AoArgs {
     /// `0:0` is binary visibility within the radius. The ground truth's AO follows it.
     #[arg(long, default_value = "0:1", value_parser = parse_attenuation, value_name = "A:B", allow_hyphen_values = true)]
     pub ao_attenuation: [f32; 2],
+    /// GTAO with the cache: denoise each fresh pattern (5x5, edge-aware) before it enters the
+    /// history while the camera moves (`off`: raw patterns, as on a still view).
+    #[arg(long, default_value = "on", value_parser = parse_on_off, action = clap::ArgAction::Set)]
+    pub gtao_moving_denoise: bool,
 }
 
 impl AoArgs {
@@ -37,6 +41,7 @@ impl AoArgs {
             position_mips: self.ao_position_mips,
             steps: self.ao_steps,
             attenuation: self.ao_attenuation,
+            moving_denoise: self.gtao_moving_denoise,
             ..AoConfig::default()
         }
     }

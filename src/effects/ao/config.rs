@@ -60,6 +60,11 @@ pub struct AoConfig {
     /// pattern enters the moving pixels' running means; docs/results,
     /// lavapipe-ao-16-steps-2026-12-07).
     pub steps: u32,
+    /// GTAO with the cache: under camera motion each fresh pattern is denoised over its 5x5
+    /// neighbours that estimated one the same frame (gtao_denoise.glsl's edge-aware weights)
+    /// before it enters the history (`shaders/ao/gtao_moving.comp`). A still camera merges raw
+    /// patterns, so the converged value is each pixel's own mean either way.
+    pub moving_denoise: bool,
 }
 
 impl Default for AoConfig {
@@ -73,6 +78,7 @@ impl Default for AoConfig {
             patterns: 1,
             position_mips: 0,
             steps: 8,
+            moving_denoise: true,
         }
     }
 }

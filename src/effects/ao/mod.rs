@@ -1,6 +1,8 @@
 //! SSAO (Lin 2013 eqs 6-8, or Mittring's sphere). With reuse: an indirect dispatch over the
 //! blocks the reprojection listed, one pattern per pixel merged into the AO history (the
-//! gated running mean, or eqs 4-5), refresh tiles recomputed as the mean of every pattern. Without reuse: every pixel with a fixed
+//! gated running mean, or eqs 4-5), refresh tiles recomputed as the mean of every pattern; GTAO
+//! under camera motion denoises each pattern before the merge (`--gtao-moving-denoise`,
+//! shaders/ao/gtao_moving.comp). Without reuse: every pixel with a fixed
 //! pattern (or many patterns, for references), then the thesis's 5x5 Gaussian blur (GTAO: its
 //! own edge-aware denoise, shaders/ao/gtao_denoise.comp). With
 //! `--ao-position-mips`, a pass first writes point-sampled levels of the G-buffer position that
@@ -88,6 +90,8 @@ pub mod pass {
     pub const AO_POSITION_CHAIN: PassId = PassId::new("ao_position_chain", &[Change::Config]);
     /// Screen-space ambient occlusion.
     pub const SSAO: PassId = PassId::new("ssao", &[Change::Camera, Change::Config]);
+    /// GTAO under camera motion: each fresh pattern denoised, then merged into the history.
+    pub const GTAO_MOVING: PassId = PassId::new("gtao_moving", &[Change::Camera, Change::Config]);
     /// The AO's refresh tile, every pattern, spread over threads.
     pub const SSAO_REFRESH: PassId = PassId::new("ssao_refresh", &[Change::Camera, Change::Config]);
     /// 5x5 Gaussian blur of the AO (no-reuse baseline only).
@@ -96,7 +100,14 @@ pub mod pass {
     pub const GTAO_DENOISE: PassId = PassId::new("gtao_denoise", &[Change::Camera, Change::Config]);
 
     /// Every pass the effect may record, in recording order.
-    pub const ALL: &[PassId] = &[AO_POSITION_CHAIN, SSAO, SSAO_REFRESH, BLUR, GTAO_DENOISE];
+    pub const ALL: &[PassId] = &[
+        AO_POSITION_CHAIN,
+        SSAO,
+        GTAO_MOVING,
+        SSAO_REFRESH,
+        BLUR,
+        GTAO_DENOISE,
+    ];
 
     /// The timing groups `bench --compare-reuse`, tables and sweeps compare (summed per frame).
     pub const GROUPS: &[(&str, &[PassId])] = &[("ao", ALL)];
@@ -126,6 +137,32 @@ const ACCUMULATE: &[Bind] = &[
     Bind::new(8, LEVEL2, Use::Sampled),
     Bind::new(9, LEVEL3, Use::Sampled),
     Bind::new(15, PARAMS, Use::BufferRead),
+];
+
+/// `ACCUMULATE`'s `split` permutation: the history read for its count, each fresh pattern
+/// written to RAW for GTAO_MOVING_BINDS.
+const ACCUMULATE_SPLIT: &[Bind] = &[
+    Bind::new(0, Slot::GPosition, Use::Sampled),
+    Bind::new(1, Slot::GNormal, Use::Sampled),
+    Bind::new(2, RANDOM, Use::Sampled),
+    Bind::new(3, Slot::State, Use::StorageRead),
+    Bind::new(4, Slot::History, Use::StorageRead),
+    Bind::new(5, Slot::Counters, Use::WorkList),
+    Bind::new(7, LEVEL1, Use::Sampled),
+    Bind::new(8, LEVEL2, Use::Sampled),
+    Bind::new(9, LEVEL3, Use::Sampled),
+    Bind::new(10, RAW, Use::StorageWrite),
+    Bind::new(15, PARAMS, Use::BufferRead),
+];
+
+const GTAO_MOVING_BINDS: &[Bind] = &[
+    Bind::new(0, Slot::GPosition, Use::Sampled),
+    Bind::new(1, Slot::GNormal, Use::Sampled),
+    Bind::new(2, RAW, Use::Sampled),
+    Bind::new(3, Slot::State, Use::StorageRead),
+    Bind::new(4, Slot::History, Use::StorageReadWrite),
+    Bind::new(5, Slot::Counters, Use::WorkList),
+    Bind::new(6, Slot::Moments, Use::StorageReadWrite),
 ];
 
 const FULL: &[Bind] = &[
@@ -175,7 +212,9 @@ pub const REGISTRATION: Registration = Registration {
     toggles: &[],
 };
 
-/// Without reuse: this frame's AO before the blur or GTAO's denoise (only when one runs).
+/// Without reuse: this frame's AO before the blur or GTAO's denoise (only when one runs). GTAO
+/// with the cache and `moving_denoise`: the fresh patterns of the last frame the camera moved,
+/// before their denoise (only at the pixels that estimated one then).
 pub const RAW_VIEW: EffectView = EffectView {
     name: "ao_raw",
     look: Look::Red,
@@ -213,6 +252,16 @@ const SSAO_ACCUMULATE_REFRESH: PassDecl = PassDecl::new(
     &shaders::SSAO_ACCUMULATE_COMP_REFRESH,
     ACCUMULATE,
 );
+const SSAO_ACCUMULATE_SPLIT: PassDecl = PassDecl::new(
+    pass::SSAO,
+    &shaders::SSAO_ACCUMULATE_COMP_SPLIT,
+    ACCUMULATE_SPLIT,
+);
+const GTAO_MOVING_PASS: PassDecl = PassDecl::new(
+    pass::GTAO_MOVING,
+    &shaders::GTAO_MOVING_COMP,
+    GTAO_MOVING_BINDS,
+);
 const SSAO_FULL: PassDecl = PassDecl::new(pass::SSAO, &shaders::SSAO_FULL_COMP, FULL);
 const BLUR_PASS: PassDecl = PassDecl::new(pass::BLUR, &shaders::BLUR_COMP, BLUR);
 const GTAO_DENOISE_PASS: PassDecl =
@@ -227,6 +276,8 @@ fn layouts() -> Vec<PassLayout> {
     vec![
         SSAO_ACCUMULATE_BLOCKS.layout(),
         SSAO_ACCUMULATE_REFRESH.layout(),
+        SSAO_ACCUMULATE_SPLIT.layout(),
+        GTAO_MOVING_PASS.layout(),
         SSAO_FULL.layout(),
         BLUR_PASS.layout(),
         GTAO_DENOISE_PASS.layout(),
@@ -249,6 +300,13 @@ pub struct AoEffect {
     ssao: ComputePass,
     /// With reuse: the refresh tile, one workgroup per pixel.
     refresh: Option<ComputePass>,
+    /// GTAO with reuse and `moving_denoise`: `split` and the merge (GTAO_MOVING), recorded in
+    /// place of `ssao` while the camera moves.
+    moving: Option<(ComputePass, ComputePass)>,
+    /// `moving` records this frame (set by `prepare`).
+    moving_now: bool,
+    /// `moving` has written the raw image since it was created (its view is readable).
+    moving_wrote: bool,
     /// The no-reuse baseline's blur, GTAO's denoise (single-pattern runs only; references are
     /// not blurred).
     blur: Option<ComputePass>,
@@ -308,10 +366,22 @@ impl AoEffect {
         } else {
             None
         };
+        let moving =
+            if reuse && s.config.ao.estimator == AoEstimator::Gtao && s.config.ao.moving_denoise {
+                Some((
+                    ComputePass::declared(s.ctx, s.pool, &SSAO_ACCUMULATE_SPLIT)?,
+                    ComputePass::declared(s.ctx, s.pool, &GTAO_MOVING_PASS)?,
+                ))
+            } else {
+                None
+            };
         Ok(Self {
             reuse,
             ssao: ComputePass::declared(s.ctx, s.pool, ssao)?,
             refresh,
+            moving,
+            moving_now: false,
+            moving_wrote: false,
             blur,
             chain,
             random,
@@ -405,7 +475,7 @@ impl Effect for AoEffect {
     }
 
     fn accumulating(&self) -> &'static [PassId] {
-        &[pass::SSAO, pass::SSAO_REFRESH]
+        &[pass::SSAO, pass::GTAO_MOVING, pass::SSAO_REFRESH]
     }
 
     fn id(&self) -> EffectId {
@@ -414,6 +484,7 @@ impl Effect for AoEffect {
 
     fn resize(&mut self, ctx: &Arc<Context>, config: &RenderConfig) -> Result<()> {
         self.sized = Self::create_sized(ctx, config)?;
+        self.moving_wrote = false;
         Ok(())
     }
 
@@ -424,6 +495,10 @@ impl Effect for AoEffect {
         self.ssao.bind(ctx, &res)?;
         if let Some(p) = &self.refresh {
             p.bind(ctx, &res)?;
+        }
+        if let Some((split, merge)) = &self.moving {
+            split.bind(ctx, &res)?;
+            merge.bind(ctx, &res)?;
         }
         if let Some(b) = &self.blur {
             b.bind(ctx, &res)?;
@@ -451,6 +526,9 @@ impl Effect for AoEffect {
             info.camera_moved,
             info.refresh_cover(false, false),
         );
+        // Not on a first frame (no last view: every pixel is new) nor a still one.
+        self.moving_now = self.moving.is_some() && info.camera_moved && info.reusing();
+        self.moving_wrote |= self.moving_now;
     }
 
     fn reprojects(&self, info: &FrameInfo<'_>) -> bool {
@@ -482,9 +560,19 @@ impl Effect for AoEffect {
                 chain.record(rec, tr, info.frame, &res, &[], level1)
             });
         }
-        r.timed(pass::SSAO, |rec, tr| {
-            self.ssao.record(rec, tr, info.frame, &res, push, dispatch)
-        });
+        match &self.moving {
+            Some((split, merge)) if self.moving_now => {
+                r.timed(pass::SSAO, |rec, tr| {
+                    split.record(rec, tr, info.frame, &res, push, dispatch)
+                });
+                r.timed(pass::GTAO_MOVING, |rec, tr| {
+                    merge.record(rec, tr, info.frame, &res, push, dispatch)
+                });
+            }
+            _ => r.timed(pass::SSAO, |rec, tr| {
+                self.ssao.record(rec, tr, info.frame, &res, push, dispatch)
+            }),
+        }
         if let (Some(p), Some(tile)) = (&self.refresh, refresh_dispatch(&self.push)) {
             r.timed(pass::SSAO_REFRESH, |rec, tr| {
                 p.record(rec, tr, info.frame, &res, push, tile)
@@ -505,7 +593,10 @@ impl Effect for AoEffect {
         match target {
             Target::Ao => Some(self.visibility(parity)),
             Target::State => Some(&self.sized.temporal.state),
-            Target::Effect(v) if *v == RAW_VIEW => self.blur.as_ref().map(|_| &self.sized.raw),
+            // Written by the blur's or denoise's input, or by GTAO's `split` under motion.
+            Target::Effect(v) if *v == RAW_VIEW => {
+                (self.blur.is_some() || self.moving_wrote).then_some(&self.sized.raw)
+            }
             // Only when the chain writes them (otherwise they hold nothing).
             Target::Effect(v) if self.chain.is_some() => POSITION_LEVELS
                 .iter()

@@ -1,7 +1,7 @@
 //! SSAO's keys for `ssgi sweep --vary` (the registry hands them to the sweep).
 
 use super::config::{AoConfig, AoEstimator};
-use crate::config::parse::{parse_attenuation, parse_count, parse_radius};
+use crate::config::parse::{parse_attenuation, parse_count, parse_on_off, parse_radius};
 use crate::config::sweep_key::SweepKey;
 use clap::ValueEnum;
 
@@ -30,6 +30,16 @@ pub const SWEEP_KEYS: &[SweepKey] = &[
         description: "GTAO steps per side of a slice (--ao-steps)",
         set: |c, v| {
             c.ao.steps = parse_count(v, 1, AoConfig::MAX_STEPS)?;
+            Ok(())
+        },
+    },
+    SweepKey {
+        name: "ao.moving_denoise",
+        syntax: "on|off",
+        description: "GTAO with the cache: denoise each pattern while the camera moves \
+                      (--gtao-moving-denoise)",
+        set: |c, v| {
+            c.ao.moving_denoise = parse_on_off(v)?;
             Ok(())
         },
     },
@@ -86,6 +96,7 @@ mod tests {
                 c.ao.estimator = AoEstimator::Crytek
             }),
             ("ao.steps", "16", |c| c.ao.steps = 16),
+            ("ao.moving_denoise", "off", |c| c.ao.moving_denoise = false),
             ("ao.radius", "0.5", |c| c.ao.radius = 0.5),
             ("ao.attenuation", "0:0", |c| c.ao.attenuation = [0.0, 0.0]),
             ("ao.patterns", "8", |c| c.ao.patterns = 8),
