@@ -156,7 +156,8 @@ float ao_gtao_taps(ivec2 pixel, vec3 p, vec3 n, uint pattern, uint first, uint e
                 // ray through the tap, stands in for the surface beyond the edge; where that
                 // ray misses it the tap is skipped (the texel itself lies off the slice). With
                 // the uncapped radius it lowered GTAO's AO error by 5-14% on the walkthroughs
-                // and about 1% on the Table 4.1 scenes (lavapipe-ao-guard-band-2026-12-07).
+                // and about 1% on the Table 4.1 scenes (docs/results/DECISIONS.md,
+                // lavapipe-ao-guard-band-2026-12-07).
                 ivec2 inside = clamp(q_pixel, ivec2(0), ivec2(frame.size) - 1);
                 bool off_image = inside != q_pixel;
                 q_pixel = inside;

@@ -53,12 +53,11 @@ pub struct AoConfig {
     pub position_mips: u32,
     /// GTAO: horizon-search steps on each side of a slice (slices = samples / (2 steps)). 8 by
     /// default, two slices of the default 32 samples: on the Cornell box (256x256, static) 4
-    /// steps miss horizons near the radius (AO RMSE 0.118 against the ray-traced AO), 8 reach
-    /// 0.101, 16 0.092 and 128 0.087; one slice per pattern (16 steps) leaves the cache 0.010
-    /// from its converged value after the 36 patterns, two 0.002. In `table ao` 16 steps lower
-    /// the cached error by 1-5% but raise the flicker under motion 1.1-6.0x (a noisier
-    /// pattern enters the moving pixels' running means; docs/results,
-    /// lavapipe-ao-16-steps-2026-12-07).
+    /// steps miss horizons near the radius. One slice per pattern (16 steps) leaves the cache
+    /// 0.010 from its converged value after the 36 patterns, two 0.002. In `table ao` 16 steps
+    /// lower the cached error by 9-23% on the Table 4.1 scenes for 11-22% more flicker, but
+    /// raise both on the walkthroughs (error +2-4%, flicker 1.5-1.6x on Sibenik and
+    /// Conference): a choice per scene (docs/results, lavapipe-ao-16-steps-2026-12-07).
     pub steps: u32,
     /// GTAO with the cache: under camera motion each fresh pattern is denoised over its 5x5
     /// neighbours that estimated one the same frame (gtao_denoise.glsl's edge-aware weights)
