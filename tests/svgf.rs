@@ -1,6 +1,7 @@
 //! SVGF (`--indirect-filter svgf`): the a-trous passes against the CPU evaluation in
-//! src/effects/svgf/model.rs, the variance against the moments it comes from, and the temporal
-//! moments restarting exactly where a CPU reprojection finds the surface new to the view.
+//! src/effects/svgf/model.rs, the variance against the moments it comes from, the temporal
+//! moments restarting exactly where a CPU reprojection finds the surface new to the view, and
+//! the still lighting's longer running mean (`--svgf-alpha-still`) against its closed form.
 
 mod common;
 
@@ -275,7 +276,8 @@ fn history_taps(
 }
 
 /// With `--skip-unchanged on` and a still view the filter keeps recording until its running
-/// means have forgotten their first samples (`SvgfConfig::settle_frames`: 6 for alpha 0.5),
+/// means have forgotten their first samples (`SvgfConfig::settle_frames`: 6 for alpha 0.5,
+/// and alpha_still as large: the still lighting's weights are the same),
 /// then two more frames for both halves of the ping-ponged images; after that frames record
 /// nothing and the output stays the last one.
 #[test]
@@ -284,6 +286,7 @@ fn skipping_waits_until_the_means_settle() {
     let svgf = SvgfConfig {
         alpha: 0.5,
         alpha_moments: 0.5,
+        alpha_still: 0.5,
         ..SvgfConfig::default()
     };
     assert_eq!(svgf.settle_frames(), 6);
@@ -299,5 +302,73 @@ fn skipping_waits_until_the_means_settle() {
     );
     assert!(filtered.len() < 12, "{filtered:?}");
     assert_eq!(outputs[12], outputs[13], "a skipped frame keeps the output");
+    common::assert_clean(&ctx);
+}
+
+/// Mean over pixels of the squared change of the integrated luminance between consecutive
+/// frames, averaged over `frames` (indices into `series`, each > 0).
+fn mean_change(series: &[Vec<f32>], frames: std::ops::Range<usize>) -> f64 {
+    let count = frames.len() as f64;
+    frames
+        .map(|k| {
+            let (a, b) = (&series[k - 1], &series[k]);
+            a.iter()
+                .zip(b)
+                .map(|(x, y)| f64::from(x - y).powi(2))
+                .sum::<f64>()
+                / a.len() as f64
+        })
+        .sum::<f64>()
+        / count
+}
+
+/// `--svgf-alpha-still`: once the lighting has held still for alpha's settle time (18 frames at
+/// 0.2) the running means take the smaller weight, until the light moves. A still view's
+/// samples are independent from frame to frame, so its integrated colour changes per frame by
+/// w (x - mean): with 0.05 against 0.2 the mean squared change is w^2 (1 + w / (2 - w))
+/// sigma^2, 0.058x as much. Before the switch both runs weigh alike and agree bit for bit;
+/// after a light move both take 0.2 again.
+#[test]
+fn a_still_light_lengthens_the_running_mean() {
+    let ctx = common::context();
+    let size = 32;
+    let (still, moved) = (60, 70);
+    let run = |alpha_still: f32| -> Vec<Vec<f32>> {
+        let svgf = SvgfConfig {
+            iterations: 0,
+            alpha_still,
+            ..SvgfConfig::default()
+        };
+        assert_eq!(svgf.lit_settle_frames(), 18);
+        let mut r = Renderer::new(&ctx, cornell_box(), config(size, 1, svgf)).unwrap();
+        let camera = r.scene.camera;
+        let mut series = Vec::new();
+        for frame in 0..moved {
+            if frame == still {
+                let mut light = r.scene.light;
+                light.position += Vec3::new(0.05, 0.0, 0.0);
+                r.set_light(light);
+            }
+            r.render_frame(&camera).unwrap();
+            let integrated = common::read(&mut r, Target::Effect(&INTEGRATED_VIEW));
+            series.push(texels(&integrated).into_iter().map(luminance).collect());
+        }
+        r.finish().unwrap();
+        series
+    };
+    let longer = run(0.05);
+    let article = run(0.2);
+    assert_eq!(
+        longer[17], article[17],
+        "the same weights before the switch"
+    );
+    let held = mean_change(&longer, 45..still) / mean_change(&article, 45..still);
+    let after = mean_change(&longer, still + 2..moved) / mean_change(&article, still + 2..moved);
+    eprintln!("mean squared change, alpha_still 0.05 over 0.2: held {held:.3}, after the light moved {after:.3}");
+    assert!(held < 0.25, "held: {held}");
+    assert!(
+        (0.5..2.0).contains(&after),
+        "after the light moved: {after}"
+    );
     common::assert_clean(&ctx);
 }

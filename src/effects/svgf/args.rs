@@ -17,6 +17,11 @@ pub struct SvgfArgs {
     /// SVGF: the same for the luminance moments that give the variance.
     #[arg(long, default_value_t = SvgfConfig::default().alpha_moments, value_parser = parse_weight)]
     pub svgf_alpha_moments: f32,
+    /// SVGF: the smallest weight of both once the light and the scene have held still for
+    /// --svgf-alpha's settle time (the diffuse indirect light of a still light does not change
+    /// when only the camera moves); at or above --svgf-alpha (the default) it changes nothing.
+    #[arg(long, default_value_t = SvgfConfig::default().alpha_still, value_parser = parse_weight)]
+    pub svgf_alpha_still: f32,
     /// SVGF: how last frame's colour and moments are read at the pixel's surface: `nearest`
     /// texel, or the article's `bilinear` tap tested per texel (blurs a long history).
     #[arg(long, value_enum, default_value_t = SvgfConfig::default().history)]
@@ -42,6 +47,7 @@ impl SvgfArgs {
             iterations: self.svgf_iterations,
             alpha: self.svgf_alpha,
             alpha_moments: self.svgf_alpha_moments,
+            alpha_still: self.svgf_alpha_still,
             history: self.svgf_history,
             sigma_luminance: self.svgf_sigma_luminance,
             sigma_normal: self.svgf_sigma_normal,

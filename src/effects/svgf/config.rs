@@ -43,6 +43,18 @@ pub struct SvgfConfig {
     pub alpha: f32,
     /// The same for the luminance moments (the article: 0.2).
     pub alpha_moments: f32,
+    /// The smallest weight of both once the lighting has held still for `alpha`'s settle
+    /// time (`SvgfConfig::lit_settle_frames`): the article's 0.2 lets a changed light through
+    /// within about 18 frames, but the diffuse indirect light of a still light does not change
+    /// when only the camera moves (the reprojection follows each surface). The renderer knows
+    /// each frame whether the light or an object moved (`FrameInfo`); the first such frame
+    /// restores `alpha`. At or above `alpha` it changes nothing: the default, 0.2, is the
+    /// article's accumulation. 0.05 lowers the moving camera's error at 1-3 VPLs per pixel
+    /// (0.104 -> 0.067 at 1) but raises it from 10 and the still view's from 10 (0.065 ->
+    /// 0.092 at 64): the history is the first a-trous iteration's output (the article's
+    /// feedback), so a longer memory compounds that blur (docs/results,
+    /// lavapipe-svgf-alpha-still-2026-12-07).
+    pub alpha_still: f32,
     /// How last frame's values are read at the pixel's surface.
     pub history: SvgfHistory,
     /// Luminance edge-stopping: sigma_l, in standard deviations of the (3x3-prefiltered)
@@ -73,6 +85,7 @@ impl SvgfConfig {
         for (what, v) in [
             ("--svgf-alpha", self.alpha),
             ("--svgf-alpha-moments", self.alpha_moments),
+            ("--svgf-alpha-still", self.alpha_still),
         ] {
             if !(v > 0.0 && v <= 1.0) {
                 return bad(format!(
@@ -93,15 +106,43 @@ impl SvgfConfig {
     }
 
     /// Frames after a restart until a pixel's running mean forgets its first sample to within
-    /// e^-4 (2%): (1 - alpha)^n <= e^-4. Until then the output still settles with unchanged
-    /// inputs.
+    /// e^-4 (2%): (1 - alpha)^n <= e^-4; with a smaller `alpha_still`, then until the still
+    /// lighting's mean forgets the samples `alpha` weighed. Until then the output still
+    /// settles with unchanged inputs.
     pub fn settle_frames(&self) -> u32 {
-        let a = self.alpha.min(self.alpha_moments).clamp(1e-6, 1.0) as f64;
-        if a >= 1.0 {
-            return 1;
+        let (colour, moments) = self.still_alphas();
+        let still = colour.min(moments);
+        let lit = self.lit_settle_frames();
+        if still < self.alpha.min(self.alpha_moments) {
+            lit + memory_frames(still)
+        } else {
+            lit
         }
-        (4.0 / -(1.0 - a).ln()).ceil().min(1e6) as u32
     }
+
+    /// Frames at `alpha` after a change of the lighting until its old value is forgotten to
+    /// within e^-4; after them `alpha_still` applies.
+    pub fn lit_settle_frames(&self) -> u32 {
+        memory_frames(self.alpha.min(self.alpha_moments))
+    }
+
+    /// The colour's and the moments' smallest weights once the lighting has held still.
+    pub fn still_alphas(&self) -> (f32, f32) {
+        (
+            self.alpha.min(self.alpha_still),
+            self.alpha_moments.min(self.alpha_still),
+        )
+    }
+}
+
+/// Frames until a running mean of smallest weight `alpha` forgets a sample to within e^-4:
+/// (1 - alpha)^n <= e^-4.
+fn memory_frames(alpha: f32) -> u32 {
+    let a = alpha.clamp(1e-6, 1.0) as f64;
+    if a >= 1.0 {
+        return 1;
+    }
+    (4.0 / -(1.0 - a).ln()).ceil().min(1e6) as u32
 }
 
 /// A new sample's weight in a running mean: a number in (0, 1] (`--svgf-alpha`, the sweep's
@@ -127,6 +168,7 @@ impl Default for SvgfConfig {
             iterations: 5,
             alpha: 0.2,
             alpha_moments: 0.2,
+            alpha_still: 0.2,
             history: SvgfHistory::Nearest,
             sigma_luminance: 4.0,
             sigma_normal: 128.0,
@@ -181,12 +223,20 @@ mod tests {
 
     #[test]
     fn the_mean_settles_after_its_memory() {
-        // (1 - 0.2)^18 = 0.018 <= e^-4 = 0.0183 < 0.8^17.
-        assert_eq!(SvgfConfig::default().settle_frames(), 18);
+        // (1 - 0.2)^18 = 0.018 <= e^-4 = 0.0183 < 0.8^17; (1 - 0.05)^78 = 0.0183 <= e^-4.
+        let c = SvgfConfig::default();
+        assert_eq!(c.lit_settle_frames(), 18);
+        assert_eq!(c.settle_frames(), 18);
+        let longer = SvgfConfig {
+            alpha_still: 0.05,
+            ..c
+        };
+        assert_eq!(longer.settle_frames(), 18 + 78);
         let one = SvgfConfig {
             alpha: 1.0,
             alpha_moments: 1.0,
-            ..SvgfConfig::default()
+            alpha_still: 1.0,
+            ..c
         };
         assert_eq!(one.settle_frames(), 1);
     }

@@ -204,7 +204,9 @@ pub struct SvgfEffect {
     counters: OwnCounters,
     vpl_params: Buffer,
     push: SvgfPush,
-    /// Frames since the histories last restarted (`SvgfConfig::settle_frames`).
+    /// Frames since the histories last restarted or the lighting last changed (the light, a
+    /// re-rendered light view or a moving object): `SvgfConfig::alpha_still` applies past
+    /// `lit_settle_frames`, and the output settles within `settle_frames`.
     age: u32,
     /// A-trous iterations (the configuration's; another count builds another renderer).
     iterations: u32,
@@ -350,15 +352,23 @@ impl Effect for SvgfEffect {
     fn prepare(&mut self, info: &FrameInfo<'_>) {
         let c = &info.config.svgf;
         let reusing = info.reusing();
-        self.age = if reusing {
+        let lighting_changed = info.light_changed || info.light_view || info.objects_moved;
+        self.age = if reusing && !lighting_changed {
             self.age.saturating_add(1)
         } else {
             1
         };
+        // The first frames after a change take the article's weights, so the new light comes
+        // through within `lit_settle_frames`; then the still lighting's longer mean.
+        let (alpha, alpha_moments) = if self.age > c.lit_settle_frames() {
+            c.still_alphas()
+        } else {
+            (c.alpha, c.alpha_moments)
+        };
         self.push = SvgfPush {
             history_valid: reusing as u32,
-            alpha: c.alpha,
-            alpha_moments: c.alpha_moments,
+            alpha,
+            alpha_moments,
             bilinear: c.history.code(),
             step: 1,
             sigma_luminance: c.sigma_luminance,

@@ -34,6 +34,15 @@ pub const SWEEP_KEYS: &[SweepKey] = &[
         },
     },
     SweepKey {
+        name: "svgf.alpha_still",
+        syntax: "number in (0, 1]",
+        description: "both smallest weights once the lighting holds still (--svgf-alpha-still)",
+        set: |c, v| {
+            c.svgf.alpha_still = parse_weight(v)?;
+            Ok(())
+        },
+    },
+    SweepKey {
         name: "svgf.history",
         syntax: "nearest|bilinear",
         description: "how SVGF reads last frame's values (--svgf-history)",
@@ -82,6 +91,7 @@ mod tests {
             ("svgf.iterations", "2", |c| c.svgf.iterations = 2),
             ("svgf.alpha", "0.5", |c| c.svgf.alpha = 0.5),
             ("svgf.alpha_moments", "0.1", |c| c.svgf.alpha_moments = 0.1),
+            ("svgf.alpha_still", "0.1", |c| c.svgf.alpha_still = 0.1),
             ("svgf.history", "bilinear", |c| {
                 c.svgf.history = SvgfHistory::Bilinear
             }),
