@@ -364,7 +364,10 @@ fn a_still_light_lengthens_the_running_mean() {
     );
     let held = mean_change(&longer, 45..still) / mean_change(&article, 45..still);
     let after = mean_change(&longer, still + 2..moved) / mean_change(&article, still + 2..moved);
-    eprintln!("mean squared change, alpha_still 0.05 over 0.2: held {held:.3}, after the light moved {after:.3}");
+    eprintln!(
+        "mean squared change, alpha_still 0.05 over 0.2: held {held:.3}, \
+         after the light moved {after:.3}"
+    );
     assert!(held < 0.25, "held: {held}");
     assert!(
         (0.5..2.0).contains(&after),

@@ -1,7 +1,7 @@
 //! `ssgi table ao`: the AO estimators side by side, the papers' (the thesis's eqs 6-8,
 //! Crytek's, Szentandrasi's) and today's (GTAO, Jimenez et al. 2016), each with the cache and
-//! without it (one fixed pattern and the 5x5 blur; GTAO: its own denoise), on the built-in Cornell box, the thesis's
-//! Table 4.1 scenes and the walkthroughs, each along its table's path: per row the median GPU
+//! without it (one fixed pattern and the 5x5 blur; GTAO: its own denoise), on the built-in
+//! Cornell box, the thesis's Table 4.1 scenes and the walkthroughs, each along its table's path: per row the median GPU
 //! time of the AO passes, the reprojection and the frame, the last frame's AO against the
 //! ray-traced AO (the ground truth of the same radius and attenuation), and the flicker along
 //! the path (with AO alone, the output's consecutive-frame MSD follows it). Writes report.json,
@@ -210,7 +210,8 @@ fn run(
         "Cache: the thesis's reuse row (reverse reprojection, rotated patterns, refresh; GTAO \
          denoises each pattern while the camera moves unless ao.moving_denoise=off); no cache: \
          its no-reuse row (one fixed pattern each frame, the 5x5 blur; GTAO: its own \
-         edge-aware denoise). Every estimator shares the radius and eq 7's attenuation, which the ground truth's AO follows."
+         edge-aware denoise). Every estimator shares the radius and eq 7's attenuation, which \
+         the ground truth's AO follows."
             .into(),
         format!(
             "Parameters changed from the defaults for every row (--set): {}.",

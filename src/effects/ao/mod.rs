@@ -303,8 +303,6 @@ pub struct AoEffect {
     /// GTAO with reuse and `moving_denoise`: `split` and the merge (GTAO_MOVING), recorded in
     /// place of `ssao` while the camera moves.
     moving: Option<(ComputePass, ComputePass)>,
-    /// `moving` records this frame (set by `prepare`).
-    moving_now: bool,
     /// `moving` has written the raw image since it was created (its view is readable).
     moving_wrote: bool,
     /// The no-reuse baseline's blur, GTAO's denoise (single-pattern runs only; references are
@@ -380,7 +378,6 @@ impl AoEffect {
             ssao: ComputePass::declared(s.ctx, s.pool, ssao)?,
             refresh,
             moving,
-            moving_now: false,
             moving_wrote: false,
             blur,
             chain,
@@ -455,6 +452,12 @@ impl AoEffect {
         }
     }
 
+    /// Whether `moving` records this frame: the camera moved since a frame whose histories it
+    /// holds (not a first frame, where every pixel is new, nor a still one).
+    fn moving_records(&self, info: &FrameInfo<'_>) -> bool {
+        self.moving.is_some() && info.camera_moved && info.reusing()
+    }
+
     fn own(&self) -> [(Slot, [&Image; 2]); 6] {
         let s = &self.sized;
         let [l1, l2, l3] = &s.levels;
@@ -526,9 +529,7 @@ impl Effect for AoEffect {
             info.camera_moved,
             info.refresh_cover(false, false),
         );
-        // Not on a first frame (no last view: every pixel is new) nor a still one.
-        self.moving_now = self.moving.is_some() && info.camera_moved && info.reusing();
-        self.moving_wrote |= self.moving_now;
+        self.moving_wrote |= self.moving_records(info);
     }
 
     fn reprojects(&self, info: &FrameInfo<'_>) -> bool {
@@ -561,7 +562,7 @@ impl Effect for AoEffect {
             });
         }
         match &self.moving {
-            Some((split, merge)) if self.moving_now => {
+            Some((split, merge)) if self.moving_records(info) => {
                 r.timed(pass::SSAO, |rec, tr| {
                     split.record(rec, tr, info.frame, &res, push, dispatch)
                 });
