@@ -523,8 +523,17 @@ uint listed_quadrants(uint mask, uint shift) {
     return shift == 4u ? uint(mask != 0u) : mask;
 }
 
-// Vulkan's least maxComputeWorkGroupCount[0]: a pixel list's dispatch grows in y beyond it.
-const uint MAX_GROUPS_X = 65535u;
+// A work list's indirect dispatch: `groups` workgroups as x * y, x at most frame.max_groups_x
+// (the device's maxComputeWorkGroupCount[0], at least Vulkan's 65,535; a test hook lowers
+// it), y growing beyond it (every device takes 65,535 in y: MAX_SIZE's 8x8 blocks need 64).
+// Consumers index group y * x + x (effect.glsl's listed_group) and skip groups past the list.
+// (A macro: atomics need the buffer's members themselves, not copies.)
+#define LIST_DISPATCH(counters, groups)                                                        \
+    {                                                                                          \
+        uint most = max(frame.max_groups_x, 1u);                                               \
+        atomicMax(counters.dispatch_x, min(groups, most));                                     \
+        atomicMax(counters.dispatch_y, (groups + most - 1u) / most);                           \
+    }
 
 #define LANE_LIST(k)                                                                           \
     if (lanes.lane_##k.x != 0u) {                                                              \
@@ -537,18 +546,19 @@ const uint MAX_GROUPS_X = 65535u;
             uint n = group_listed[k];                                                          \
             uint base = n > 0u ? atomicAdd(counters_##k.listed_pixels, n) : 0u;                \
             group_list_base[k] = base;                                                         \
-            uint groups = (base + n + 63u) / 64u;                                              \
-            if (n > 0u) {                                                                      \
-                atomicMax(counters_##k.dispatch_x, min(groups, MAX_GROUPS_X));                 \
-                atomicMax(counters_##k.dispatch_y, (groups + MAX_GROUPS_X - 1u) / MAX_GROUPS_X); \
-            }                                                                                  \
+            if (n > 0u)                                                                        \
+                LIST_DISPATCH(counters_##k, (base + n + 63u) / 64u)                            \
         }                                                                                      \
         uint mask = listed_quadrants(quadrant_mask[k], shift);                                 \
-        for (uint q = 0u; q < 4u && shift != 0u; ++q) {                                        \
-            if ((mask & (1u << q)) == 0u) continue;                                            \
-            uvec2 b = listed_block(q, shift);                                                  \
-            uint slot = atomicAdd(counters_##k.dispatch_x, 1u);                                \
-            counters_##k.data[slot] = b.x | (b.y << 16);                                       \
+        uint blocks = shift != 0u ? bitCount(mask) : 0u;                                       \
+        if (blocks > 0u) {                                                                     \
+            uint slot = atomicAdd(counters_##k.listed_blocks, blocks);                         \
+            LIST_DISPATCH(counters_##k, slot + blocks)                                         \
+            for (uint q = 0u; q < 4u; ++q) {                                                   \
+                if ((mask & (1u << q)) == 0u) continue;                                        \
+                uvec2 b = listed_block(q, shift);                                              \
+                counters_##k.data[slot++] = b.x | (b.y << 16);                                 \
+            }                                                                                  \
         }                                                                                      \
     }
 

@@ -420,3 +420,69 @@ fn spread_refresh_recomputes_its_tile_as_eq_9() {
     drop(r);
     common::assert_clean(&ctx);
 }
+
+/// Work lists past the device's maxComputeWorkGroupCount[0] continue in y (at Vulkan's least
+/// 65,535 that is past 16.8 Mpx of 16x16 blocks, `--aa ssaa16` at 1920x1080). With the limit
+/// lowered to 3 groups (`Renderer::limit_list_groups`), every list of a converging then
+/// panning view (pixel lists, the indirect light's blocks, its fix-ups and low-resolution
+/// samples; SSDO's and GTAO's under motion) is dispatched as 3 x n groups, the spare groups of
+/// the last row doing nothing: each effect's image is the one the unlimited dispatch makes.
+#[test]
+fn lists_past_the_group_limit_continue_in_y() {
+    use ssgi::effects::ao::config::{AoConfig, AoEstimator};
+    let ctx = common::context();
+    let temporal = TemporalConfig {
+        rotation_limit: 4,
+        ..Default::default()
+    };
+    let thesis = RenderConfig {
+        width: 64,
+        height: 64,
+        rsm_size: 32,
+        pcf: Pcf::NINE,
+        effects: Effects::ALL,
+        temporal,
+        skip_unchanged: false,
+        ..Default::default()
+    };
+    let gtao = RenderConfig {
+        ao: AoConfig {
+            estimator: AoEstimator::Gtao,
+            ..Default::default()
+        },
+        ..thesis
+    };
+    let ssdo = RenderConfig {
+        effects: Effects {
+            ao: false,
+            ssdo: true,
+            ..Effects::ALL
+        },
+        ..thesis
+    };
+    for (name, c) in [("thesis", thesis), ("gtao", gtao), ("ssdo", ssdo)] {
+        let mut images = Vec::new();
+        for limit in [None, Some(3)] {
+            let mut r = Renderer::new(&ctx, cornell_box(), c).unwrap();
+            if let Some(groups) = limit {
+                r.limit_list_groups(groups);
+            }
+            let t = converge_then_pan(&mut r);
+            let listed = counter(&t, "indirect_computed_pixels");
+            assert!(listed > 3 * 64, "{name}: the pan lists {listed} samples");
+            let mut got = vec![r.read(Target::Output).unwrap().bytes];
+            for target in [Target::Indirect, Target::Shadow] {
+                got.push(r.read(target).unwrap().bytes);
+            }
+            if c.effects.ao {
+                got.push(r.read(Target::Ao).unwrap().bytes);
+            }
+            images.push(got);
+            drop(r);
+        }
+        for (k, (a, b)) in images[0].iter().zip(&images[1]).enumerate() {
+            assert!(a == b, "{name}: image {k} differs with 3 groups per row");
+        }
+    }
+    common::assert_clean(&ctx);
+}

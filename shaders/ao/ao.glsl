@@ -20,17 +20,32 @@ const float AO_MIP_OFFSET = 3.3;
 // samples up, else 2).
 const uint AO_MAX_STEPS = 4u;
 
-// The G-buffer position a tap at `q_pixel`, `dist_px` pixels from the shaded pixel, reads:
-// the full-resolution image, or with --ao-position-mips a point-sampled level for far taps,
-// which keeps far taps of neighbouring pixels in a few cache lines.
-vec4 ao_tap_position(ivec2 q_pixel, float dist_px) {
+// The position level a tap `dist_px` pixels from the shaded pixel reads: 0, the
+// full-resolution image, or with --ao-position-mips a point-sampled level for far taps, which
+// keeps far taps of neighbouring pixels in a few cache lines.
+uint ao_tap_level(float dist_px) {
     uint mips = ao.position_mips;
-    if (mips == 0u || dist_px < exp2(AO_MIP_OFFSET + 1.0))
-        return texelFetch(g_position, q_pixel, 0);
-    uint level = min(uint(log2(dist_px) - AO_MIP_OFFSET), mips);
+    if (mips == 0u || dist_px < exp2(AO_MIP_OFFSET + 1.0)) return 0u;
+    return min(uint(log2(dist_px) - AO_MIP_OFFSET), mips);
+}
+
+// The G-buffer position a tap at `q_pixel`, `dist_px` pixels from the shaded pixel, reads.
+vec4 ao_tap_position(ivec2 q_pixel, float dist_px) {
+    uint level = ao_tap_level(dist_px);
+    if (level == 0u) return texelFetch(g_position, q_pixel, 0);
     if (level == 1u) return texelFetch(g_position_1, q_pixel >> 1, 0);
     if (level == 2u) return texelFetch(g_position_2, q_pixel >> 2, 0);
     return texelFetch(g_position_3, q_pixel >> 3, 0);
+}
+
+// The full-resolution pixel whose position ao_tap_position returns: a level-L texel holds its
+// centre pixel (ao_position_chain.comp), so a tap that also needs the surface's normal reads
+// it there, not at `q_pixel`, whose surface may lie across a depth edge inside the block.
+ivec2 ao_tap_pixel(ivec2 q_pixel, float dist_px) {
+    int level = int(ao_tap_level(dist_px));
+    if (level == 0) return q_pixel;
+    ivec2 centre = ((q_pixel >> level) << level) + (1 << (level - 1));
+    return min(centre, ivec2(frame.size) - 1);
 }
 
 // Per-pixel rotation from the 4x4 random-vector texture (unit 2D vectors).

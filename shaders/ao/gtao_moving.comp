@@ -33,7 +33,7 @@ bool estimated(ivec2 q) {
 }
 
 void main() {
-    ivec2 pixel = block_pixel(gl_WorkGroupID.x, gl_LocalInvocationID.xy);
+    ivec2 pixel = block_pixel(gl_LocalInvocationID.xy);
     if (!estimated(pixel)) return;
     vec3 p = texelFetch(g_position, pixel, 0).xyz;
     vec3 n = texelFetch(g_normal, pixel, 0).xyz;

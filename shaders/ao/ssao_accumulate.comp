@@ -118,7 +118,7 @@ shared uint group_computed;
 void main() {
     if (gl_LocalInvocationIndex == 0u) group_computed = 0u;
     barrier();
-    ivec2 pixel = block_pixel(gl_WorkGroupID.x, gl_LocalInvocationID.xy);
+    ivec2 pixel = block_pixel(gl_LocalInvocationID.xy);
     if (!outside_frame(pixel)) {
         uint state = imageLoad(state_in, pixel).r;
         if (state == STATE_NEW || state == STATE_ACCUMULATING) {

@@ -1,9 +1,10 @@
 // Per-effect GPU counters and work lists (indirect dispatch arguments first). build.rs
 // generates the Rust struct `CountersHeader` from the block `Counters`; the CPU resets it
 // every frame. The members, in order:
-//   dispatch_x, _y, _z        work blocks listed (indirect dispatch x), y = z = 1; for a list of
-//                             single pixels (block shift 0), its 64-pixel workgroups as x * y
+//   dispatch_x, _y, _z        the list's workgroups (one per block, or per 64 single pixels for
+//                             block shift 0) as x * y, x at most frame.max_groups_x; z = 1
 //   listed_pixels             entries of a list of single pixels
+//   listed_blocks             entries of a list of work blocks
 //   disoccluded_pixels        pixels that failed eq 3 (or had no history)
 //   computed_pixels           pixels the effect evaluated (low-resolution ones for half res)
 //   fixup_pixels              full-resolution fix-ups (half-resolution indirect light)
@@ -31,6 +32,7 @@
     uint dispatch_y;                                                                           \
     uint dispatch_z;                                                                           \
     uint listed_pixels;                                                                        \
+    uint listed_blocks;                                                                        \
     uint disoccluded_pixels;                                                                   \
     uint computed_pixels;                                                                      \
     uint fixup_pixels;                                                                         \
@@ -65,6 +67,13 @@ layout(set = 1, binding = COUNTERS_BINDING, std430) buffer Counters {
     COUNTERS_MEMBERS
 } counters;
 #endif
+
+// This workgroup's index in a work list's x * y dispatch (the reprojection's LIST_DISPATCH:
+// past the device's maxComputeWorkGroupCount[0] a list's groups continue in y). Groups past
+// the list's end (x * y rounds up) have no entry.
+uint listed_group() {
+    return gl_WorkGroupID.y * gl_NumWorkGroups.x + gl_WorkGroupID.x;
+}
 
 #ifndef COUNTERS_LANES
 // One workgroup's share of a pass's work-efficiency counters, called by one invocation per

@@ -14,18 +14,19 @@ layout(push_constant) uniform Effect {
     uint pattern;          // this frame's pattern index
 } effect;
 
-// Full-resolution pixel of local invocation `local` in listed work block `index`; with a
-// list of single pixels (block shift 0), entry 64 w + i of the list for invocation i of
-// workgroup w (in x then y), or (-1, -1), outside the frame, past the list's end.
-ivec2 block_pixel(uint index, uvec2 local) {
+// Full-resolution pixel of local invocation `local` of this workgroup (listed_group() w) in
+// a list of work blocks (block w's pixel), or of single pixels (block shift 0: entry 64 w + i
+// for invocation i); (-1, -1), outside the frame, past the list's end.
+ivec2 block_pixel(uvec2 local) {
+    uint group = listed_group();
     if (effect.block_shift == 0u) {
-        uint group = gl_WorkGroupID.y * gl_NumWorkGroups.x + gl_WorkGroupID.x;
         uint i = group * 64u + local.y * 8u + local.x;
         if (i >= counters.listed_pixels) return ivec2(-1);
         uint packed = counters.data[i];
         return ivec2(packed & 0xffffu, packed >> 16);
     }
-    uint packed = counters.data[index];
+    if (group >= counters.listed_blocks) return ivec2(-1);
+    uint packed = counters.data[group];
     return ivec2(uvec2(packed & 0xffffu, packed >> 16) << effect.block_shift) + ivec2(local);
 }
 

@@ -50,6 +50,7 @@ layout(set = 0, binding = 0, std430) readonly buffer Frame {
     vec3 moved_min;            // box around what moved since last frame, at both places (world)
     uint moved_count;          // objects that moved (0: nothing did; the box means nothing)
     vec3 moved_max;
+    uint max_groups_x;         // a work list's dispatch in x: maxComputeWorkGroupCount[0] (test hook: less)
 } frame;
 
 // Smooth spot cone: 1 inside the inner angle, 0 outside the outer, Hermite in between. As on

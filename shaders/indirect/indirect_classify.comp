@@ -40,9 +40,12 @@ bool sample_needed(ivec2 full) {
 }
 
 void main() {
+    // Uniform over the workgroup: a group past the list returns whole, before any barrier.
+    uint group = listed_group();
+    if (group >= counters.listed_blocks) return;
     if (gl_LocalInvocationIndex == 0u) group_count = 0u;
     barrier();
-    uint packed = counters.data[gl_WorkGroupID.x];
+    uint packed = counters.data[group];
     uvec2 local = gl_LocalInvocationID.xy;
     ivec2 low = ivec2(packed & 0xffffu, packed >> 16) * 8 + ivec2(local);
     ivec2 low_size = ivec2((frame.size + 1u) / 2u);
@@ -60,11 +63,11 @@ void main() {
     barrier();
     if (gl_LocalInvocationIndex == 0u && group_count > 0u) {
         group_base = atomicAdd(counters.lowres_samples, group_count);
-        // The gather's workgroups take SPREAD_LANES / L samples each; past Vulkan's least
-        // maxComputeWorkGroupCount they stride over the list.
+        // The gather's workgroups take SPREAD_LANES / L samples each; past the device's
+        // maxComputeWorkGroupCount[0] they stride over the list.
         uint per_group = SPREAD_LANES / spread_lanes_per_estimate(vpl_params.lanes);
         uint groups = (group_base + group_count + per_group - 1u) / per_group;
-        atomicMax(counters.lowres_dispatch_x, min(groups, 65535u));
+        atomicMax(counters.lowres_dispatch_x, min(groups, max(frame.max_groups_x, 1u)));
     }
     barrier();
     if (listed)

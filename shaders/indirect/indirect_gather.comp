@@ -27,7 +27,7 @@ shared uint group_computed;
 void main() {
     if (gl_LocalInvocationIndex == 0u) group_computed = 0u;
     barrier();
-    ivec2 pixel = block_pixel(gl_WorkGroupID.x, gl_LocalInvocationID.xy);
+    ivec2 pixel = block_pixel(gl_LocalInvocationID.xy);
     bool in_range = !outside_frame(pixel);
     bool work = false;
     vec3 p = vec3(0.0);

@@ -30,9 +30,12 @@ layout(set = 1, binding = 7, r32ui) uniform readonly uimage2D state_in;
 shared uint group_computed;
 
 void main() {
+    // Uniform over the workgroup: a group past the list returns whole, before any barrier.
+    uint group = listed_group();
+    if (group >= counters.listed_blocks) return;
     if (gl_LocalInvocationIndex == 0u) group_computed = 0u;
     barrier();
-    uint packed = counters.data[gl_WorkGroupID.x];
+    uint packed = counters.data[group];
     ivec2 block = ivec2(packed & 0xffffu, packed >> 16);
     ivec2 low = block * 8 + ivec2(gl_LocalInvocationID.xy);
     ivec2 low_size = ivec2((frame.size + 1u) / 2u);
@@ -58,7 +61,7 @@ void main() {
     // Neighbours one low-resolution pixel (two full ones) apart.
     value = interleave_reconstruct(gl_LocalInvocationID.xy, computed, is_new, p, n, pixel_footprint(p, 2.0), value);
     if (!computed) value = vec4(0.0);
-    lowres[gl_WorkGroupID.x * 81u + gl_LocalInvocationIndex] = value;
+    lowres[group * 81u + gl_LocalInvocationIndex] = value;
     barrier();
     if (gl_LocalInvocationIndex != 0u) return;
     if (group_computed > 0u) atomicAdd(counters.computed_pixels, group_computed);

@@ -32,7 +32,9 @@ layout(set = 1, binding = 10, rgba32f) uniform image2D moments;
 #include "indirect_merge.glsl"
 
 void main() {
-    uint packed = counters.data[gl_WorkGroupID.x];
+    uint group = listed_group();
+    if (group >= counters.listed_blocks) return;
+    uint packed = counters.data[group];
     ivec2 block = ivec2(packed & 0xffffu, packed >> 16);
     ivec2 pixel = block * 16 + ivec2(gl_LocalInvocationID.xy);
     if (outside_frame(pixel)) return;
@@ -69,7 +71,7 @@ void main() {
         sum += weight * imageLoad(lowres, low);
 #else
         ivec2 local = low - apron_origin;
-        sum += weight * lowres[gl_WorkGroupID.x * 81u + uint(local.y * 9 + local.x)];
+        sum += weight * lowres[group * 81u + uint(local.y * 9 + local.x)];
 #endif
         weight_sum += weight;
     }
@@ -79,9 +81,9 @@ void main() {
         uint slot = atomicAdd(counters.fixup_pixels, 1u);
         counters.data[counters.max_blocks + slot] = uint(pixel.x) | (uint(pixel.y) << 16);
         // indirect_spread.comp's `fixup` takes SPREAD_LANES / L pixels per workgroup; past
-        // Vulkan's least maxComputeWorkGroupCount its workgroups stride over the list.
+        // the device's maxComputeWorkGroupCount[0] its workgroups stride over the list.
         uint per_group = SPREAD_LANES / spread_lanes_per_estimate(SPREAD_LANES);
-        if (slot % per_group == 0u && slot / per_group < 65535u)
+        if (slot % per_group == 0u && slot / per_group < max(frame.max_groups_x, 1u))
             atomicAdd(counters.fixup_dispatch_x, 1u);
         return;
     }

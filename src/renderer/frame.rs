@@ -24,6 +24,9 @@ pub struct FrameInputs<'a> {
     pub moved: Option<super::motion::Moved>,
     /// Test hook (`Renderer::plant_nan`): this pixel's indirect estimates are NaN this frame.
     pub planted_nan: Option<[u32; 2]>,
+    /// The most workgroups a work list's dispatch has in x: the device's
+    /// maxComputeWorkGroupCount[0], or less by a test hook (`Renderer::limit_list_groups`).
+    pub max_groups_x: u32,
 }
 
 /// The per-frame uniform block (`Frame` in shaders/include/frame.glsl), filled member by member.
@@ -74,6 +77,7 @@ pub fn frame_block(config: &RenderConfig, f: &FrameInputs<'_>) -> FrameBlock {
         moved_min: f.moved.map_or([0.0; 3], |m| m.bounds.min.to_array()),
         moved_count: f.moved.map_or(0, |m| m.count),
         moved_max: f.moved.map_or([0.0; 3], |m| m.bounds.max.to_array()),
+        max_groups_x: f.max_groups_x.max(1),
     }
 }
 
@@ -115,6 +119,7 @@ mod tests {
                     scene_radius: 1.0,
                     moved: None,
                     planted_nan: None,
+                    max_groups_x: 65535,
                 },
             )
         };

@@ -99,11 +99,25 @@ pub struct Renderer {
     pool: DescriptorPool,
     /// Test hook: the pixel whose indirect estimates the next frame makes NaN (`plant_nan`).
     planted_nan: Option<[u32; 2]>,
+    /// Work lists' dispatches in x (`limit_list_groups`; the device's limit by default).
+    max_groups_x: u32,
 }
 
 impl Renderer {
     pub fn new(ctx: &Arc<Context>, scene: Scene, config: RenderConfig) -> Result<Self> {
         config.validate()?;
+        let ranges = [
+            ("camera", scene.camera.near, scene.camera.far),
+            ("light", scene.light.near, scene.light.far),
+        ];
+        for (what, near, far) in ranges {
+            if let Some(problem) = crate::scene::depth_range_problem(near, far) {
+                return Err(Error::Config(format!(
+                    "scene {}: {what}: {problem}",
+                    scene.name
+                )));
+            }
+        }
         if config.gbuffer.visibility() && !ctx.info.geometry_shader {
             return Err(Error::Config(format!(
                 "--gbuffer visibility reads gl_PrimitiveID, which needs the geometryShader \
@@ -192,6 +206,7 @@ impl Renderer {
             frame_index: 0,
             past: Past::default(),
             planted_nan: None,
+            max_groups_x: ctx.info.max_compute_work_group_count[0],
             last_frame_reused: false,
             audit: None,
             last_pass: [None; FRAMES_IN_FLIGHT],
@@ -559,6 +574,7 @@ impl Renderer {
                 scene_radius: self.scene.bounds().radius(),
                 moved,
                 planted_nan: self.planted_nan.take(),
+                max_groups_x: self.max_groups_x,
             },
         );
         self.frames[slot].uniforms.write(&block.to_bytes())?;
@@ -675,6 +691,14 @@ impl Renderer {
     /// NaN out of histories, bases and image-wide sums. No effect outside the image.
     pub fn plant_nan(&mut self, pixel: [u32; 2]) {
         self.planted_nan = Some(pixel);
+    }
+
+    /// Test hook: work lists' indirect dispatches take at most `groups` workgroups in x (at
+    /// least 1, at most the device's maxComputeWorkGroupCount[0]) and continue in y, as lists
+    /// past the device's limit do (16.8 Mpx of 16x16 blocks on a device at Vulkan's least
+    /// 65,535), so a small render takes the same path.
+    pub fn limit_list_groups(&mut self, groups: u32) {
+        self.max_groups_x = groups.clamp(1, self.ctx.info.max_compute_work_group_count[0]);
     }
 
     /// Copy a target of the last rendered frame to the host (waits for the GPU).

@@ -84,6 +84,32 @@ impl Counter {
     }
 }
 
+/// A work list's indirect dispatch of `groups` workgroups as [x, y]: x at most `max_x` (the
+/// device's maxComputeWorkGroupCount[0]), y growing beyond it; the reprojection's
+/// LIST_DISPATCH (shaders/reproject.comp) computes the same from the list's running count,
+/// and consumers skip the x * y - groups groups past the list (counters.glsl's
+/// listed_group).
+pub fn list_dispatch(groups: u32, max_x: u32) -> [u32; 2] {
+    let most = max_x.max(1);
+    [groups.min(most), groups.div_ceil(most)]
+}
+
+/// Refuses a work list of `groups` workgroups (at most) whose dispatch would pass the device's
+/// maxComputeWorkGroupCount in y (`list_dispatch`): at MAX_SIZE the longest list, one 8x8
+/// block or 64 pixels per group, needs 64 rows of 65,535, so only a device below Vulkan's
+/// minimum limits could refuse.
+pub fn check_list_dispatch(ctx: &Context, name: &str, groups: u32) -> Result<()> {
+    let [x, y, _] = ctx.info.max_compute_work_group_count;
+    let [_, rows] = list_dispatch(groups, x);
+    if rows > y {
+        return Err(crate::error::Error::Config(format!(
+            "{name}'s work list needs up to {groups} workgroups, {rows} rows of {x}: past \
+             this device's maxComputeWorkGroupCount ({x}, {y}); render smaller"
+        )));
+    }
+    Ok(())
+}
+
 /// The device-side buffer: header, one entry per work block, then `lists` more entries (the
 /// half-resolution indirect light's fix-up pixels and low-resolution samples).
 pub fn create_gpu_buffer(
@@ -120,6 +146,7 @@ pub fn record_reset(
         dispatch_y: 1,
         dispatch_z: 1,
         listed_pixels: 0,
+        listed_blocks: 0,
         disoccluded_pixels: 0,
         computed_pixels: 0,
         fixup_pixels: 0,
@@ -247,5 +274,52 @@ impl OwnCounters {
     /// Those of the frame last recorded in `slot` (its fence has signalled).
     pub fn collect(&mut self, slot: usize) -> Vec<(&'static str, u64)> {
         self.readback.collect(slot)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::list_dispatch;
+    use crate::config::MAX_SIZE;
+
+    /// Vulkan's least maxComputeWorkGroupCount, per dimension.
+    const SPEC_MIN: u32 = 65_535;
+
+    /// Every render size up to MAX_SIZE (in steps, and the sizes at the limits' edges), every
+    /// list shape (16x16 and 8x8 blocks, 64-pixel groups): the dispatch stays within the
+    /// spec's least limits in x and y and covers the list with less than one row to spare.
+    #[test]
+    fn list_dispatches_fit_the_least_limits_up_to_max_size() {
+        let mut sides: Vec<u32> = (1..=MAX_SIZE).step_by(97).collect();
+        sides.extend([4095, 4096, 4097, 8191, 8192, 16383, MAX_SIZE]);
+        let mut past_x = 0;
+        for &w in &sides {
+            for &h in &[1, 7, 1080, 4320, 8191, MAX_SIZE] {
+                let lists = [
+                    w.div_ceil(16) * h.div_ceil(16),
+                    w.div_ceil(16) * h.div_ceil(16) * 4,
+                    (w * h).div_ceil(64),
+                ];
+                for groups in lists {
+                    let [x, y] = list_dispatch(groups, SPEC_MIN);
+                    assert!(
+                        x <= SPEC_MIN && y <= SPEC_MIN,
+                        "{w}x{h}: {groups} -> {x}x{y}"
+                    );
+                    let launched = x as u64 * y as u64;
+                    assert!(launched >= groups as u64, "{w}x{h}: {x}x{y} < {groups}");
+                    assert!(
+                        launched - (groups as u64) < x as u64,
+                        "{w}x{h}: a spare row"
+                    );
+                    past_x += (groups > SPEC_MIN) as u32;
+                }
+            }
+        }
+        assert!(past_x > 0, "some lists pass the limit in x");
+        // --aa ssaa16 at 1920x1080 renders 7680x4320: 129,600 16x16 blocks.
+        assert_eq!(list_dispatch(480 * 270, SPEC_MIN), [SPEC_MIN, 2]);
+        assert_eq!(list_dispatch(0, SPEC_MIN), [0, 0]);
+        assert_eq!(list_dispatch(10, 3), [3, 4]);
     }
 }

@@ -148,6 +148,12 @@ impl TemporalEffect {
         // Blocks are listed by 16x16 reprojection groups, so count whole groups (single
         // pixels: every pixel).
         let max_blocks = width.div_ceil(16) * height.div_ceil(16) * (16 / side) * (16 / side);
+        let longest = if side == 1 {
+            (width * height).div_ceil(64)
+        } else {
+            max_blocks
+        };
+        counters::check_list_dispatch(ctx, kind.name, longest)?;
         // Fix-ups: every pixel at most; then every low-resolution sample at most.
         let (fixups, lowres) = if kind.fixups {
             (width * height, width.div_ceil(2) * height.div_ceil(2))

@@ -37,6 +37,9 @@ pub struct DeviceInfo {
     pub timestamp_period: f32,
     pub timestamp_valid_bits: u32,
     pub max_push_constants_size: u32,
+    /// maxComputeWorkGroupCount: the most workgroups one dispatch has per dimension (at least
+    /// 65,535 each; work lists past x continue in y).
+    pub max_compute_work_group_count: [u32; 3],
     /// The geometryShader feature (enabled when present): fragment shaders may read
     /// gl_PrimitiveID (the visibility buffer).
     pub geometry_shader: bool,
@@ -424,6 +427,7 @@ fn pick_device(
             timestamp_period: props.limits.timestamp_period,
             timestamp_valid_bits: families[family].timestamp_valid_bits,
             max_push_constants_size: props.limits.max_push_constants_size,
+            max_compute_work_group_count: props.limits.max_compute_work_group_count,
             geometry_shader,
         };
         candidates.push((type_rank(props.device_type), pd, family as u32, info));

@@ -221,13 +221,23 @@ pub const RAW_VIEW: EffectView = EffectView {
     in_viewer: false,
 };
 
+/// With reuse: the history's moments (r: the mean squared visibility of the estimates in the
+/// gated mean, g: a pending gate crossing, b: the estimates in that mean since it last
+/// restarted).
+pub const MOMENTS_VIEW: EffectView = EffectView {
+    name: "ao_moments",
+    look: Look::Red,
+    in_viewer: false,
+};
+
 /// The effect's views: the point-sampled G-buffer position levels the far taps read
-/// (`--ao-position-mips`), then the raw AO.
-const VIEWS: [EffectView; 4] = [
+/// (`--ao-position-mips`), then the raw AO and the history's moments.
+const VIEWS: [EffectView; 5] = [
     level_view("ao_position_level1"),
     level_view("ao_position_level2"),
     level_view("ao_position_level3"),
     RAW_VIEW,
+    MOMENTS_VIEW,
 ];
 
 /// The position levels (the first three views).
@@ -598,6 +608,9 @@ impl Effect for AoEffect {
             Target::Effect(v) if *v == RAW_VIEW => {
                 (self.blur.is_some() || self.moving_wrote).then_some(&self.sized.raw)
             }
+            Target::Effect(v) if *v == MOMENTS_VIEW => self
+                .reuse
+                .then(|| self.sized.temporal.moments.current(parity)),
             // Only when the chain writes them (otherwise they hold nothing).
             Target::Effect(v) if self.chain.is_some() => POSITION_LEVELS
                 .iter()
