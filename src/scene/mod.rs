@@ -29,7 +29,7 @@ mod validate;
 mod world;
 
 pub use builder::MeshBuilder;
-pub use camera::{pixel_to_ndc, Camera};
+pub use camera::{depth_range_problem, pixel_to_ndc, Camera, MAX_DEPTH_RATIO};
 pub use error::SceneError;
 pub use light::SpotLight;
 pub use mesh::{

@@ -416,7 +416,10 @@ fn check_range(table: &'static str, near: Option<f32>, far: Option<f32>) -> Resu
                     format!("far {f} must be beyond near {n}"),
                 ));
             }
-            Ok(())
+            match super::camera::depth_range_problem(n, f) {
+                Some(m) => Err(fault(table, 0, "near", m)),
+                None => Ok(()),
+            }
         }
         (Some(_), None) => Err(fault(table, 0, "near", "give far with near".into())),
         (None, Some(_)) => Err(fault(table, 0, "far", "give near with far".into())),

@@ -240,8 +240,13 @@ fn auto_range(from: impl IntoIterator<Item = Vec3>, bounds: &Aabb) -> (f32, f32)
             .into_iter()
             .map(|p| reach(p, bounds))
             .fold(0.0, f32::max);
-    // An empty or point-sized scene still gets a valid range.
-    let far = far.max(1e-3);
+    // An empty or point-sized scene still gets a valid range; any other keeps its own scale
+    // (an absolute floor put a 1e-11-scale model behind the near plane: a black image).
+    let far = if far > 0.0 && far.is_finite() {
+        far
+    } else {
+        1e-3
+    };
     (AUTO_NEAR_OF_FAR * far, far)
 }
 

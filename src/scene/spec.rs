@@ -253,13 +253,25 @@ fn unit_spot(position: Vec3, target: Vec3, outer_deg: f32, camera: &Camera) -> S
 /// Grey albedo of the ground a single model stands on.
 const GROUND_ALBEDO: [f32; 3] = [0.6, 0.6, 0.6];
 
+/// How far below the model's foot the ground goes when the model has a face lying there, as
+/// a share of the ground's half-width: two coplanar faces z-fight (grey stripes through a
+/// flat model on the ground), and 1e-3 of the scene's size is some 20 times the depth
+/// buffer's resolution at the automatic camera's distance, yet far below a pixel there.
+const GROUND_GAP: f32 = 1e-3;
+
 /// `model` standing on a grey square ground at its foot, twice its largest extent wide
-/// (`--scene <model>` for a model that is not a building; scene files' `ground = true`).
+/// (`--scene <model>` for a model that is not a building; scene files' `ground = true`). Where
+/// a face of the model lies at its foot (every corner within the gap of it), the ground goes
+/// `GROUND_GAP` of its half-width lower, so the two do not z-fight.
 pub fn with_ground(model: &Mesh) -> Mesh {
     let b = model.bounds;
     let ext = b.extent();
     let half = ext.x.max(ext.z).max(ext.y);
-    let (c, y) = (b.center(), b.min.y);
+    let gap = GROUND_GAP * half;
+    let lies_at_foot =
+        (0..model.triangle_count()).any(|t| model.triangle(t).iter().all(|p| p.y - b.min.y <= gap));
+    let c = b.center();
+    let y = if lies_at_foot { b.min.y - gap } else { b.min.y };
     let mut builder = MeshBuilder::new();
     builder.append(model, 1.0, Vec3::ZERO);
     let ground = builder.add_material(Material::colour("ground", GROUND_ALBEDO));
@@ -301,6 +313,38 @@ fn outside(model: &Mesh, accel: &Accel, scene_bounds: &super::mesh::Aabb) -> Aut
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn ground_keeps_clear_of_a_face_at_the_foot() {
+        let mut b = MeshBuilder::new();
+        let m = b.add_material(Material::colour("m", [0.5, 0.5, 0.5]));
+        let flat = [
+            Vec3::ZERO,
+            Vec3::new(1.0, 0.0, 0.0),
+            Vec3::new(0.0, 0.0, 1.0),
+        ];
+        b.add_flat_polygon(m, &flat, Vec3::Y);
+        let ground_y = |mesh: &Mesh| {
+            let last = mesh.triangle_count() - 1;
+            mesh.triangle(last)[0].y
+        };
+        // A flat triangle in y = 0: the ground 1e-3 of its half-width (1) below.
+        let flat_ground = ground_y(&with_ground(&b.build()));
+        assert!((flat_ground + 1e-3).abs() < 1e-7, "{flat_ground}");
+        // A tetrahedron standing on a point: the ground touches its foot.
+        let mut b = MeshBuilder::new();
+        let m = b.add_material(Material::colour("m", [0.5, 0.5, 0.5]));
+        let apex = Vec3::ZERO;
+        let top = [
+            Vec3::new(-1.0, 1.0, -1.0),
+            Vec3::new(1.0, 1.0, -1.0),
+            Vec3::new(0.0, 1.0, 1.0),
+        ];
+        for k in 0..3 {
+            b.add_flat_polygon(m, &[apex, top[k], top[(k + 1) % 3]], Vec3::Y);
+        }
+        assert_eq!(ground_y(&with_ground(&b.build())), 0.0);
+    }
 
     #[test]
     fn builtins_need_no_files() {

@@ -138,10 +138,11 @@ pub fn matrix(quick: bool, long_frames: u64) -> Vec<Case> {
         ));
     }
     let mut deep = cornell_box();
-    deep.camera.near = deep.camera.far * 1e-6;
+    // The largest depth range a camera may have (scene::MAX_DEPTH_RATIO).
+    deep.camera.near = deep.camera.far / crate::scene::MAX_DEPTH_RATIO;
     cases.push(Case::new(
-        "near-far-1e6",
-        "far / near = 1e6 (depth precision)",
+        "near-far-1e5",
+        "far / near = 1e5, the largest accepted (depth precision)",
         deep,
     ));
     cases.push(Case::new(

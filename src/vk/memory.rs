@@ -180,6 +180,73 @@ pub fn is_depth(format: vk::Format) -> bool {
     )
 }
 
+/// Bytes of one texel of the formats ssgi makes (None for others).
+pub fn bytes_per_pixel(format: vk::Format) -> Option<usize> {
+    Some(match format {
+        vk::Format::R32G32B32A32_SFLOAT => 16,
+        vk::Format::R16G16B16A16_SFLOAT => 8,
+        vk::Format::R8G8B8A8_UNORM | vk::Format::R8G8B8A8_SRGB | vk::Format::B8G8R8A8_UNORM => 4,
+        vk::Format::B8G8R8A8_SRGB | vk::Format::D32_SFLOAT | vk::Format::R32_SFLOAT => 4,
+        vk::Format::R32_UINT => 4,
+        _ => return None,
+    })
+}
+
+/// Refuses an image past what the device takes for its format and use
+/// (vkGetPhysicalDeviceImageFormatProperties: maxExtent, maxResourceSize) before it is
+/// created, naming the image: creating it anyway breaks a valid-usage rule and then fails as
+/// if memory had run out (`--size 16384x16384` on lavapipe: 'rsm.position' of 4 GiB against
+/// a 2 GiB largest resource), though no allocation was ever the problem.
+fn check_image_limits(ctx: &Context, name: &str, desc: &ImageDesc) -> Result<()> {
+    // SAFETY: the physical device belongs to this instance; the query has no side effects.
+    let props = unsafe {
+        ctx.instance
+            .raw
+            .get_physical_device_image_format_properties(
+                ctx.physical,
+                desc.format,
+                vk::ImageType::TYPE_2D,
+                vk::ImageTiling::OPTIMAL,
+                desc.usage,
+                vk::ImageCreateFlags::empty(),
+            )
+    };
+    let props = match props {
+        Ok(p) => p,
+        Err(vk::Result::ERROR_FORMAT_NOT_SUPPORTED) => {
+            return Err(Error::Config(format!(
+                "image '{name}': this device does not support {:?} with usage {:?}",
+                desc.format, desc.usage
+            )))
+        }
+        Err(result) => {
+            return Err(Error::Vulkan {
+                call: "vkGetPhysicalDeviceImageFormatProperties",
+                result,
+            })
+        }
+    };
+    let max = props.max_extent;
+    // The texel size where readback knows it (every format ssgi makes), else 1 byte: the
+    // driver's own check then still catches what this one lets through.
+    let texel = bytes_per_pixel(desc.format).unwrap_or(1) as u64;
+    let bytes = desc.width as u64 * desc.height as u64 * texel;
+    if desc.width > max.width || desc.height > max.height || bytes > props.max_resource_size {
+        return Err(Error::Config(format!(
+            "image '{name}' ({}x{} {:?}, {} MiB) is past this device's largest image of that \
+             format and use ({}x{}, {} MiB); try a smaller --size or --rsm-size",
+            desc.width,
+            desc.height,
+            desc.format,
+            bytes.div_ceil(1 << 20),
+            max.width,
+            max.height,
+            props.max_resource_size >> 20
+        )));
+    }
+    Ok(())
+}
+
 impl Image {
     pub fn new(ctx: &Arc<Context>, name: &str, desc: ImageDesc) -> Result<Self> {
         if desc.width == 0 || desc.height == 0 {
@@ -203,6 +270,7 @@ impl Image {
             .usage(desc.usage)
             .sharing_mode(vk::SharingMode::EXCLUSIVE)
             .initial_layout(vk::ImageLayout::UNDEFINED);
+        check_image_limits(ctx, name, &desc)?;
         // SAFETY: valid create info; destroyed through the deletion queue.
         let raw = unsafe { ctx.device.create_image(&info, None) }.vk("vkCreateImage")?;
         ctx.names.set(raw, name);

@@ -19,16 +19,7 @@ pub struct ImageData {
     pub bytes: Vec<u8>,
 }
 
-pub fn bytes_per_pixel(format: vk::Format) -> Option<usize> {
-    Some(match format {
-        vk::Format::R32G32B32A32_SFLOAT => 16,
-        vk::Format::R16G16B16A16_SFLOAT => 8,
-        vk::Format::R8G8B8A8_UNORM | vk::Format::R8G8B8A8_SRGB | vk::Format::B8G8R8A8_UNORM => 4,
-        vk::Format::B8G8R8A8_SRGB | vk::Format::D32_SFLOAT | vk::Format::R32_SFLOAT => 4,
-        vk::Format::R32_UINT => 4,
-        _ => return None,
-    })
-}
+pub use super::memory::bytes_per_pixel;
 
 /// IEEE half to single precision (normals, subnormals, infinities, NaN).
 pub fn f16_to_f32(h: u16) -> f32 {
