@@ -631,6 +631,39 @@ fn overlay_changes_only_its_rectangle() {
     );
 }
 
+/// The overlay fits what it overlays: with every effect on, in a 320x240 window it shows its
+/// compact summary, which covers less than half of the frame (the full panel covered 87.5%);
+/// O (the script's `key=panel`) brings the full panel, which covers more.
+#[test]
+fn overlay_fits_a_small_window() {
+    let display = display();
+    let run = |name: &str, extra: &[&str]| {
+        let shot = tmp(name);
+        let mut args = vec!["--capture", shot.to_str().unwrap()];
+        args.extend(extra);
+        let out = view(&display, "320x240", "4", &args);
+        let stderr = assert_clean_run(&out, &format!("view {extra:?}"));
+        (load_rgba(&shot), stderr)
+    };
+    let (without, _) = run("small-overlay-off.png", &["--overlay", "off"]);
+    let (compact, _) = run("small-overlay-compact.png", &[]);
+    let (full, full_err) = run("small-overlay-full.png", &["--script", "1:key=panel"]);
+    assert!(full_err.contains("overlay: full panel"), "{full_err}");
+    let total = 320 * 240;
+    let covered = differing_pixels(&compact, &without);
+    let covered_full = differing_pixels(&full, &without);
+    eprintln!("overlay over 320x240: compact {covered} pixels, full {covered_full}");
+    assert!(covered > 0, "no overlay drawn");
+    assert!(
+        covered * 2 < total,
+        "the compact overlay covers {covered} of {total} pixels"
+    );
+    assert!(
+        covered_full > covered,
+        "O did not bring the full panel ({covered_full})"
+    );
+}
+
 /// The screenshot key (F12; the script's `key=screenshot`) writes the presented frame, overlay
 /// included, and the last second's timings as a bench report (docs/formats.md) with the
 /// overlay's own timing row.

@@ -52,6 +52,9 @@ pub fn help() -> String {
   C                              print the camera as a keyframe (for --path files)
   H                              show / hide the overlay (GPU time per pass and group,
                                  median and p95 over the last second; counters; device)
+  O                              the overlay's full panel / its compact summary (by
+                                 default the full panel where it covers at most half the
+                                 window, else the summary)
   G                              ground truth of the held view: `ssgi reference`'s
                                  tracer in the background, then each buffer's RMSE and the
                                  final image's FLIP against it (moving cancels; G again too)
@@ -207,6 +210,8 @@ pub enum Action {
     PrintCamera,
     /// Show or hide the overlay (timings, counters, device).
     ToggleOverlay,
+    /// Switch the overlay between its full panel and its compact summary.
+    ToggleOverlayDetail,
     /// Write the presented frame (PNG) and the last second's timings (bench JSON).
     Screenshot,
     /// Start (or cancel) the ground truth of the current view.
@@ -219,7 +224,7 @@ pub enum Action {
 
 impl Action {
     /// The action a test script names (`key=NAME`): cycle, pcf, an effect switch, an effect's
-    /// setting, reuse, camera, overlay, screenshot, truth, errormap, help, quit.
+    /// setting, reuse, camera, overlay, panel, screenshot, truth, errormap, help, quit.
     pub fn from_name(name: &str) -> Option<Action> {
         if let Some(e) = effect_keys().iter().copied().find(|e| *e == name) {
             return Some(Action::ToggleEffect(e));
@@ -233,6 +238,7 @@ impl Action {
             "reuse" => Action::ToggleReuse,
             "camera" => Action::PrintCamera,
             "overlay" => Action::ToggleOverlay,
+            "panel" => Action::ToggleOverlayDetail,
             "screenshot" => Action::Screenshot,
             "truth" => Action::GroundTruth,
             "errormap" => Action::ErrorMap,

@@ -35,6 +35,23 @@ use winit::window::Window;
 const MARGIN: f32 = 6.0;
 /// The widest the panel grows, in points.
 const PANEL_WIDTH: f32 = 460.0;
+/// The full panel's size before it was first drawn, in points (every effect on: about
+/// 470x400 pixels at one pixel per point).
+const FULL_PANEL_GUESS: egui::Vec2 = egui::vec2(470.0, 400.0);
+/// The most of the window the full panel may cover before the overlay shows its compact
+/// summary instead (unless O asked for the full panel): in a 320x240 window the full panel
+/// covered 87.5% of the frame.
+const MOST_COVERED: f32 = 0.5;
+
+/// Which panel the overlay draws.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Detail {
+    /// The full panel where it covers at most `MOST_COVERED` of the window, else the
+    /// compact summary.
+    Auto,
+    Full,
+    Compact,
+}
 
 pub struct Overlay {
     egui: egui::Context,
@@ -56,6 +73,11 @@ pub struct Overlay {
     /// they were last read from.
     edits: (u32, f32, f32),
     synced: Option<(RenderConfig, f32)>,
+    detail: Detail,
+    /// The full panel's size when it was last drawn, in points.
+    full_size: egui::Vec2,
+    /// The last frame drew the full panel.
+    drew_full: bool,
 }
 
 /// What the panel shows besides the statistics.
@@ -112,7 +134,32 @@ impl Overlay {
             error: None,
             edits: (0, 0.0, 1.0),
             synced: None,
+            detail: Detail::Auto,
+            full_size: FULL_PANEL_GUESS,
+            drew_full: true,
         })
+    }
+
+    /// Whether the overlay draws its full panel (else the compact summary).
+    pub fn full(&self) -> bool {
+        self.drew_full
+    }
+
+    /// Switch between the full panel and the compact summary (from whichever is shown).
+    pub fn toggle_detail(&mut self) {
+        self.detail = if self.drew_full {
+            Detail::Compact
+        } else {
+            Detail::Full
+        };
+        self.drew_full = self.detail == Detail::Full;
+    }
+
+    /// Whether the full panel fits a window of `size` pixels at `ppp` pixels per point.
+    fn full_fits(&self, size: [u32; 2], ppp: f32) -> bool {
+        let panel = self.full_size * ppp;
+        let (w, h) = (size[0] as f32, size[1] as f32);
+        panel.x * panel.y <= MOST_COVERED * w * h && panel.y <= h && panel.x <= w
     }
 
     pub fn visible(&self) -> bool {
@@ -166,6 +213,13 @@ impl Overlay {
             );
             self.synced = Some((config, text.render_scale));
         }
+        let full = match self.detail {
+            Detail::Full => true,
+            Detail::Compact => false,
+            Detail::Auto => {
+                self.full_fits([extent.width, extent.height], self.egui.pixels_per_point())
+            }
+        };
         let mut requests = Vec::new();
         let edits = &mut self.edits;
         let raw = self.input.take_egui_input(window);
@@ -185,6 +239,10 @@ impl Overlay {
                         .show(ui, |ui| {
                             // Long lines (a printed command line) wrap.
                             ui.set_max_width(PANEL_WIDTH);
+                            if !full {
+                                panel::show_compact(ui, stats);
+                                return;
+                            }
                             panel::show(ui, &header, stats);
                             if let Some(m) = text.message {
                                 ui.label(egui::RichText::new(m).weak());
@@ -204,6 +262,10 @@ impl Overlay {
                 });
             rect = Some(shown.response.rect);
         });
+        if let (true, Some(r)) = (full, rect) {
+            self.full_size = r.size() + egui::vec2(MARGIN, MARGIN);
+        }
+        self.drew_full = full;
         self.input
             .handle_platform_output(window, out.platform_output);
         let ppp = out.pixels_per_point;

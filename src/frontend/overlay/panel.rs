@@ -90,7 +90,24 @@ pub fn show(ui: &mut egui::Ui, header: &Header<'_>, w: &Window) {
                 }
             });
     }
-    ui.label(RichText::new("H hides, F1 prints the keys").weak());
+    ui.label(RichText::new("H hides, O compacts, F1 prints the keys").weak());
+}
+
+/// The compact summary (the overlay in a small window): the frame rate and the GPU total,
+/// and the key to the full panel.
+pub fn show_compact(ui: &mut egui::Ui, w: &Window) {
+    let fps = match w.frame_ms {
+        Some(ms) => format!("{ms:6.2} ms/frame {:5.1} fps", w.fps),
+        None => "waiting for frames".to_string(),
+    };
+    ui.label(fps);
+    if let Some(total) = &w.total {
+        ui.label(format!(
+            "GPU {:.3} ms (p95 {:.3})",
+            total.time.median, total.time.p95
+        ));
+    }
+    ui.label(RichText::new("O full panel, H hides").weak());
 }
 
 /// One timing row: name (indented by `depth`), median, p95 and a bar (median filled, p95

@@ -252,7 +252,10 @@ impl App {
         let mut live = live;
         self.on_swapchain(&mut live)?;
         self.live = Some(live);
-        eprintln!("press F1 in the window for the viewer keys, H to hide the overlay");
+        eprintln!(
+            "press F1 in the window for the viewer keys, H to hide the overlay, O for its full \
+             panel"
+        );
         Ok(())
     }
 
@@ -339,6 +342,22 @@ impl App {
                 }
                 None => eprintln!("overlay: off for this run (--overlay off)"),
             },
+            Action::ToggleOverlayDetail => {
+                match self.live.as_mut().and_then(|l| l.overlay.as_mut()) {
+                    Some(overlay) => {
+                        overlay.toggle_detail();
+                        eprintln!(
+                            "overlay: {}",
+                            if overlay.full() {
+                                "full panel"
+                            } else {
+                                "compact"
+                            }
+                        );
+                    }
+                    None => eprintln!("overlay: off for this run (--overlay off)"),
+                }
+            }
             Action::PrintCamera => {
                 if let Some(c) = self
                     .camera
@@ -363,6 +382,7 @@ impl App {
             Action::CycleDisplay(_)
                 | Action::PrintCamera
                 | Action::ToggleOverlay
+                | Action::ToggleOverlayDetail
                 | Action::Screenshot
                 | Action::GroundTruth
                 | Action::ErrorMap

@@ -23,6 +23,7 @@ pub fn action(key: KeyCode, mods: ModifiersState) -> Option<Action> {
         KeyCode::KeyR => Action::ToggleReuse,
         KeyCode::KeyC => Action::PrintCamera,
         KeyCode::KeyH => Action::ToggleOverlay,
+        KeyCode::KeyO => Action::ToggleOverlayDetail,
         KeyCode::F1 => Action::Help,
         KeyCode::F12 => Action::Screenshot,
         KeyCode::KeyG => Action::GroundTruth,
