@@ -12,6 +12,7 @@ mod camera;
 pub mod decimate;
 mod error;
 mod framing;
+pub mod input;
 mod light;
 mod mesh;
 mod normals;
@@ -31,7 +32,7 @@ mod world;
 pub use builder::MeshBuilder;
 pub use camera::{pixel_to_ndc, Camera};
 pub use error::SceneError;
-pub use light::SpotLight;
+pub use light::{check_intensity, max_intensity, SpotLight, MAX_SCENE_IRRADIANCE};
 pub use mesh::{
     Aabb, DrawRange, LoadStats, Material, Mesh, TextureImage, Vertex, VERTEX_NORMAL_OFFSET,
     VERTEX_UV_OFFSET,
