@@ -26,6 +26,7 @@ mod scene_load;
 mod serde_vec3;
 mod spec;
 mod texture;
+mod toml_locate;
 mod validate;
 mod world;
 

@@ -204,7 +204,7 @@ impl CameraPath {
         } else {
             toml::from_str(&text).map_err(|e| {
                 let offset = e.span().map_or(0, |s| s.start);
-                let (line, key) = super::scene_file::key_at(&text, offset);
+                let (line, key) = super::toml_locate::key_at(&text, offset);
                 at(line, format!("{key}: {}", e.message().trim()))
             })?
         };
@@ -216,7 +216,7 @@ impl CameraPath {
             let (line, key) = if is_json {
                 (None, format!("keyframes[{}].{}", f.index, f.key))
             } else {
-                super::scene_file::locate(&text, "keyframes", f.index, f.key)
+                super::toml_locate::locate(&text, "keyframes", f.index, f.key)
             };
             at(line, format!("{key}: {}", f.message))
         })?;

@@ -11,11 +11,12 @@ use super::object::{euler_deg, DynamicObject};
 use super::path::{CameraPath, LightPath, Orbit};
 use super::procedural::{sphere, DEFAULT_AMBIENT};
 use super::scene_file::{
-    locate, CameraEntry, LightEntry, MeshEntry, OrbitEntry, SceneFile, DEFAULT_OUTER_DEG, SPHERE,
+    CameraEntry, LightEntry, MeshEntry, OrbitEntry, SceneFile, DEFAULT_OUTER_DEG, SPHERE,
 };
 use super::spec::{
     auto_view, framed_model, headlight, load_model, load_spec, with_ground, AutoView,
 };
+use super::toml_locate::locate;
 use super::world::Scene;
 use glam::{Quat, Vec3};
 use std::path::{Path, PathBuf};
