@@ -42,6 +42,13 @@ pub enum Error {
         path: PathBuf,
         source: std::io::Error,
     },
+    /// An output path (named by its option) that a run could not write, found before it.
+    #[error("{option} {}: {message}", .path.display())]
+    Output {
+        option: String,
+        path: PathBuf,
+        message: String,
+    },
     #[error("{path}: could not write image: {message}")]
     ImageWrite { path: PathBuf, message: String },
     #[error("window: {0}")]

@@ -1,6 +1,8 @@
 //! Output files written atomically: the bytes go to a temporary file beside the target, which
 //! is then renamed over it, so an interrupted run leaves the previous file or none, never a
-//! truncated one.
+//! truncated one. Every output is checked (its directory created, a temporary file made and
+//! removed there) before a run renders anything, so a bad path fails in a second, not after
+//! the run.
 
 use crate::error::{Error, Result};
 use std::path::{Path, PathBuf};
@@ -22,12 +24,106 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<()> {
         std::fs::create_dir_all(dir).map_err(io(dir))?;
     }
     let tmp = temporary(path);
-    std::fs::write(&tmp, bytes).map_err(io(&tmp))?;
+    // A signal that exits at once removes it (`interrupt`).
+    let _unfinished = crate::interrupt::temporary(&tmp);
+    // Errors name the user's path: the temporary file is ours.
+    std::fs::write(&tmp, bytes).map_err(io(path))?;
     pause_before_rename(&tmp, path);
     std::fs::rename(&tmp, path).map_err(|e| {
         let _ = std::fs::remove_file(&tmp);
         io(path)(e)
     })
+}
+
+/// Check before a run that `dir` can take its files: created with its parents if missing,
+/// refused if it is something else, and a file can be made in it. `option` names it.
+pub fn prepare_dir(dir: &Path, option: &str) -> Result<()> {
+    let fail = |message: String| Error::Output {
+        option: option.to_string(),
+        path: dir.to_path_buf(),
+        message,
+    };
+    if let Some((existing, what)) = blocked_by(dir) {
+        return Err(fail(if existing == dir {
+            format!("it is {what}, not a directory")
+        } else {
+            format!("{} is {what}, not a directory", existing.display())
+        }));
+    }
+    std::fs::create_dir_all(dir).map_err(|e| fail(format!("cannot create it ({e})")))?;
+    let name = format!(".ssgi-probe-{}", std::process::id());
+    probe(&dir.join(name)).map_err(|e| fail(format!("cannot write into it ({e})")))
+}
+
+/// Check before a run that the file `path` can be written: its directory created with its
+/// parents, a temporary file made and removed there (as [`write_atomic`] will), and `path`
+/// not a directory. `option` names it.
+pub fn prepare_file(path: &Path, option: &str) -> Result<()> {
+    let fail = |message: String| Error::Output {
+        option: option.to_string(),
+        path: path.to_path_buf(),
+        message,
+    };
+    if path.is_dir() {
+        return Err(fail("it is a directory; give a file name".into()));
+    }
+    if path.file_name().is_none() {
+        return Err(fail("it names no file".into()));
+    }
+    if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty()) {
+        if let Some((existing, what)) = blocked_by(dir) {
+            return Err(fail(format!(
+                "{} is {what}, not a directory",
+                existing.display()
+            )));
+        }
+        std::fs::create_dir_all(dir)
+            .map_err(|e| fail(format!("cannot create {} ({e})", dir.display())))?;
+    }
+    probe(&temporary(path)).map_err(|e| fail(format!("cannot write there ({e})")))
+}
+
+/// [`prepare_file`] for a PNG: the name must end in `.png` (ssgi writes PNG only, and bytes
+/// under another extension would be misread).
+pub fn prepare_png(path: &Path, option: &str) -> Result<()> {
+    let png = path
+        .extension()
+        .and_then(|e| e.to_str())
+        .is_some_and(|e| e.eq_ignore_ascii_case("png"));
+    if !png {
+        return Err(Error::Output {
+            option: option.to_string(),
+            path: path.to_path_buf(),
+            message: "ssgi writes PNG images only: give the file name the extension .png".into(),
+        });
+    }
+    prepare_file(path, option)
+}
+
+/// Why `dir` cannot become a directory: it, or the nearest of its ancestors that exists, is
+/// something else (that path, and what it is).
+fn blocked_by(dir: &Path) -> Option<(&Path, &'static str)> {
+    let existing = dir
+        .ancestors()
+        .find(|a| !a.as_os_str().is_empty() && a.exists())?;
+    if existing.is_dir() {
+        return None;
+    }
+    let what = crate::scene::input::not_regular(existing).unwrap_or("a regular file");
+    Some((existing, what))
+}
+
+/// Create the file `path` and remove it (one left by a killed run of this pid stays).
+fn probe(path: &Path) -> std::io::Result<()> {
+    match std::fs::OpenOptions::new()
+        .write(true)
+        .create_new(true)
+        .open(path)
+    {
+        Ok(_) => std::fs::remove_file(path),
+        Err(e) if e.kind() == std::io::ErrorKind::AlreadyExists => Ok(()),
+        Err(e) => Err(e),
+    }
 }
 
 /// `dir/.name.tmp-<pid>`: hidden, in the same directory (rename is atomic only within one

@@ -1,10 +1,9 @@
 //! The `ssgi` command line.
 
-use clap::Parser;
-use ssgi::cli::{Cli, Command};
+use ssgi::cli::Command;
 
 fn main() -> std::process::ExitCode {
-    let cli = Cli::parse();
+    let cli = ssgi::cli::parse::parse();
     ssgi::interrupt::install();
     let result = match &cli.command {
         Command::Render(args) => ssgi::cli::render(&cli, args),

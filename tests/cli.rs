@@ -353,15 +353,22 @@ fn table_set_is_refused_where_the_table_does_not_take_it() {
         (
             "thesis-4.1",
             "svgf.alpha=0.1",
-            "table thesis-4.1 sets svgf.alpha itself or does not use it: --set takes only none",
+            "table thesis-4.1 takes no --set keys (its rows set every parameter they use); the \
+             tables that take --set: chang-flicker: svgf.*, ccipca.*; ao: ao.samples, \
+             ao.steps, ao.position_mips, ao.moving_denoise",
         ),
         (
             "chang-flicker",
             "indirect.vpls=3",
-            "table chang-flicker sets indirect.vpls itself or does not use it: --set takes only svgf., ccipca.",
+            "table chang-flicker sets indirect.vpls itself or does not use it: its --set keys \
+             are svgf.*, ccipca.*",
         ),
         ("chang-flicker", "svgf.alpha=2", "--set svgf.alpha=2: "),
-        ("chang-flicker", "svgf.alpha", "--set takes KEY=VALUE, not \"svgf.alpha\""),
+        (
+            "chang-flicker",
+            "svgf.alpha",
+            "--set takes KEY=VALUE, not \"svgf.alpha\"",
+        ),
         ("ao", "ao.radius=0.5", "table ao sets ao.radius itself"),
         ("ao", "no.such=1", "--set \"no.such\": no such key"),
     ] {

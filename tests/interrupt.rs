@@ -1,7 +1,8 @@
 //! Interrupting `ssgi table`: Ctrl-C (SIGINT) while it renders stops it cleanly (exit 130, a
 //! message, the previous report untouched), and SIGKILL, which nothing can catch, landing
 //! while the new report is being written leaves the previous report whole (reports are
-//! written atomically, temporary file + rename).
+//! written atomically, temporary file + rename). SIGTERM in a phase that renders no frames
+//! ends the run at once, with exit 130 too.
 //!
 //! Each test waits on the child's stderr (blocking reads, no sleeps) for the line that marks
 //! the moment to signal it.
@@ -245,5 +246,31 @@ fn sigkill_while_the_report_is_written_leaves_the_previous_report_whole() {
     assert!(names(&dir).contains(&tmp), "{:?}", names(&dir));
     let new = std::fs::read_to_string(dir.join(&tmp)).unwrap();
     assert_eq!(parse_report(&new, "the temporary file")["frames"], 2);
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+/// Issue 62 item 9: a signal in a phase that does not poll for it (here writing the
+/// `--save-scene` file while the scene loads, held by the test hook before its rename, as a
+/// blocked read would be) ends the run at once with exit 130, where it used to be noted for
+/// a frame loop that never came. Neither the scene file nor its temporary file is left.
+#[test]
+fn sigterm_outside_the_frame_loop_exits_at_once() {
+    let dir = out_dir("sigterm-loading");
+    let saved = dir.join("saved.toml");
+    let mut cmd = Command::new(env!("CARGO_BIN_EXE_ssgi"));
+    cmd.args(["render", "--size", "8x8", "--save-scene"])
+        .arg(&saved)
+        .env(PAUSE_BEFORE_RENAME, "saved.toml")
+        .stdout(Stdio::null());
+    let mut run = Running::start(cmd);
+    run.wait_for("the pause before renaming the saved scene", |l| {
+        l.starts_with("paused before renaming ")
+    });
+    run.signal("TERM");
+    let (status, stderr) = run.finish();
+    assert_eq!(status.code(), Some(130), "{stderr}");
+    assert!(stderr.contains("interrupted: exiting now"), "{stderr}");
+    assert!(!stderr.contains("panicked"), "{stderr}");
+    assert_eq!(names(&dir), Vec::<String>::new());
     std::fs::remove_dir_all(&dir).ok();
 }

@@ -4,7 +4,7 @@
 
 use glam::{Vec3, Vec4Swizzles};
 use ssgi::scene::{
-    load_obj, load_scene, pixel_to_ndc, CameraPath, Mesh, Orbit, SceneError, SpotLight,
+    load_obj, load_scene, pixel_to_ndc, CameraPath, LightPath, Mesh, Orbit, SceneError, SpotLight,
 };
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
@@ -707,6 +707,172 @@ fn bad_keyframe_files_name_the_path() {
         .unwrap_err()
         .to_string();
     assert!(e.contains("/no/such/path.json"), "{e}");
+}
+
+/// Issue 62 items 10 and 17: a keyframe whose target is its position (the camera would look
+/// down -z silently) or with a NaN is refused, in a camera or light path file, naming the
+/// keyframe and key, with its line in TOML, as a scene file's keyframes are.
+#[test]
+fn bad_keyframes_name_the_keyframe_key_and_line() {
+    let dir = TempDir::new("keyframe-keys");
+    let toml_keys = |second: &str| {
+        format!(
+            "[[keyframes]]\ntime = 0\nposition = [0, 1, 3]\ntarget = [0, 1, 0]\n\n\
+             [[keyframes]]\ntime = 1\n{second}\n"
+        )
+    };
+    let cases = [
+        (
+            "same.toml",
+            toml_keys("position = [0, 1, 2]\ntarget = [0, 1, 2]"),
+            "same.toml:9: keyframes[1].target: the target is the position: no direction",
+        ),
+        (
+            "nan.toml",
+            toml_keys("position = [0, nan, 2]\ntarget = [0, 1, 0]"),
+            "nan.toml:8: keyframes[1].position: [0.0, NaN, 2.0]: every coordinate must be finite",
+        ),
+        (
+            "back.toml",
+            toml_keys("position = [0, 1, 2]\ntarget = [0, 1, 0]").replace("time = 1", "time = -1"),
+            "back.toml:7: keyframes[1].time: -1 is before the previous keyframe's 0",
+        ),
+        (
+            "type.toml",
+            toml_keys("position = 0\ntarget = [0, 1, 0]"),
+            "type.toml:8: keyframes.position: invalid type: integer `0`",
+        ),
+        (
+            "same.json",
+            r#"{"keyframes": [{"time": 0, "position": [1, 2, 3], "target": [1, 2, 3]}]}"#.into(),
+            "same.json: keyframes[0].target: the target is the position: no direction",
+        ),
+    ];
+    for (name, text, expected) in cases {
+        let file = dir.write(name, &text);
+        let e = CameraPath::from_file(&file).unwrap_err().to_string();
+        let camera = format!("camera path {}", dir.0.join(expected).display());
+        assert!(e.starts_with(&camera), "{name}: {e}\nwanted {camera}");
+        let e = LightPath::from_file(&file).unwrap_err().to_string();
+        let light = format!("light path {}", dir.0.join(expected).display());
+        assert!(e.starts_with(&light), "{name}: {e}\nwanted {light}");
+    }
+}
+
+/// Issue 62 items 9 and 22: a FIFO or a device where a file is read is refused by name
+/// before it is opened (opening a FIFO blocks until a writer comes; /dev/zero never ends):
+/// as a model, a material library, a texture, a scene file and a keyframe file. The calls run
+/// on a thread so that a regression fails the test instead of hanging it.
+#[test]
+fn fifos_and_devices_are_refused_before_they_are_opened() {
+    let dir = TempDir::new("fifos");
+    for name in ["model.obj", "scene.toml", "path.json", "lib.mtl", "tex.png"] {
+        let status = std::process::Command::new("mkfifo")
+            .arg(dir.0.join(name))
+            .status()
+            .unwrap();
+        assert!(status.success(), "mkfifo {name}");
+    }
+    let quad = "v 0 0 0\nv 1 0 0\nv 1 1 0\nvt 0 0\nvt 1 0\nvt 1 1\nf 1/1 2/2 3/3\n";
+    dir.write("fifo_mtl.obj", &format!("mtllib lib.mtl\nusemtl m\n{quad}"));
+    dir.write(
+        "zero_mtl.obj",
+        &format!("mtllib /dev/zero\nusemtl m\n{quad}"),
+    );
+    dir.write("tex.mtl", "newmtl m\nKd 0.5 0.5 0.5\nmap_Kd tex.png\n");
+    dir.write("fifo_tex.obj", &format!("mtllib tex.mtl\nusemtl m\n{quad}"));
+    let root = dir.0.clone();
+    let errors = hang_guard(move || {
+        let err = |r: Result<(), SceneError>| r.unwrap_err().to_string();
+        let warnings = |name: &str| {
+            load_obj(&root.join(name))
+                .unwrap()
+                .stats
+                .warnings
+                .join("\n")
+        };
+        vec![
+            err(load_obj(&root.join("model.obj")).map(drop)),
+            err(load_scene(root.join("model.obj").to_str().unwrap(), None).map(drop)),
+            err(load_scene(root.join("scene.toml").to_str().unwrap(), None).map(drop)),
+            err(CameraPath::from_file(&root.join("path.json")).map(drop)),
+            err(LightPath::from_file(&root.join("path.json")).map(drop)),
+            err(load_scene("/dev/zero", None).map(drop)),
+            warnings("fifo_mtl.obj"),
+            warnings("zero_mtl.obj"),
+            warnings("fifo_tex.obj"),
+        ]
+    });
+    for (i, e) in errors.iter().enumerate() {
+        let wanted = match i {
+            1 => "model.obj is a FIFO (named pipe), not a model file",
+            5 => "/dev/zero is a character device, not a model file",
+            7 => "it is a character device, not a regular file",
+            _ => "it is a FIFO (named pipe), not a regular file",
+        };
+        assert!(e.contains(wanted), "case {i}: {e}");
+    }
+    assert!(errors[0].contains("model.obj"), "{}", errors[0]);
+    assert!(errors[6].contains("lib.mtl") && errors[6].contains("default material"));
+    assert!(errors[8].contains("tex.png") && errors[8].contains("Kd colour"));
+}
+
+/// Run `f` on a thread; a call that never returns fails the test (a hang guard far above
+/// any run time, not a timing assertion).
+fn hang_guard<T: Send + 'static>(f: impl FnOnce() -> T + Send + 'static) -> T {
+    let (tx, rx) = std::sync::mpsc::channel();
+    std::thread::spawn(move || tx.send(f()).ok());
+    rx.recv_timeout(std::time::Duration::from_secs(600))
+        .expect("the call hung (blocked on a FIFO or an endless device)")
+}
+
+/// Issue 62 item 22: a material library over 16 MiB is refused with the limit named, and the
+/// model keeps the default material.
+#[test]
+fn an_oversized_material_library_is_refused() {
+    let dir = TempDir::new("big-mtl");
+    let mut mtl = b"newmtl m\nKd 0.5 0.5 0.5\n".to_vec();
+    mtl.resize((16 << 20) + 1, b'\n');
+    std::fs::write(dir.0.join("big.mtl"), mtl).unwrap();
+    let obj = dir.write(
+        "big.obj",
+        "mtllib big.mtl\nusemtl m\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n",
+    );
+    let m = load_obj(&obj).unwrap();
+    let w = m.stats.warnings.join("\n");
+    assert!(
+        w.contains("big.mtl") && w.contains("larger than the limit of 16 MiB"),
+        "{w}"
+    );
+    assert_eq!(m.materials[0].diffuse, [0.8; 3]);
+}
+
+/// Issue 62 item 20: a `map_Kd` file name in Latin-1 (not UTF-8) finds its file by its bytes.
+#[test]
+fn a_latin1_texture_name_is_found() {
+    use std::os::unix::ffi::OsStrExt;
+    let dir = TempDir::new("latin1");
+    let name = std::ffi::OsStr::from_bytes(b"caf\xe9.png");
+    image::RgbaImage::from_pixel(1, 1, image::Rgba([0, 255, 0, 255]))
+        .save_with_format(dir.0.join(name), image::ImageFormat::Png)
+        .unwrap();
+    std::fs::write(
+        dir.0.join("l.mtl"),
+        b"newmtl m\nKd 1 1 1\nmap_Kd caf\xe9.png\n",
+    )
+    .unwrap();
+    let obj = dir.write(
+        "l.obj",
+        "mtllib l.mtl\nusemtl m\nv 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 0 1\nf 1/1 2/2 3/3\n",
+    );
+    let m = load_obj(&obj).unwrap();
+    assert!(m.stats.warnings.is_empty(), "{:?}", m.stats.warnings);
+    let tex = m.materials[0]
+        .diffuse_texture
+        .as_ref()
+        .expect("the texture");
+    assert_eq!(tex.path.file_name(), Some(name));
+    assert_eq!(&tex.rgba8[..4], &[0, 255, 0, 255]);
 }
 
 /// The built-in rooms' orbit keeps the eye inside the room, above the boxes and the box

@@ -259,6 +259,8 @@ pub fn measure(
     let mut timings = Vec::with_capacity((spec.warmup + frames) as usize);
     let first = spec.path.camera_at(&base, &orbit, 0.0);
     sink.begin(spec.label);
+    // Each frame polls for Ctrl-C: a signal stops the run between frames.
+    let _scope = crate::interrupt::graceful();
     for i in 0..spec.warmup {
         let (camera, time) = if spec.warmup_along_path {
             let before = (spec.warmup - i) as f32 / spec.fps;

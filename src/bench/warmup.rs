@@ -132,6 +132,8 @@ pub fn run(
     let converging = warmup == Warmup::Converged;
     let mut frames = 0;
     let mut steady = !converging;
+    // Each frame polls for Ctrl-C: a signal stops the run between frames.
+    let _scope = crate::interrupt::graceful();
     while frames < limit && !(converging && steady) {
         let camera = path.camera_at(&base, &orbit, frame_time(frames, fps));
         renderer.set_time(frame_time(frames, fps));

@@ -42,6 +42,8 @@ pub fn run_from(
     let mut timings = Vec::with_capacity(frames.len());
     let mut bar = Progress::new(frames.len() as u64, "rendering", progress);
     sink.begin(&renderer.scene.name);
+    // Each frame polls for Ctrl-C: a signal stops the run between frames.
+    let _scope = crate::interrupt::graceful();
     for i in frames {
         let camera = path.camera_at(&base, &orbit, frame_time(i, fps));
         renderer.set_time(frame_time(i, fps));

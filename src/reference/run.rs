@@ -73,10 +73,14 @@ impl<'a> Session<'a> {
             self.progress,
         );
         let add = per_half - have;
+        // The tracer polls for Ctrl-C before each row; the check below reports it.
+        let scope = crate::interrupt::graceful();
         self.reference
             .refine(&self.accel, self.scene, buffer, add, &|n| bar.inc(n));
         bar.finish_and_clear();
-        crate::interrupt::check()
+        let stopped = crate::interrupt::check();
+        drop(scope);
+        stopped
     }
 
     /// Refine `buffer` until its standard error over `mask` is at most `target` (absolute),

@@ -21,6 +21,23 @@ pub const DEFAULT_INDIRECT_SAMPLES: u32 = 1024;
 /// Samples per half for the spherical light's soft shadows (the point light needs one).
 pub const DEFAULT_SOFT_SHADOW_SAMPLES: u32 = 256;
 
+/// Check a spherical light's radius against its scene's bounding radius: at most that. The
+/// disc is sampled through the light's centre, so a larger light encloses the scene instead
+/// of standing in it, and its shadow rays grow so long that the stretch an occlusion test
+/// ignores at each end (`OCCLUSION_RELATIVE_OFFSET` of the length) outgrows the scene: at a
+/// radius of 1e7 nothing is found occluded, at 1e30 the length overflows f32, and either way
+/// the shadow buffer is lit everywhere with a standard error of 0.
+pub fn check_light_radius(radius: f32, scene_radius: f32) -> Result<(), String> {
+    if radius <= scene_radius {
+        return Ok(());
+    }
+    Err(format!(
+        "--light-radius {radius} is larger than the scene's bounding radius {scene_radius}: a \
+         spherical light that size encloses the scene (its shadow rays then leave it and find \
+         no occluder); give at most {scene_radius}"
+    ))
+}
+
 /// What the reference computes besides the scene and camera.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 pub struct Settings {

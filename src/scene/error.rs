@@ -115,7 +115,28 @@ pub enum SceneError {
         message: String,
     },
 
-    /// A camera path spec or keyframe file is invalid.
-    #[error("camera path {}: {message}", .path.display())]
-    CameraPath { path: PathBuf, message: String },
+    /// A camera path spec or keyframe file is invalid: its line when known (a TOML file's
+    /// key), and why (naming the keyframe and key).
+    #[error(
+        "camera path {}{}: {message}",
+        .path.display(),
+        .line.map(|l| format!(":{l}")).unwrap_or_default()
+    )]
+    CameraPath {
+        path: PathBuf,
+        line: Option<usize>,
+        message: String,
+    },
+
+    /// A light path file (`--light-path`) is invalid, as [`SceneError::CameraPath`].
+    #[error(
+        "light path {}{}: {message}",
+        .path.display(),
+        .line.map(|l| format!(":{l}")).unwrap_or_default()
+    )]
+    LightPath {
+        path: PathBuf,
+        line: Option<usize>,
+        message: String,
+    },
 }

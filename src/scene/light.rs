@@ -4,6 +4,32 @@ use super::camera::{view_matrix, vulkan_perspective};
 use super::mesh::Aabb;
 use glam::{Mat4, Vec3};
 
+/// The most irradiance a light may give at the scene's own size (its bounding radius away):
+/// far beyond what the tonemap shows (irradiance 1 is the automatic light's), so a brighter
+/// light only makes every pixel white.
+pub const MAX_SCENE_IRRADIANCE: f32 = 1e7;
+
+/// The largest radiant intensity (W/sr) a light may have in a scene of bounding radius
+/// `scene_radius`: [`MAX_SCENE_IRRADIANCE`] at that distance. It scales with the scene, as
+/// the automatic light's intensity (d² for its distance d) does, so a large model's own light
+/// is never refused.
+pub fn max_intensity(scene_radius: f32) -> f32 {
+    MAX_SCENE_IRRADIANCE * scene_radius * scene_radius
+}
+
+/// Why `intensity` is too bright for a scene of bounding radius `scene_radius`, if it is.
+pub fn check_intensity(intensity: [f32; 3], scene_radius: f32) -> Result<(), String> {
+    let max = max_intensity(scene_radius);
+    if intensity.iter().all(|c| *c <= max) {
+        return Ok(());
+    }
+    Err(format!(
+        "{intensity:?} W/sr is more than {max:e}, the most for this scene ({MAX_SCENE_IRRADIANCE:e} \
+         x its bounding radius {scene_radius}²: irradiance above {MAX_SCENE_IRRADIANCE:e} at \
+         the scene's size only makes every pixel white)"
+    ))
+}
+
 #[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct SpotLight {
     #[serde(with = "super::serde_vec3")]

@@ -12,6 +12,7 @@ mod camera;
 pub mod decimate;
 mod error;
 mod framing;
+pub mod input;
 mod light;
 mod mesh;
 mod normals;
@@ -25,13 +26,14 @@ mod scene_load;
 mod serde_vec3;
 mod spec;
 mod texture;
+mod toml_locate;
 mod validate;
 mod world;
 
 pub use builder::MeshBuilder;
 pub use camera::{depth_range_problem, pixel_to_ndc, Camera, MAX_DEPTH_RATIO};
 pub use error::SceneError;
-pub use light::SpotLight;
+pub use light::{check_intensity, max_intensity, SpotLight, MAX_SCENE_IRRADIANCE};
 pub use mesh::{
     Aabb, DrawRange, LoadStats, Material, Mesh, TextureImage, Vertex, VERTEX_NORMAL_OFFSET,
     VERTEX_UV_OFFSET,

@@ -3,9 +3,10 @@
 
 use super::builder::MeshBuilder;
 use super::error::SceneError;
+use super::input::read_regular;
 use super::mesh::{Material, Mesh, Vertex};
 use super::normals::area_weighted_normals;
-use super::texture::{resolve_texture_path, TextureCache};
+use super::texture::{non_utf8_map_kd, resolve_texture_path, TextureCache};
 use super::validate::{validate_mtl, validate_obj, ObjSummary};
 use glam::Vec3;
 use std::borrow::Cow;
@@ -27,7 +28,7 @@ pub const SLIVER_RELATIVE_HEIGHT: f64 = f32::EPSILON as f64;
 /// drawable mesh (missing MTL or texture, unknown material, non-UTF-8 bytes) become warnings
 /// in `mesh.stats.warnings`.
 pub fn load_obj(path: &Path) -> Result<Mesh, SceneError> {
-    let bytes = std::fs::read(path).map_err(|source| SceneError::Io {
+    let bytes = read_regular(path, None).map_err(|source| SceneError::Io {
         path: path.to_owned(),
         source,
     })?;
@@ -111,6 +112,8 @@ struct Parsed {
     materials: Vec<tobj::Material>,
     /// Directory of the MTL file each material came from (textures resolve against it).
     material_dirs: Vec<PathBuf>,
+    /// `map_Kd` names that are not UTF-8, by the text tobj gives (`non_utf8_map_kd`).
+    raw_texture_names: HashMap<String, std::ffi::OsString>,
 }
 
 fn parse_with_tobj(
@@ -123,11 +126,13 @@ fn parse_with_tobj(
     // maps each material back to its file. A broken MTL becomes a warning and no materials.
     let mtl_log: RefCell<Vec<(PathBuf, usize)>> = RefCell::default();
     let mtl_warnings: RefCell<Vec<String>> = RefCell::default();
+    let raw_names: RefCell<HashMap<String, std::ffi::OsString>> = RefCell::default();
     let load_mtl = |name: &Path| {
         let full = obj_dir.join(name);
         match read_mtl(&full) {
-            Ok(loaded) => {
+            Ok((loaded, raw)) => {
                 mtl_log.borrow_mut().push((full, loaded.0.len()));
+                raw_names.borrow_mut().extend(raw);
                 Ok(loaded)
             }
             Err(why) => {
@@ -161,17 +166,25 @@ fn parse_with_tobj(
         models,
         materials,
         material_dirs,
+        raw_texture_names: raw_names.into_inner(),
     })
 }
 
-/// Reads and parses one MTL file; the error says why it is unusable.
-fn read_mtl(path: &Path) -> Result<MtlLoaded, String> {
-    let bytes = std::fs::read(path).map_err(|e| format!("cannot read it ({e})"))?;
+/// Largest MTL file read: the papers' models' are at most a few tens of KiB, so a larger
+/// one is not a material library (docs/scenes.md).
+pub const MAX_MTL_BYTES: u64 = 16 << 20;
+
+/// Reads and parses one MTL file, with its `map_Kd` names that are not UTF-8; the error says
+/// why it is unusable.
+fn read_mtl(path: &Path) -> Result<(MtlLoaded, HashMap<String, std::ffi::OsString>), String> {
+    let bytes =
+        read_regular(path, Some(MAX_MTL_BYTES)).map_err(|e| format!("cannot read it ({e})"))?;
     let text = String::from_utf8_lossy(&bytes);
     let text = text.strip_prefix('\u{feff}').unwrap_or(&text);
     validate_mtl(path, text).map_err(|e| e.to_string())?;
-    tobj::load_mtl_buf(&mut Cursor::new(text.as_bytes()))
-        .map_err(|e| format!("cannot parse it ({e})"))
+    let loaded = tobj::load_mtl_buf(&mut Cursor::new(text.as_bytes()))
+        .map_err(|e| format!("cannot parse it ({e})"))?;
+    Ok((loaded, non_utf8_map_kd(&bytes)))
 }
 
 /// What tobj's MTL parser returns on success: materials and tobj's name → index map.
@@ -241,7 +254,11 @@ impl<'a> MaterialTable<'a> {
             }
         }
         let diffuse_texture = src.diffuse_texture.as_deref().and_then(|name| {
-            let path = resolve_texture_path(&self.parsed.material_dirs[id], name);
+            let dir = &self.parsed.material_dirs[id];
+            let path = match self.parsed.raw_texture_names.get(name) {
+                Some(raw) => resolve_texture_path(dir, raw.as_encoded_bytes()),
+                None => resolve_texture_path(dir, name),
+            };
             match self.textures.load(&path) {
                 Ok(tex) => Some(tex),
                 Err(e) => {

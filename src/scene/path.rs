@@ -6,6 +6,7 @@
 
 use super::camera::Camera;
 use super::error::SceneError;
+use super::validate::HUGE_COORDINATE;
 use glam::Vec3;
 use std::path::Path;
 
@@ -140,6 +141,7 @@ fn parse_seconds(what: &str, s: &str) -> Result<f32, SceneError> {
         Ok(v) if v.is_finite() && v > 0.0 => Ok(v),
         _ => Err(SceneError::CameraPath {
             path: what.into(),
+            line: None,
             message: format!("{s:?} is not a duration in seconds above zero (e.g. 12s)"),
         }),
     }
@@ -174,10 +176,12 @@ impl CameraPath {
     /// Reads keyframes from JSON `{"keyframes": [{"time", "position", "target"}, ...]}` or the
     /// same in TOML (`[[keyframes]]`), chosen by extension.
     pub fn from_file(path: &Path) -> Result<CameraPath, SceneError> {
-        let err = |message: String| SceneError::CameraPath {
+        let at = |line: Option<usize>, message: String| SceneError::CameraPath {
             path: path.to_owned(),
+            line,
             message,
         };
+        let err = |message: String| at(None, message);
         let ext = path
             .extension()
             .and_then(|e| e.to_str())
@@ -193,13 +197,29 @@ impl CameraPath {
                 ))
             }
         };
-        let text = std::fs::read_to_string(path).map_err(|e| err(format!("cannot read: {e}")))?;
+        let text =
+            super::input::read_regular_text(path).map_err(|e| err(format!("cannot read: {e}")))?;
         let file: KeyframeFile = if is_json {
             serde_json::from_str(&text).map_err(|e| err(format!("invalid JSON: {e}")))?
         } else {
-            toml::from_str(&text).map_err(|e| err(format!("invalid TOML: {e}")))?
+            toml::from_str(&text).map_err(|e| {
+                let offset = e.span().map_or(0, |s| s.start);
+                let (line, key) = super::toml_locate::key_at(&text, offset);
+                at(line, format!("{key}: {}", e.message().trim()))
+            })?
         };
-        check_keyframes(&file.keyframes).map_err(err)?;
+        if file.keyframes.is_empty() {
+            return Err(err("no keyframes (need at least one)".into()));
+        }
+        check_keyframes(&file.keyframes).map_err(|f| {
+            // A TOML file's key has a line; JSON's are named by index and key.
+            let (line, key) = if is_json {
+                (None, format!("keyframes[{}].{}", f.index, f.key))
+            } else {
+                super::toml_locate::locate(&text, "keyframes", f.index, f.key)
+            };
+            at(line, format!("{key}: {}", f.message))
+        })?;
         Ok(Self::Keyframes(file.keyframes))
     }
 
@@ -265,11 +285,22 @@ impl LightPath {
         Self(keys)
     }
 
-    /// Reads keyframes from a `.json` / `.toml` file as [`CameraPath::from_file`] does.
+    /// Reads keyframes from a `.json` / `.toml` file as [`CameraPath::from_file`] does (its
+    /// errors say "light path").
     pub fn from_file(path: &Path) -> Result<Self, SceneError> {
-        match CameraPath::from_file(path)? {
-            CameraPath::Keyframes(keys) => Ok(Self(keys)),
-            _ => unreachable!("from_file reads keyframes only"),
+        match CameraPath::from_file(path) {
+            Ok(CameraPath::Keyframes(keys)) => Ok(Self(keys)),
+            Ok(_) => unreachable!("from_file reads keyframes only"),
+            Err(SceneError::CameraPath {
+                path,
+                line,
+                message,
+            }) => Err(SceneError::LightPath {
+                path,
+                line,
+                message,
+            }),
+            Err(e) => Err(e),
         }
     }
 
@@ -321,21 +352,57 @@ fn around(base: &Camera, center: Vec3, turns: f32) -> Camera {
     }
 }
 
-fn check_keyframes(keys: &[Keyframe]) -> Result<(), String> {
-    if keys.is_empty() {
-        return Err("no keyframes (need at least one)".into());
-    }
+/// What is wrong with a list of keyframes: which keyframe, which key, why.
+pub(super) struct KeyFault {
+    pub index: usize,
+    pub key: &'static str,
+    pub message: String,
+}
+
+/// A keyframe file's or a scene file's camera or light keyframes: times finite
+/// and non-decreasing, points finite and within [`HUGE_COORDINATE`], and a target apart from
+/// the position (else there is no view direction: the camera would look down -z silently).
+pub(super) fn check_keyframes(keys: &[Keyframe]) -> Result<(), KeyFault> {
+    let fault = |index, key, message| KeyFault {
+        index,
+        key,
+        message,
+    };
     for (i, k) in keys.iter().enumerate() {
-        let finite =
-            k.time.is_finite() && k.position.iter().chain(&k.target).all(|x| x.is_finite());
-        if !finite {
-            return Err(format!("keyframe {i}: non-finite value"));
+        if !k.time.is_finite() {
+            return Err(fault(i, "time", format!("{}: must be finite", k.time)));
         }
         if i > 0 && k.time < keys[i - 1].time {
-            return Err(format!(
-                "keyframe {i}: time {} is before the previous keyframe's {}",
-                k.time,
-                keys[i - 1].time
+            return Err(fault(
+                i,
+                "time",
+                format!(
+                    "{} is before the previous keyframe's {}: times must not decrease",
+                    k.time,
+                    keys[i - 1].time
+                ),
+            ));
+        }
+        for (key, p) in [("position", k.position), ("target", k.target)] {
+            if !p
+                .iter()
+                .all(|c| c.is_finite() && c.abs() <= HUGE_COORDINATE)
+            {
+                return Err(fault(
+                    i,
+                    key,
+                    format!(
+                        "{p:?}: every coordinate must be finite and at most \
+                         {HUGE_COORDINATE:e} from 0"
+                    ),
+                ));
+            }
+        }
+        if k.position == k.target {
+            return Err(fault(
+                i,
+                "target",
+                "the target is the position: no direction".into(),
             ));
         }
     }
@@ -566,10 +633,15 @@ mod tests {
             position: [0.0; 3],
             target: [1.0; 3],
         };
-        assert!(check_keyframes(&[]).is_err());
         assert!(check_keyframes(&[k(1.0), k(0.0)]).is_err());
         assert!(check_keyframes(&[k(f32::NAN)]).is_err());
         assert!(check_keyframes(&[k(0.0), k(0.0)]).is_ok());
+        let still = Keyframe {
+            target: [0.0; 3],
+            ..k(0.0)
+        };
+        let e = check_keyframes(&[k(0.0), still]).err().unwrap();
+        assert_eq!((e.index, e.key), (1, "target"));
     }
 
     #[test]

@@ -37,6 +37,7 @@
 use super::error::SceneError;
 use super::object::ObjectKey;
 use super::path::Keyframe;
+use super::toml_locate::{key_at, locate};
 use super::validate::HUGE_COORDINATE;
 use serde::{Deserialize, Serialize};
 use std::path::Path;
@@ -116,7 +117,12 @@ pub struct LightEntry {
 
 /// Where `--path orbit` goes (default: chosen with the automatic framing).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-#[serde(tag = "kind", rename_all = "lowercase", deny_unknown_fields)]
+#[serde(
+    tag = "kind",
+    rename_all = "lowercase",
+    deny_unknown_fields,
+    try_from = "OrbitKeys"
+)]
 pub enum OrbitEntry {
     /// A full turn about the vertical axis through `center`.
     Around { center: [f32; 3] },
@@ -129,6 +135,55 @@ pub enum OrbitEntry {
         #[serde(default, skip_serializing_if = "Option::is_none")]
         open_towards: Option<[f32; 3]>,
     },
+}
+
+/// `[orbit]` as written, every key of either kind: read key by key, so a wrong type is
+/// reported at its key's line (an internally tagged enum reads the table whole first and
+/// loses its keys' places), then made an [`OrbitEntry`] (errors at the table's line).
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct OrbitKeys {
+    kind: String,
+    center: Option<[f32; 3]>,
+    radius: Option<f32>,
+    height: Option<f32>,
+    start: Option<[f32; 3]>,
+    open_towards: Option<[f32; 3]>,
+}
+
+impl TryFrom<OrbitKeys> for OrbitEntry {
+    type Error = String;
+
+    fn try_from(k: OrbitKeys) -> Result<Self, String> {
+        let need = |key: &str| format!("kind = \"{}\" needs `{key}`", k.kind);
+        match k.kind.as_str() {
+            "around" => {
+                for (key, given) in [
+                    ("radius", k.radius.is_some()),
+                    ("height", k.height.is_some()),
+                    ("start", k.start.is_some()),
+                    ("open_towards", k.open_towards.is_some()),
+                ] {
+                    if given {
+                        return Err(format!(
+                            "kind = \"around\" takes only `center`, not `{key}`"
+                        ));
+                    }
+                }
+                Ok(Self::Around {
+                    center: k.center.ok_or_else(|| need("center"))?,
+                })
+            }
+            "inside" => Ok(Self::Inside {
+                center: k.center.ok_or_else(|| need("center"))?,
+                radius: k.radius.ok_or_else(|| need("radius"))?,
+                height: k.height.ok_or_else(|| need("height"))?,
+                start: k.start.ok_or_else(|| need("start"))?,
+                open_towards: k.open_towards,
+            }),
+            other => Err(format!("kind {other:?}: expected \"around\" or \"inside\"")),
+        }
+    }
 }
 
 #[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
@@ -199,11 +254,16 @@ impl SceneFile {
 
     /// Reads and parses the file at `path`.
     pub fn read(path: &Path) -> Result<Self, SceneError> {
-        let text = std::fs::read_to_string(path).map_err(|source| SceneError::Io {
+        Self::read_with_text(path).map(|(file, _)| file)
+    }
+
+    /// Reads and parses the file at `path`, keeping its text (to locate later errors).
+    pub fn read_with_text(path: &Path) -> Result<(Self, String), SceneError> {
+        let text = super::input::read_regular_text(path).map_err(|source| SceneError::Io {
             path: path.to_owned(),
             source,
         })?;
-        Self::parse(path, &text)
+        Ok((Self::parse(path, &text)?, text))
     }
 
     /// The file's text (TOML).
@@ -303,28 +363,9 @@ fn angle(v: f32, max: f32) -> Result<(), String> {
     }
 }
 
+/// The camera or light keyframes under `table`, as a keyframe file's are checked.
 fn check_keyframes(table: &'static str, keys: &[Keyframe]) -> Result<(), Fault> {
-    for (i, k) in keys.iter().enumerate() {
-        if !k.time.is_finite() || (i > 0 && k.time < keys[i - 1].time) {
-            return Err(fault(
-                table,
-                i,
-                "time",
-                format!("{}: times must be finite and non-decreasing", k.time),
-            ));
-        }
-        point(k.position).map_err(|m| fault(table, i, "position", m))?;
-        point(k.target).map_err(|m| fault(table, i, "target", m))?;
-        if k.position == k.target {
-            return Err(fault(
-                table,
-                i,
-                "target",
-                "the target is the position: no direction".into(),
-            ));
-        }
-    }
-    Ok(())
+    super::path::check_keyframes(keys).map_err(|f| fault(table, f.index, f.key, f.message))
 }
 
 fn check_mesh(i: usize, m: &MeshEntry) -> Result<(), Fault> {
@@ -508,6 +549,7 @@ fn check_light(l: &LightEntry) -> Result<(), Fault> {
             ));
         }
     }
+    // Its bound depends on the scene's size: checked when the scene is built.
     if let Some(c) = l.intensity {
         colour(c).map_err(|m| fault("light", 0, "intensity", m))?;
     }
@@ -541,80 +583,6 @@ fn check_orbit(o: &OrbitEntry) -> Result<(), Fault> {
 
 /// The outer cone angle a light entry without one gets.
 pub const DEFAULT_OUTER_DEG: f32 = 45.0;
-
-/// The header (`camera`, `mesh`) a line opens, if it is one.
-fn header(line: &str) -> Option<&str> {
-    let t = line.trim();
-    let inner = t.strip_prefix("[[").and_then(|s| s.split("]]").next());
-    inner
-        .or_else(|| t.strip_prefix('[').and_then(|s| s.split(']').next()))
-        .map(str::trim)
-}
-
-/// The key a `key = value` line sets.
-fn line_key(line: &str) -> Option<&str> {
-    let (key, _) = line.split_once('=')?;
-    let key = key.trim().trim_matches('"');
-    (!key.is_empty() && !key.starts_with('#')).then_some(key)
-}
-
-/// Line (1-based) and dotted key at byte `offset` of `text`: the table the line sits in and
-/// the key it sets.
-fn key_at(text: &str, offset: usize) -> (Option<usize>, String) {
-    let offset = offset.min(text.len());
-    let before = text.get(..offset).unwrap_or(text);
-    let line_no = before.matches('\n').count();
-    let mut table = String::new();
-    let mut key = String::new();
-    for (i, line) in text.lines().enumerate().take(line_no + 1) {
-        if let Some(h) = header(line) {
-            table = h.to_owned();
-            key.clear();
-        } else if i == line_no {
-            key = line_key(line).unwrap_or_default().to_owned();
-        }
-    }
-    let dotted = match (table.is_empty(), key.is_empty()) {
-        (true, _) => key,
-        (false, true) => table,
-        (false, false) => format!("{table}.{key}"),
-    };
-    (Some(line_no + 1), dotted)
-}
-
-/// Line and dotted key of `key` in the `index`-th `table` (`""`: the top level). The table's
-/// header line when the key is not written; no line when the table is not there either.
-fn locate(text: &str, table: &str, index: usize, key: &str) -> (Option<usize>, String) {
-    let mut seen = 0usize;
-    let mut in_table = table.is_empty();
-    let mut header_line = None;
-    for (i, line) in text.lines().enumerate() {
-        if let Some(h) = header(line) {
-            in_table = h == table && {
-                seen += 1;
-                seen == index + 1
-            };
-            if in_table {
-                header_line = Some(i + 1);
-            }
-            continue;
-        }
-        if in_table && line_key(line) == Some(key) {
-            return (Some(i + 1), dotted(table, index, key));
-        }
-    }
-    (header_line, dotted(table, index, key))
-}
-
-fn dotted(table: &str, index: usize, key: &str) -> String {
-    match table {
-        "" => key.to_owned(),
-        "mesh" | "camera_keyframes" | "light_keyframes" | "mesh.keyframes" => {
-            format!("{table}[{index}].{key}")
-        }
-        _ => format!("{table}.{key}"),
-    }
-}
 
 #[cfg(test)]
 mod tests {
@@ -676,6 +644,19 @@ mod tests {
             (
                 "[[mesh]]\nmodel = \"a\"\n[light]\nposition = [0, 1, 0]\ntarget = [0, 0, 0]\n[[light_keyframes]]\ntime = 1\nposition = [0, 1, 0]\ntarget = [0, 0, 0]\n[[light_keyframes]]\ntime = 0.5\nposition = [0, 1, 0]\ntarget = [1, 0, 0]\n",
                 "s.toml:11: light_keyframes[1].time",
+            ),
+            // A wrong type inside [orbit] at its key's line, not the table's.
+            (
+                "[[mesh]]\nmodel = \"a\"\n[orbit]\nkind = \"inside\"\ncenter = [0, 1, 0]\nstart = 0\n",
+                "s.toml:6: orbit.start: invalid type: integer `0`",
+            ),
+            (
+                "[[mesh]]\nmodel = \"a\"\n[orbit]\nkind = \"inside\"\ncenter = [0, 1, 0]\n",
+                "s.toml:3: orbit: kind = \"inside\" needs `radius`",
+            ),
+            (
+                "[[mesh]]\nmodel = \"a\"\n[orbit]\nkind = \"sideways\"\n",
+                "s.toml:3: orbit: kind \"sideways\": expected",
             ),
         ];
         for (text, expected) in cases {

@@ -5,7 +5,7 @@
 use super::builder::MeshBuilder;
 use super::camera::Camera;
 use super::error::SceneError;
-use super::light::SpotLight;
+use super::light::{check_intensity, SpotLight};
 use super::mesh::{Aabb, Mesh};
 use super::object::{euler_deg, DynamicObject};
 use super::path::{CameraPath, LightPath, Orbit};
@@ -13,7 +13,10 @@ use super::procedural::{sphere, DEFAULT_AMBIENT};
 use super::scene_file::{
     CameraEntry, LightEntry, MeshEntry, OrbitEntry, SceneFile, DEFAULT_OUTER_DEG, SPHERE,
 };
-use super::spec::{auto_view, headlight, load_model, load_spec, with_ground, AutoView};
+use super::spec::{
+    auto_view, framed_model, headlight, load_model, load_spec, with_ground, AutoView,
+};
+use super::toml_locate::locate;
 use super::world::Scene;
 use glam::{Quat, Vec3};
 use std::path::{Path, PathBuf};
@@ -81,8 +84,8 @@ pub fn load(spec: &str, assets: Option<&Path>) -> Result<LoadedScene, SceneError
 /// Reads, checks and builds the scene file at `path`; relative model and path files are
 /// looked up beside it first.
 pub fn load_scene_file(path: &Path, assets: Option<&Path>) -> Result<LoadedScene, SceneError> {
-    let file = SceneFile::read(path)?;
-    build(&file, path, assets)
+    let (file, text) = SceneFile::read_with_text(path)?;
+    build_located(&file, Some(&text), path, assets)
 }
 
 /// A mesh entry's spec with a file it names (beside the scene file first) made absolute.
@@ -101,6 +104,16 @@ pub fn build(
     origin: &Path,
     assets: Option<&Path>,
 ) -> Result<LoadedScene, SceneError> {
+    build_located(file, None, origin, assets)
+}
+
+/// [`build`], with the file's `text` when there is one to give errors their line.
+fn build_located(
+    file: &SceneFile,
+    text: Option<&str>,
+    origin: &Path,
+    assets: Option<&Path>,
+) -> Result<LoadedScene, SceneError> {
     let dir = origin.parent();
     let in_file = |key: String, e: SceneError| SceneError::SceneFile {
         path: origin.to_owned(),
@@ -111,10 +124,15 @@ pub fn build(
     let mut builder = MeshBuilder::new();
     let mut meshes = Vec::with_capacity(file.meshes.len());
     let mut objects = Vec::new();
+    // A file of one model left where it is takes the view `--scene <model>` gives it.
+    let lone = file.meshes.len() == 1 && untransformed(&file.meshes[0]);
+    let wants_view = lone && (file.camera.is_none() || file.orbit.is_none());
+    let mut lone_view = None;
     for (i, entry) in file.meshes.iter().enumerate() {
         let model = absolute_if_file(&entry.model, dir);
-        let mesh = entry_mesh(&model, entry.ground == Some(true), assets)
+        let (mesh, view) = entry_mesh(&model, entry.ground == Some(true), assets, wants_view)
             .map_err(|e| in_file(format!("mesh[{i}].model"), e))?;
+        lone_view = view;
         let scale = entry.scale.unwrap_or(1.0);
         if entry.keyframes.is_empty() {
             let rotation = euler_deg(entry.rotation_deg.unwrap_or_default());
@@ -152,10 +170,19 @@ pub fn build(
         bounds.grow(s.min);
         bounds.grow(s.max);
     }
+    // A light's intensity is bounded by the scene's size (`light::max_intensity`).
+    if let Some(i) = file.light.as_ref().and_then(|l| l.intensity) {
+        check_intensity(i, bounds.radius()).map_err(|message| SceneError::SceneFile {
+            path: origin.to_owned(),
+            line: text.and_then(|t| locate(t, "light", 0, "intensity").0),
+            key: "light.intensity".into(),
+            message,
+        })?;
+    }
     // The automatic view costs ray casts over the whole mesh: only when something is missing.
     // (A missing light with a camera given is a headlight at that camera.)
-    let auto: Option<AutoView> =
-        (file.camera.is_none() || file.orbit.is_none()).then(|| auto_view(&mesh));
+    let auto: Option<AutoView> = (file.camera.is_none() || file.orbit.is_none())
+        .then(|| lone_view.unwrap_or_else(|| auto_view(&mesh)));
     let camera = match (&file.camera, &auto) {
         (Some(c), _) => camera(c, &bounds),
         (None, Some(a)) => a.camera,
@@ -201,22 +228,49 @@ fn unreachable_auto() -> ! {
     unreachable!("the automatic view is computed when camera, light or orbit is missing")
 }
 
+/// Whether a mesh entry leaves its model where `--scene` puts it: no transform, no keys.
+fn untransformed(m: &MeshEntry) -> bool {
+    m.position.is_none() && m.rotation_deg.is_none() && m.scale.is_none() && m.keyframes.is_empty()
+}
+
 /// The geometry a mesh entry names: the sphere, or a scene spec's mesh (on its ground when
-/// `ground`).
-fn entry_mesh(model: &str, ground: bool, assets: Option<&Path>) -> Result<Mesh, SceneError> {
-    let mesh = if model == SPHERE {
-        sphere()
+/// `ground`); with `view`, also the camera, light and orbit `--scene <model>` gives it (a
+/// built-in scene's own, a model's automatic framing; none for the sphere).
+fn entry_mesh(
+    model: &str,
+    ground: bool,
+    assets: Option<&Path>,
+    view: bool,
+) -> Result<(Mesh, Option<AutoView>), SceneError> {
+    let (mesh, view) = if model == SPHERE {
+        (sphere(), None)
     } else if is_scene_file(model) {
         return Err(SceneError::UnknownScene {
             spec: model.to_owned(),
             details: "a mesh entry names a model, not another scene file".into(),
         });
     } else if super::spec::BUILTIN_SCENES.contains(&model) || model.starts_with("box:") {
-        load_spec(model, assets)?.mesh
+        let scene = load_spec(model, assets)?;
+        let seen = view.then(|| AutoView {
+            camera: scene.camera,
+            light: scene.light,
+            orbit: scene.orbit(),
+        });
+        (scene.mesh, seen)
     } else {
-        load_model(model, assets)?.1
+        let (name, mesh) = load_model(model, assets)?;
+        let seen = view.then(|| {
+            let scene = framed_model(name, mesh.clone());
+            AutoView {
+                camera: scene.camera,
+                light: scene.light,
+                orbit: scene.orbit(),
+            }
+        });
+        (mesh, seen)
     };
-    Ok(if ground { with_ground(&mesh) } else { mesh })
+    let mesh = if ground { with_ground(&mesh) } else { mesh };
+    Ok((mesh, view))
 }
 
 /// Distance from `p` to the farthest corner of `bounds`.
@@ -505,6 +559,67 @@ target = [-0.5, 0, 0]
         let a = load_scene_file(&auto, None).unwrap();
         let p = write(&dir, "auto-saved.toml", &a.describe().to_toml());
         assert_eq!(load_scene_file(&p, None).unwrap().scene, a.scene);
+    }
+
+    /// A file of one built-in scene, or one model on its ground, is the scene `--scene` gives
+    /// (but for the name, the file's stem).
+    #[test]
+    fn a_lone_model_is_framed_as_by_name() {
+        let dir = temp_dir("lone");
+        for spec in ["cornell-box", "tilted-quad"] {
+            let p = write(
+                &dir,
+                "lone.toml",
+                &format!("[[mesh]]\nmodel = \"{spec}\"\n"),
+            );
+            let file = load_scene_file(&p, None).unwrap().scene;
+            let named = load(spec, None).unwrap().scene;
+            assert_eq!(
+                (file.camera, file.light, file.orbit(), file.mesh),
+                (named.camera, named.light, named.orbit(), named.mesh),
+                "{spec}"
+            );
+        }
+        // Moved, it is a scene of its own: the automatic framing.
+        let p = write(
+            &dir,
+            "moved.toml",
+            "[[mesh]]\nmodel = \"cornell-box\"\nposition = [0, 0, 0]\n",
+        );
+        let moved = load_scene_file(&p, None).unwrap().scene;
+        assert_ne!(
+            moved.camera,
+            load("cornell-box", None).unwrap().scene.camera
+        );
+    }
+
+    /// A light far too bright for the scene's size is refused at its line, as
+    /// `--light-intensity` is; a large model's own light (intensity d²) is not.
+    #[test]
+    fn a_light_too_bright_for_the_scene_is_refused() {
+        let dir = temp_dir("bright");
+        let text = |i: &str| {
+            format!(
+                "[[mesh]]\nmodel = \"cornell-box\"\n[light]\nposition = [0, 1.9, 0]\n\
+                 target = [0, 0, 0]\nintensity = [{i}, 1, 1]\n"
+            )
+        };
+        let p = write(&dir, "bright.toml", &text("1e30"));
+        let e = load_scene_file(&p, None).unwrap_err().to_string();
+        assert!(
+            e.contains("bright.toml:6: light.intensity: [1e30, 1.0, 1.0] W/sr is more than"),
+            "{e}"
+        );
+        let p = write(&dir, "fine.toml", &text("2e7"));
+        load_scene_file(&p, None).unwrap();
+        let big = write(
+            &dir,
+            "big.toml",
+            "[[mesh]]\nmodel = \"sphere\"\nscale = 1e4\n[light]\nposition = [0, 3e4, 0]\n\
+             target = [0, 0, 0]\n",
+        );
+        let s = load_scene_file(&big, None).unwrap().scene;
+        assert_eq!(s.light.intensity, Vec3::splat(9e8));
     }
 
     #[test]

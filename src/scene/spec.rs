@@ -5,6 +5,7 @@ use super::builder::MeshBuilder;
 use super::camera::Camera;
 use super::error::SceneError;
 use super::framing::{interior_view, outside_view, InteriorView};
+use super::input::not_regular;
 use super::light::SpotLight;
 use super::mesh::{Material, Mesh};
 use super::obj::load_obj;
@@ -79,7 +80,9 @@ fn is_obj(path: &Path) -> bool {
 }
 
 /// Finds the OBJ file a spec means. A spec ending in `.obj` is always taken as a file (a
-/// missing one is reported by the loader with its path).
+/// missing one is reported by the loader with its path); a path to something that is not a
+/// regular file (a FIFO, a device, a directory outside the assets) is refused, saying what
+/// it is.
 pub fn resolve_model(spec: &str, assets: Option<&Path>) -> Result<PathBuf, SceneError> {
     let as_path = Path::new(spec);
     if as_path.is_file() {
@@ -93,6 +96,16 @@ pub fn resolve_model(spec: &str, assets: Option<&Path>) -> Result<PathBuf, Scene
         if in_assets.is_dir() && !spec.is_empty() {
             return single_obj_in(spec, &in_assets);
         }
+    }
+    if let Some(kind) = not_regular(as_path) {
+        return Err(SceneError::UnknownScene {
+            spec: spec.to_owned(),
+            details: format!(
+                "{} is {kind}, not a model file (a built-in scene, an OBJ or scene file, \
+                 or an asset name)",
+                as_path.display()
+            ),
+        });
     }
     if is_obj(as_path) {
         return Ok(as_path.to_owned());
@@ -157,7 +170,17 @@ fn unknown_scene(spec: &str, assets: Option<&Path>) -> SceneError {
                 dir.display()
             )
         }
-        Some(dir) => format!("the asset directory {} does not exist", dir.display()),
+        Some(dir) => match not_regular(dir) {
+            Some(kind) => format!(
+                "the asset directory {} is {kind}, not a directory",
+                dir.display()
+            ),
+            None if dir.exists() => format!(
+                "the asset directory {} is a regular file, not a directory",
+                dir.display()
+            ),
+            None => format!("the asset directory {} does not exist", dir.display()),
+        },
         None => "no asset directory is set".to_owned(),
     };
     SceneError::UnknownScene {

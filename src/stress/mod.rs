@@ -62,6 +62,8 @@ pub fn run_plan(ctx: &Arc<Context>, options: &StressOptions) -> Result<Vec<CaseR
     let plan = plan(options);
     let total = plan.len();
     let mut results = Vec::with_capacity(total);
+    // Each case's frames, and the loop between cases, poll for Ctrl-C.
+    let _scope = crate::interrupt::graceful();
     for (k, (case, variant)) in plan.iter().enumerate() {
         let r = run_case(ctx, case, *variant, options.rsm_size, options.ao_estimator);
         crate::interrupt::check()?;

@@ -42,6 +42,7 @@ impl EmbeddedPath {
         let parsed: KeyframeFile =
             serde_json::from_str(self.text).map_err(|e| SceneError::CameraPath {
                 path: PathBuf::from(self.file),
+                line: None,
                 message: format!("invalid JSON: {e}"),
             })?;
         Ok(CameraPath::Keyframes(parsed.keyframes))

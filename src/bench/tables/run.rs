@@ -79,10 +79,10 @@ pub fn warmup_frames(opts: &crate::bench::TableOptions) -> u32 {
     }
 }
 
-/// Create the table's output directory (and its parents).
+/// Create the table's output directory (and its parents), checked as every command's outputs
+/// are before it renders.
 pub fn create_out(out: &std::path::Path) -> crate::error::Result<()> {
-    std::fs::create_dir_all(out)
-        .map_err(|e| crate::error::Error::Config(format!("cannot create {}: {e}", out.display())))
+    crate::files::prepare_dir(out, "--out")
 }
 
 /// Write a table's `report.json` (of `report`), `report.md` and `<table>.csv` into `out`.

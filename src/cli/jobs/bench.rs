@@ -166,6 +166,8 @@ fn bench_compare_reuse(
     let base = scene.camera;
     let orbit = scene.orbit();
     let mut bar = Progress::new(2 * args.frames as u64, "rendering, interleaved", true);
+    // Each frame polls for Ctrl-C: a signal stops the run between frames.
+    let _scope = crate::interrupt::graceful();
     for i in first..first.saturating_add(args.frames) {
         let camera = path.camera_at(&base, &orbit, frame_time(i, fps));
         for run in &mut runs {
@@ -247,6 +249,27 @@ pub fn bench(cli: &Cli, args: &BenchArgs) -> Result<()> {
         return Err(Error::Config(
             "--flicker measures one run's frames: leave out --compare-reuse".into(),
         ));
+    }
+    // --explain prints the frame and measures nothing: a file it would not write is an error.
+    if args.explain {
+        for (given, option) in [
+            (args.json.is_some(), "--json"),
+            (args.out.is_some(), "--out"),
+            (args.flicker, "--flicker"),
+        ] {
+            if given {
+                return Err(Error::Config(format!(
+                    "--explain prints the frame and exits without rendering the run: leave out \
+                     {option}"
+                )));
+            }
+        }
+    }
+    if let Some(json) = &args.json {
+        crate::files::prepare_file(json, "--json")?;
+    }
+    if let Some(out) = &args.out {
+        crate::files::prepare_png(out, "--out")?;
     }
     let (scene, path) = load(cli, &args.scene)?;
     let window = args.window.then(|| format!("ssgi bench: {}", scene.name));

@@ -34,6 +34,8 @@ pub(super) fn load(cli: &Cli, args: &SceneArgs) -> Result<(Scene, CameraPath)> {
         scene.light.outer_deg = outer;
     }
     if let Some(i) = args.light_intensity {
+        crate::scene::check_intensity(i, scene.bounds().radius())
+            .map_err(|why| Error::Config(format!("--light-intensity {why}")))?;
         scene.light.intensity = i.into();
     }
     match args.light_path.as_deref() {

@@ -8,6 +8,7 @@ use crate::reference::store::default_dir;
 use crate::reference::{AoDefinition, RefBuffer, Settings};
 
 pub fn reference(cli: &Cli, args: &ReferenceArgs) -> Result<()> {
+    crate::files::prepare_dir(&args.out, "--out")?;
     let (scene, path) = load_spec(cli, &args.scene, &args.path)?;
     let frame = args.frame.unwrap_or(args.frames - 1);
     if frame >= args.frames {
@@ -21,6 +22,8 @@ pub fn reference(cli: &Cli, args: &ReferenceArgs) -> Result<()> {
     let camera = path.camera_at(&scene.camera, &scene.orbit(), time);
     // Moving objects and light where the frame has them.
     let scene = scene.posed(time);
+    crate::reference::trace::check_light_radius(args.light_radius, scene.bounds().radius())
+        .map_err(Error::Config)?;
     let settings = Settings {
         ao: AoDefinition {
             radius: args.ao_radius * scene.bounds().radius().max(f32::MIN_POSITIVE),
@@ -30,6 +33,9 @@ pub fn reference(cli: &Cli, args: &ReferenceArgs) -> Result<()> {
         seed: 1,
     };
     let cache = (!args.no_cache).then(|| args.cache_dir.clone().unwrap_or_else(default_dir));
+    if let Some(dir) = &cache {
+        crate::files::prepare_dir(dir, "--cache-dir")?;
+    }
     let (w, h) = args.size;
     let start = std::time::Instant::now();
     let mut session = Session::start(&scene, camera, w, h, settings, cache, true)?;

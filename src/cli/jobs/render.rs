@@ -3,6 +3,7 @@
 use super::common::{check_frames, context_options, finish, load};
 use crate::cli::args::{Cli, RenderArgs, SceneArgs};
 use crate::error::Result;
+use crate::files::{prepare_dir, prepare_png};
 use crate::frontend::headless;
 use crate::frontend::sink::Offscreen;
 use crate::renderer::Renderer;
@@ -12,6 +13,10 @@ use std::sync::Arc;
 
 pub fn render(cli: &Cli, args: &RenderArgs) -> Result<()> {
     check_frames(args.frames, "--frames")?;
+    prepare_png(&args.out, "--out")?;
+    if let Some(dir) = &args.dump_gbuffer {
+        prepare_dir(dir, "--dump-gbuffer")?;
+    }
     let frames = args.frames.max(1);
     let Setup {
         ctx,

@@ -20,6 +20,7 @@ pub fn stress(cli: &Cli, args: &StressArgs) -> Result<()> {
             args.rsm_size
         )));
     }
+    crate::files::prepare_dir(&args.out, "--out")?;
     let options = StressOptions {
         quick: args.quick,
         long_frames: args.long_frames.unwrap_or(if args.quick {

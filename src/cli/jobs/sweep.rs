@@ -27,6 +27,7 @@ pub fn sweep(cli: &Cli, args: &SweepArgs) -> Result<()> {
         .collect::<Result<Vec<_>>>()?;
     let base = args.scene.render_config();
     let combos = combinations(&base, &varies)?;
+    crate::files::prepare_dir(&args.out, "--out")?;
     let (scene, path) = load(cli, &args.scene)?;
     let longest_cycle = combos
         .iter()
@@ -55,6 +56,9 @@ pub fn sweep(cli: &Cli, args: &SweepArgs) -> Result<()> {
     }
     let settings = Settings::for_render(&defining, &scene);
     let cache = (!args.no_cache).then(|| args.cache_dir.clone().unwrap_or_else(default_dir));
+    if let Some(dir) = &cache {
+        crate::files::prepare_dir(dir, "--cache-dir")?;
+    }
     let (w, h) = args.scene.size;
     // Moving objects and light where the last frame has them.
     let posed = scene.posed(crate::scene::path::frame_time(

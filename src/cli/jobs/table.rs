@@ -30,6 +30,18 @@ fn command_line() -> String {
         .join(" ")
 }
 
+/// A table's `--set` keys as a user reads them: a prefix `svgf.` as `svgf.*`.
+fn settable_keys(def: &TableDef) -> String {
+    def.settable
+        .iter()
+        .map(|k| match k.strip_suffix('.') {
+            Some(prefix) => format!("{prefix}.*"),
+            None => k.to_string(),
+        })
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
 /// `--set KEY=VALUE`s: sweep keys the table lets change, each value checked as `--vary`'s.
 fn sets(def: &TableDef, given: &[String]) -> Result<Vec<(Key, String)>> {
     let mut sets: Vec<(Key, String)> = Vec::new();
@@ -47,15 +59,25 @@ fn sets(def: &TableDef, given: &[String]) -> Result<Vec<(Key, String)>> {
             ))
         })?;
         if !def.settable(key.name) {
-            let allowed = if def.settable.is_empty() {
-                "none".to_string()
+            return Err(Error::Config(if def.settable.is_empty() {
+                let takers: Vec<String> = crate::bench::tables::TABLES
+                    .iter()
+                    .filter(|t| !t.settable.is_empty())
+                    .map(|t| format!("{}: {}", t.name, settable_keys(t)))
+                    .collect();
+                format!(
+                    "table {} takes no --set keys (its rows set every parameter they use); the \
+                     tables that take --set: {}",
+                    def.name,
+                    takers.join("; ")
+                )
             } else {
-                def.settable.join(", ")
-            };
-            return Err(Error::Config(format!(
-                "table {} sets {key} itself or does not use it: --set takes only {allowed}",
-                def.name
-            )));
+                format!(
+                    "table {} sets {key} itself or does not use it: its --set keys are {}",
+                    def.name,
+                    settable_keys(def)
+                )
+            }));
         }
         if sets.iter().any(|(k, _)| *k == key) {
             return Err(Error::Config(format!("--set {key} is given twice")));

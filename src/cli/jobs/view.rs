@@ -15,6 +15,9 @@ pub fn view(cli: &Cli, args: &ViewArgs) -> Result<()> {
         Some(s) => window::parse_script(s).map_err(Error::Config)?,
         None => Vec::new(),
     };
+    if let Some(path) = &args.capture {
+        crate::files::prepare_png(path, "--capture")?;
+    }
     let (scene, _path) = load(cli, &args.scene)?;
     let config = args.scene.render_config();
     let run = window::run(
