@@ -89,6 +89,9 @@ pub enum SceneError {
     /// The scene spec names no built-in scene, file or asset.
     #[error("unknown scene '{spec}': {details}")]
     UnknownScene { spec: String, details: String },
+    /// A model too small to render (`validate::MIN_SCENE_RADIUS`).
+    #[error("{spec}: {message}")]
+    TooSmall { spec: String, message: String },
 
     /// An asset folder holds several OBJ files, so the asset name is ambiguous.
     #[error(

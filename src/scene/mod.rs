@@ -55,5 +55,5 @@ pub use scene_load::{
 pub use spec::{
     asset_dir_from_env, list_assets, load_model, resolve_model, ASSETS_ENV, BUILTIN_SCENES,
 };
-pub use validate::HUGE_COORDINATE;
+pub use validate::{scene_size_problem, HUGE_COORDINATE, MIN_SCENE_RADIUS};
 pub use world::Scene;

@@ -170,6 +170,19 @@ fn build_located(
         bounds.grow(s.min);
         bounds.grow(s.max);
     }
+    if let Some(message) = super::validate::scene_size_problem(bounds.radius()) {
+        // Said at the first scale that shrinks a mesh, if one does.
+        let scaled = file
+            .meshes
+            .iter()
+            .position(|m| m.scale.is_some_and(|s| s < 1.0));
+        return Err(SceneError::SceneFile {
+            path: origin.to_owned(),
+            line: scaled.and_then(|i| text.and_then(|t| locate(t, "mesh", i, "scale").0)),
+            key: scaled.map_or("mesh".into(), |i| format!("mesh[{i}].scale")),
+            message,
+        });
+    }
     // A light's intensity is bounded by the scene's size (`light::max_intensity`).
     if let Some(i) = file.light.as_ref().and_then(|l| l.intensity) {
         check_intensity(i, bounds.radius()).map_err(|message| SceneError::SceneFile {

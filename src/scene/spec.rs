@@ -53,6 +53,12 @@ pub fn load_spec(spec: &str, assets: Option<&Path>) -> Result<Scene, SceneError>
                 Ok(box_room(&mesh, &name))
             } else {
                 let (name, mesh) = load_model(spec, assets)?;
+                if let Some(message) = super::validate::scene_size_problem(mesh.bounds.radius()) {
+                    return Err(SceneError::TooSmall {
+                        spec: spec.to_string(),
+                        message,
+                    });
+                }
                 Ok(framed_model(name, mesh))
             }
         }

@@ -12,6 +12,24 @@ use std::path::Path;
 /// relative epsilon downstream) are meaningless.
 pub const HUGE_COORDINATE: f32 = 1e7;
 
+/// The smallest bounding radius of a scene, in metres. Below it the ray-triangle tests of the
+/// BVH (obvhs), which the automatic framing and the CPU ground truth use, lose hits (their
+/// tolerances do not scale with the scene): the bunny's automatic view is the same, relative
+/// to its size, from scale 1 down to 1e-3 (a radius of 1e-4 m) and another one from 1e-4 on;
+/// at 1e-11 the image was black. 1e-3 m keeps ten times that margin.
+pub const MIN_SCENE_RADIUS: f32 = 1e-3;
+
+/// Why a scene of bounding radius `radius` is too small to render, if it is.
+pub fn scene_size_problem(radius: f32) -> Option<String> {
+    (!(radius >= MIN_SCENE_RADIUS)).then(|| {
+        format!(
+            "the scene's bounding radius {radius:e} m is below {MIN_SCENE_RADIUS:e} m, under \
+             which ray tests lose hits (the automatic view changes, the ground truth misses \
+             surfaces); scale it up (a scene file's mesh scale)"
+        )
+    })
+}
+
 /// What the validation pass learned about a file.
 #[derive(Debug, Default, Clone, PartialEq)]
 pub struct ObjSummary {
