@@ -21,7 +21,10 @@ pub const MIN_SCENE_RADIUS: f32 = 1e-3;
 
 /// Why a scene of bounding radius `radius` is too small to render, if it is.
 pub fn scene_size_problem(radius: f32) -> Option<String> {
-    (!(radius >= MIN_SCENE_RADIUS)).then(|| {
+    use std::cmp::Ordering::{Equal, Greater};
+    // NaN (no ordering) is too small as well.
+    let small = !matches!(radius.partial_cmp(&MIN_SCENE_RADIUS), Some(Greater | Equal));
+    small.then(|| {
         format!(
             "the scene's bounding radius {radius:e} m is below {MIN_SCENE_RADIUS:e} m, under \
              which ray tests lose hits (the automatic view changes, the ground truth misses \
