@@ -487,15 +487,19 @@ fn light_flag_places_the_spot() {
 }
 
 /// Resource exhaustion (issue 16): every effect at the largest size, or the largest shadow
-/// map, ends with a clear out-of-memory message and exit code 1, not a crash.
+/// map, ends with a clear message and exit code 1, not a crash: on lavapipe an RGBA32F image
+/// of 16384x16384 (4 GiB) is past the device's largest image (maxResourceSize, 4 GiB less a
+/// MiB), which is said before the image is made and names it (issue 62: it was reported as
+/// out of memory after a validation error); a device that takes it runs out of memory
+/// instead.
 #[test]
-fn huge_sizes_fail_with_an_out_of_memory_message() {
+fn huge_sizes_fail_with_a_clear_limit_message() {
     for args in [
         ["--size", "16384x16384", "--rsm-size", "512"],
         ["--size", "64x64", "--rsm-size", "16384"],
     ] {
         let out = ssgi()
-            .args(["render", "--effects", "all"])
+            .args(["--validation", "render", "--effects", "all"])
             .args(args)
             .arg("--out")
             .arg(tmp("huge.png"))
@@ -503,10 +507,13 @@ fn huge_sizes_fail_with_an_out_of_memory_message() {
             .unwrap();
         let stderr = String::from_utf8_lossy(&out.stderr);
         assert_eq!(out.status.code(), Some(1), "{args:?}: {stderr}");
+        let limit = stderr.contains("is past this device's largest image of that format");
         assert!(
-            stderr.contains("out of device memory") && stderr.contains("try a smaller --size"),
+            (limit || stderr.contains("out of device memory"))
+                && stderr.contains("try a smaller --size"),
             "{args:?}: {stderr}"
         );
+        assert!(!stderr.contains("VUID"), "{args:?}: {stderr}");
         assert!(!stderr.contains("panicked"), "{stderr}");
     }
 }

@@ -444,9 +444,10 @@ mod tests {
         let s = framed_model("m".into(), model.clone());
         assert!(matches!(s.orbit(), Orbit::Around { .. }));
         // The ground: two more triangles at the model's foot, twice its footprint (here its
-        // height, the largest extent).
+        // height, the largest extent), GROUND_GAP of its half-width (2) below the block's
+        // bottom face.
         assert_eq!(s.mesh.triangle_count(), model.triangle_count() + 2);
-        assert_eq!(s.mesh.bounds.min, Vec3::new(-2.0, 0.0, -2.0));
+        assert_eq!(s.mesh.bounds.min, Vec3::new(-2.0, -2.0 * GROUND_GAP, -2.0));
         assert_eq!(s.mesh.bounds.max.y, 2.0);
         let c = s.camera.target;
         let e = s.light.irradiance(c, -s.light.direction);
