@@ -25,7 +25,6 @@ use std::path::{Path, PathBuf};
 /// private headers live beside its passes), then in `shaders/include/`.
 struct Includer {
     dirs: Vec<PathBuf>,
-    seen: Vec<PathBuf>,
 }
 
 impl glslang::include::IncludeHandler for Includer {
@@ -36,11 +35,10 @@ impl glslang::include::IncludeHandler for Includer {
         _includer_name: &str,
         _depth: usize,
     ) -> Option<glslang::include::IncludeResult> {
-        let (path, data) = self.dirs.iter().find_map(|d| {
-            let path = d.join(header_name);
-            std::fs::read_to_string(&path).ok().map(|data| (path, data))
-        })?;
-        self.seen.push(path);
+        let data = self
+            .dirs
+            .iter()
+            .find_map(|d| std::fs::read_to_string(d.join(header_name)).ok())?;
         Some(glslang::include::IncludeResult {
             name: header_name.to_string(),
             data,
@@ -106,7 +104,7 @@ fn compile(
     stage: glslang::ShaderStage,
     perm: &Permutation,
     include_dir: &Path,
-) -> Result<(Vec<u32>, Vec<PathBuf>), String> {
+) -> Result<Vec<u32>, String> {
     let src = glslang::ShaderSource::from(source);
     let options = glslang::CompilerOptions {
         source_language: glslang::SourceLanguage::GLSL,
@@ -122,7 +120,6 @@ fn compile(
     let own_dir = root.join(file.parent().unwrap_or(Path::new("shaders")));
     let mut includer = Includer {
         dirs: vec![own_dir.to_path_buf(), include_dir.to_path_buf()],
-        seen: Vec::new(),
     };
     let defines: Vec<(&str, Option<&str>)> = perm
         .defines
@@ -149,7 +146,7 @@ fn compile(
     let words = shader
         .compile()
         .map_err(|e| format!("{}: {e}", file.display()))?;
-    Ok((words, includer.seen))
+    Ok(words)
 }
 
 fn descriptor_kind(module: &naga::Module, var: &naga::GlobalVariable) -> Option<&'static str> {
@@ -271,6 +268,39 @@ fn reflect(
     Ok(())
 }
 
+/// `pub const NAME: u32 = VALUE;` for every `#define NAME VALUE[u]` line of the shared
+/// constants header (shaders/include/shared_constants.glsl): the constants both sides use,
+/// defined once. Any other `#define` there (but its include guard) fails the build.
+fn shared_constants(header: &Path) -> String {
+    let text =
+        std::fs::read_to_string(header).unwrap_or_else(|e| panic!("{}: {e}", header.display()));
+    let mut out =
+        String::from("// The shared constants (shaders/include/shared_constants.glsl).\n");
+    for (n, line) in text.lines().enumerate() {
+        let Some(rest) = line.trim().strip_prefix("#define ") else {
+            continue;
+        };
+        let mut words = rest.split_whitespace();
+        let name = words.next().unwrap_or_default();
+        if name == "SHARED_CONSTANTS_GLSL" {
+            continue;
+        }
+        let value = words
+            .next()
+            .map(|v| v.trim_end_matches('u'))
+            .and_then(|v| v.parse::<u32>().ok())
+            .unwrap_or_else(|| {
+                panic!(
+                    "{}:{}: a shared constant is `#define NAME VALUEu` (an unsigned integer)",
+                    header.display(),
+                    n + 1
+                )
+            });
+        let _ = writeln!(out, "pub const {name}: u32 = {value};");
+    }
+    out
+}
+
 fn main() {
     let root = PathBuf::from(std::env::var("CARGO_MANIFEST_DIR").unwrap());
     let shader_dir = root.join("shaders");
@@ -347,18 +377,16 @@ fn main() {
             if !perm.suffix.is_empty() {
                 ident = format!("{ident}_{}", perm.suffix.to_uppercase());
             }
-            match compile(compiler, &rel, &source, stage, &perm, &include_dir).and_then(
-                |(words, _)| {
-                    reflect(
-                        &rel,
-                        &words,
-                        &ident,
-                        &perm.suffix,
-                        &mut generated,
-                        &mut shared_blocks,
-                    )
-                },
-            ) {
+            match compile(compiler, &rel, &source, stage, &perm, &include_dir).and_then(|words| {
+                reflect(
+                    &rel,
+                    &words,
+                    &ident,
+                    &perm.suffix,
+                    &mut generated,
+                    &mut shared_blocks,
+                )
+            }) {
                 Ok(()) if all.contains(&ident) || probes.contains(&ident) => errors.push(format!(
                     "{}: module {ident} is also another folder's: a shader's name is its \
                      module's, so it must be unique across shaders/",
@@ -387,5 +415,8 @@ fn main() {
     }
     let _ = writeln!(generated, "];\n");
     generated.push_str(&block_layout::generate(&shared_blocks));
+    generated.push_str(&shared_constants(
+        &include_dir.join("shared_constants.glsl"),
+    ));
     std::fs::write(out_dir.join("shaders.rs"), generated).unwrap();
 }

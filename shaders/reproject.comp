@@ -56,8 +56,8 @@ layout(push_constant) uniform Reproject {
     uvec4 refresh_rect_2;
     uvec4 lane_0;         // lane k: (active, history_valid, log2 of the work-block side (0: a
                           //          list of single pixels), moving objects' reach: MOVED_*
-                          //          below in bits 0-7, 0 = none; MOVED_SCREEN's extra
-                          //          pixels above)
+                          //          (shared_constants.glsl) in bits 0-7, 0 = none;
+                          //          MOVED_SCREEN's extra pixels above)
     uvec4 lane_1;
     uvec4 lane_2;
     uvec4 reaccumulate;   // x: bit k set = lane k starts re-accumulating this frame; y: bit k
@@ -141,11 +141,9 @@ shared uint group_invalidated[LANES];
 shared uint group_listed[LANES];
 shared uint group_list_base[LANES];
 
-// Where a moving object changes a lane's value (EffectKind::moved, src/renderer/effect.rs),
-// tested against the box around every object that moved, at its last and its new place.
-const uint MOVED_SCREEN = 1u;     // a screen-space estimate's taps can see it on the screen
-const uint MOVED_SHADOW = 2u;     // in the box, or on its footprint on the shadow map
-const uint MOVED_INSIDE = 3u;     // in the box (what the gather receives on moved)
+// Where a moving object changes a lane's value: MOVED_* of shared_constants.glsl, tested
+// against the box around every object that moved, at its last and its new place.
+#include "shared_constants.glsl"
 
 // Distance from p to the moved box (0 inside).
 float moved_distance(vec3 p) {

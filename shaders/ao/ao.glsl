@@ -7,6 +7,7 @@
 
 #include "frame.glsl"
 #include "ao_params.glsl"
+#include "shared_constants.glsl"
 #include "patterns.glsl"
 #include "hemisphere.glsl"
 
@@ -192,17 +193,17 @@ float ao_szentandrasi(ivec2 pixel, vec3 p, vec3 n, uint pattern) {
 // Taps one pattern of the configured estimator reads (the work counters' evaluations).
 // (GTAO's unit is a slice: its two horizon searches.)
 uint ao_taps() {
-    if (ao.estimator == 0u) return ao.directions * ao.steps;
-    if (ao.estimator == 3u) return max(ao.directions, 1u);
+    if (ao.estimator == AO_THESIS) return ao.directions * ao.steps;
+    if (ao.estimator == AO_GTAO) return max(ao.directions, 1u);
     return ao.samples;
 }
 
 // The sum of taps [first, end) of pattern `pattern` of the configured estimator: over every
 // tap (ao_taps()), divided by their count, that pattern's occlusion.
 float ao_taps_sum(ivec2 pixel, vec3 p, vec3 n, uint pattern, uint first, uint end) {
-    if (ao.estimator == 1u) return ao_crytek_taps(pixel, p, pattern, first, end);
-    if (ao.estimator == 2u) return ao_szentandrasi_taps(pixel, p, n, pattern, first, end);
-    if (ao.estimator == 3u) return ao_gtao_taps(pixel, p, n, pattern, first, end);
+    if (ao.estimator == AO_CRYTEK) return ao_crytek_taps(pixel, p, pattern, first, end);
+    if (ao.estimator == AO_SZENTANDRASI) return ao_szentandrasi_taps(pixel, p, n, pattern, first, end);
+    if (ao.estimator == AO_GTAO) return ao_gtao_taps(pixel, p, n, pattern, first, end);
     return ao_thesis_taps(pixel, p, n, pattern, first, end);
 }
 
@@ -210,9 +211,9 @@ float ao_estimate(ivec2 pixel, vec3 p, vec3 n, float first, uint patterns) {
     float sum = 0.0;
     for (uint j = 0u; j < patterns; ++j) {
         uint pattern = uint(first) + j;
-        if (ao.estimator == 1u) sum += ao_crytek(pixel, p, pattern);
-        else if (ao.estimator == 2u) sum += ao_szentandrasi(pixel, p, n, pattern);
-        else if (ao.estimator == 3u) sum += ao_gtao(pixel, p, n, pattern);
+        if (ao.estimator == AO_CRYTEK) sum += ao_crytek(pixel, p, pattern);
+        else if (ao.estimator == AO_SZENTANDRASI) sum += ao_szentandrasi(pixel, p, n, pattern);
+        else if (ao.estimator == AO_GTAO) sum += ao_gtao(pixel, p, n, pattern);
         else sum += ao_thesis(pixel, p, n, pattern);
     }
     return sum / float(max(patterns, 1u));

@@ -9,8 +9,8 @@
 
 #include "effect.glsl"
 
-// Also config.rs's REFRESH_THREADS (the per-thread loop bound it validates).
-#define REFRESH_THREADS 64
+// REFRESH_THREADS: shared_constants.glsl (config.rs validates the per-thread loop with it).
+#include "shared_constants.glsl"
 
 shared vec4 refresh_partial[REFRESH_THREADS];
 

@@ -4,10 +4,8 @@
 #define SPREAD_GLSL
 
 #include "frame.glsl"
+#include "shared_constants.glsl"
 #include "vpl_params.glsl"
-
-// Workgroup width of indirect_spread.comp.
-#define SPREAD_LANES 64u
 
 // Evaluations of eq 9 in one pattern's every-VPL gather (interleave 1).
 uint rsm_gather_evaluations() {

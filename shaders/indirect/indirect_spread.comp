@@ -32,8 +32,9 @@
 #define COUNTERS_BINDING 5
 #include "counters.glsl"
 #include "effect.glsl"
+#include "shared_constants.glsl"
 
-layout(local_size_x = 64) in; // SPREAD_LANES
+layout(local_size_x = SPREAD_LANES) in;
 
 #ifdef GATHER
 layout(set = 1, binding = 6, rgba32f) uniform writeonly image2D lowres;

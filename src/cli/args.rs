@@ -6,13 +6,13 @@ pub use crate::config::parse::{
     parse_bias, parse_ema_alpha, parse_epsilon, parse_fraction, parse_gate, parse_on_off,
     parse_pattern_count, parse_render_scale, parse_vpls, AccumulateMode,
 };
+use crate::config::pcf::Pcf;
 use crate::config::{
     Accumulate, Effects, Epsilon, GBufferMode, HistoryResample, Refresh, TemporalConfig,
 };
 use crate::effects::ao::config::{AoConfig, AoEstimator};
 use crate::effects::EffectArgs;
 use crate::post::PostArgs;
-use crate::renderer::frame::Pcf;
 use crate::renderer::{RenderConfig, MAX_SIZE};
 use crate::scene::HUGE_COORDINATE;
 use clap::{Args, Parser, Subcommand};

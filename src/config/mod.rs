@@ -286,9 +286,9 @@ pub struct TemporalConfig {
     pub reaccumulate: bool,
 }
 
-/// Threads sharing out one refresh-tile pixel's patterns (`REFRESH_THREADS` of
-/// shaders/include/refresh.glsl).
-pub const REFRESH_THREADS: u32 = 64;
+/// Threads sharing out one refresh-tile pixel's patterns (shaders/include/refresh.glsl),
+/// defined in shaders/include/shared_constants.glsl.
+pub use crate::shaders::REFRESH_THREADS;
 
 /// The default refresh budget: 5% of a full frame's evaluations.
 pub const REFRESH_BUDGET: f32 = 0.05;

@@ -1,6 +1,6 @@
 //! The one place slots become images: shared targets (G-buffer, RSM, output) from `Targets`,
 //! the temporal history/state/counters from the effect's `TemporalEffect`, and the images and
-//! buffers the effect owns by index.
+//! buffers the effect owns by name (`Slot::Own`, `Slot::OwnBuffer`).
 
 use crate::passes::decl::{Resolve, Slot};
 use crate::resources::targets::{Target, Targets};

@@ -1,9 +1,9 @@
 //! What the viewer's keys control: the displayed buffer, effect switches and temporal reuse,
 //! and how they map onto a renderer configuration.
 
+use crate::config::pcf::Pcf;
 use crate::config::Effects;
 use crate::effects;
-use crate::renderer::frame::Pcf;
 use crate::renderer::RenderConfig;
 use crate::resources::targets::Target;
 use std::sync::OnceLock;

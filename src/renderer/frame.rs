@@ -4,8 +4,6 @@
 use crate::config::{IndirectInput, RenderConfig};
 use crate::scene::{Camera, SpotLight};
 pub use crate::shaders::FrameBlock;
-// Old path of the PCF types, until every user imports them from `config::pcf`.
-pub use crate::config::pcf::{Pcf, PcfKernel};
 use glam::{Mat4, Vec3};
 
 /// Everything that changes per frame, besides the configuration.

@@ -1,9 +1,6 @@
 //! CPU side of the temporal machinery: the tiled-refresh schedule (Nehab et al. 2007) and the
 //! random rotations of the sampling pattern.
 
-/// Tile side of the refresh (the thesis: 64x64 for SSAO).
-pub const REFRESH_TILE: u32 = 64;
-
 /// xorshift64*: small, seedable, good enough for shuffles and noise textures.
 #[derive(Clone, Debug)]
 pub struct Rng(u64);
@@ -60,10 +57,6 @@ pub struct RefreshSchedule {
 }
 
 impl RefreshSchedule {
-    pub fn new(width: u32, height: u32) -> Self {
-        Self::with_tile(width, height, REFRESH_TILE)
-    }
-
     /// Tiles of `tile` x `tile` pixels.
     pub fn with_tile(width: u32, height: u32, tile: u32) -> Self {
         Self {
@@ -237,10 +230,13 @@ pub fn random_vectors() -> Vec<u8> {
 mod tests {
     use super::*;
 
+    /// The thesis's SSAO refresh tile side (64x64), which these tests schedule.
+    const REFRESH_TILE: u32 = 64;
+
     #[test]
     fn every_pixel_once_per_cycle_on_shifted_grids() {
         let (w, h) = (300, 130); // partial edge tiles
-        let mut s = RefreshSchedule::new(w, h);
+        let mut s = RefreshSchedule::with_tile(w, h, REFRESH_TILE);
         for cycle in 0..8 {
             let tiles = s.grid(cycle).len();
             let mut hits = vec![0u32; (w * h) as usize];
@@ -282,7 +278,7 @@ mod tests {
     #[test]
     fn every_pixel_is_in_a_tile_core_within_four_cycles() {
         let (w, h) = (200, 150);
-        let s = RefreshSchedule::new(w, h);
+        let s = RefreshSchedule::with_tile(w, h, REFRESH_TILE);
         let feather = s.feather() as f32;
         let mut core = vec![false; (w * h) as usize];
         for cycle in 0..4 {

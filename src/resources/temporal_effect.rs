@@ -67,13 +67,16 @@ pub struct ScreenReach {
 }
 
 impl MovedReach {
-    /// The lane's reach in shaders/reproject.comp: `MOVED_*` in bits 0-7 (0 there = none),
-    /// the screen reach's extra pixels above.
+    /// The lane's reach in shaders/reproject.comp: `MOVED_*` (shared_constants.glsl) in bits
+    /// 0-7 (0 there = none), the screen reach's extra pixels above.
     pub fn code(self, config: &RenderConfig) -> u32 {
+        use crate::shaders::{MOVED_INSIDE, MOVED_SCREEN, MOVED_SHADOW};
         match self {
-            MovedReach::ScreenRadius(reach) => 1 | reach(config).pad_px.min(1 << 16) << 8,
-            MovedReach::ShadowFootprint => 2,
-            MovedReach::Inside => 3,
+            MovedReach::ScreenRadius(reach) => {
+                MOVED_SCREEN | reach(config).pad_px.min(1 << 16) << 8
+            }
+            MovedReach::ShadowFootprint => MOVED_SHADOW,
+            MovedReach::Inside => MOVED_INSIDE,
         }
     }
 

@@ -348,8 +348,8 @@ fn parse_accumulate(v: &str, rotation_limit: u32) -> std::result::Result<Accumul
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::config::pcf::PcfKernel;
     use crate::config::Epsilon;
-    use crate::renderer::frame::PcfKernel;
     use std::fmt;
 
     fn err(r: Result<impl fmt::Debug>) -> String {

@@ -24,13 +24,14 @@ pub enum AoEstimator {
 }
 
 impl AoEstimator {
-    /// The `Frame` block's `ao_estimator`.
+    /// The AO parameters' `estimator` (AO_* of shaders/include/shared_constants.glsl).
     pub fn code(self) -> u32 {
+        use crate::shaders::{AO_CRYTEK, AO_GTAO, AO_SZENTANDRASI, AO_THESIS};
         match self {
-            AoEstimator::Thesis => 0,
-            AoEstimator::Crytek => 1,
-            AoEstimator::Szentandrasi => 2,
-            AoEstimator::Gtao => 3,
+            AoEstimator::Thesis => AO_THESIS,
+            AoEstimator::Crytek => AO_CRYTEK,
+            AoEstimator::Szentandrasi => AO_SZENTANDRASI,
+            AoEstimator::Gtao => AO_GTAO,
         }
     }
 }

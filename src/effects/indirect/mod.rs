@@ -158,8 +158,8 @@ const CLAIMS: Slot = Slot::OwnBuffer("claims");
 /// One estimate (rgb, squared luminance) per refresh-tile pixel and pattern.
 const PARTIALS: Slot = Slot::OwnBuffer("partials");
 
-/// Lanes of indirect_spread.comp's workgroups (`SPREAD_LANES`).
-const SPREAD_LANES: u32 = 64;
+/// Lanes of indirect_spread.comp's workgroups (shaders/include/shared_constants.glsl).
+use crate::shaders::SPREAD_LANES;
 /// Vulkan's least `maxComputeWorkGroupCount[0]`: longer lists are strided over.
 const MAX_GROUPS: u32 = 65535;
 
