@@ -120,23 +120,8 @@ fn slice_arithmetic_is_unoccluded_for_normals_facing_away() {
 /// from the camera (towards -z; `common::open_plane`'s camera looks from +z, about 63 degrees
 /// off the normal).
 fn plane_with_leaning_normals(lean_deg: f32) -> Scene {
-    let mut scene = common::open_plane();
     let l = lean_deg.to_radians();
-    let mut b = MeshBuilder::new();
-    let m = b.add_material(Material::colour("ground", [0.7, 0.7, 0.7]));
-    let h = 200.0;
-    b.add_flat_polygon(
-        m,
-        &[
-            Vec3::new(-h, 0.0, -h),
-            Vec3::new(-h, 0.0, h),
-            Vec3::new(h, 0.0, h),
-            Vec3::new(h, 0.0, -h),
-        ],
-        Vec3::new(0.0, l.cos(), -l.sin()),
-    );
-    scene.mesh = b.build();
-    scene
+    common::open_plane_with_normals(Vec3::new(0.0, l.cos(), -l.sin()))
 }
 
 /// The shader's slices on a plane whose shading normals face away from the eye, with a radius
@@ -195,43 +180,9 @@ fn normals_facing_away_are_unoccluded_on_an_open_plane() {
 /// position's direction) alone in space: near its silhouette the interpolated normals face
 /// away from the eye over a band of pixels (facets 60 and 45 degrees wide).
 fn coarse_sphere() -> Scene {
-    let (segments, rings) = (6u32, 4u32);
-    let mut b = MeshBuilder::new();
-    let m = b.add_material(Material::colour("sphere", [0.8, 0.8, 0.8]));
-    let point = |ring: u32, seg: u32| {
-        let theta = PI * ring as f32 / rings as f32;
-        let phi = 2.0 * PI * seg as f32 / segments as f32;
-        Vec3::new(
-            theta.sin() * phi.cos(),
-            theta.cos(),
-            -theta.sin() * phi.sin(),
-        )
-    };
-    let mut rows = Vec::new();
-    for ring in 0..=rings {
-        let row: Vec<u32> = (0..=segments)
-            .map(|seg| {
-                let p = point(ring, seg);
-                b.push_vertex(ssgi::scene::Vertex::new(p, p, [0.0, 0.0]))
-            })
-            .collect();
-        rows.push(row);
-    }
-    for ring in 0..rings as usize {
-        for seg in 0..segments as usize {
-            let (a, b0) = (rows[ring][seg], rows[ring][seg + 1]);
-            let (c, d) = (rows[ring + 1][seg], rows[ring + 1][seg + 1]);
-            if ring > 0 {
-                b.push_triangle(m, [a, c, b0]);
-            }
-            if ring + 1 < rings as usize {
-                b.push_triangle(m, [b0, c, d]);
-            }
-        }
-    }
     let mut scene = common::open_plane();
     scene.name = "coarse-sphere".into();
-    scene.mesh = b.build();
+    scene.mesh = ssgi::scene::uv_sphere(6, 4);
     scene.camera = Camera::new(Vec3::new(0.4, 0.9, 3.5), Vec3::ZERO, 45.0, 0.1, 20.0);
     scene
 }

@@ -43,7 +43,7 @@ pub use obj::{degeneracy, load_obj, Degeneracy, SLIVER_RELATIVE_HEIGHT};
 pub use object::{euler_deg, posed_mesh, DynamicObject, ObjectKey};
 pub use path::{CameraPath, Keyframe, LightPath, Orbit};
 pub use procedural::{
-    box_room, cornell_box, cornell_camera, cornell_light, pyramids, sphere, tilted_quad,
+    box_room, cornell_box, cornell_camera, cornell_light, pyramids, sphere, tilted_quad, uv_sphere,
     CORNELL_GREEN, CORNELL_RED, CORNELL_WHITE,
 };
 pub use raycast::{occlusion_span, Hit, OCCLUSION_RELATIVE_OFFSET, OCCLUSION_ULPS};

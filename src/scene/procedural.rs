@@ -90,11 +90,18 @@ const SPHERE_RINGS: u32 = 16;
 /// material (MTL's default Kd 0.8), wound counter-clockwise seen from outside. The caps are
 /// triangle fans, so no triangle has zero area.
 pub fn sphere() -> Mesh {
+    uv_sphere(SPHERE_SEGMENTS, SPHERE_RINGS)
+}
+
+/// [`sphere`] with `segments` around and `rings` from pole to pole (a coarse one puts smooth
+/// normals far from their facets' planes).
+pub fn uv_sphere(segments: u32, rings: u32) -> Mesh {
+    let (segments, rings) = (segments.max(3), rings.max(2));
     let mut b = MeshBuilder::new();
     let m = b.add_material(Material::colour("sphere", Material::DEFAULT_DIFFUSE));
     let point = |ring: u32, seg: u32| {
-        let theta = std::f32::consts::PI * ring as f32 / SPHERE_RINGS as f32;
-        let phi = std::f32::consts::TAU * seg as f32 / SPHERE_SEGMENTS as f32;
+        let theta = std::f32::consts::PI * ring as f32 / rings as f32;
+        let phi = std::f32::consts::TAU * seg as f32 / segments as f32;
         Vec3::new(
             theta.sin() * phi.cos(),
             theta.cos(),
@@ -103,27 +110,27 @@ pub fn sphere() -> Mesh {
     };
     let mut index = |p: Vec3, u: f32, v: f32| b.push_vertex(super::mesh::Vertex::new(p, p, [u, v]));
     let mut rows = Vec::new();
-    for ring in 0..=SPHERE_RINGS {
-        let row: Vec<u32> = (0..=SPHERE_SEGMENTS)
+    for ring in 0..=rings {
+        let row: Vec<u32> = (0..=segments)
             .map(|seg| {
                 index(
                     point(ring, seg),
-                    seg as f32 / SPHERE_SEGMENTS as f32,
-                    ring as f32 / SPHERE_RINGS as f32,
+                    seg as f32 / segments as f32,
+                    ring as f32 / rings as f32,
                 )
             })
             .collect();
         rows.push(row);
     }
-    for ring in 0..SPHERE_RINGS as usize {
-        for seg in 0..SPHERE_SEGMENTS as usize {
+    for ring in 0..rings as usize {
+        for seg in 0..segments as usize {
             let (a, b0) = (rows[ring][seg], rows[ring][seg + 1]);
             let (c, d) = (rows[ring + 1][seg], rows[ring + 1][seg + 1]);
             // Counter-clockwise from outside: phi grows towards -z, theta downwards.
             if ring > 0 {
                 b.push_triangle(m, [a, c, b0]);
             }
-            if ring + 1 < SPHERE_RINGS as usize {
+            if ring + 1 < rings as usize {
                 b.push_triangle(m, [b0, c, d]);
             }
         }

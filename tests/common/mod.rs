@@ -229,6 +229,12 @@ pub fn read(r: &mut Renderer, t: Target) -> ImageData {
 /// A 400 m square ground plane seen from 3 m up, lit by the spot straight down from 10 m
 /// above: nothing occludes anything.
 pub fn open_plane() -> Scene {
+    open_plane_with_normals(glam::Vec3::Y)
+}
+
+/// [`open_plane`] with every vertex normal `normal` (a plane whose shading normals lean off its
+/// geometric one).
+pub fn open_plane_with_normals(normal: glam::Vec3) -> Scene {
     use glam::Vec3;
     use ssgi::scene::{Material, MeshBuilder, SpotLight};
     let mut b = MeshBuilder::new();
@@ -242,7 +248,7 @@ pub fn open_plane() -> Scene {
             Vec3::new(h, 0.0, h),
             Vec3::new(h, 0.0, -h),
         ],
-        Vec3::Y,
+        normal,
     );
     let mut scene = ssgi::scene::cornell_box();
     scene.name = "open-plane".into();
