@@ -9,8 +9,12 @@
 //! renderer's numerical audit) create pipelines from them.
 //!
 //! Permutations: a line `// @permutation <suffix>: NAME=VALUE NAME2` in a shader compiles an
-//! extra module `<STEM>_<EXT>_<SUFFIX>` with those `#define`s. Without such lines one module is
+//! extra module `<STEM>_<EXT>_<SUFFIX>` with those `#define`s (a value `{HISTORY_FORMATS}`: one
+//! module per history format in use, see `permutations`). Without such lines one module is
 //! compiled with no defines.
+//!
+//! Storage images: naga's format of each is kept (`storage_formats`), so the passes can check
+//! it against the image they bind (`passes::decl`).
 
 #[path = "build/block_layout.rs"]
 mod block_layout;
@@ -51,24 +55,57 @@ struct Permutation {
     defines: Vec<(String, Option<String>)>,
 }
 
-fn permutations(source: &str) -> Vec<Permutation> {
+/// A permutation line's value `{HISTORY_FORMATS}` stands for each history format the shared
+/// constants declare (their `*_HISTORY_FORMAT` values, each once): the line becomes one
+/// permutation per combination, its suffix extended by the values chosen (`2_rgba32f_rgba16f`).
+/// So a pass that writes several effects' histories (reproject.comp's lanes) is compiled for
+/// exactly the formats in use, and changing one effect's format stays one line.
+const HISTORY_FORMATS: &str = "{HISTORY_FORMATS}";
+
+fn permutations(source: &str, constants: &[(String, Constant)]) -> Vec<Permutation> {
+    let mut history_formats: Vec<String> = Vec::new();
+    for (name, value) in constants {
+        if let (true, Constant::Format(glsl, _)) = (name.ends_with("_HISTORY_FORMAT"), value) {
+            if !history_formats.iter().any(|f| f == glsl) {
+                history_formats.push(glsl.to_string());
+            }
+        }
+    }
     let mut out = Vec::new();
     for line in source.lines() {
         let Some(rest) = line.trim().strip_prefix("// @permutation ") else {
             continue;
         };
         let (suffix, defs) = rest.split_once(':').unwrap_or((rest, ""));
-        let defines = defs
-            .split_whitespace()
-            .map(|d| match d.split_once('=') {
+        let mut expanded = vec![Permutation {
+            suffix: suffix.trim().to_string(),
+            defines: Vec::new(),
+        }];
+        for d in defs.split_whitespace() {
+            let (name, value) = match d.split_once('=') {
                 Some((k, v)) => (k.to_string(), Some(v.to_string())),
                 None => (d.to_string(), None),
-            })
-            .collect();
-        out.push(Permutation {
-            suffix: suffix.trim().to_string(),
-            defines,
-        });
+            };
+            if value.as_deref() != Some(HISTORY_FORMATS) {
+                for p in &mut expanded {
+                    p.defines.push((name.clone(), value.clone()));
+                }
+                continue;
+            }
+            let mut next = Vec::new();
+            for p in &expanded {
+                for f in &history_formats {
+                    let mut defines = p.defines.clone();
+                    defines.push((name.clone(), Some(f.clone())));
+                    next.push(Permutation {
+                        suffix: format!("{}_{f}", p.suffix),
+                        defines,
+                    });
+                }
+            }
+            expanded = next;
+        }
+        out.extend(expanded);
     }
     if out.is_empty() {
         out.push(Permutation {
@@ -213,6 +250,7 @@ fn reflect(
         .update(module.to_ctx())
         .map_err(|e| format!("{}: layout: {e}", file.display()))?;
     let mut bindings = Vec::new();
+    let mut storage_formats = Vec::new();
     let mut push_constant_bytes = 0u32;
     for (_, var) in module.global_variables.iter() {
         if var.space == naga::AddressSpace::Immediate {
@@ -230,8 +268,24 @@ fn reflect(
             _ => 1,
         };
         bindings.push((rb.group, rb.binding, kind, count));
+        if let naga::TypeInner::Image {
+            class: naga::ImageClass::Storage { format, .. },
+            ..
+        } = module.types[var.ty].inner
+        {
+            let vk = vk_storage_format(format).ok_or_else(|| {
+                format!(
+                    "{}: binding {}: storage format {format:?} has no Vulkan format in \
+                     build.rs's vk_storage_format",
+                    file.display(),
+                    rb.binding
+                )
+            })?;
+            storage_formats.push((rb.group, rb.binding, vk));
+        }
     }
     bindings.sort();
+    storage_formats.sort();
     let file_name = file.file_name().unwrap().to_string_lossy();
     // The module's name: its path under shaders/ (`ao/ssao_full.comp` for an effect's pass).
     let source_name = file
@@ -255,6 +309,13 @@ fn reflect(
             "        ReflectedBinding {{ set: {set}, binding: {binding}, kind: DescriptorKind::{kind}, count: {count} }},"
         );
     }
+    let _ = writeln!(out, "    ],\n    storage_formats: &[");
+    for (set, binding, format) in storage_formats {
+        let _ = writeln!(
+            out,
+            "        StorageImageFormat {{ set: {set}, binding: {binding}, format: ash::vk::Format::{format} }},"
+        );
+    }
     let _ = writeln!(
         out,
         "    ],\n    push_constant_bytes: {push_constant_bytes},\n    workgroup_size: [{}, {}, {}],\n    blocks: {},\n}};\n",
@@ -271,11 +332,54 @@ fn reflect(
 /// `pub const NAME: u32 = VALUE;` for every `#define NAME VALUE[u]` line of the shared
 /// constants header (shaders/include/shared_constants.glsl): the constants both sides use,
 /// defined once. Any other `#define` there (but its include guard) fails the build.
-fn shared_constants(header: &Path) -> String {
+/// A shared constant's value.
+enum Constant {
+    Uint(u32),
+    /// A storage image format: its GLSL layout qualifier and the Vulkan format's name.
+    Format(String, &'static str),
+}
+
+/// The Vulkan format of a GLSL storage-image layout qualifier (those ssgi uses).
+fn vk_format_of_glsl(glsl: &str) -> Option<&'static str> {
+    Some(match glsl {
+        "rgba32f" => "R32G32B32A32_SFLOAT",
+        "rgba16f" => "R16G16B16A16_SFLOAT",
+        "rg32f" => "R32G32_SFLOAT",
+        "rg16f" => "R16G16_SFLOAT",
+        "r32f" => "R32_SFLOAT",
+        "r16f" => "R16_SFLOAT",
+        "rgba8" => "R8G8B8A8_UNORM",
+        "r32ui" => "R32_UINT",
+        "rgba32ui" => "R32G32B32A32_UINT",
+        "r11f_g11f_b10f" => "B10G11R11_UFLOAT_PACK32",
+        _ => return None,
+    })
+}
+
+/// The Vulkan format naga reflected for a storage image (the same set as `vk_format_of_glsl`).
+fn vk_storage_format(f: naga::StorageFormat) -> Option<&'static str> {
+    use naga::StorageFormat as S;
+    vk_format_of_glsl(match f {
+        S::Rgba32Float => "rgba32f",
+        S::Rgba16Float => "rgba16f",
+        S::Rg32Float => "rg32f",
+        S::Rg16Float => "rg16f",
+        S::R32Float => "r32f",
+        S::R16Float => "r16f",
+        S::Rgba8Unorm => "rgba8",
+        S::R32Uint => "r32ui",
+        S::Rgba32Uint => "rgba32ui",
+        S::Rg11b10Ufloat => "r11f_g11f_b10f",
+        _ => return None,
+    })
+}
+
+/// The `#define NAME VALUE` lines of shaders/include/shared_constants.glsl: an unsigned
+/// integer (`64u`) or a storage image format (`rgba32f`); anything else fails the build.
+fn read_shared_constants(header: &Path) -> Vec<(String, Constant)> {
     let text =
         std::fs::read_to_string(header).unwrap_or_else(|e| panic!("{}: {e}", header.display()));
-    let mut out =
-        String::from("// The shared constants (shaders/include/shared_constants.glsl).\n");
+    let mut out = Vec::new();
     for (n, line) in text.lines().enumerate() {
         let Some(rest) = line.trim().strip_prefix("#define ") else {
             continue;
@@ -285,18 +389,34 @@ fn shared_constants(header: &Path) -> String {
         if name == "SHARED_CONSTANTS_GLSL" {
             continue;
         }
-        let value = words
-            .next()
-            .map(|v| v.trim_end_matches('u'))
-            .and_then(|v| v.parse::<u32>().ok())
-            .unwrap_or_else(|| {
-                panic!(
-                    "{}:{}: a shared constant is `#define NAME VALUEu` (an unsigned integer)",
-                    header.display(),
-                    n + 1
-                )
-            });
-        let _ = writeln!(out, "pub const {name}: u32 = {value};");
+        let word = words.next().unwrap_or_default();
+        let value = match (word.strip_suffix('u'), vk_format_of_glsl(word)) {
+            (Some(v), _) if v.parse::<u32>().is_ok() => Constant::Uint(v.parse().unwrap()),
+            (_, Some(vk)) => Constant::Format(word.to_string(), vk),
+            _ => panic!(
+                "{}:{}: a shared constant is `#define NAME VALUEu` (an unsigned integer) or \
+                 `#define NAME FORMAT` (a storage format build.rs's vk_format_of_glsl knows)",
+                header.display(),
+                n + 1
+            ),
+        };
+        out.push((name.to_string(), value));
+    }
+    out
+}
+
+/// The Rust side of the shared constants: `pub const NAME: u32` or `: ash::vk::Format`.
+fn shared_constants(constants: &[(String, Constant)]) -> String {
+    let mut out =
+        String::from("// The shared constants (shaders/include/shared_constants.glsl).\n");
+    for (name, value) in constants {
+        let _ = match value {
+            Constant::Uint(v) => writeln!(out, "pub const {name}: u32 = {v};"),
+            Constant::Format(glsl, vk) => writeln!(
+                out,
+                "/// `{glsl}` in the shaders.\npub const {name}: ash::vk::Format = ash::vk::Format::{vk};"
+            ),
+        };
     }
     out
 }
@@ -355,6 +475,7 @@ fn main() {
         }
     }
 
+    let constants = read_shared_constants(&include_dir.join("shared_constants.glsl"));
     let compiler = glslang::Compiler::acquire().expect("glslang compiler");
     let mut generated = String::from("// Generated by build.rs from shaders/: do not edit.\n\n");
     let mut all = Vec::new();
@@ -372,7 +493,7 @@ fn main() {
             _ => glslang::ShaderStage::Compute,
         };
         let stem = file.file_stem().unwrap().to_str().unwrap();
-        for perm in permutations(&source) {
+        for perm in permutations(&source, &constants) {
             let mut ident = format!("{}_{}", stem, ext).to_uppercase().replace('-', "_");
             if !perm.suffix.is_empty() {
                 ident = format!("{ident}_{}", perm.suffix.to_uppercase());
@@ -415,8 +536,6 @@ fn main() {
     }
     let _ = writeln!(generated, "];\n");
     generated.push_str(&block_layout::generate(&shared_blocks));
-    generated.push_str(&shared_constants(
-        &include_dir.join("shared_constants.glsl"),
-    ));
+    generated.push_str(&shared_constants(&constants));
     std::fs::write(out_dir.join("shaders.rs"), generated).unwrap();
 }

@@ -8,13 +8,16 @@
 //
 // LANES (1-3) is the number of temporal effects the renderer was built with, in registry
 // order; a lane whose effect does not reproject this frame has `active` 0 and is left alone.
-// @permutation 1: LANES=1
-// @permutation 2: LANES=2
-// @permutation 3: LANES=3
+// Lane k's history has its effect's format, LANE_HISTORY_FORMAT_k: one permutation per
+// combination of the history formats in use (build.rs's {HISTORY_FORMATS}).
+// @permutation 1: LANES=1 LANE_HISTORY_FORMAT_0={HISTORY_FORMATS}
+// @permutation 2: LANES=2 LANE_HISTORY_FORMAT_0={HISTORY_FORMATS} LANE_HISTORY_FORMAT_1={HISTORY_FORMATS}
+// @permutation 3: LANES=3 LANE_HISTORY_FORMAT_0={HISTORY_FORMATS} LANE_HISTORY_FORMAT_1={HISTORY_FORMATS} LANE_HISTORY_FORMAT_2={HISTORY_FORMATS}
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_samplerless_texture_functions : require
 #include "frame.glsl"
 #include "temporal.glsl"
+#include "shared_constants.glsl"
 #define COUNTERS_LANES
 #include "counters.glsl"
 
@@ -31,15 +34,15 @@ layout(set = 1, binding = 4) uniform texture2D g_motion;      // world-space mot
 // registration and this frame's (lane_state).
 #define LANE_RESOURCES(k)                                                                      \
     layout(set = 1, binding = 8 * k + 8) uniform texture2D history_prev_##k;                   \
-    layout(set = 1, binding = 8 * k + 9, rgba32f) uniform writeonly image2D history_cur_##k;   \
-    layout(set = 1, binding = 8 * k + 10, r32ui) uniform writeonly uimage2D state_out_##k;     \
+    layout(set = 1, binding = 8 * k + 9, LANE_HISTORY_FORMAT_##k) uniform writeonly image2D history_cur_##k; \
+    layout(set = 1, binding = 8 * k + 10, STATE_FORMAT) uniform writeonly uimage2D state_out_##k; \
     layout(set = 1, binding = 8 * k + 11, std430) buffer Counters##k {                         \
         COUNTERS_MEMBERS                                                                       \
     } counters_##k;                                                                            \
     layout(set = 1, binding = 8 * k + 12) uniform texture2D moments_prev_##k;                  \
-    layout(set = 1, binding = 8 * k + 13, rgba32f) uniform writeonly image2D moments_cur_##k;  \
+    layout(set = 1, binding = 8 * k + 13, MOMENTS_FORMAT) uniform writeonly image2D moments_cur_##k; \
     layout(set = 1, binding = 8 * k + 14) uniform texture2D registration_prev_##k;             \
-    layout(set = 1, binding = 8 * k + 15, rgba32f) uniform writeonly image2D registration_cur_##k;
+    layout(set = 1, binding = 8 * k + 15, REGISTRATION_FORMAT) uniform writeonly image2D registration_cur_##k;
 
 LANE_RESOURCES(0)
 #if LANES > 1
@@ -143,7 +146,6 @@ shared uint group_list_base[LANES];
 
 // Where a moving object changes a lane's value: MOVED_* of shared_constants.glsl, tested
 // against the box around every object that moved, at its last and its new place.
-#include "shared_constants.glsl"
 
 // Distance from p to the moved box (0 inside).
 float moved_distance(vec3 p) {
@@ -301,7 +303,7 @@ vec4 registration_tap(texture2D registration_prev, ivec2 t, out float before) {
     return vec4(texelFetch(prev_position, t, 0).xyz, 1.0);
 }
 
-// Point resampling (--history-resample point; frame.history_resample 0): where all four taps
+// Point resampling (--history-resample point; HISTORY_RESAMPLE_POINT): where all four taps
 // hold the surface, the history is read from the one whose carried registration point,
 // projected with this frame's camera, lands nearest the pixel's centre (value, counts and point
 // together). The bilinear blend (the default) mixes neighbouring values again every frame,
@@ -312,7 +314,7 @@ vec4 registration_tap(texture2D registration_prev, ivec2 t, out float before) {
 // 0.147), and since counts no longer borrow from neighbours here, more pixels accumulate and
 // the frame costs twice as much (docs/results/DECISIONS.md, orbit-resample).
 Reprojected pick_registered(Reprojected r, texture2D registration_prev) {
-    if (!r.bilinear || frame.history_resample != 0u) return r;
+    if (!r.bilinear || frame.history_resample != HISTORY_RESAMPLE_POINT) return r;
     vec2 centre = vec2(gl_GlobalInvocationID.xy) + 0.5;
     float best = 1.0e30;
     for (int k = 0; k < 4; ++k) {
@@ -390,7 +392,7 @@ vec4 resample_registration(Reprojected r, texture2D registration_prev, out vec4 
 // accumulating: a change is still going on there.
 bool converged(float patterns, float in_mean) {
     float limit = float(frame.rotation_limit);
-    return patterns >= limit && (frame.accumulate_mode != 3u || in_mean >= limit);
+    return patterns >= limit && (frame.accumulate_mode != ACCUMULATE_GATED || in_mean >= limit);
 }
 
 bool in_rect(ivec2 pixel, uvec4 rect) {

@@ -33,6 +33,14 @@ pub struct ReflectedBinding {
     pub count: u32,
 }
 
+/// The format a module's storage image binding declares.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct StorageImageFormat {
+    pub set: u32,
+    pub binding: u32,
+    pub format: ash::vk::Format,
+}
+
 /// A compiled module and what naga reflected from it.
 #[derive(Debug)]
 pub struct ShaderModuleInfo {
@@ -46,6 +54,9 @@ pub struct ShaderModuleInfo {
     pub spirv: &'static [u8],
     /// Sorted by (set, binding).
     pub bindings: &'static [ReflectedBinding],
+    /// The format of each storage image binding (the GLSL layout qualifier), sorted by (set,
+    /// binding): the image bound there must have it.
+    pub storage_formats: &'static [StorageImageFormat],
     pub push_constant_bytes: u32,
     /// Zero for graphics stages.
     pub workgroup_size: [u32; 3],
@@ -61,6 +72,15 @@ impl ShaderModuleInfo {
         } else {
             format!("{} [{}]", self.name, self.permutation)
         }
+    }
+
+    /// The format the module declares for the storage image at (`set`, `binding`); `None` if
+    /// it declares no storage image there.
+    pub fn storage_format(&self, set: u32, binding: u32) -> Option<ash::vk::Format> {
+        self.storage_formats
+            .iter()
+            .find(|f| f.set == set && f.binding == binding)
+            .map(|f| f.format)
     }
 }
 

@@ -1,6 +1,8 @@
 //! Every pass's declared descriptor layout equals what naga reflected from its shaders, and
 //! every compiled shader module belongs to some pass.
 
+mod common;
+
 use ssgi::renderer::{all_layouts, all_passes};
 use ssgi::shaders::{DescriptorKind, ReflectedBinding, ALL};
 use ssgi::vk::pipeline::check_bindings;
@@ -239,4 +241,98 @@ fn two_shaders_declaring_a_block_differently_fail_the_build() {
     moved.members[1].offset = 8;
     moved.size = 12;
     assert!(merge(&mut all, vec![moved], "shaders/d.comp").is_err());
+}
+
+// ------------------------------------------------------------- storage image formats
+
+/// The module of `name` (its first permutation).
+fn module_named(name: &str) -> &'static ssgi::shaders::ShaderModuleInfo {
+    ALL.iter()
+        .copied()
+        .find(|m| m.name == name)
+        .unwrap_or_else(|| panic!("no module {name}"))
+}
+
+/// Every storage image binding's format is reflected, and a pass's temporal images are
+/// declared with the formats their images are made with (shared_constants.glsl).
+#[test]
+fn storage_formats_are_reflected_from_the_shaders() {
+    use ssgi::shaders::{AO_HISTORY_FORMAT, MOMENTS_FORMAT, STATE_FORMAT};
+    for m in ALL.iter().chain(PROBES) {
+        let storage = m
+            .bindings
+            .iter()
+            .filter(|b| b.kind == DescriptorKind::StorageImage)
+            .count();
+        assert_eq!(m.storage_formats.len(), storage, "{}", m.label());
+    }
+    let accumulate = module_named("ao/ssao_accumulate.comp");
+    assert_eq!(accumulate.storage_format(1, 3), Some(STATE_FORMAT));
+    assert_eq!(accumulate.storage_format(1, 4), Some(AO_HISTORY_FORMAT));
+    assert_eq!(accumulate.storage_format(1, 6), Some(MOMENTS_FORMAT));
+    assert_eq!(accumulate.storage_format(1, 0), None, "a sampled image");
+}
+
+/// The planted defect: the AO history bound as an image of another format than the shader's
+/// layout qualifier is refused where the pass writes its descriptor sets, naming the pass, the
+/// binding, both formats and the image; the same binding with the declared format is accepted.
+/// (Every configuration of tests/descriptor_pool.rs binds all its sets through the same check.)
+#[test]
+fn a_storage_image_of_another_format_than_its_shader_is_refused() {
+    use ash::vk;
+    use ssgi::passes::decl::{self, Bind, Resolve, Slot, Use};
+    use ssgi::shaders::AO_HISTORY_FORMAT;
+    use ssgi::vk::{Buffer, Image, ImageDesc};
+
+    struct One<'a>(&'a Image);
+    impl Resolve for One<'_> {
+        fn image(&self, _: Slot, _: usize) -> Option<&Image> {
+            Some(self.0)
+        }
+        fn buffer(&self, _: Slot) -> Option<&Buffer> {
+            None
+        }
+    }
+    let other = if AO_HISTORY_FORMAT == vk::Format::R16G16B16A16_SFLOAT {
+        vk::Format::R32G32B32A32_SFLOAT
+    } else {
+        vk::Format::R16G16B16A16_SFLOAT
+    };
+    let accumulate = module_named("ao/ssao_accumulate.comp");
+    let binds = [Bind::new(4, Slot::History, Use::StorageReadWrite)];
+    let ctx = common::context();
+    let image = |name: &str, format| {
+        Image::new(
+            &ctx,
+            name,
+            ImageDesc {
+                width: 4,
+                height: 4,
+                format,
+                usage: vk::ImageUsageFlags::STORAGE,
+            },
+        )
+        .unwrap()
+    };
+    let planted = image("planted.history", other);
+    let err = decl::writes("ssao", accumulate, &binds, &One(&planted), 0)
+        .err()
+        .expect("a history of another format must be refused")
+        .to_string();
+    for part in [
+        "ssao",
+        "binding 4",
+        "planted.history",
+        &format!("{other:?}"),
+        &format!("{AO_HISTORY_FORMAT:?}"),
+    ] {
+        assert!(err.contains(part), "{err} lacks {part}");
+    }
+    let right = image("ao.history", AO_HISTORY_FORMAT);
+    assert!(decl::writes("ssao", accumulate, &binds, &One(&right), 0).is_ok());
+    // A storage image bound where the shader declares none is refused too.
+    let nowhere = [Bind::new(0, Slot::GPosition, Use::StorageRead)];
+    assert!(decl::writes("ssao", accumulate, &nowhere, &One(&right), 0).is_err());
+    drop((planted, right));
+    common::assert_clean(&ctx);
 }

@@ -121,11 +121,6 @@ float ao_thesis_taps(ivec2 pixel, vec3 p, vec3 n, uint pattern, uint first, uint
     return sum;
 }
 
-float ao_thesis(ivec2 pixel, vec3 p, vec3 n, uint pattern) {
-    uint taps = ao.directions * ao.steps;
-    return ao_thesis_taps(pixel, p, n, pattern, 0u, taps) / float(taps);
-}
-
 // Mittring 2007: points in a sphere of the world radius around p; a point is occluded when
 // the visible surface at its screen position is in front of it (within the radius). The
 // points of patterns 0, 1, ... fill the ball uniformly (patterns.glsl), so the radius is not
@@ -162,10 +157,6 @@ float ao_crytek_taps(ivec2 pixel, vec3 p, uint pattern, uint first, uint end) {
     return occluded;
 }
 
-float ao_crytek(ivec2 pixel, vec3 p, uint pattern) {
-    return ao_crytek_taps(pixel, p, pattern, 0u, ao.samples) / float(ao.samples);
-}
-
 // Szentandrasi section 3.1: K points p + r omega in the hemisphere around the normal (Halton
 // directions, bases 2 and 5, and random steps r in [0, r_max)), back-projected; the occlusion
 // is the fraction that lie behind the visible surface (hemisphere.glsl). Pattern j takes
@@ -181,41 +172,40 @@ float ao_szentandrasi_taps(ivec2 pixel, vec3 p, vec3 n, uint pattern, uint first
     return occluded;
 }
 
-float ao_szentandrasi(ivec2 pixel, vec3 p, vec3 n, uint pattern) {
-    uint count = ao.samples;
-    return ao_szentandrasi_taps(pixel, p, n, pattern, 0u, count) / float(max(count, 1u));
-}
-
 #include "gtao.glsl"
 
-// Occlusion averaged over `patterns` consecutive patterns starting at `first` (a whole number:
-// pattern indices arrive as floats from the history's count channel, exact below 2^24).
-// Taps one pattern of the configured estimator reads (the work counters' evaluations).
-// (GTAO's unit is a slice: its two horizon searches.)
+// The estimator: a specialization constant (AoEstimator::code, constant 0 of the estimating
+// passes), so a pipeline holds its own estimator's code and no other. Functions read it through
+// a variable: glslang would turn a comparison of it into OpSpecConstantOp, which naga's
+// reflection cannot read; the driver folds the branches once it is specialized.
+layout(constant_id = 0) const uint AO_ESTIMATOR = AO_THESIS;
+
+// Taps one pattern of the estimator reads (the work counters' evaluations; GTAO's unit is a
+// slice: its two horizon searches).
 uint ao_taps() {
-    if (ao.estimator == AO_THESIS) return ao.directions * ao.steps;
-    if (ao.estimator == AO_GTAO) return max(ao.directions, 1u);
+    uint estimator = AO_ESTIMATOR;
+    if (estimator == AO_THESIS) return ao.directions * ao.steps;
+    if (estimator == AO_GTAO) return max(ao.directions, 1u);
     return ao.samples;
 }
 
-// The sum of taps [first, end) of pattern `pattern` of the configured estimator: over every
-// tap (ao_taps()), divided by their count, that pattern's occlusion.
+// The sum of taps [first, end) of pattern `pattern` of the estimator: over every tap
+// (ao_taps()), divided by their count, that pattern's occlusion.
 float ao_taps_sum(ivec2 pixel, vec3 p, vec3 n, uint pattern, uint first, uint end) {
-    if (ao.estimator == AO_CRYTEK) return ao_crytek_taps(pixel, p, pattern, first, end);
-    if (ao.estimator == AO_SZENTANDRASI) return ao_szentandrasi_taps(pixel, p, n, pattern, first, end);
-    if (ao.estimator == AO_GTAO) return ao_gtao_taps(pixel, p, n, pattern, first, end);
+    uint estimator = AO_ESTIMATOR;
+    if (estimator == AO_CRYTEK) return ao_crytek_taps(pixel, p, pattern, first, end);
+    if (estimator == AO_SZENTANDRASI) return ao_szentandrasi_taps(pixel, p, n, pattern, first, end);
+    if (estimator == AO_GTAO) return ao_gtao_taps(pixel, p, n, pattern, first, end);
     return ao_thesis_taps(pixel, p, n, pattern, first, end);
 }
 
+// Occlusion averaged over `patterns` consecutive patterns starting at `first` (a whole number:
+// pattern indices arrive as floats from the history's count channel, exact below 2^24).
 float ao_estimate(ivec2 pixel, vec3 p, vec3 n, float first, uint patterns) {
+    uint taps = ao_taps();
     float sum = 0.0;
-    for (uint j = 0u; j < patterns; ++j) {
-        uint pattern = uint(first) + j;
-        if (ao.estimator == AO_CRYTEK) sum += ao_crytek(pixel, p, pattern);
-        else if (ao.estimator == AO_SZENTANDRASI) sum += ao_szentandrasi(pixel, p, n, pattern);
-        else if (ao.estimator == AO_GTAO) sum += ao_gtao(pixel, p, n, pattern);
-        else sum += ao_thesis(pixel, p, n, pattern);
-    }
+    for (uint j = 0u; j < patterns; ++j)
+        sum += ao_taps_sum(pixel, p, n, uint(first) + j, 0u, taps) / float(taps);
     return sum / float(max(patterns, 1u));
 }
 

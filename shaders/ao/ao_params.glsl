@@ -13,7 +13,6 @@ layout(set = 1, binding = 15, std430) readonly buffer Ao {
     uint steps;          // thesis estimator: steps per direction; GTAO: steps per side
     uint samples;        // crytek and szentandrasi estimators: samples
     uint patterns;       // patterns per evaluation (1, or many for references)
-    uint estimator;      // 0 thesis, 1 crytek, 2 szentandrasi, 3 gtao
     uint position_mips;  // far taps read point-sampled position levels up to this (0 = off)
     uint pattern_base;   // first pattern without reuse (0, or an independent range for references)
 } ao;

@@ -198,9 +198,4 @@ float ao_gtao_taps(ivec2 pixel, vec3 p, vec3 n, uint pattern, uint first, uint e
     return sum;
 }
 
-float ao_gtao(ivec2 pixel, vec3 p, vec3 n, uint pattern) {
-    uint slices = max(ao.directions, 1u);
-    return ao_gtao_taps(pixel, p, n, pattern, 0u, slices) / float(slices);
-}
-
 #endif // GTAO_GLSL

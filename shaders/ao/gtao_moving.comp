@@ -10,6 +10,7 @@
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_samplerless_texture_functions : require
 #include "frame.glsl"
+#include "shared_constants.glsl"
 #include "temporal.glsl"
 #define COUNTERS_BINDING 5
 #include "counters.glsl"
@@ -21,9 +22,9 @@ layout(local_size_x = 8, local_size_y = 8) in;
 layout(set = 1, binding = 0) uniform texture2D g_position;
 layout(set = 1, binding = 1) uniform texture2D g_normal;
 layout(set = 1, binding = 2) uniform texture2D raw;
-layout(set = 1, binding = 3, r32ui) uniform readonly uimage2D state_in;
-layout(set = 1, binding = 4, rgba32f) uniform image2D history;
-layout(set = 1, binding = 6, rgba32f) uniform image2D moments;
+layout(set = 1, binding = 3, STATE_FORMAT) uniform readonly uimage2D state_in;
+layout(set = 1, binding = 4, AO_HISTORY_FORMAT) uniform image2D history;
+layout(set = 1, binding = 6, MOMENTS_FORMAT) uniform image2D moments;
 
 // Whether `split` estimated a pattern at `q` this frame (its `raw` holds this frame's value).
 bool estimated(ivec2 q) {

@@ -14,6 +14,7 @@
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_samplerless_texture_functions : require
 #include "frame.glsl"
+#include "shared_constants.glsl"
 #include "temporal.glsl"
 #define COUNTERS_BINDING 5
 #include "counters.glsl"
@@ -26,14 +27,14 @@ layout(set = 1, binding = 2) uniform texture2D random_vectors;
 layout(set = 1, binding = 7) uniform texture2D g_position_1;
 layout(set = 1, binding = 8) uniform texture2D g_position_2;
 layout(set = 1, binding = 9) uniform texture2D g_position_3;
-layout(set = 1, binding = 3, r32ui) uniform readonly uimage2D state_in;
+layout(set = 1, binding = 3, STATE_FORMAT) uniform readonly uimage2D state_in;
 #ifdef SPLIT
-layout(set = 1, binding = 4, rgba32f) uniform readonly image2D history;
+layout(set = 1, binding = 4, AO_HISTORY_FORMAT) uniform readonly image2D history;
 // This frame's fresh visibility of each listed pixel, for gtao_moving.comp.
 layout(set = 1, binding = 10, rgba16f) uniform writeonly image2D raw;
 #else
-layout(set = 1, binding = 4, rgba32f) uniform image2D history;
-layout(set = 1, binding = 6, rgba32f) uniform image2D moments;
+layout(set = 1, binding = 4, AO_HISTORY_FORMAT) uniform image2D history;
+layout(set = 1, binding = 6, MOMENTS_FORMAT) uniform image2D moments;
 #endif
 
 #include "ao.glsl"

@@ -10,6 +10,7 @@
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_samplerless_texture_functions : require
 #include "frame.glsl"
+#include "shared_constants.glsl"
 #include "temporal.glsl"
 #define COUNTERS_BINDING 5
 #include "counters.glsl"
@@ -18,9 +19,9 @@
 layout(set = 1, binding = 0) uniform texture2D g_position;
 layout(set = 1, binding = 1) uniform texture2D g_normal;
 layout(set = 1, binding = 2) uniform texture2D shadow_depth;
-layout(set = 1, binding = 3, r32ui) uniform readonly uimage2D state_in;
-layout(set = 1, binding = 4, rgba32f) uniform image2D history;
-layout(set = 1, binding = 6, rgba32f) uniform image2D moments;
+layout(set = 1, binding = 3, STATE_FORMAT) uniform readonly uimage2D state_in;
+layout(set = 1, binding = 4, SHADOW_HISTORY_FORMAT) uniform image2D history;
+layout(set = 1, binding = 6, MOMENTS_FORMAT) uniform image2D moments;
 
 #include "shadow.glsl"
 

@@ -37,14 +37,14 @@ layout(set = 0, binding = 0, std430) readonly buffer Frame {
     float pcf_radius;          // PCF kernel radius [texels]
     uint pcf_kernel;           // 0 grid, 1 rotated disc
     uint pcf_count;            // grid side, or disc samples
-    uint accumulate_mode;      // 0 confidence (eqs 4-5), 1 EMA, 2 capped mean, 3 gated mean
+    uint accumulate_mode;      // ACCUMULATE_* (shared_constants.glsl)
     float accumulate_param;    // confidence bias / EMA alpha / mean cap / gate [sigmas]
     float epsilon;             // eq 3 threshold: texel footprints (relative) or world units
     uint epsilon_absolute;     // 0 relative, 1 absolute
     uint camera_static;        // 1 when prev_view_proj equals view_proj exactly (CPU test)
     uint indirect_input;       // test input: 0 the gather, 1 world position (IndirectInput::Ramp), 2 + i NaN at pixel index i (Renderer::plant_nan)
     vec3 prev_camera_pos;      // last frame's eye: the history's footprint on each surface
-    uint history_resample;     // moving camera: 0 best-registered tap, 1 bilinear blend
+    uint history_resample;     // moving camera: HISTORY_RESAMPLE_* (shared_constants.glsl)
     vec4 moved_light_rect;     // the moved box's footprint on the shadow map (x0, y0, x1, y1) [texels]
     vec4 moved_screen_rect;    // its footprint on the screen (x0, y0, x1, y1) [px]
     vec3 moved_min;            // box around what moved since last frame, at both places (world)

@@ -4,6 +4,7 @@
 #define TEMPORAL_GLSL
 
 #include "frame.glsl"
+#include "shared_constants.glsl"
 
 // Per-pixel state written by the reprojection pass.
 const uint STATE_CONVERGED = 0u;    // reused as is
@@ -51,9 +52,10 @@ const float HISTORY_MAX = 1.0e18;
 float fresh_weight(float n, float change, float l_old, float l_fresh, inout vec4 moments) {
     uint mode = frame.accumulate_mode;
     float k = frame.accumulate_param;
-    if (mode == 0u) return clamp(change, 0.0, 1.0) / (1.0 + k); // eqs 4-5
-    if (mode == 1u) return k;
-    if (mode == 2u) return 1.0 / min(n + 1.0, max(k, 1.0));
+    if (mode == ACCUMULATE_CONFIDENCE) return clamp(change, 0.0, 1.0) / (1.0 + k); // eqs 4-5
+    if (mode == ACCUMULATE_EMA) return k;
+    if (mode == ACCUMULATE_MEAN) return 1.0 / min(n + 1.0, max(k, 1.0));
+    // ACCUMULATE_GATED:
     float sigma = sqrt(max(moments.x - l_old * l_old, 0.0));
     float gate = max(k * sigma, GATE_RELATIVE * max(abs(l_old), abs(l_fresh)));
     float diff = l_fresh - l_old;

@@ -12,6 +12,7 @@
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_samplerless_texture_functions : require
 #include "frame.glsl"
+#include "shared_constants.glsl"
 #include "temporal.glsl"
 #define COUNTERS_BINDING 5
 #include "counters.glsl"
@@ -20,7 +21,7 @@
 layout(local_size_x = 9, local_size_y = 9) in;
 
 layout(set = 1, binding = 0) uniform texture2D g_position;
-layout(set = 1, binding = 7, r32ui) uniform readonly uimage2D state_in;
+layout(set = 1, binding = 7, STATE_FORMAT) uniform readonly uimage2D state_in;
 layout(set = 1, binding = 11, std430) buffer Claims { uint claims[]; }; // one per sample, in rows
 
 shared uint group_count;

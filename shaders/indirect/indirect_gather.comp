@@ -6,14 +6,15 @@
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_samplerless_texture_functions : require
 #include "frame.glsl"
+#include "shared_constants.glsl"
 #include "temporal.glsl"
 #define COUNTERS_BINDING 5
 #include "counters.glsl"
 #include "effect.glsl"
 
-layout(set = 1, binding = 6, rgba32f) uniform image2D history;
-layout(set = 1, binding = 7, r32ui) uniform readonly uimage2D state_in;
-layout(set = 1, binding = 8, rgba32f) uniform image2D moments;
+layout(set = 1, binding = 6, INDIRECT_HISTORY_FORMAT) uniform image2D history;
+layout(set = 1, binding = 7, STATE_FORMAT) uniform readonly uimage2D state_in;
+layout(set = 1, binding = 8, MOMENTS_FORMAT) uniform image2D moments;
 
 #include "indirect_common.glsl"
 #include "indirect_merge.glsl"

@@ -13,6 +13,7 @@
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_samplerless_texture_functions : require
 #include "frame.glsl"
+#include "shared_constants.glsl"
 #include "temporal.glsl"
 #define COUNTERS_BINDING 5
 #include "counters.glsl"
@@ -22,7 +23,7 @@
 layout(local_size_x = INTERLEAVE_TILE, local_size_y = INTERLEAVE_TILE) in;
 
 layout(set = 1, binding = 6, std430) buffer LowRes { vec4 lowres[]; };
-layout(set = 1, binding = 7, r32ui) uniform readonly uimage2D state_in;
+layout(set = 1, binding = 7, STATE_FORMAT) uniform readonly uimage2D state_in;
 
 #include "indirect_common.glsl"
 #include "interleave.glsl"

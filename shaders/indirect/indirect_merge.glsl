@@ -1,4 +1,4 @@
-// Requires `history` (rgba32f) and `moments` (rgba32f) storage images declared by the including
+// Requires `history` (INDIRECT_HISTORY_FORMAT) and `moments` (MOMENTS_FORMAT) storage images declared by the including
 // shader.
 #ifndef INDIRECT_MERGE_GLSL
 #define INDIRECT_MERGE_GLSL

@@ -40,9 +40,9 @@ layout(local_size_x = SPREAD_LANES) in;
 layout(set = 1, binding = 6, rgba32f) uniform writeonly image2D lowres;
 layout(set = 1, binding = 11, std430) buffer Claims { uint claims[]; };
 #else
-layout(set = 1, binding = 6, rgba32f) uniform image2D history;
-layout(set = 1, binding = 7, r32ui) uniform readonly uimage2D state_in;
-layout(set = 1, binding = 8, rgba32f) uniform image2D moments;
+layout(set = 1, binding = 6, INDIRECT_HISTORY_FORMAT) uniform image2D history;
+layout(set = 1, binding = 7, STATE_FORMAT) uniform readonly uimage2D state_in;
+layout(set = 1, binding = 8, MOMENTS_FORMAT) uniform image2D moments;
 #endif
 #if defined(REFRESH) || defined(RESOLVE)
 layout(set = 1, binding = 9, std430) buffer Partials { vec4 partials[]; };

@@ -11,6 +11,7 @@
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_samplerless_texture_functions : require
 #include "frame.glsl"
+#include "shared_constants.glsl"
 #include "temporal.glsl"
 #define COUNTERS_BINDING 5
 #include "counters.glsl"
@@ -23,10 +24,10 @@ layout(set = 1, binding = 6, rgba32f) uniform readonly image2D lowres;
 #else
 layout(set = 1, binding = 6, std430) readonly buffer LowRes { vec4 lowres[]; };
 #endif
-layout(set = 1, binding = 7, rgba32f) uniform image2D history;
-layout(set = 1, binding = 8, r32ui) uniform readonly uimage2D state_in;
+layout(set = 1, binding = 7, INDIRECT_HISTORY_FORMAT) uniform image2D history;
+layout(set = 1, binding = 8, STATE_FORMAT) uniform readonly uimage2D state_in;
 layout(set = 1, binding = 9, r32ui) uniform writeonly uimage2D discard_mask;
-layout(set = 1, binding = 10, rgba32f) uniform image2D moments;
+layout(set = 1, binding = 10, MOMENTS_FORMAT) uniform image2D moments;
 
 #include "indirect_common.glsl"
 #include "indirect_merge.glsl"

@@ -23,6 +23,7 @@
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_samplerless_texture_functions : require
 #include "frame.glsl"
+#include "shared_constants.glsl"
 #include "ssdo_params.glsl"
 
 layout(set = 1, binding = 0) uniform texture2D g_position;
@@ -58,9 +59,9 @@ layout(set = 1, binding = 1) uniform texture2D g_normal;
 layout(set = 1, binding = 2) uniform texture2D g_albedo;
 // The direct effect's outgoing radiance (read when ssdo.direct_enabled).
 layout(set = 1, binding = 3) uniform texture2D direct_light;
-layout(set = 1, binding = 4, r32ui) uniform readonly uimage2D state_in;
-layout(set = 1, binding = 5, rgba32f) uniform image2D history;
-layout(set = 1, binding = 7, rgba32f) uniform image2D moments;
+layout(set = 1, binding = 4, STATE_FORMAT) uniform readonly uimage2D state_in;
+layout(set = 1, binding = 5, SSDO_HISTORY_FORMAT) uniform image2D history;
+layout(set = 1, binding = 7, MOMENTS_FORMAT) uniform image2D moments;
 // The pre-pass's samples per block (read when ssdo.threshold_count > 0).
 layout(set = 1, binding = 8) uniform utexture2D block_samples;
 

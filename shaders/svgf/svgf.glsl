@@ -10,7 +10,7 @@ layout(push_constant) uniform Svgf {
     uint history_valid;    // 0: every pixel starts over (first frame, resize, --reuse off)
     float alpha;           // the colour's smallest weight of a new sample (the article: 0.2)
     float alpha_moments;   // the luminance moments' (0.2)
-    uint bilinear;         // 1: the history is read with the bilinear tap, 0: the nearest texel
+    uint bilinear;         // SVGF_HISTORY_* (shared_constants.glsl): the bilinear tap or the nearest texel
     uint step;             // a-trous: pixels between taps, 2^iteration
     float sigma_luminance; // sigma_l, in standard deviations (4)
     float sigma_normal;    // sigma_n, the exponent of max(0, n . n_q) (128)

@@ -12,6 +12,7 @@
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_samplerless_texture_functions : require
 #include "frame.glsl"
+#include "shared_constants.glsl"
 #include "svgf.glsl"
 #define COUNTERS_BINDING 11
 #include "counters.glsl"
@@ -40,7 +41,7 @@ bool history(ivec2 pixel, out vec3 c, out vec3 m) {
     c = vec3(0.0);
     m = vec3(0.0);
     if (svgf.history_valid == 0u) return false;
-    if (svgf.bilinear == 0u) {
+    if (svgf.bilinear == SVGF_HISTORY_NEAREST) {
         ivec2 t = previous_texel(pixel);
         if (t.x < 0) return false;
         c = texelFetch(color_prev, t, 0).rgb;

@@ -190,12 +190,16 @@ impl Accumulate {
     /// Default weight of the new estimate in ema mode (`--ema-alpha`, `ema` in a sweep).
     pub const EMA_ALPHA: f32 = 0.1;
 
+    /// The frame block's `accumulate_mode`: ACCUMULATE_* of shared_constants.glsl.
     pub fn code(&self) -> u32 {
+        use crate::shaders::{
+            ACCUMULATE_CONFIDENCE, ACCUMULATE_EMA, ACCUMULATE_GATED, ACCUMULATE_MEAN,
+        };
         match self {
-            Accumulate::Confidence { .. } => 0,
-            Accumulate::Ema { .. } => 1,
-            Accumulate::Mean { .. } => 2,
-            Accumulate::Gated { .. } => 3,
+            Accumulate::Confidence { .. } => ACCUMULATE_CONFIDENCE,
+            Accumulate::Ema { .. } => ACCUMULATE_EMA,
+            Accumulate::Mean { .. } => ACCUMULATE_MEAN,
+            Accumulate::Gated { .. } => ACCUMULATE_GATED,
         }
     }
 
@@ -251,10 +255,11 @@ pub enum HistoryResample {
 }
 
 impl HistoryResample {
+    /// The frame block's `history_resample`: HISTORY_RESAMPLE_* of shared_constants.glsl.
     pub fn code(self) -> u32 {
         match self {
-            HistoryResample::Point => 0,
-            HistoryResample::Bilinear => 1,
+            HistoryResample::Point => crate::shaders::HISTORY_RESAMPLE_POINT,
+            HistoryResample::Bilinear => crate::shaders::HISTORY_RESAMPLE_BILINEAR,
         }
     }
 }

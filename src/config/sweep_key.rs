@@ -11,13 +11,60 @@ pub struct SweepKey {
     /// The name given to `--vary`: the field's path in `RenderConfig` (`ao.samples`).
     pub name: &'static str,
     /// The values accepted, as shown in errors and `ssgi sweep --list-keys`.
-    pub syntax: &'static str,
+    pub syntax: Syntax,
     /// What it changes (with the command-line option that sets the same).
     pub description: &'static str,
     /// Write `value` into the configuration; the error says why the value is not one of
     /// `syntax`'s. Only the value's own range is checked: `RenderConfig::validate` judges it
     /// beside the other fields.
     pub set: fn(&mut RenderConfig, &str) -> Result<(), String>,
+}
+
+/// The values a key accepts.
+#[derive(Clone, Copy)]
+pub enum Syntax {
+    /// Described in words (`integer 1..=4096`).
+    Text(&'static str),
+    /// One of an enum's names: the enum (a `clap::ValueEnum`, as the command line's option
+    /// takes it) is the list's one source, so a new variant is offered everywhere at once.
+    Names(fn() -> Vec<String>),
+}
+
+impl Syntax {
+    /// The names a `Names` key takes; `None` for one described in words.
+    pub fn names(self) -> Option<Vec<String>> {
+        match self {
+            Syntax::Text(_) => None,
+            Syntax::Names(names) => Some(names()),
+        }
+    }
+}
+
+impl fmt::Display for Syntax {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Syntax::Text(t) => f.write_str(t),
+            Syntax::Names(names) => f.write_str(&names().join("|")),
+        }
+    }
+}
+
+/// The names of `E`'s variants, as its command-line option and `--vary` take them (hidden
+/// ones left out), in declaration order.
+pub fn value_names<E: clap::ValueEnum>() -> Vec<String> {
+    E::value_variants()
+        .iter()
+        .filter_map(|v| v.to_possible_value())
+        .filter(|v| !v.is_hide_set())
+        .map(|v| v.get_name().to_string())
+        .collect()
+}
+
+/// The name of `value` as its command-line option takes it.
+pub fn value_name<E: clap::ValueEnum>(value: E) -> String {
+    value
+        .to_possible_value()
+        .map_or_else(String::new, |v| v.get_name().to_string())
 }
 
 impl PartialEq for SweepKey {

@@ -70,6 +70,8 @@ impl PassDecl {
 
 pub struct ComputePass {
     pub id: PassId,
+    /// Its shader: the storage formats its bound images must have.
+    module: &'static ShaderModuleInfo,
     pipeline: Arc<Pipeline>,
     sets: [vk::DescriptorSet; 2],
     binds: &'static [Bind],
@@ -94,7 +96,7 @@ impl ComputePass {
         ctx: &Arc<Context>,
         pool: &DescriptorPool,
         id: PassId,
-        module: &ShaderModuleInfo,
+        module: &'static ShaderModuleInfo,
         binds: &'static [Bind],
     ) -> Result<Self> {
         Self::specialized(ctx, pool, id, (module, binds), &[])
@@ -120,23 +122,29 @@ impl ComputePass {
         ctx: &Arc<Context>,
         pool: &DescriptorPool,
         id: PassId,
-        (module, binds): (&ShaderModuleInfo, &'static [Bind]),
+        (module, binds): (&'static ShaderModuleInfo, &'static [Bind]),
         constants: &[u32],
     ) -> Result<Self> {
         let layout = decl::layout(binds);
         let pipeline = Pipeline::compute_specialized(ctx, id.name(), module, &layout, constants)?;
-        Self::with_pipeline(pool, id, Arc::new(pipeline), binds, id.name())
+        Self::with_pipeline(pool, (id, module), Arc::new(pipeline), binds, id.name())
     }
 
     /// Another instance of the same pipeline with its own descriptor sets (the direct pass
     /// reading the shadow history); `name` labels the sets.
     pub fn instance(&self, pool: &DescriptorPool, name: &str) -> Result<Self> {
-        Self::with_pipeline(pool, self.id, self.pipeline.clone(), self.binds, name)
+        Self::with_pipeline(
+            pool,
+            (self.id, self.module),
+            self.pipeline.clone(),
+            self.binds,
+            name,
+        )
     }
 
     fn with_pipeline(
         pool: &DescriptorPool,
-        id: PassId,
+        (id, module): (PassId, &'static ShaderModuleInfo),
         pipeline: Arc<Pipeline>,
         binds: &'static [Bind],
         name: &str,
@@ -144,6 +152,7 @@ impl ComputePass {
         let sets = parity_sets(pool, &pipeline, name)?;
         Ok(Self {
             id,
+            module,
             pipeline,
             sets,
             binds,
@@ -154,7 +163,7 @@ impl ComputePass {
     /// after a resize, with the device idle).
     pub fn bind(&self, ctx: &Context, res: &dyn Resolve) -> Result<()> {
         for (parity, set) in self.sets.iter().enumerate() {
-            decl::writes(self.id.name(), self.binds, res, parity)?.write(ctx, *set);
+            decl::writes(self.id.name(), self.module, self.binds, res, parity)?.write(ctx, *set);
         }
         Ok(())
     }

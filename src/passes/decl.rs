@@ -4,7 +4,7 @@
 //! tracker accesses that produce the barriers, so the three cannot disagree.
 
 use crate::error::{Error, Result};
-use crate::shaders::{DescriptorKind, ReflectedBinding};
+use crate::shaders::{DescriptorKind, ReflectedBinding, ShaderModuleInfo};
 use crate::vk::{Access, Buffer, Image, SetWriter, Tracker};
 
 /// The per-frame uniform buffer every pass reads (set 0, binding 0).
@@ -217,15 +217,22 @@ fn missing(pass: &str, b: &Bind) -> Error {
     ))
 }
 
-/// The descriptor writes of set 1 for `parity`.
-pub fn writes(pass: &str, binds: &[Bind], res: &dyn Resolve, parity: usize) -> Result<SetWriter> {
-    write_binds(SetWriter::new(), pass, binds, res, parity)
+/// The descriptor writes of set 1 for `parity`; `module` is the pass's shader, whose storage
+/// formats the images must have.
+pub fn writes(
+    pass: &str,
+    module: &ShaderModuleInfo,
+    binds: &[Bind],
+    res: &dyn Resolve,
+    parity: usize,
+) -> Result<SetWriter> {
+    write_binds(SetWriter::new(), (pass, module), binds, res, parity)
 }
 
 /// `w` plus the writes of `binds` (a pass whose set gathers several resolvers' resources).
 pub fn write_binds(
     mut w: SetWriter,
-    pass: &str,
+    (pass, module): (&str, &ShaderModuleInfo),
     binds: &[Bind],
     res: &dyn Resolve,
     parity: usize,
@@ -238,11 +245,40 @@ pub fn write_binds(
             let image = res.image(b.slot, parity).ok_or_else(|| missing(pass, b))?;
             match b.usage {
                 Use::Sampled => w.sampled(b.binding, image),
-                _ => w.storage(b.binding, image),
+                _ => {
+                    check_storage_format(pass, module, b.binding, &image.name, image.desc.format)?;
+                    w.storage(b.binding, image)
+                }
             }
         };
     }
     Ok(w)
+}
+
+/// A storage image must have the format its shader's layout qualifier declares (Vulkan's
+/// rule for a format-qualified storage image; a mismatch reads and writes the wrong texel
+/// layout, and no driver or validation layer is obliged to notice). `image` is the bound
+/// image's name, for the error.
+pub fn check_storage_format(
+    pass: &str,
+    module: &ShaderModuleInfo,
+    binding: u32,
+    image: &str,
+    format: ash::vk::Format,
+) -> Result<()> {
+    match module.storage_format(1, binding) {
+        Some(declared) if declared == format => Ok(()),
+        Some(declared) => Err(Error::Reflection(format!(
+            "{pass}: {} declares binding {binding} as a {declared:?} storage image, but {image} \
+             is {format:?}: declare the format once (shaders/include/shared_constants.glsl) \
+             and use it on both sides",
+            module.label()
+        ))),
+        None => Err(Error::Reflection(format!(
+            "{pass}: {} has no storage image at binding {binding}, where {image} is bound",
+            module.label()
+        ))),
+    }
 }
 
 /// The colour attachments (in binding order) and the depth attachment a raster pass declares,

@@ -45,12 +45,37 @@ const fn lane_binds(k: u32) -> [Bind; 8] {
 
 const LANE_BINDS: [[Bind; 8]; MAX_LANES] = [lane_binds(0), lane_binds(1), lane_binds(2)];
 
-fn module(lanes: usize) -> &'static ShaderModuleInfo {
-    match lanes {
-        1 => &shaders::REPROJECT_COMP_1,
-        2 => &shaders::REPROJECT_COMP_2,
-        _ => &shaders::REPROJECT_COMP_3,
-    }
+/// The binding of lane `k`'s history (LANE_BINDS' `Slot::History`).
+const fn history_binding(k: usize) -> u32 {
+    8 + 8 * k as u32 + 1
+}
+
+/// The reprojection modules: one per lane count and combination of history formats
+/// (shaders/reproject.comp's permutations).
+fn modules() -> impl Iterator<Item = &'static ShaderModuleInfo> {
+    shaders::ALL
+        .iter()
+        .copied()
+        .filter(|m| m.name == "reproject.comp")
+}
+
+/// How many lanes `m` serves: its lanes are the history bindings it declares.
+fn lanes_of(m: &ShaderModuleInfo) -> usize {
+    (0..=MAX_LANES)
+        .take_while(|&k| m.storage_format(1, history_binding(k)).is_some())
+        .count()
+}
+
+/// The module whose lane k's history has `history_formats[k]`, chosen by its reflection (so
+/// no name of a format is spelled here); `None` when no permutation has that combination.
+fn module(history_formats: &[vk::Format]) -> Option<&'static ShaderModuleInfo> {
+    modules().find(|m| {
+        lanes_of(m) == history_formats.len()
+            && history_formats
+                .iter()
+                .enumerate()
+                .all(|(k, &f)| m.storage_format(1, history_binding(k)) == Some(f))
+    })
 }
 
 fn binds(lanes: usize) -> Vec<Bind> {
@@ -63,12 +88,15 @@ fn binds(lanes: usize) -> Vec<Bind> {
 
 /// Every permutation's layout for the reflection check.
 pub fn layouts() -> Vec<PassLayout> {
-    (1..=MAX_LANES)
-        .map(|n| PassLayout {
-            pass: PassId::REPROJECT,
-            modules: vec![module(n)],
-            declared: decl::layout(&binds(n)),
-            binds: binds(n),
+    modules()
+        .map(|m| {
+            let n = lanes_of(m);
+            PassLayout {
+                pass: PassId::REPROJECT,
+                modules: vec![m],
+                declared: decl::layout(&binds(n)),
+                binds: binds(n),
+            }
         })
         .collect()
 }
@@ -131,30 +159,40 @@ pub fn push(lanes: &[LaneFrame]) -> ReprojectPush {
 
 pub struct ReprojectPass {
     lanes: usize,
+    module: &'static ShaderModuleInfo,
     pipeline: Pipeline,
     sets: [vk::DescriptorSet; 2],
 }
 
 impl ReprojectPass {
-    /// The pass for `lanes` temporal effects (1 ..= MAX_LANES).
-    pub fn new(ctx: &Arc<Context>, pool: &DescriptorPool, lanes: usize) -> Result<Self> {
+    /// The pass for one lane per temporal effect, lane k's history of `history_formats[k]`
+    /// (1 ..= MAX_LANES lanes).
+    pub fn new(
+        ctx: &Arc<Context>,
+        pool: &DescriptorPool,
+        history_formats: &[vk::Format],
+    ) -> Result<Self> {
+        let lanes = history_formats.len();
         if lanes == 0 || lanes > MAX_LANES {
             return Err(Error::Config(format!(
                 "the reprojection serves 1 to {MAX_LANES} temporal effects, not {lanes} \
                  (add a permutation to shaders/reproject.comp and a lane to LANE_BINDS)"
             )));
         }
+        let module = module(history_formats).ok_or_else(|| {
+            Error::Reflection(format!(
+                "no reprojection permutation has lane histories {history_formats:?} (build.rs \
+                 compiles one per combination of the *_HISTORY_FORMATs of \
+                 shaders/include/shared_constants.glsl)"
+            ))
+        })?;
         let name = PassId::REPROJECT.name();
-        let pipeline = Pipeline::compute_specialized(
-            ctx,
-            name,
-            module(lanes),
-            &decl::layout(&binds(lanes)),
-            &[],
-        )?;
+        let pipeline =
+            Pipeline::compute_specialized(ctx, name, module, &decl::layout(&binds(lanes)), &[])?;
         let sets = parity_sets(pool, &pipeline, name)?;
         Ok(Self {
             lanes,
+            module,
             pipeline,
             sets,
         })
@@ -166,9 +204,10 @@ impl ReprojectPass {
         assert_eq!(lanes.len(), self.lanes, "one resolver per lane");
         let name = PassId::REPROJECT.name();
         for (parity, set) in self.sets.iter().enumerate() {
-            let mut w = decl::write_binds(SetWriter::new(), name, SHARED, shared, parity)?;
+            let pass = (name, self.module);
+            let mut w = decl::write_binds(SetWriter::new(), pass, SHARED, shared, parity)?;
             for (binds, res) in LANE_BINDS.iter().zip(lanes) {
-                w = decl::write_binds(w, name, binds, *res, parity)?;
+                w = decl::write_binds(w, pass, binds, *res, parity)?;
             }
             w.write(ctx, *set);
         }
@@ -212,6 +251,30 @@ impl ReprojectPass {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn each_lane_count_has_a_module_for_the_effects_history_formats() {
+        use crate::shaders::{
+            AO_HISTORY_FORMAT, INDIRECT_HISTORY_FORMAT, SHADOW_HISTORY_FORMAT, SSDO_HISTORY_FORMAT,
+        };
+        let formats = [
+            AO_HISTORY_FORMAT,
+            SHADOW_HISTORY_FORMAT,
+            INDIRECT_HISTORY_FORMAT,
+            SSDO_HISTORY_FORMAT,
+        ];
+        // Every ordered choice of up to MAX_LANES effects' formats.
+        for n in 1..=MAX_LANES {
+            for pick in 0..formats.len().pow(n as u32) {
+                let chosen: Vec<vk::Format> = (0..n)
+                    .map(|k| formats[pick / formats.len().pow(k as u32) % formats.len()])
+                    .collect();
+                let m = module(&chosen).unwrap_or_else(|| panic!("no module for {chosen:?}"));
+                assert_eq!(lanes_of(m), n);
+            }
+        }
+        assert_eq!(layouts().len(), modules().count());
+    }
 
     #[test]
     fn lanes_do_not_share_bindings() {

@@ -11,6 +11,7 @@ use crate::passes::PassId;
 use crate::resources::targets::Targets;
 use crate::resources::temporal_effect::TemporalEffect;
 use crate::vk::{Context, DescriptorPool};
+use ash::vk;
 use std::sync::Arc;
 
 /// The pass, absent when no effect keeps a history.
@@ -54,10 +55,12 @@ impl Reprojection {
         pool: &DescriptorPool,
         effects: &[Box<dyn Effect>],
     ) -> Result<Self> {
-        let lanes = temporals(effects).count();
-        let pass = match lanes {
+        let formats: Vec<vk::Format> = temporals(effects)
+            .map(|(_, _, t)| t.kind.history_format)
+            .collect();
+        let pass = match formats.len() {
             0 => None,
-            n => Some(ReprojectPass::new(ctx, pool, n)?),
+            _ => Some(ReprojectPass::new(ctx, pool, &formats)?),
         };
         Ok(Self { pass })
     }

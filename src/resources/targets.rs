@@ -27,20 +27,9 @@ pub const RSM_COLOR_FORMATS: [vk::Format; 3] = [
 pub const DIRECT_FORMAT: vk::Format = vk::Format::R16G16B16A16_SFLOAT;
 /// AO / visibility images of the effects without history (value in r).
 pub const AO_FORMAT: vk::Format = vk::Format::R16G16B16A16_SFLOAT;
-/// A temporal effect's history: rgb value, a = estimates accumulated. fp32 so that every
-/// update of a running mean counts: in fp16 a value in [0.5, 1) ignores changes below 2.4e-4,
-/// which the 36th pattern of a mean (1/37 of a difference of 0.01) already is.
-pub const HISTORY_FORMAT: vk::Format = vk::Format::R32G32B32A32_SFLOAT;
-/// The moments history beside it (r: mean squared luminance of the estimates, g: the side of
-/// a pending gate crossing of the gated mean, b: estimates in that mean since its last
-/// restart; see shaders/include/temporal.glsl).
-/// rgba32f rather than rg32f: a storage format every Vulkan device supports without
-/// shaderStorageImageExtendedFormats.
-pub const MOMENTS_FORMAT: vk::Format = vk::Format::R32G32B32A32_SFLOAT;
-/// A history's registration: rgb = the surface point each value belongs to (world units, fp32
-/// like the G-buffer position), a = area magnification since the counts were last scaled.
-pub const REGISTRATION_FORMAT: vk::Format = vk::Format::R32G32B32A32_SFLOAT;
-pub const STATE_FORMAT: vk::Format = vk::Format::R32_UINT;
+// A temporal effect's formats: its history's in its `EffectKind`, the moments', registration's
+// and state's shared by all, each declared once for the shaders and this side.
+pub use crate::shaders::{MOMENTS_FORMAT, REGISTRATION_FORMAT, STATE_FORMAT};
 pub const OUTPUT_FORMAT: vk::Format = vk::Format::R8G8B8A8_UNORM;
 
 const ATTACHMENT_READ: vk::ImageUsageFlags = vk::ImageUsageFlags::from_raw(
@@ -80,6 +69,7 @@ fn image(
 
 /// Two images that swap roles every frame: one written this frame, the other holding last
 /// frame's (a history, or the G-buffer position of eq 2). `parity` is the frame index mod 2.
+/// Every history is one (the temporal effects', SVGF's, the G-buffer's).
 pub struct PingPong {
     images: [Image; 2],
 }
@@ -87,6 +77,22 @@ pub struct PingPong {
 impl PingPong {
     pub fn new(images: [Image; 2]) -> Self {
         Self { images }
+    }
+
+    /// The pair `make(i)` makes, `i` = 0, 1.
+    pub fn make(mut make: impl FnMut(usize) -> Result<Image>) -> Result<Self> {
+        Ok(Self::new([make(0)?, make(1)?]))
+    }
+
+    /// The image written in each parity's frame, by parity (an effect's own slot for this
+    /// frame's image: `EffectResources::own`).
+    pub fn current_by_parity(&self) -> [&Image; 2] {
+        [self.current(0), self.current(1)]
+    }
+
+    /// The image written the frame before, by parity (the slot for last frame's).
+    pub fn previous_by_parity(&self) -> [&Image; 2] {
+        [self.previous(0), self.previous(1)]
     }
 
     /// The image written in the frame of `parity`.

@@ -3,7 +3,7 @@
 //! reprojection pass and the accumulation rules are the same for every effect.
 
 use super::counters::{self, Counter, CounterReadback};
-use super::targets::{PingPong, HISTORY_FORMAT, MOMENTS_FORMAT, REGISTRATION_FORMAT, STATE_FORMAT};
+use super::targets::{PingPong, MOMENTS_FORMAT, REGISTRATION_FORMAT, STATE_FORMAT};
 use super::temporal::{budget_tile, RefreshSchedule, Sampling};
 use crate::config::{Refresh, RenderConfig, FRAMES_IN_FLIGHT};
 use crate::error::Result;
@@ -17,6 +17,9 @@ use std::sync::Arc;
 #[derive(Clone, Copy, Debug)]
 pub struct EffectKind {
     pub name: &'static str,
+    /// Its history's format: a `*_HISTORY_FORMAT` of shaders/include/shared_constants.glsl,
+    /// which its passes' shaders and the reprojection's lane declare too.
+    pub history_format: vk::Format,
     /// log2 of the work-block side: 4 (16x16), 3 (8x8), or 0: a compacted list of single
     /// pixels, 64 per workgroup (an effect whose pixels do not share a workgroup's data).
     pub block_shift: u32,
@@ -166,8 +169,8 @@ impl TemporalEffect {
         Ok(Self {
             kind,
             history: PingPong::new([
-                image("history.0", HISTORY_FORMAT)?,
-                image("history.1", HISTORY_FORMAT)?,
+                image("history.0", kind.history_format)?,
+                image("history.1", kind.history_format)?,
             ]),
             moments: PingPong::new([
                 image("moments.0", MOMENTS_FORMAT)?,

@@ -9,7 +9,7 @@ use crate::config::parse::{
     parse_bias, parse_count, parse_ema_alpha, parse_epsilon, parse_fraction, parse_gate,
     parse_on_off, parse_pattern_count, AccumulateMode,
 };
-use crate::config::sweep_key::SweepKey;
+use crate::config::sweep_key::{value_names, SweepKey, Syntax};
 use crate::config::{Accumulate, HistoryResample, Refresh};
 use crate::error::{Error, Result};
 use crate::renderer::RenderConfig;
@@ -26,7 +26,7 @@ pub type Key = &'static SweepKey;
 /// caps at the combination's own rotation limit, like `--accumulate mean` without `--mean-cap`.
 pub const ACCUMULATE: SweepKey = SweepKey {
     name: "temporal.accumulate",
-    syntax: "gated[:SIGMAS]|confidence[:BIAS]|ema[:ALPHA]|mean[:CAP]",
+    syntax: Syntax::Text("gated[:SIGMAS]|confidence[:BIAS]|ema[:ALPHA]|mean[:CAP]"),
     description: "history merge, default parameter if none; mean alone caps at the rotation limit",
     set: |c, v| {
         c.temporal.accumulate = parse_accumulate(v, c.temporal.rotation_limit)?;
@@ -38,7 +38,7 @@ pub const ACCUMULATE: SweepKey = SweepKey {
 pub const FRAME_KEYS: &[SweepKey] = &[
     SweepKey {
         name: "temporal.reuse",
-        syntax: "on|off",
+        syntax: Syntax::Text("on|off"),
         description: "reverse-reprojection reuse; off = no-reuse baseline (--reuse)",
         set: |c, v| {
             c.temporal.reuse = parse_on_off(v)?;
@@ -48,7 +48,7 @@ pub const FRAME_KEYS: &[SweepKey] = &[
     ACCUMULATE,
     SweepKey {
         name: "temporal.refresh",
-        syntax: "feathered|on|hard|off",
+        syntax: Syntax::Names(value_names::<Refresh>),
         description: "tiled refresh, one tile recomputed per frame; hard = the thesis's seams",
         set: |c, v| {
             c.temporal.refresh = Refresh::from_str(v, false)?;
@@ -57,7 +57,7 @@ pub const FRAME_KEYS: &[SweepKey] = &[
     },
     SweepKey {
         name: "temporal.refresh_budget",
-        syntax: "PERCENT% or fraction in (0, 100]",
+        syntax: Syntax::Text("PERCENT% or fraction in (0, 100]"),
         description: "refresh work per frame, share of a full frame's (--refresh-budget)",
         set: |c, v| {
             c.temporal.refresh_budget = parse_fraction(v)?;
@@ -66,7 +66,7 @@ pub const FRAME_KEYS: &[SweepKey] = &[
     },
     SweepKey {
         name: "temporal.rotation_limit",
-        syntax: "integer 1..=2048",
+        syntax: Syntax::Text("integer 1..=2048"),
         description: "patterns per pixel before it counts as converged",
         set: |c, v| {
             c.temporal.rotation_limit = parse_pattern_count(v)?;
@@ -75,7 +75,7 @@ pub const FRAME_KEYS: &[SweepKey] = &[
     },
     SweepKey {
         name: "temporal.epsilon",
-        syntax: "NUMBER|abs:NUMBER",
+        syntax: Syntax::Text("NUMBER|abs:NUMBER"),
         description: "disocclusion threshold: pixel footprints, or abs: world units",
         set: |c, v| {
             c.temporal.epsilon = parse_epsilon(v)?;
@@ -84,7 +84,7 @@ pub const FRAME_KEYS: &[SweepKey] = &[
     },
     SweepKey {
         name: "temporal.resample",
-        syntax: "bilinear|point",
+        syntax: Syntax::Names(value_names::<HistoryResample>),
         description: "history read between texels under motion (--history-resample)",
         set: |c, v| {
             c.temporal.resample = HistoryResample::from_str(v, false)?;
@@ -93,7 +93,7 @@ pub const FRAME_KEYS: &[SweepKey] = &[
     },
     SweepKey {
         name: "temporal.reaccumulate",
-        syntax: "on|off",
+        syntax: Syntax::Text("on|off"),
         description: "histories re-accumulate when the camera stops (--reaccumulate)",
         set: |c, v| {
             c.temporal.reaccumulate = parse_on_off(v)?;
@@ -102,7 +102,7 @@ pub const FRAME_KEYS: &[SweepKey] = &[
     },
     SweepKey {
         name: "rsm_size",
-        syntax: "integer 1..=16384",
+        syntax: Syntax::Text("integer 1..=16384"),
         description: "side of the (reflective) shadow map in texels (--rsm-size)",
         set: |c, v| {
             c.rsm_size = parse_count(v, 1, crate::renderer::MAX_SIZE)?;
@@ -111,7 +111,7 @@ pub const FRAME_KEYS: &[SweepKey] = &[
     },
     SweepKey {
         name: "aa",
-        syntax: "none|sraa|sraa-shadow|ssaa16",
+        syntax: Syntax::Names(value_names::<AaMode>),
         description: "antialiasing; ssaa16 renders 16 samples per pixel, the reference (--aa)",
         set: |c, v| {
             c.aa.mode = AaMode::from_str(v, false)?;
@@ -296,9 +296,9 @@ pub fn describe(label: &[(Key, String)]) -> String {
 /// The keys, their values and what they change, one per line, for `ssgi sweep --help` and
 /// error messages.
 pub fn help_table() -> String {
-    let rows: Vec<[&str; 3]> = all_keys()
+    let rows: Vec<[String; 3]> = all_keys()
         .iter()
-        .map(|k| [k.name, k.syntax, k.description])
+        .map(|k| [k.name, &k.syntax.to_string(), k.description].map(str::to_string))
         .collect();
     let width = |c: usize| {
         rows.iter()
@@ -458,7 +458,7 @@ mod tests {
         let table = help_table();
         for k in all_keys() {
             assert!(
-                table.contains(k.name) && table.contains(k.syntax),
+                table.contains(k.name) && table.contains(&k.syntax.to_string()),
                 "{table}"
             );
         }
@@ -470,7 +470,11 @@ mod tests {
         for (s, key, value) in [
             ("ao.samples=8,0", "ao.samples", "0"),
             ("ao.samples=x", "ao.samples", "x"),
-            ("ao.estimator=thesis,hbao", "ao.estimator", "hbao"),
+            (
+                "ao.estimator=thesis,no-such-estimator",
+                "ao.estimator",
+                "no-such-estimator",
+            ),
             ("ao.radius=0.1,nan", "ao.radius", "nan"),
             ("temporal.reuse=on,maybe", "temporal.reuse", "maybe"),
             ("indirect.vpls=all,20000", "indirect.vpls", "20000"),
@@ -483,9 +487,9 @@ mod tests {
             ),
         ] {
             let e = err(parse_vary(s));
-            let syntax = parse_key(key).unwrap().syntax;
+            let syntax = parse_key(key).unwrap().syntax.to_string();
             assert!(
-                e.contains(key) && e.contains(&format!("{value:?}")) && e.contains(syntax),
+                e.contains(key) && e.contains(&format!("{value:?}")) && e.contains(&syntax),
                 "{s}: {e}"
             );
         }

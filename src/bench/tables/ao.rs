@@ -19,6 +19,7 @@ use crate::bench::measure::{last_camera, measure, Buffer, Flicker, LastFrame, Ru
 use crate::bench::sheet::{notes_section, Cell, Column, Sheet};
 use crate::bench::warmup::{before_path, Warmup};
 use crate::bench::TableOptions;
+use crate::config::sweep_key::value_name;
 use crate::config::{Effects, RenderConfig};
 use crate::effects::ao::config::AoEstimator;
 use crate::error::{Error, Result};
@@ -28,13 +29,14 @@ use crate::reference::run::Session;
 use crate::reference::trace::RefBuffer;
 use crate::scene::{cornell_box, CameraPath, Scene};
 use crate::vk::Context;
+use clap::ValueEnum;
 use serde::Serialize;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
 pub const TABLE: TableDef = TableDef {
     name: "ao",
-    summary: "AO estimators (thesis, Crytek, Szentandrasi, GTAO) with and without the cache on \
+    summary: "Every AO estimator (--ao) with and without the cache on \
               the Cornell box, the Table 4.1 scenes and the walkthroughs: time, error against \
               ray-traced AO, flicker.",
     title:
@@ -53,21 +55,14 @@ pub const TABLE: TableDef = TableDef {
     run,
 };
 
-/// The estimators, the papers' first.
-pub const ESTIMATORS: [AoEstimator; 4] = [
-    AoEstimator::Thesis,
-    AoEstimator::Crytek,
-    AoEstimator::Szentandrasi,
-    AoEstimator::Gtao,
-];
-
 /// The Cornell box's path (the flicker table's slow orbit).
 const CORNELL_PATH: &str = "orbit:60s";
 
 #[derive(Clone, Debug, Serialize)]
 pub struct RowResult {
     pub scene: String,
-    pub estimator: &'static str,
+    /// The estimator's name, as `--ao` takes it.
+    pub estimator: String,
     pub cache: bool,
     /// Median per-frame GPU ms of the AO passes, the reprojection (with the cache) and the
     /// whole frame over the measured frames.
@@ -105,15 +100,6 @@ pub struct TableReport {
     pub notes: Vec<String>,
     pub scenes: Vec<SceneTruth>,
     pub rows: Vec<RowResult>,
-}
-
-fn estimator_name(e: AoEstimator) -> &'static str {
-    match e {
-        AoEstimator::Thesis => "thesis",
-        AoEstimator::Crytek => "crytek",
-        AoEstimator::Szentandrasi => "szentandrasi",
-        AoEstimator::Gtao => "gtao",
-    }
 }
 
 /// A row's configuration: AO alone with `estimator`, the thesis's reuse row (the cache) or its
@@ -274,13 +260,14 @@ fn measure_scene(
         .map(|(_, p)| p);
     let reproject = [crate::passes::PassId::REPROJECT];
     let mut measured: Vec<(RowResult, LastFrame)> = Vec::new();
-    for estimator in ESTIMATORS {
+    // Every estimator, in the enum's order (the papers' first).
+    for &estimator in AoEstimator::value_variants() {
         for cache in [true, false] {
             let c = config(opts, estimator, cache)?;
             let label = format!(
                 "{} {} {}",
                 scene.name,
-                estimator_name(estimator),
+                value_name(estimator),
                 if cache { "cache" } else { "no cache" }
             );
             let m = measure(
@@ -302,7 +289,7 @@ fn measure_scene(
             )?;
             let row = RowResult {
                 scene: scene.name.clone(),
-                estimator: estimator_name(estimator),
+                estimator: value_name(estimator),
                 cache,
                 ao_ms: ao_group.as_deref().and_then(|p| group_median(&m.report, p)),
                 reproject_ms: cache.then(|| group_median(&m.report, &reproject)).flatten(),
@@ -384,7 +371,7 @@ fn sheet() -> Sheet<'static, RowResult> {
             Cell::text(r.scene.clone())
         }),
         Column::new("estimator", "Estimator", |r: &RowResult| {
-            Cell::text(r.estimator)
+            Cell::text(r.estimator.clone())
         }),
         Column::new("cache", "Cache", |r: &RowResult| Cell::Flag(r.cache)),
         Column::new("ao_ms", "AO ms", |r: &RowResult| Cell::num(r.ao_ms, 3)),

@@ -312,12 +312,14 @@ fn plots(r: &TableReport, out: &Path) -> Result<Vec<PathBuf>> {
         }),
     ];
     let mut written = Vec::new();
+    let names: Vec<String> = FILTERS.iter().map(|&f| filter_name(f)).collect();
     for motion in ["static", "moving"] {
         for (name, y_label, value) in measures {
             let series = FILTERS
                 .iter()
-                .map(|&f| ScatterSeries {
-                    name: filter_name(f),
+                .zip(&names)
+                .map(|(&f, filter)| ScatterSeries {
+                    name: filter,
                     points: r
                         .rows
                         .iter()
@@ -346,14 +348,9 @@ fn plots(r: &TableReport, out: &Path) -> Result<Vec<PathBuf>> {
     Ok(written)
 }
 
-pub fn filter_name(f: IndirectFilter) -> &'static str {
-    match f {
-        IndirectFilter::Accumulate => "accumulate",
-        IndirectFilter::Ccipca => "ccipca",
-        IndirectFilter::Jbf11 => "jbf11",
-        IndirectFilter::Jbf17 => "jbf17",
-        IndirectFilter::Svgf => "svgf",
-    }
+/// The filter's name, as `--indirect-filter` takes it.
+pub fn filter_name(f: IndirectFilter) -> String {
+    crate::config::sweep_key::value_name(f)
 }
 
 fn sci(v: Option<f64>) -> String {

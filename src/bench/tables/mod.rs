@@ -50,6 +50,22 @@ mod tests {
         assert!(find("thesis-4.2").is_none());
     }
 
+    /// A table's `--set` prefixes name the sweep keys' registry, so a renamed key cannot leave
+    /// a table offering a parameter that no longer exists.
+    #[test]
+    fn settable_prefixes_name_sweep_keys() {
+        let keys = crate::sweep::keys::all_keys();
+        for t in TABLES {
+            for prefix in t.settable {
+                assert!(
+                    keys.iter().any(|k| k.name.starts_with(prefix)),
+                    "table {}: --set prefix {prefix} matches no sweep key",
+                    t.name
+                );
+            }
+        }
+    }
+
     #[test]
     fn sizes_prefer_the_command_line_then_the_papers() {
         let chang = find("chang-1").unwrap();

@@ -6,33 +6,31 @@
 use crate::error::{Error, Result};
 use serde::Serialize;
 
-/// The SSAO estimator.
+/// The SSAO estimator. Its names (`--ao`, the sweep key `ao.estimator`, `table ao`'s rows, the
+/// viewer's choices) come from this enum; its code, the SSAO passes' specialization constant,
+/// from shaders/include/shared_constants.glsl.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, clap::ValueEnum)]
 #[serde(rename_all = "lowercase")]
+#[repr(u32)]
 pub enum AoEstimator {
     /// Lin 2013 eqs 6-8: normal-weighted, attenuated, log-spaced screen-space steps.
-    Thesis,
+    Thesis = crate::shaders::AO_THESIS,
     /// Mittring 2007: depth comparisons of points in a sphere (flat surfaces come out grey).
-    Crytek,
+    Crytek = crate::shaders::AO_CRYTEK,
     /// Szentandrasi section 3.1: Halton points in the normal's hemisphere, back-projected; the
     /// fraction behind the visible surface.
-    Szentandrasi,
+    Szentandrasi = crate::shaders::AO_SZENTANDRASI,
     /// Jimenez et al. 2016 (ground-truth AO, as Intel's XeGTAO): per slice through the view
     /// vector, the two horizons within the radius and the cosine-weighted visibility between
     /// them in closed form; `--ao-samples` taps split into slices of 2 x `--ao-steps`.
-    Gtao,
+    Gtao = crate::shaders::AO_GTAO,
 }
 
 impl AoEstimator {
-    /// The AO parameters' `estimator` (AO_* of shaders/include/shared_constants.glsl).
+    /// The estimating passes' specialization constant `AO_ESTIMATOR` (ao.glsl): the AO_*
+    /// code of shaders/include/shared_constants.glsl, the variant's discriminant.
     pub fn code(self) -> u32 {
-        use crate::shaders::{AO_CRYTEK, AO_GTAO, AO_SZENTANDRASI, AO_THESIS};
-        match self {
-            AoEstimator::Thesis => AO_THESIS,
-            AoEstimator::Crytek => AO_CRYTEK,
-            AoEstimator::Szentandrasi => AO_SZENTANDRASI,
-            AoEstimator::Gtao => AO_GTAO,
-        }
+        self as u32
     }
 }
 

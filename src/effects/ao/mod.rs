@@ -42,6 +42,7 @@ pub const ID: EffectId = EffectId::new("ao");
 
 pub const KIND: EffectKind = EffectKind {
     name: "ao",
+    history_format: crate::shaders::AO_HISTORY_FORMAT,
     block_shift: 0,
     refresh_tile: 64,
     counters: &[
@@ -365,19 +366,19 @@ impl AoEffect {
         } else {
             None
         };
+        // The estimating passes are specialized for the estimator (ao.glsl's AO_ESTIMATOR).
+        let estimating = |decl: &PassDecl| {
+            ComputePass::declared_with(s.ctx, s.pool, decl, &[s.config.ao.estimator.code()])
+        };
         let refresh = if reuse {
-            Some(ComputePass::declared(
-                s.ctx,
-                s.pool,
-                &SSAO_ACCUMULATE_REFRESH,
-            )?)
+            Some(estimating(&SSAO_ACCUMULATE_REFRESH)?)
         } else {
             None
         };
         let moving =
             if reuse && s.config.ao.estimator == AoEstimator::Gtao && s.config.ao.moving_denoise {
                 Some((
-                    ComputePass::declared(s.ctx, s.pool, &SSAO_ACCUMULATE_SPLIT)?,
+                    estimating(&SSAO_ACCUMULATE_SPLIT)?,
                     ComputePass::declared(s.ctx, s.pool, &GTAO_MOVING_PASS)?,
                 ))
             } else {
@@ -385,7 +386,7 @@ impl AoEffect {
             };
         Ok(Self {
             reuse,
-            ssao: ComputePass::declared(s.ctx, s.pool, ssao)?,
+            ssao: estimating(ssao)?,
             refresh,
             moving,
             moving_wrote: false,

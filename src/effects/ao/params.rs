@@ -37,7 +37,6 @@ pub fn params(c: &RenderConfig) -> AoParams {
         steps,
         samples: ao.samples,
         patterns: ao.patterns,
-        estimator: ao.estimator.code(),
         position_mips: ao.position_mips,
         pattern_base: if ao.patterns > 1 {
             REFERENCE_PATTERN_BASE

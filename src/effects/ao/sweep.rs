@@ -2,13 +2,13 @@
 
 use super::config::{AoConfig, AoEstimator};
 use crate::config::parse::{parse_attenuation, parse_count, parse_on_off, parse_radius};
-use crate::config::sweep_key::SweepKey;
+use crate::config::sweep_key::{value_names, SweepKey, Syntax};
 use clap::ValueEnum;
 
 pub const SWEEP_KEYS: &[SweepKey] = &[
     SweepKey {
         name: "ao.samples",
-        syntax: "integer 1..=4096",
+        syntax: Syntax::Text("integer 1..=4096"),
         description: "SSAO samples per pattern (--ao-samples)",
         set: |c, v| {
             c.ao.samples = parse_count(v, 1, 4096)?;
@@ -17,7 +17,7 @@ pub const SWEEP_KEYS: &[SweepKey] = &[
     },
     SweepKey {
         name: "ao.estimator",
-        syntax: "thesis|crytek|szentandrasi|gtao",
+        syntax: Syntax::Names(value_names::<AoEstimator>),
         description: "SSAO estimator (--ao)",
         set: |c, v| {
             c.ao.estimator = AoEstimator::from_str(v, false)?;
@@ -26,7 +26,7 @@ pub const SWEEP_KEYS: &[SweepKey] = &[
     },
     SweepKey {
         name: "ao.steps",
-        syntax: "integer 1..=256",
+        syntax: Syntax::Text("integer 1..=256"),
         description: "GTAO steps per side of a slice (--ao-steps)",
         set: |c, v| {
             c.ao.steps = parse_count(v, 1, AoConfig::MAX_STEPS)?;
@@ -35,7 +35,7 @@ pub const SWEEP_KEYS: &[SweepKey] = &[
     },
     SweepKey {
         name: "ao.moving_denoise",
-        syntax: "on|off",
+        syntax: Syntax::Text("on|off"),
         description: "GTAO with the cache: denoise each pattern while the camera moves \
                       (--gtao-moving-denoise)",
         set: |c, v| {
@@ -45,7 +45,7 @@ pub const SWEEP_KEYS: &[SweepKey] = &[
     },
     SweepKey {
         name: "ao.radius",
-        syntax: "number in (0, 10]",
+        syntax: Syntax::Text("number in (0, 10]"),
         description: "SSAO sampling radius, fraction of the scene's bounding radius",
         set: |c, v| {
             c.ao.radius = parse_radius(v)?;
@@ -54,7 +54,7 @@ pub const SWEEP_KEYS: &[SweepKey] = &[
     },
     SweepKey {
         name: "ao.attenuation",
-        syntax: "A:B, each finite and >= 0",
+        syntax: Syntax::Text("A:B, each finite and >= 0"),
         description: "eq 7's D(d) = 1 + A d + B d^2 (0:0: binary visibility within the radius; \
                       --ao-attenuation); the ground truth follows it",
         set: |c, v| {
@@ -64,7 +64,7 @@ pub const SWEEP_KEYS: &[SweepKey] = &[
     },
     SweepKey {
         name: "ao.patterns",
-        syntax: "integer 1..=1024",
+        syntax: Syntax::Text("integer 1..=1024"),
         description: "SSAO patterns evaluated at once per frame",
         set: |c, v| {
             c.ao.patterns = parse_count(v, 1, 1024)?;
@@ -73,7 +73,7 @@ pub const SWEEP_KEYS: &[SweepKey] = &[
     },
     SweepKey {
         name: "ao.position_mips",
-        syntax: "integer 0..=3",
+        syntax: Syntax::Text("integer 0..=3"),
         description: "far SSAO taps read position levels up to this; 0 = off (--ao-position-mips)",
         set: |c, v| {
             c.ao.position_mips = parse_count(v, 0, AoConfig::MAX_POSITION_MIPS)?;

@@ -32,6 +32,7 @@ pub const ID: EffectId = EffectId::new("direct");
 
 pub const KIND: EffectKind = EffectKind {
     name: "shadow",
+    history_format: crate::shaders::SHADOW_HISTORY_FORMAT,
     block_shift: 0,
     refresh_tile: 64,
     counters: &[

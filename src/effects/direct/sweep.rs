@@ -1,11 +1,11 @@
 //! The direct light's key for `ssgi sweep --vary`: its shadow filter.
 
 use crate::config::pcf::Pcf;
-use crate::config::sweep_key::SweepKey;
+use crate::config::sweep_key::{SweepKey, Syntax};
 
 pub const SWEEP_KEYS: &[SweepKey] = &[SweepKey {
     name: "pcf",
-    syntax: "hard|9|SQUARE (25, 49, ...)|disc:N",
+    syntax: Syntax::Text("hard|9|SQUARE (25, 49, ...)|disc:N"),
     description: "shadow filtering kernel (--pcf)",
     set: |c, v| {
         c.pcf = Pcf::parse(v)?;

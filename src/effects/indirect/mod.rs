@@ -41,6 +41,7 @@ pub const ID: EffectId = EffectId::new("indirect");
 
 pub const KIND: EffectKind = EffectKind {
     name: "indirect",
+    history_format: crate::shaders::INDIRECT_HISTORY_FORMAT,
     block_shift: 4,
     refresh_tile: 16,
     counters: &[

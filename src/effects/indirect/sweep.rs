@@ -2,14 +2,14 @@
 //! filters' noisy gather too).
 
 use crate::config::parse::{parse_count, parse_on_off, parse_vpls};
-use crate::config::sweep_key::SweepKey;
+use crate::config::sweep_key::{value_names, SweepKey, Syntax};
 use crate::config::{IndirectConfig, IndirectFilter};
 use clap::ValueEnum;
 
 pub const SWEEP_KEYS: &[SweepKey] = &[
     SweepKey {
         name: "indirect.vpls",
-        syntax: "integer 1..=16384|all",
+        syntax: Syntax::Text("integer 1..=16384|all"),
         description: "VPLs gathered per pixel and frame; all = every RSM texel (--vpls)",
         set: |c, v| {
             c.indirect.vpls = parse_vpls(v)?;
@@ -18,7 +18,7 @@ pub const SWEEP_KEYS: &[SweepKey] = &[
     },
     SweepKey {
         name: "indirect.interleave",
-        syntax: "integer 1..=8",
+        syntax: Syntax::Text("integer 1..=8"),
         description: "interleaved gather: NxN blocks share the VPLs (--interleave)",
         set: |c, v| {
             c.indirect.interleave = parse_count(v, 1, IndirectConfig::MAX_INTERLEAVE)?;
@@ -27,7 +27,7 @@ pub const SWEEP_KEYS: &[SweepKey] = &[
     },
     SweepKey {
         name: "indirect.visibility",
-        syntax: "on|off",
+        syntax: Syntax::Text("on|off"),
         description: "screen-space visibility test per VPL (--vpl-visibility)",
         set: |c, v| {
             c.indirect.visibility = parse_on_off(v)?;
@@ -36,7 +36,7 @@ pub const SWEEP_KEYS: &[SweepKey] = &[
     },
     SweepKey {
         name: "indirect.filter",
-        syntax: "accumulate|ccipca|jbf11|jbf17|svgf",
+        syntax: Syntax::Names(value_names::<IndirectFilter>),
         description: "what makes indirect light smooth over time (--indirect-filter)",
         set: |c, v| {
             c.indirect.filter = IndirectFilter::from_str(v, false)?;
@@ -45,7 +45,7 @@ pub const SWEEP_KEYS: &[SweepKey] = &[
     },
     SweepKey {
         name: "indirect.half_res",
-        syntax: "on|off",
+        syntax: Syntax::Text("on|off"),
         description: "indirect gather at half resolution (--half-res)",
         set: |c, v| {
             c.indirect.half_res = parse_on_off(v)?;

@@ -42,6 +42,7 @@ pub const ID: EffectId = EffectId::new("ssdo");
 /// SSDO with the cache (`--reuse on`): the factor's running mean rides in the moments' w.
 pub const KIND: EffectKind = EffectKind {
     name: "ssdo",
+    history_format: crate::shaders::SSDO_HISTORY_FORMAT,
     block_shift: 0,
     refresh_tile: 64,
     counters: &[

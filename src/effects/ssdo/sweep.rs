@@ -2,13 +2,13 @@
 
 use super::config::{parse_bilateral, parse_ssdo_scale, SsdoConfig, SsdoForm};
 use crate::config::parse::{parse_count, parse_radius};
-use crate::config::sweep_key::SweepKey;
+use crate::config::sweep_key::{value_names, SweepKey, Syntax};
 use clap::ValueEnum;
 
 pub const SWEEP_KEYS: &[SweepKey] = &[
     SweepKey {
         name: "ssdo.form",
-        syntax: "one-step|two-step|ssao",
+        syntax: Syntax::Names(value_names::<SsdoForm>),
         description: "SSDO in one pass, Ritschel's two, or SSAO on its pipeline (--ssdo)",
         set: |c, v| {
             c.ssdo.form = SsdoForm::from_str(v, false)?;
@@ -17,7 +17,7 @@ pub const SWEEP_KEYS: &[SweepKey] = &[
     },
     SweepKey {
         name: "ssdo.samples",
-        syntax: "integer 1..=4096",
+        syntax: Syntax::Text("integer 1..=4096"),
         description: "SSDO hemisphere samples per pixel (--ssdo-samples)",
         set: |c, v| {
             c.ssdo.samples = parse_count(v, 1, SsdoConfig::MAX_SAMPLES)?;
@@ -26,7 +26,7 @@ pub const SWEEP_KEYS: &[SweepKey] = &[
     },
     SweepKey {
         name: "ssdo.radius",
-        syntax: "number in (0, 10]",
+        syntax: Syntax::Text("number in (0, 10]"),
         description: "SSDO hemisphere radius, fraction of the scene's bounding radius",
         set: |c, v| {
             c.ssdo.radius = parse_radius(v)?;
@@ -35,7 +35,7 @@ pub const SWEEP_KEYS: &[SweepKey] = &[
     },
     SweepKey {
         name: "ssdo.filter",
-        syntax: "odd integer 1..=31|off",
+        syntax: Syntax::Text("odd integer 1..=31|off"),
         description: "SSDO's separable bilateral filter side (--bilateral)",
         set: |c, v| {
             c.ssdo.filter = parse_bilateral(v)?;
@@ -44,7 +44,7 @@ pub const SWEEP_KEYS: &[SweepKey] = &[
     },
     SweepKey {
         name: "ssdo.scale",
-        syntax: "1|0.5",
+        syntax: Syntax::Text("1|0.5"),
         description: "SSDO's resolution, upsampled when half (--ssdo-scale)",
         set: |c, v| {
             c.ssdo.scale = parse_ssdo_scale(v)?;

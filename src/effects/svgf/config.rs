@@ -23,11 +23,12 @@ pub enum SvgfHistory {
 }
 
 impl SvgfHistory {
-    /// The shader's code (svgf.glsl's `bilinear`).
+    /// The shader's code (its push constant `bilinear`): SVGF_HISTORY_* of
+    /// shared_constants.glsl.
     pub fn code(self) -> u32 {
         match self {
-            SvgfHistory::Nearest => 0,
-            SvgfHistory::Bilinear => 1,
+            SvgfHistory::Nearest => crate::shaders::SVGF_HISTORY_NEAREST,
+            SvgfHistory::Bilinear => crate::shaders::SVGF_HISTORY_BILINEAR,
         }
     }
 }

@@ -24,7 +24,7 @@ use crate::passes::decl::{Bind, Slot, Use};
 use crate::passes::{PassId, PassLayout};
 use crate::reference::compose::Terms;
 use crate::resources::counters::{Counter, OwnCounters};
-use crate::resources::targets::{EffectView, Look, Target, Targets};
+use crate::resources::targets::{EffectView, Look, PingPong, Target, Targets};
 use crate::shaders::{self, SvgfPush};
 use crate::vk::recorder::Recorder;
 use crate::vk::{Buffer, Context, Image, Tracker};
@@ -184,8 +184,9 @@ enum Step {
 
 struct Sized {
     noisy: Image,
-    color: [Image; 2],
-    moments: [Image; 2],
+    /// This frame's colour and moments histories, and last frame's.
+    color: PingPong,
+    moments: PingPong,
     depth: Image,
     integrated: Image,
     /// The a-trous iterations' outputs, in turn.
@@ -235,8 +236,8 @@ impl SvgfEffect {
         let image = |name: &str| float_image(ctx, name, c);
         Ok(Sized {
             noisy: image("svgf.noisy")?,
-            color: [image("svgf.color.0")?, image("svgf.color.1")?],
-            moments: [image("svgf.moments.0")?, image("svgf.moments.1")?],
+            color: PingPong::make(|i| image(&format!("svgf.color.{i}")))?,
+            moments: PingPong::make(|i| image(&format!("svgf.moments.{i}")))?,
             depth: image("svgf.depth")?,
             integrated: image("svgf.integrated")?,
             atrous: [image("svgf.atrous.0")?, image("svgf.atrous.1")?],
@@ -247,14 +248,12 @@ impl SvgfEffect {
     /// iteration's.
     fn own<'a>(&'a self, input: &'a Image, output: &'a Image) -> [(Slot, [&'a Image; 2]); 9] {
         let s = &self.sized;
-        let [c0, c1] = &s.color;
-        let [m0, m1] = &s.moments;
         [
             (NOISY, [&s.noisy, &s.noisy]),
-            (COLOR, [c0, c1]),
-            (COLOR_PREV, [c1, c0]),
-            (MOMENTS, [m0, m1]),
-            (MOMENTS_PREV, [m1, m0]),
+            (COLOR, s.color.current_by_parity()),
+            (COLOR_PREV, s.color.previous_by_parity()),
+            (MOMENTS, s.moments.current_by_parity()),
+            (MOMENTS_PREV, s.moments.previous_by_parity()),
             (DEPTH, [&s.depth, &s.depth]),
             (INTEGRATED, [&s.integrated, &s.integrated]),
             (ATROUS_IN, [input, input]),
@@ -432,7 +431,7 @@ impl Effect for SvgfEffect {
             Target::Indirect => Some(self.output_image()),
             Target::IndirectNoisy => Some(&self.sized.noisy),
             Target::Effect(v) if *v == INTEGRATED_VIEW => Some(&self.sized.integrated),
-            Target::Effect(v) if *v == HISTORY_VIEW => Some(&self.sized.moments[parity % 2]),
+            Target::Effect(v) if *v == HISTORY_VIEW => Some(self.sized.moments.current(parity)),
             _ => None,
         }
     }

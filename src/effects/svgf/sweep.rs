@@ -2,13 +2,13 @@
 
 use super::config::{parse_sigma, parse_weight, SvgfConfig, SvgfHistory};
 use crate::config::parse::parse_count;
-use crate::config::sweep_key::SweepKey;
+use crate::config::sweep_key::{value_names, SweepKey, Syntax};
 use clap::ValueEnum;
 
 pub const SWEEP_KEYS: &[SweepKey] = &[
     SweepKey {
         name: "svgf.iterations",
-        syntax: "integer 0..=10",
+        syntax: Syntax::Text("integer 0..=10"),
         description: "SVGF's a-trous iterations (--svgf-iterations)",
         set: |c, v| {
             c.svgf.iterations = parse_count(v, 0, SvgfConfig::MAX_ITERATIONS)?;
@@ -17,7 +17,7 @@ pub const SWEEP_KEYS: &[SweepKey] = &[
     },
     SweepKey {
         name: "svgf.alpha",
-        syntax: "number in (0, 1]",
+        syntax: Syntax::Text("number in (0, 1]"),
         description: "SVGF's smallest weight of a new sample in the colour (--svgf-alpha)",
         set: |c, v| {
             c.svgf.alpha = parse_weight(v)?;
@@ -26,7 +26,7 @@ pub const SWEEP_KEYS: &[SweepKey] = &[
     },
     SweepKey {
         name: "svgf.alpha_moments",
-        syntax: "number in (0, 1]",
+        syntax: Syntax::Text("number in (0, 1]"),
         description: "the same for the luminance moments (--svgf-alpha-moments)",
         set: |c, v| {
             c.svgf.alpha_moments = parse_weight(v)?;
@@ -35,7 +35,7 @@ pub const SWEEP_KEYS: &[SweepKey] = &[
     },
     SweepKey {
         name: "svgf.alpha_still",
-        syntax: "number in (0, 1]",
+        syntax: Syntax::Text("number in (0, 1]"),
         description: "both smallest weights once the lighting holds still (--svgf-alpha-still)",
         set: |c, v| {
             c.svgf.alpha_still = parse_weight(v)?;
@@ -44,7 +44,7 @@ pub const SWEEP_KEYS: &[SweepKey] = &[
     },
     SweepKey {
         name: "svgf.history",
-        syntax: "nearest|bilinear",
+        syntax: Syntax::Names(value_names::<SvgfHistory>),
         description: "how SVGF reads last frame's values (--svgf-history)",
         set: |c, v| {
             c.svgf.history = SvgfHistory::from_str(v, false)?;
@@ -53,7 +53,7 @@ pub const SWEEP_KEYS: &[SweepKey] = &[
     },
     SweepKey {
         name: "svgf.sigma_luminance",
-        syntax: "number >= 0",
+        syntax: Syntax::Text("number >= 0"),
         description: "SVGF's luminance edge-stopping (--svgf-sigma-luminance)",
         set: |c, v| {
             c.svgf.sigma_luminance = parse_sigma(v)?;
@@ -62,7 +62,7 @@ pub const SWEEP_KEYS: &[SweepKey] = &[
     },
     SweepKey {
         name: "svgf.sigma_normal",
-        syntax: "number >= 0",
+        syntax: Syntax::Text("number >= 0"),
         description: "SVGF's normal edge-stopping exponent (--svgf-sigma-normal)",
         set: |c, v| {
             c.svgf.sigma_normal = parse_sigma(v)?;
@@ -71,7 +71,7 @@ pub const SWEEP_KEYS: &[SweepKey] = &[
     },
     SweepKey {
         name: "svgf.sigma_depth",
-        syntax: "number >= 0",
+        syntax: Syntax::Text("number >= 0"),
         description: "SVGF's depth edge-stopping (--svgf-sigma-depth)",
         set: |c, v| {
             c.svgf.sigma_depth = parse_sigma(v)?;

@@ -3,7 +3,12 @@
 //! only ask; the viewer applies each request through the command line's parsers and
 //! `RenderConfig::validate`, as a script's `set=KEY:VALUE` (`window/app.rs`).
 
+use crate::config::antialias::AaMode;
+use crate::config::parse::AccumulateMode;
+use crate::config::sweep_key::value_names;
 use crate::config::RenderConfig;
+use crate::effects::ao::config::AoEstimator;
+use crate::effects::indirect::config::IndirectFilter;
 use crate::frontend::view_state::{effect_keys, Action};
 use crate::sweep::keys::{apply, parse_key};
 
@@ -18,35 +23,27 @@ pub enum Request {
     CommandLine,
 }
 
-/// Keys offered as a choice among their plain values.
-const CHOICES: [(&str, &str, &[&str]); 4] = [
-    (
-        "AO",
-        "ao.estimator",
-        &["thesis", "crytek", "szentandrasi", "gtao"],
-    ),
-    (
-        "indirect",
-        "indirect.filter",
-        &["accumulate", "ccipca", "jbf11", "jbf17", "svgf"],
-    ),
+/// The names an enum's variants go by (`value_names::<E>`).
+type Names = fn() -> Vec<String>;
+
+/// Keys offered as a choice among their plain values, each list from its enum (the one source
+/// of the names the command line and the sweep take).
+const CHOICES: [(&str, &str, Names); 4] = [
+    ("AO", "ao.estimator", value_names::<AoEstimator>),
+    ("indirect", "indirect.filter", value_names::<IndirectFilter>),
     (
         "accumulate",
         "temporal.accumulate",
-        &["gated", "confidence", "ema", "mean"],
+        value_names::<AccumulateMode>,
     ),
-    (
-        "antialias",
-        "aa",
-        &["none", "sraa", "sraa-shadow", "ssaa16"],
-    ),
+    ("antialias", "aa", value_names::<AaMode>),
 ];
 
 /// Which of `values` of sweep key `key` the configuration holds: the one whose parser turns
 /// `config` into itself (a value with another parameter, `gated:3`, matches none).
-pub fn current<'a>(config: &RenderConfig, key: &str, values: &[&'a str]) -> Option<&'a str> {
+pub fn current<'a>(config: &RenderConfig, key: &str, values: &'a [String]) -> Option<&'a str> {
     let key = parse_key(key).ok()?;
-    values.iter().copied().find(|v| {
+    values.iter().map(String::as_str).find(|v| {
         let mut c = *config;
         apply(&mut c, key, v).is_ok() && c == *config
     })
@@ -90,13 +87,13 @@ pub fn show(ui: &mut egui::Ui, config: &RenderConfig, f: Fields<'_>, out: &mut V
         .show(ui, |ui| {
             for (label, key, values) in CHOICES {
                 ui.label(label);
-                let now = current(config, key, values);
+                let values = values();
+                let now = current(config, key, &values);
                 egui::ComboBox::from_id_salt(key)
                     .selected_text(now.unwrap_or("(other)"))
                     .show_ui(ui, |ui| {
-                        for v in values {
-                            if ui.selectable_label(now == Some(*v), *v).clicked() && now != Some(*v)
-                            {
+                        for v in values.iter().map(String::as_str) {
+                            if ui.selectable_label(now == Some(v), v).clicked() && now != Some(v) {
                                 out.push(Request::Set(key, v.to_string()));
                             }
                         }
@@ -183,11 +180,11 @@ mod tests {
     #[test]
     fn current_value_comes_from_the_keys_parser() {
         let mut c = RenderConfig::default();
-        assert_eq!(current(&c, "ao.estimator", CHOICES[0].2), Some("thesis"));
+        assert_eq!(current(&c, "ao.estimator", &CHOICES[0].2()), Some("thesis"));
         apply(&mut c, parse_key("ao.estimator").unwrap(), "gtao").unwrap();
-        assert_eq!(current(&c, "ao.estimator", CHOICES[0].2), Some("gtao"));
+        assert_eq!(current(&c, "ao.estimator", &CHOICES[0].2()), Some("gtao"));
         apply(&mut c, parse_key("temporal.accumulate").unwrap(), "gated:7").unwrap();
-        assert_eq!(current(&c, "temporal.accumulate", CHOICES[2].2), None);
+        assert_eq!(current(&c, "temporal.accumulate", &CHOICES[2].2()), None);
     }
 
     #[test]

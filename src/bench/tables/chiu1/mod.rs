@@ -132,13 +132,9 @@ fn config(opts: &TableOptions, size: (u32, u32), mode: AaMode) -> RenderConfig {
     }
 }
 
-fn mode_name(mode: AaMode) -> &'static str {
-    match mode {
-        AaMode::None => "none",
-        AaMode::Sraa => "sraa",
-        AaMode::SraaShadow => "sraa-shadow",
-        AaMode::Ssaa16 => "ssaa16",
-    }
+/// The mode's name, as `--aa` takes it.
+fn mode_name(mode: AaMode) -> String {
+    crate::config::sweep_key::value_name(mode)
 }
 
 /// Every row at one size, the reference first.
