@@ -261,10 +261,10 @@ Reprojected reproject(ivec2 pixel) {
 // The cap is also what keeps the cache cheap under motion, at a price: a tap that lost
 // estimates to the magnification or displacement rule takes them back from a stronger
 // neighbour as soon as the blend spreads its weight, so it is not re-estimated and the blend's
-// smoothing persists. Capped at the taps' weighted mean count instead, the box:bunny orbit's
-// indirect light ends 0.042 (RMSE) from its converged estimator instead of 0.102, but 88% of
-// the low-resolution samples are gathered every frame instead of 36%, 1.9 times the gather's
-// time (docs/results/DECISIONS.md, orbit-diagnosis).
+// smoothing persists. Capped at the taps' weighted mean count instead, the cached indirect
+// light ends much nearer its converged estimator, but most low-resolution samples are then
+// gathered every frame, nearly twice the gather's time (figures: docs/results/DECISIONS.md,
+// "The reprojection's count credit and history resampling").
 float blend_count(vec4 n, vec4 w) {
     vec4 inv = mix(vec4(1.0e30), 1.0 / max(n, vec4(1e-30)), greaterThan(n, vec4(0.0)));
     float spread = dot(w * w, mix(inv, vec4(0.0), equal(w, vec4(0.0))));
@@ -308,11 +308,11 @@ vec4 registration_tap(texture2D registration_prev, ivec2 t, out float before) {
 // projected with this frame's camera, lands nearest the pixel's centre (value, counts and point
 // together). The bilinear blend (the default) mixes neighbouring values again every frame,
 // invisibly to the displacement rule (the blended point stays on the surface), and the mix
-// grows with the history's age: on the box:bunny orbit the cached indirect light ends 0.102
-// (RMSE) from the estimator's own converged value with the blend, 0.036 with this choice, the
-// no-reuse level. But the blend's smoothing brings it nearer the ground truth (0.128 against
-// 0.147), and since counts no longer borrow from neighbours here, more pixels accumulate and
-// the frame costs twice as much (docs/results/DECISIONS.md, orbit-resample).
+// grows with the history's age: this choice keeps the estimator's own converged value (the
+// no-reuse level) where the blend drifts from it. But the blend's smoothing brings it nearer
+// the ground truth, and since counts no longer borrow from neighbours here, more pixels
+// accumulate and the cache loses most of its speed-up (figures: docs/results/DECISIONS.md,
+// "The reprojection's count credit and history resampling").
 Reprojected pick_registered(Reprojected r, texture2D registration_prev) {
     if (!r.bilinear || frame.history_resample != HISTORY_RESAMPLE_POINT) return r;
     vec2 centre = vec2(gl_GlobalInvocationID.xy) + 0.5;

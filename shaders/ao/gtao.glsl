@@ -12,9 +12,8 @@
 // each slice (a floor beside a wall: tests/gtao.rs). With eq 7's attenuation each rise of a
 // horizon, from the sample at x = d/R, occludes the arc it covers by 1/D(x) (the rays of that
 // arc meet the surface near that sample in a height field), where XeGTAO's falloff pulls the
-// horizon towards the tangent plane: against the ray-traced AO along paths/box.json the arcs
-// measured 0.29-0.33x the thesis estimator's error on the Table 4.1 scenes, the falloff
-// 0.46-0.55x (lavapipe-gtao-arcs-2026-12-07). Like
+// horizon towards the tangent plane: the arcs come closer to the ray-traced AO (figures:
+// docs/results/DECISIONS.md, "GTAO's attenuation: weighted arcs, not XeGTAO's falloff"). Like
 // every screen-space estimator it sees no occluder that is hidden or off screen, and it takes
 // the visible surface for an infinitely thick one (the space behind it counts as occluded).
 #ifndef GTAO_GLSL
@@ -86,9 +85,9 @@ float ao_gtao_taps(ivec2 pixel, vec3 p, vec3 n, uint pattern, uint first, uint e
     float px_per_world = float(frame.size.y) / (2.0 * frame.tan_half_fov * depth);
     // The radius on screen, at least one step out of the pixel. Not capped at a quarter of the
     // image as the thesis estimator's: the step count is fixed, so a wider march costs no more
-    // taps, and near a wall the cap hid occluders within the radius (the Cornell box's orbit:
-    // AO RMSE 0.111 with the cap, 0.103 without). At most 4 image heights, past which every
-    // tap is off the image.
+    // taps, and near a wall the cap hid occluders within the radius (figures:
+    // docs/results/DECISIONS.md, "GTAO's uncapped radius and planar guard band"). At most 4
+    // image heights, past which every tap is off the image.
     float radius_px = max(min(radius * px_per_world, 4.0 * float(frame.size.y)), ao.near_px);
     vec2 u = pattern_point(pattern);
     // The pixel's share of the slices' half turn: its rank in a 4x4 Bayer matrix, k / 16 of
@@ -164,9 +163,9 @@ float ao_gtao_taps(ivec2 pixel, vec3 p, vec3 n, uint pattern, uint first, uint e
                 // Off the image (a planar guard band): the border texel's plane, met by the
                 // ray through the tap, stands in for the surface beyond the edge; where that
                 // ray misses it the tap is skipped (the texel itself lies off the slice). With
-                // the uncapped radius it lowered GTAO's AO error by 5-14% on the walkthroughs
-                // and about 1% on the Table 4.1 scenes (docs/results/DECISIONS.md,
-                // lavapipe-ao-guard-band-2026-12-07).
+                // the uncapped radius the border's occluders count, which matters most on the
+                // walkthroughs (figures: docs/results/DECISIONS.md, "GTAO's uncapped radius
+                // and planar guard band").
                 ivec2 inside = clamp(q_pixel, ivec2(0), ivec2(frame.size) - 1);
                 bool off_image = inside != q_pixel;
                 q_pixel = inside;

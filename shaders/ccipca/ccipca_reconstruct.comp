@@ -2,9 +2,8 @@
 // CCIPCA's output: the noisy image projected on the updated bases, x - u_{k+1}. Light is not
 // negative; a projection can be where the bases have not yet learned a region, so it is
 // clamped at zero. The clamp raises the mean where a projection overshoots below zero, and
-// lowers the error more than that bias costs: on tests/ccipca.rs's static view (48x48, 4
-// VPLs) relative RMSE 0.1903 with or without it under the defaults (nothing is negative),
-// 0.61 with it against 0.68 without in the article's order (projection after the update).
+// lowers the error more than that bias costs; under the defaults nothing is negative, so it
+// changes nothing there (figures: docs/results/DECISIONS.md, "CCIPCA's clamp at zero").
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_samplerless_texture_functions : require
 #define CCIPCA_RESIDUAL

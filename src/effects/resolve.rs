@@ -20,7 +20,7 @@ pub struct EffectResources<'a> {
 
 /// The shared targets every pass may read, for a parity (the images come from `Targets::get`,
 /// the one place that knows which image backs a shared target).
-pub fn shared(t: &Targets, slot: Slot, parity: usize) -> Option<&Image> {
+pub fn shared_target(t: &Targets, slot: Slot, parity: usize) -> Option<&Image> {
     let target = match slot {
         Slot::GPosition => Target::GPosition,
         Slot::GPositionPrev => Target::GPositionHistory,
@@ -64,7 +64,7 @@ impl Resolve for EffectResources<'_> {
                 .iter()
                 .find(|(s, _)| *s == slot)
                 .map(|(_, pair)| pair[parity]),
-            _ => shared(self.targets, slot, parity),
+            _ => shared_target(self.targets, slot, parity),
         }
     }
 

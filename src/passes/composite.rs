@@ -13,7 +13,7 @@ use crate::vk::recorder::Recorder;
 use crate::vk::{Buffer, Context, DescriptorPool, Image, Tracker};
 use std::sync::Arc;
 
-/// Terms the shader has bindings for.
+/// Effect terms the shader has bindings for.
 pub const MAX_TERMS: usize = 4;
 
 /// Into the final RGBA8 image, sRGB-encoded.
@@ -59,19 +59,19 @@ pub fn layouts() -> Vec<PassLayout> {
 /// The composite's inputs: the shared targets, and each term's image per parity (in the order
 /// of the kinds the pass was built with). Bindings past the last term repeat the first image
 /// (never read).
-pub struct Terms<'a> {
+pub struct CompositeInputs<'a> {
     pub shared: &'a dyn Resolve,
     /// The first `n` filled; a fixed array, so building it every frame allocates nothing.
     pub images: [Option<[&'a Image; 2]>; MAX_TERMS],
 }
 
-impl Terms<'_> {
+impl CompositeInputs<'_> {
     fn count(&self) -> usize {
         self.images.iter().take_while(|i| i.is_some()).count()
     }
 }
 
-impl Resolve for Terms<'_> {
+impl Resolve for CompositeInputs<'_> {
     fn image(&self, slot: Slot, parity: usize) -> Option<&Image> {
         match slot {
             Slot::Term(i) => self
@@ -125,15 +125,15 @@ impl CompositePass {
         })
     }
 
-    pub fn bind(&self, ctx: &Context, terms: &Terms<'_>) -> Result<()> {
-        if terms.count() != self.terms {
+    pub fn bind(&self, ctx: &Context, inputs: &CompositeInputs<'_>) -> Result<()> {
+        if inputs.count() != self.terms {
             return Err(Error::Config(format!(
                 "the composite was built for {} terms, not {}",
                 self.terms,
-                terms.count()
+                inputs.count()
             )));
         }
-        self.pass.bind(ctx, terms)
+        self.pass.bind(ctx, inputs)
     }
 
     pub fn record(
@@ -141,7 +141,7 @@ impl CompositePass {
         rec: &Recorder<'_>,
         tracker: &mut Tracker,
         frame: FrameSet,
-        terms: &Terms<'_>,
+        inputs: &CompositeInputs<'_>,
         width: u32,
         height: u32,
     ) {
@@ -149,7 +149,7 @@ impl CompositePass {
             rec,
             tracker,
             frame,
-            terms,
+            inputs,
             &[],
             Dispatch::Pixels { width, height },
         );

@@ -54,7 +54,7 @@ pub struct FrameState<'a> {
 
 /// A step of the frame that may be left out.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Step {
+pub enum FrameStep {
     LightView,
     GBuffer,
     /// Effect i, registry order (its passes and its reprojection lane).
@@ -88,14 +88,14 @@ pub struct FramePlan {
 
 impl FramePlan {
     /// Why `step` is left out this frame; `None` when it runs.
-    pub fn skipped(&self, step: Step) -> Option<SkipReason> {
+    pub fn skipped(&self, step: FrameStep) -> Option<SkipReason> {
         let out = self.skip.frame
             || match step {
-                Step::LightView => !self.light_view,
-                Step::GBuffer => self.skip.gbuffer,
-                Step::Effect(i) => self.skip.effect(i),
+                FrameStep::LightView => !self.light_view,
+                FrameStep::GBuffer => self.skip.gbuffer,
+                FrameStep::Effect(i) => self.skip.effect(i),
             };
-        let converged = matches!(step, Step::Effect(i) if self.accumulating >> i & 1 == 1);
+        let converged = matches!(step, FrameStep::Effect(i) if self.accumulating >> i & 1 == 1);
         out.then_some(if converged {
             SkipReason::Converged
         } else {
@@ -103,7 +103,7 @@ impl FramePlan {
         })
     }
 
-    pub fn runs(&self, step: Step) -> bool {
+    pub fn runs(&self, step: FrameStep) -> bool {
         self.skipped(step).is_none()
     }
 
@@ -311,10 +311,10 @@ mod tests {
         assert!(!p.history_valid && p.camera_moved && !p.camera_stopped);
         assert!(p.light_changed && p.light_view);
         for step in [
-            Step::LightView,
-            Step::GBuffer,
-            Step::Effect(0),
-            Step::Effect(1),
+            FrameStep::LightView,
+            FrameStep::GBuffer,
+            FrameStep::Effect(0),
+            FrameStep::Effect(1),
         ] {
             assert!(p.runs(step), "{step:?}");
         }
@@ -328,11 +328,14 @@ mod tests {
         let still = f.frame();
         assert!(still.history_valid && !still.camera_moved && !still.camera_stopped);
         assert!(!still.light_changed && !still.light_view);
-        assert_eq!(still.skipped(Step::LightView), Some(SkipReason::Unchanged));
+        assert_eq!(
+            still.skipped(FrameStep::LightView),
+            Some(SkipReason::Unchanged)
+        );
         f.walk(0.01);
         let moving = f.frame();
         assert!(moving.camera_moved && !moving.camera_stopped);
-        assert!(moving.runs(Step::GBuffer));
+        assert!(moving.runs(FrameStep::GBuffer));
         assert!(f.past.camera_was_moving);
     }
 
@@ -364,11 +367,11 @@ mod tests {
         f.inputs.light.position.x += 0.1;
         let p = f.frame();
         assert!(p.light_changed && p.light_view && !p.camera_moved);
-        assert!(!p.skip.frame && p.runs(Step::LightView));
+        assert!(!p.skip.frame && p.runs(FrameStep::LightView));
         // The G-buffer and the effect that does not read the light stay left out.
-        assert_eq!(p.skipped(Step::GBuffer), Some(SkipReason::Unchanged));
-        assert_eq!(p.skipped(Step::Effect(1)), Some(SkipReason::Unchanged));
-        assert!(p.runs(Step::Effect(0)));
+        assert_eq!(p.skipped(FrameStep::GBuffer), Some(SkipReason::Unchanged));
+        assert_eq!(p.skipped(FrameStep::Effect(1)), Some(SkipReason::Unchanged));
+        assert!(p.runs(FrameStep::Effect(0)));
         assert_eq!(f.past.rsm_light, Some(f.inputs.light));
         assert!(!f.frame().light_changed);
     }
@@ -397,7 +400,11 @@ mod tests {
         assert!(moved.screen_rect[0] < moved.screen_rect[2]);
         // The light sees it: its view is rendered though the light did not move.
         assert!(p.light_view && !p.light_changed);
-        for step in [Step::GBuffer, Step::Effect(0), Step::Effect(1)] {
+        for step in [
+            FrameStep::GBuffer,
+            FrameStep::Effect(0),
+            FrameStep::Effect(1),
+        ] {
             assert!(p.runs(step), "{step:?}");
         }
         f.poses[0] = Pose {
@@ -414,18 +421,18 @@ mod tests {
         // Work read back every frame: never converged, never skipped.
         for _ in 0..8 {
             let p = f.frame();
-            assert!(!p.converged(0) && p.runs(Step::Effect(0)));
+            assert!(!p.converged(0) && p.runs(FrameStep::Effect(0)));
         }
         // The fixed-pattern effect converged as soon as it ran; left out with steady inputs.
         assert!(f.frame().converged(1));
         assert_eq!(
-            f.frame().skipped(Step::Effect(1)),
+            f.frame().skipped(FrameStep::Effect(1)),
             Some(SkipReason::Unchanged)
         );
         f.idle = 0b11;
         let (_, p) = f.until_skipped();
         assert!(p.converged(0));
-        assert_eq!(p.skipped(Step::Effect(0)), Some(SkipReason::Converged));
+        assert_eq!(p.skipped(FrameStep::Effect(0)), Some(SkipReason::Converged));
         // A refresh tile still due, or a settling estimate, holds convergence back.
         for state in [
             EffectState {
@@ -439,7 +446,7 @@ mod tests {
         ] {
             f.effects[0] = state;
             let p = f.frame();
-            assert!(!p.converged(0) && p.runs(Step::Effect(0)) && !p.skip.frame);
+            assert!(!p.converged(0) && p.runs(FrameStep::Effect(0)) && !p.skip.frame);
             f.effects[0] = ACCUMULATING;
         }
     }
@@ -450,10 +457,10 @@ mod tests {
         f.idle = 0b11;
         let (_, p) = f.until_skipped();
         // Everything left out: unchanged, but accumulating passes converged.
-        assert_eq!(p.skipped(Step::LightView), Some(SkipReason::Unchanged));
-        assert_eq!(p.skipped(Step::GBuffer), Some(SkipReason::Unchanged));
-        assert_eq!(p.skipped(Step::Effect(0)), Some(SkipReason::Converged));
-        assert_eq!(p.skipped(Step::Effect(1)), Some(SkipReason::Unchanged));
+        assert_eq!(p.skipped(FrameStep::LightView), Some(SkipReason::Unchanged));
+        assert_eq!(p.skipped(FrameStep::GBuffer), Some(SkipReason::Unchanged));
+        assert_eq!(p.skipped(FrameStep::Effect(0)), Some(SkipReason::Converged));
+        assert_eq!(p.skipped(FrameStep::Effect(1)), Some(SkipReason::Unchanged));
         // The G-buffer alone: the camera held for two frames, an effect still working.
         f.idle = 0b10;
         f.walk(0.01);
@@ -461,8 +468,8 @@ mod tests {
             f.frame();
         }
         let p = f.frame();
-        assert!(!p.skip.frame && p.runs(Step::Effect(0)));
-        assert_eq!(p.skipped(Step::GBuffer), Some(SkipReason::Unchanged));
+        assert!(!p.skip.frame && p.runs(FrameStep::Effect(0)));
+        assert_eq!(p.skipped(FrameStep::GBuffer), Some(SkipReason::Unchanged));
         // Skipping off, or no valid history: nothing is left out but an unchanged light view.
         f.inputs.config.skip_unchanged = false;
         let p = f.frame();
@@ -473,7 +480,7 @@ mod tests {
                 ..Plan::default()
             }
         );
-        assert_eq!(p.skipped(Step::LightView), Some(SkipReason::Unchanged));
+        assert_eq!(p.skipped(FrameStep::LightView), Some(SkipReason::Unchanged));
         f.inputs.config.skip_unchanged = true;
         f.past.history = None;
         let p = f.frame();
@@ -485,6 +492,6 @@ mod tests {
                 ..Plan::default()
             }
         );
-        assert!(p.runs(Step::GBuffer) && p.runs(Step::Effect(1)));
+        assert!(p.runs(FrameStep::GBuffer) && p.runs(FrameStep::Effect(1)));
     }
 }

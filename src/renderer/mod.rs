@@ -16,10 +16,10 @@ pub mod reprojection_lanes;
 pub mod skip;
 
 pub use crate::config::{RenderConfig, FRAMES_IN_FLIGHT, MAX_SIZE};
-use crate::effects::resolve::shared;
+use crate::effects::resolve::shared_target;
 use crate::effects::{self, Effect, EffectId, FrameInfo, Recording, Setup, TermKind};
 use crate::error::{Error, Result};
-use crate::passes::composite::{CompositePass, Terms};
+use crate::passes::composite::{CompositeInputs, CompositePass};
 use crate::passes::compute::FrameSet;
 use crate::passes::decl::{Resolve, Slot};
 use crate::passes::gbuffer::GBufferPass;
@@ -37,7 +37,7 @@ use crate::vk::{
 use ash::vk;
 pub use catalog::{all_layouts, all_passes};
 use frame::{frame_block, FrameBlock, FrameInputs};
-use frame_plan::{FramePlan, FrameState, Past, Step};
+use frame_plan::{FramePlan, FrameState, FrameStep, Past};
 use glam::Mat4;
 use gpu_allocator::MemoryLocation;
 use motion::Motion;
@@ -240,7 +240,7 @@ impl Renderer {
         }
         self.passes
             .composite
-            .bind(&self.ctx, &terms(&shared, &self.effects))
+            .bind(&self.ctx, &composite_inputs(&shared, &self.effects))
     }
 
     /// The image behind `target` for parity `parity` (see [`resolve_target`]).
@@ -474,7 +474,7 @@ impl Renderer {
         };
         let info = plan.info(&rendered, &self.targets, frame);
         for (i, e) in self.effects.iter_mut().enumerate() {
-            if plan.runs(Step::Effect(i)) {
+            if plan.runs(FrameStep::Effect(i)) {
                 e.prepare(&info);
             }
         }
@@ -494,16 +494,16 @@ impl Renderer {
         // 5. Effects, in registry order, but those whose inputs did not change and which have
         // converged.
         for (i, e) in self.effects.iter().enumerate() {
-            if plan.runs(Step::Effect(i)) {
+            if plan.runs(FrameStep::Effect(i)) {
                 e.record(&info, &mut r);
             }
         }
         // 6-7. Composite + tonemap, and the antialiasing into the output.
         let (t, config) = (&self.targets, &self.config);
         let shared = SharedTargets(t);
-        let terms = terms(&shared, &self.effects);
+        let inputs = composite_inputs(&shared, &self.effects);
         self.passes
-            .record_output(&mut r, &info, scene, &terms, plan);
+            .record_output(&mut r, &info, scene, &inputs, plan);
         let source = |target| resolve_target(t, &self.effects, config, target, frame.parity);
         let hook_sync = record_hook(&mut r, hook, source, &t.output);
         let last_pass = r.last_pass;
@@ -743,8 +743,11 @@ fn resolve_target<'a>(
 }
 
 /// The composite's inputs: every effect's contribution, in registry order.
-fn terms<'a>(shared: &'a SharedTargets<'a>, effects: &'a [Box<dyn Effect>]) -> Terms<'a> {
-    Terms {
+fn composite_inputs<'a>(
+    shared: &'a SharedTargets<'a>,
+    effects: &'a [Box<dyn Effect>],
+) -> CompositeInputs<'a> {
+    CompositeInputs {
         shared,
         images: std::array::from_fn(|i| {
             effects
@@ -792,13 +795,13 @@ impl FramePasses {
         plan: &FramePlan,
     ) {
         let (frame, shared) = (info.frame, SharedTargets(info.targets));
-        match plan.skipped(Step::LightView) {
+        match plan.skipped(FrameStep::LightView) {
             None => r.timed(PassId::LIGHT_VIEW, |rec, tr| {
                 self.light_view.record(rec, tr, frame, scene, &shared)
             }),
             Some(reason) => r.timer.skip(r.slot, PassId::LIGHT_VIEW.name(), reason),
         }
-        if plan.runs(Step::GBuffer) {
+        if plan.runs(FrameStep::GBuffer) {
             r.timed(PassId::GBUFFER, |rec, tr| {
                 self.gbuffer.record(rec, tr, frame, scene, &shared)
             });
@@ -826,14 +829,14 @@ impl FramePasses {
         r: &mut Recording<'_>,
         info: &FrameInfo<'_>,
         scene: &SceneGpu,
-        terms: &Terms<'_>,
+        inputs: &CompositeInputs<'_>,
         plan: &FramePlan,
     ) {
         let (frame, t) = (info.frame, info.targets);
         let shared = SharedTargets(t);
         r.timed(PassId::COMPOSITE, |rec, tr| {
             self.composite
-                .record(rec, tr, frame, terms, t.width, t.height)
+                .record(rec, tr, frame, inputs, t.width, t.height)
         });
         let f = PostFrame {
             frame,
@@ -841,7 +844,7 @@ impl FramePasses {
             targets: &shared,
             render: (t.width, t.height),
             output: (t.output.desc.width, t.output.desc.height),
-            geometry: plan.runs(Step::GBuffer),
+            geometry: plan.runs(FrameStep::GBuffer),
         };
         for stage in &self.post {
             stage.record(r, &f);
@@ -857,7 +860,7 @@ struct GBufferResources<'a> {
 
 impl Resolve for GBufferResources<'_> {
     fn image(&self, slot: Slot, parity: usize) -> Option<&Image> {
-        shared(self.targets, slot, parity)
+        shared_target(self.targets, slot, parity)
     }
 
     fn buffer(&self, slot: Slot) -> Option<&Buffer> {
@@ -877,7 +880,7 @@ struct SharedTargets<'a>(&'a Targets);
 
 impl Resolve for SharedTargets<'_> {
     fn image(&self, slot: Slot, parity: usize) -> Option<&Image> {
-        shared(self.0, slot, parity)
+        shared_target(self.0, slot, parity)
     }
 
     fn buffer(&self, _slot: Slot) -> Option<&Buffer> {

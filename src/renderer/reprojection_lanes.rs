@@ -30,7 +30,7 @@ fn lane<'a>(targets: &'a Targets, t: &'a TemporalEffect) -> EffectResources<'a> 
 }
 
 /// The G-buffer every lane shares.
-fn shared(targets: &Targets) -> EffectResources<'_> {
+fn lane_shared_resources(targets: &Targets) -> EffectResources<'_> {
     EffectResources {
         targets,
         temporal: None,
@@ -79,7 +79,7 @@ impl Reprojection {
             .map(|(_, _, t)| lane(targets, t))
             .collect();
         let lanes: Vec<&dyn Resolve> = lanes.iter().map(|l| l as &dyn Resolve).collect();
-        pass.bind(ctx, &shared(targets), &lanes)
+        pass.bind(ctx, &lane_shared_resources(targets), &lanes)
     }
 
     /// Reset the counters of every effect that counts this frame, then one `reproject` region
@@ -108,7 +108,7 @@ impl Reprojection {
         // Fixed-size arrays: nothing is allocated per frame. Unused entries point at the
         // G-buffer resolver and are never passed on.
         let targets = info.targets;
-        let shared = shared(targets);
+        let shared = lane_shared_resources(targets);
         let mut resources: [Option<EffectResources>; MAX_LANES] = std::array::from_fn(|_| None);
         let mut frames = [LaneFrame::default(); MAX_LANES];
         let mut count = 0;

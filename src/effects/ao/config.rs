@@ -51,12 +51,10 @@ pub struct AoConfig {
     /// tap reads the full-resolution G-buffer, the estimator as published).
     pub position_mips: u32,
     /// GTAO: horizon-search steps on each side of a slice (slices = samples / (2 steps)). 8 by
-    /// default, two slices of the default 32 samples: on the Cornell box (256x256, static) 4
-    /// steps miss horizons near the radius. One slice per pattern (16 steps) leaves the cache
-    /// 0.010 from its converged value after the 36 patterns, two 0.002. In `table ao` 16 steps
-    /// lower the cached error by 9-23% on the Table 4.1 scenes for 11-22% more flicker, but
-    /// raise both on the walkthroughs (error +2-4%, flicker 1.5-1.6x on Sibenik and
-    /// Conference): a choice per scene (docs/results, lavapipe-ao-16-steps-2026-12-07).
+    /// default, two slices of the default 32 samples: fewer steps miss horizons near the
+    /// radius, one slice per pattern leaves the cache further from its converged value, and
+    /// 16 steps help the Table 4.1 scenes but hurt the walkthroughs, so it is a choice per
+    /// scene (figures: docs/results/DECISIONS.md, "GTAO steps per side").
     pub steps: u32,
     /// GTAO with the cache: under camera motion each fresh pattern is denoised over its 5x5
     /// neighbours that estimated one the same frame (gtao_denoise.glsl's edge-aware weights)

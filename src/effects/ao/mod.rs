@@ -26,10 +26,10 @@ use crate::passes::decl::{Bind, Slot, Use};
 use crate::passes::{PassId, PassLayout};
 use crate::reference::compose::Terms;
 use crate::resources::counters::{Counter, Role};
+use crate::resources::random::random_vectors;
 use crate::resources::targets::{
     EffectView, Look, Target, Targets, AO_FORMAT, GBUFFER_COLOR_FORMATS,
 };
-use crate::resources::temporal::random_vectors;
 use crate::resources::temporal::Sampling;
 use crate::resources::temporal_effect::{EffectKind, MovedReach, ScreenReach, TemporalEffect};
 use crate::shaders::{self, EffectPush};

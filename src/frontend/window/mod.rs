@@ -4,7 +4,8 @@
 //! renderer's frame hook. Scripted runs (`bench --window`, `table --window`) present through
 //! `window_sink.rs` instead, which shares the frame steps in `swapchain_frame.rs`.
 //!
-//! Files: `app.rs` the application and frame loop, `keys.rs` window input to viewer input,
+//! Files: `app/` the application (its `mod.rs` lists a file per job: events, frame loop,
+//! actions, renderer rebuilds, script, ground truth), `keys.rs` window input to viewer input,
 //! `fly_camera.rs` the camera step, `script.rs` the test script, `stats.rs` the title's
 //! timings, `screenshot.rs` the screenshot key's PNG and report, `truth.rs` the ground
 //! truth on demand. Viewer keys: see [`help`] (`view_state.rs`).

@@ -1,31 +1,7 @@
-//! CPU side of the temporal machinery: the tiled-refresh schedule (Nehab et al. 2007) and the
-//! random rotations of the sampling pattern.
+//! The tiled refresh (Nehab et al. 2007): which tile of the image is recomputed from scratch
+//! each frame, on a grid shifted from cycle to cycle.
 
-/// xorshift64*: small, seedable, good enough for shuffles and noise textures.
-#[derive(Clone, Debug)]
-pub struct Rng(u64);
-
-impl Rng {
-    pub fn new(seed: u64) -> Self {
-        Self(seed.max(1))
-    }
-
-    pub fn next_u64(&mut self) -> u64 {
-        self.0 ^= self.0 >> 12;
-        self.0 ^= self.0 << 25;
-        self.0 ^= self.0 >> 27;
-        self.0.wrapping_mul(0x2545_f491_4f6c_dd1d)
-    }
-
-    /// Uniform in [0, 1).
-    pub fn next_f32(&mut self) -> f32 {
-        (self.next_u64() >> 40) as f32 / (1u64 << 24) as f32
-    }
-
-    pub fn below(&mut self, n: u32) -> u32 {
-        (((self.next_u64() >> 32) * n as u64) >> 32) as u32
-    }
-}
+use crate::resources::random::Rng;
 
 /// A refresh tile: the pixels [x0, x1) x [y0, y1).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, PartialOrd, Ord)]
@@ -166,66 +142,6 @@ impl RefreshSchedule {
     }
 }
 
-/// Where an effect evaluates its patterns: at every pixel, or at half resolution (low-resolution
-/// samples upsampled, with full-resolution fix-ups where the upsampling fails).
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Sampling {
-    FullRes,
-    HalfRes,
-}
-
-impl Sampling {
-    /// Evaluations of a full frame with one pattern: its pixels, or its low-resolution samples.
-    pub fn frame_evaluations(self, width: u32, height: u32) -> u64 {
-        match self {
-            Sampling::FullRes => width as u64 * height as u64,
-            Sampling::HalfRes => width.div_ceil(2) as u64 * height.div_ceil(2) as u64,
-        }
-    }
-}
-
-/// Evaluations per pattern of a refresh tile of side `s`: every pixel of it at full
-/// resolution; at half resolution (a bound) the low-resolution samples it is upsampled from.
-pub fn tile_evaluations(s: u32, sampling: Sampling) -> u64 {
-    let side = match sampling {
-        Sampling::FullRes => s as u64,
-        // The low-resolution samples its pixels are upsampled from: pixel x reads samples
-        // x / 2 and (odd x) x / 2 + 1, so at most s / 2 + 2 per axis (indirect_spread.comp's
-        // refresh_samples).
-        Sampling::HalfRes if s == 0 => 0,
-        Sampling::HalfRes => s as u64 / 2 + 2,
-    };
-    side * side
-}
-
-/// The largest refresh tile side, at most `max_tile`, whose refresh (every one of `limit`
-/// patterns at each of its evaluations) costs at most `budget` of a full frame's evaluations;
-/// 0 when not even a single pixel fits (the refresh is then off for this effect).
-pub fn budget_tile(
-    max_tile: u32,
-    sampling: Sampling,
-    (width, height): (u32, u32),
-    limit: u32,
-    budget: f32,
-) -> u32 {
-    let allowed = budget as f64 * sampling.frame_evaluations(width, height) as f64;
-    let fits = |s: u32| (tile_evaluations(s, sampling) * limit as u64) as f64 <= allowed;
-    (1..=max_tile).take_while(|&s| fits(s)).last().unwrap_or(0)
-}
-
-/// 4x4 random unit 2D vectors (RGBA32F texels: cos, sin, 0, 0): the per-pixel rotation of the
-/// SSAO pattern, fixed seed so runs are reproducible.
-pub fn random_vectors() -> Vec<u8> {
-    let mut rng = Rng::new(0x0a05_eed1);
-    (0..16)
-        .flat_map(|_| {
-            let a = rng.next_f32() * std::f32::consts::TAU;
-            [a.cos(), a.sin(), 0.0, 0.0]
-        })
-        .flat_map(|f| f.to_le_bytes())
-        .collect()
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -296,44 +212,5 @@ mod tests {
             }
         }
         assert!(core.iter().all(|&c| c));
-    }
-
-    #[test]
-    fn budget_tile_stays_within_the_budget() {
-        // 256x256 AO, 36 patterns, 5%: 3276.8 evaluations allowed, 9x9x36 = 2916 fit.
-        assert_eq!(budget_tile(64, Sampling::FullRes, (256, 256), 36, 0.05), 9);
-        assert_eq!(budget_tile(64, Sampling::FullRes, (512, 512), 36, 0.05), 19);
-        assert_eq!(budget_tile(64, Sampling::FullRes, (64, 64), 36, 0.05), 2);
-        // The thesis's tile where the budget allows it.
-        assert_eq!(budget_tile(64, Sampling::FullRes, (512, 512), 1, 1.0), 64);
-        // Nothing fits: no refresh.
-        assert_eq!(budget_tile(64, Sampling::FullRes, (8, 8), 36, 0.05), 0);
-        for size in [64, 100, 256, 512, 1920] {
-            for limit in [1, 4, 36, 256] {
-                for budget in [0.01, 0.05, 0.2] {
-                    for sampling in [Sampling::FullRes, Sampling::HalfRes] {
-                        let s = budget_tile(64, sampling, (size, size), limit, budget);
-                        let cost = tile_evaluations(s, sampling) * limit as u64;
-                        let allowed = budget as f64 * sampling.frame_evaluations(size, size) as f64;
-                        assert!(
-                            cost as f64 <= allowed,
-                            "{size} {limit} {budget} {sampling:?}"
-                        );
-                        let bigger = tile_evaluations(s + 1, sampling) * limit as u64;
-                        assert!(s == 64 || bigger as f64 > allowed);
-                    }
-                }
-            }
-        }
-    }
-
-    #[test]
-    fn random_vectors_are_unit() {
-        let bytes = random_vectors();
-        assert_eq!(bytes.len(), 16 * 16);
-        for t in bytes.chunks(16) {
-            let f = |i: usize| f32::from_le_bytes([t[i], t[i + 1], t[i + 2], t[i + 3]]);
-            assert!((f(0).hypot(f(4)) - 1.0).abs() < 1e-5);
-        }
     }
 }
