@@ -13,15 +13,8 @@ uint rsm_gather_evaluations() {
     return vpl_params.count == 0u ? size * size : vpl_params.count;
 }
 
-// Lanes that share one estimate: `most` (a power of two up to SPREAD_LANES), or for fewer
-// evaluations than that the next power of two, so that no lane idles for lack of VPLs; a
-// workgroup takes SPREAD_LANES / lanes estimates at once. Also effects/indirect.rs's
-// `lanes_per_estimate`.
-uint spread_lanes_per_estimate(uint most) {
-    uint work = rsm_gather_evaluations();
-    uint lanes = 1u;
-    while (lanes < work && lanes < most) lanes <<= 1u;
-    return lanes;
-}
+// Lanes that share one estimate are the VPL parameters' gather_lanes and spread_lanes, computed
+// once on the CPU (effects/indirect/params.rs lanes_per_estimate); a workgroup takes
+// SPREAD_LANES / lanes estimates at once.
 
 #endif // SPREAD_GLSL

@@ -10,7 +10,9 @@ layout(set = 1, binding = 15, std430) readonly buffer Vpl {
     uint visibility;     // screen-space visibility test of each VPL (0/1)
     float march_near_px; // nearest step of that visibility march [px]
     uint interleave;     // interleaved gather: block side N, one VPL subset per pixel (1 = off)
-    uint lanes;          // lanes sharing a low-resolution sample's VPLs (compacted gather)
+    uint gather_lanes;   // lanes sharing one estimate's VPLs in the compacted gather
+                         // (--vpl-lanes, fewer for fewer VPLs: params.rs lanes_per_estimate)
+    uint spread_lanes;   // the same for the few-pixel passes (up to SPREAD_LANES)
     uint noisy_half_res; // the noisy gather: one pixel per 2x2 block gathers (0/1)
 } vpl_params;
 

@@ -66,7 +66,7 @@ void main() {
         group_base = atomicAdd(counters.lowres_samples, group_count);
         // The gather's workgroups take SPREAD_LANES / L samples each; past the device's
         // maxComputeWorkGroupCount[0] they stride over the list.
-        uint per_group = SPREAD_LANES / spread_lanes_per_estimate(vpl_params.lanes);
+        uint per_group = SPREAD_LANES / vpl_params.gather_lanes;
         uint groups = (group_base + group_count + per_group - 1u) / per_group;
         atomicMax(counters.lowres_dispatch_x, min(groups, max(frame.max_groups_x, 1u)));
     }

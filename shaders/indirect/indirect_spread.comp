@@ -16,8 +16,8 @@
 // `resolve`: per refresh-tile pixel, the mean of its patterns blended into the history along
 //            the tile's feather ramp; it runs after `refresh`, and the other passes leave
 //            refresh pixels alone.
-// A workgroup takes SPREAD_LANES / L estimates at once (L = spread_lanes_per_estimate(): 64
-// for the few-pixel passes, --vpl-lanes for the gather) and strides over its list by the
+// A workgroup takes SPREAD_LANES / L estimates at once (L = the VPL parameters' spread_lanes:
+// up to 64 for the few-pixel passes, gather_lanes: up to --vpl-lanes for the gather) and strides over its list by the
 // dispatch's width when the list is longer than the dispatch.
 // @permutation gather: GATHER
 // @permutation fixup: FIXUP
@@ -67,9 +67,9 @@ void refresh_samples(out ivec2 origin, out ivec2 count) {
 #endif
 
 #ifdef GATHER
-#define MOST_LANES vpl_params.lanes
+#define LANES_PER_ESTIMATE vpl_params.gather_lanes
 #else
-#define MOST_LANES SPREAD_LANES
+#define LANES_PER_ESTIMATE vpl_params.spread_lanes
 #endif
 
 #if defined(RESOLVE) && defined(LOWRES)
@@ -170,7 +170,7 @@ bool list_item(uint item, out ivec2 pixel, out ivec2 texel, out uint pattern) {
 }
 
 void main() {
-    uint lanes = spread_lanes_per_estimate(MOST_LANES);
+    uint lanes = LANES_PER_ESTIMATE;
     uint per_group = SPREAD_LANES / lanes;
     uint t = gl_LocalInvocationIndex;
     uint lane = t % lanes;

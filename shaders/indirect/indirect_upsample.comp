@@ -83,7 +83,7 @@ void main() {
         counters.data[counters.max_blocks + slot] = uint(pixel.x) | (uint(pixel.y) << 16);
         // indirect_spread.comp's `fixup` takes SPREAD_LANES / L pixels per workgroup; past
         // the device's maxComputeWorkGroupCount[0] its workgroups stride over the list.
-        uint per_group = SPREAD_LANES / spread_lanes_per_estimate(SPREAD_LANES);
+        uint per_group = SPREAD_LANES / vpl_params.spread_lanes;
         if (slot % per_group == 0u && slot / per_group < max(frame.max_groups_x, 1u))
             atomicAdd(counters.fixup_dispatch_x, 1u);
         return;

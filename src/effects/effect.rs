@@ -24,7 +24,7 @@ impl EffectId {
         EffectId(name)
     }
 
-    pub fn name(self) -> &'static str {
+    pub const fn name(self) -> &'static str {
         self.0
     }
 }
@@ -280,6 +280,10 @@ pub struct Registration {
     pub estimates: fn(&RenderConfig) -> Terms,
     /// On/off settings of its own the viewer offers beside the effect switches.
     pub toggles: &'static [Toggle],
+    /// Its rank for the recompute mask (`Target::State`, one effect's per-pixel reprojection
+    /// state): of the effects that run and have one, the lowest-ranked shows its own (AO
+    /// first: a screen-space estimate's mask has the most structure); `None`: it has none.
+    pub recompute_mask: Option<u8>,
 }
 
 /// An on/off setting of an effect's configuration (the viewer's keys).

@@ -732,8 +732,16 @@ fn resolve_target<'a>(
             .and_then(|e| e.target(target, parity, config))
     };
     match target {
-        // The recompute mask shows AO's state when AO runs, else the shadows'.
-        Target::State => of(crate::effects::ao::ID).or_else(|| of(crate::effects::direct::ID)),
+        // The recompute mask: the state of the lowest-ranked effect that has one
+        // (`Registration::recompute_mask`).
+        Target::State => {
+            let mut ranked: Vec<(u8, EffectId)> = crate::effects::REGISTRY
+                .iter()
+                .filter_map(|r| r.recompute_mask.map(|rank| (rank, r.id)))
+                .collect();
+            ranked.sort_unstable_by_key(|(rank, _)| *rank);
+            ranked.into_iter().find_map(|(_, id)| of(id))
+        }
         _ => targets.get(target, parity).or_else(|| {
             effects
                 .iter()

@@ -16,6 +16,8 @@ use std::sync::Arc;
 /// What differs between effects.
 #[derive(Clone, Copy, Debug)]
 pub struct EffectKind {
+    /// The cache's name (its images', counters' and audit's): the effect's id (`ID.name()`)
+    /// unless the cache holds only part of the effect (direct light's shadow cache).
     pub name: &'static str,
     /// Its history's format: a `*_HISTORY_FORMAT` of shaders/include/shared_constants.glsl,
     /// which its passes' shaders and the reprojection's lane declare too.

@@ -41,7 +41,7 @@ use std::sync::Arc;
 pub const ID: EffectId = EffectId::new("ao");
 
 pub const KIND: EffectKind = EffectKind {
-    name: "ao",
+    name: ID.name(),
     history_format: crate::shaders::AO_HISTORY_FORMAT,
     block_shift: 0,
     refresh_tile: 64,
@@ -211,6 +211,7 @@ pub const REGISTRATION: Registration = Registration {
     views: &VIEWS,
     estimates: |_| Terms::AMBIENT_OCCLUSION,
     toggles: &[],
+    recompute_mask: Some(0),
 };
 
 /// Without reuse: this frame's AO before the blur or GTAO's denoise (only when one runs). GTAO

@@ -10,6 +10,7 @@
 pub mod args;
 pub mod config;
 pub mod model;
+pub mod sweep;
 
 use super::effect::{
     every_pixel, float_image, Effect, EffectId, FrameInfo, Recording, Registration, Setup, TermKind,
@@ -221,11 +222,12 @@ pub const REGISTRATION: Registration = Registration {
     layouts,
     passes: pass::ALL,
     timing_groups: pass::GROUPS,
-    sweep_keys: &[],
+    sweep_keys: sweep::SWEEP_KEYS,
     ambient: false,
     views: &[],
     estimates: |_| Terms::INDIRECT,
     toggles: &[],
+    recompute_mask: None,
 };
 
 fn layouts() -> Vec<PassLayout> {

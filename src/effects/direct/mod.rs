@@ -31,6 +31,7 @@ use std::sync::Arc;
 pub const ID: EffectId = EffectId::new("direct");
 
 pub const KIND: EffectKind = EffectKind {
+    // The cache holds the shadow term alone, not the direct light: its images are named so.
     name: "shadow",
     history_format: crate::shaders::SHADOW_HISTORY_FORMAT,
     block_shift: 0,
@@ -134,6 +135,7 @@ pub const REGISTRATION: Registration = Registration {
     views: &[],
     estimates: |_| Terms::DIRECT,
     toggles: &[],
+    recompute_mask: Some(1),
 };
 
 // Every pass of the effect, declared once (`PassDecl`): `layouts` and `new` both read these.

@@ -40,7 +40,7 @@ use std::sync::Arc;
 pub const ID: EffectId = EffectId::new("indirect");
 
 pub const KIND: EffectKind = EffectKind {
-    name: "indirect",
+    name: ID.name(),
     history_format: crate::shaders::INDIRECT_HISTORY_FORMAT,
     block_shift: 4,
     refresh_tile: 16,
@@ -161,18 +161,6 @@ const PARTIALS: Slot = Slot::OwnBuffer("partials");
 
 /// Lanes of indirect_spread.comp's workgroups (shaders/include/shared_constants.glsl).
 use crate::shaders::SPREAD_LANES;
-/// Vulkan's least `maxComputeWorkGroupCount[0]`: longer lists are strided over.
-const MAX_GROUPS: u32 = 65535;
-
-/// Lanes that share one every-VPL estimate in indirect_spread.comp
-/// (`spread_lanes_per_estimate`): all of them, or for fewer evaluations the next power of two.
-pub fn lanes_per_estimate(c: &RenderConfig) -> u32 {
-    let evaluations = match c.indirect.vpls {
-        0 => c.rsm_size * c.rsm_size,
-        v => v,
-    };
-    evaluations.clamp(1, SPREAD_LANES).next_power_of_two()
-}
 
 /// Bindings 0-5 of every indirect pass.
 macro_rules! gather_inputs {
@@ -275,6 +263,7 @@ pub const REGISTRATION: Registration = Registration {
     views: &[],
     estimates: |_| Terms::INDIRECT,
     toggles: &[],
+    recompute_mask: None,
 };
 
 // Every pass of the effect, declared once (`PassDecl`): `layouts` and `new` both read these.
@@ -397,6 +386,8 @@ pub struct IndirectEffect {
     params: Buffer,
     sized: Sized,
     push: EffectPush,
+    /// The device's maxComputeWorkGroupCount[0]: the refresh's estimates stride beyond it.
+    max_groups_x: u32,
 }
 
 impl IndirectEffect {
@@ -444,6 +435,7 @@ impl IndirectEffect {
             params: params::buffer(s.ctx, s.tracker, "indirect.vpl_params", s.config)?,
             sized: Self::create_sized(s.ctx, s.config)?,
             push: EffectPush::default(),
+            max_groups_x: s.ctx.info.max_compute_work_group_count[0].max(1),
         })
     }
 
@@ -569,13 +561,14 @@ impl IndirectEffect {
     }
 
     /// The refresh tile's two dispatches: (pixel, pattern) estimates spread over lanes, at
-    /// most MAX_GROUPS workgroups (they stride beyond), then one lane per pixel.
+    /// most the device's maxComputeWorkGroupCount[0] workgroups (they stride beyond), then
+    /// one lane per pixel.
     fn refresh_dispatches(&self, config: &RenderConfig) -> Option<(Dispatch, Dispatch)> {
         let pixels = refresh_pixels(&self.push);
         if pixels == 0 {
             return None;
         }
-        let per_group = SPREAD_LANES / lanes_per_estimate(config);
+        let per_group = SPREAD_LANES / params::lanes_per_estimate(config, SPREAD_LANES);
         let [x0, y0, x1, y1] = self.push.refresh_rect;
         let side = (x1 - x0).max(y1 - y0);
         let evaluations = if config.indirect.half_res {
@@ -586,7 +579,9 @@ impl IndirectEffect {
             pixels as u64
         };
         let estimates = evaluations * config.temporal.rotation_limit as u64;
-        let groups = estimates.div_ceil(per_group as u64).min(MAX_GROUPS as u64) as u32;
+        let groups = estimates
+            .div_ceil(per_group as u64)
+            .min(self.max_groups_x as u64) as u32;
         Some((
             Dispatch::Groups(groups),
             Dispatch::Groups(pixels.div_ceil(SPREAD_LANES)),

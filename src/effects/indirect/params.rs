@@ -14,6 +14,18 @@ use std::sync::Arc;
 /// Where the effects bind it.
 pub const BINDING: u32 = 15;
 
+/// Lanes that share one every-VPL estimate in indirect_spread.comp, at most `most`: all of
+/// them, or for fewer evaluations of eq 9 the next power of two, so that no lane idles for
+/// lack of VPLs. The shaders read it from the block (`gather_lanes`, `spread_lanes`), so
+/// their dispatch sizes and this side's agree.
+pub fn lanes_per_estimate(c: &RenderConfig, most: u32) -> u32 {
+    let evaluations = match c.indirect.vpls {
+        0 => c.rsm_size * c.rsm_size,
+        v => v,
+    };
+    evaluations.clamp(1, most.max(1)).next_power_of_two()
+}
+
 /// The block for `c`.
 pub fn params(c: &RenderConfig) -> VplParams {
     let ind = &c.indirect;
@@ -22,7 +34,8 @@ pub fn params(c: &RenderConfig) -> VplParams {
         visibility: ind.visibility as u32,
         march_near_px: IndirectConfig::MARCH_NEAR_PX,
         interleave: ind.interleave,
-        lanes: ind.vpl_lanes,
+        gather_lanes: lanes_per_estimate(c, ind.vpl_lanes),
+        spread_lanes: lanes_per_estimate(c, crate::shaders::SPREAD_LANES),
         noisy_half_res: ind.noisy_half_res as u32,
     }
 }

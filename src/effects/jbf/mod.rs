@@ -59,6 +59,7 @@ pub const REGISTRATION: Registration = Registration {
     views: &[],
     estimates: |_| Terms::INDIRECT,
     toggles: &[],
+    recompute_mask: None,
 };
 
 // Every pass of the effect, declared once (`PassDecl`): `layouts` and `new` both read these.

@@ -55,6 +55,7 @@ pub const REGISTRATION: Registration = Registration {
     views: &[],
     estimates: |_| Terms::NONE,
     toggles: &[],
+    recompute_mask: None,
 };
 
 pub struct NormalsEffect {

@@ -41,7 +41,7 @@ pub const ID: EffectId = EffectId::new("ssdo");
 
 /// SSDO with the cache (`--reuse on`): the factor's running mean rides in the moments' w.
 pub const KIND: EffectKind = EffectKind {
-    name: "ssdo",
+    name: ID.name(),
     history_format: crate::shaders::SSDO_HISTORY_FORMAT,
     block_shift: 0,
     refresh_tile: 64,
@@ -257,6 +257,7 @@ pub const REGISTRATION: Registration = Registration {
     views: VIEWS,
     estimates,
     toggles: &[FILTER_TOGGLE],
+    recompute_mask: None,
 };
 
 /// SSDO estimates the occlusion of the ambient light (the `ao` buffer, as AO does) and, in its

@@ -162,6 +162,7 @@ pub const REGISTRATION: Registration = Registration {
     views: VIEWS,
     estimates: |_| Terms::INDIRECT,
     toggles: &[],
+    recompute_mask: None,
 };
 
 fn layouts() -> Vec<PassLayout> {
