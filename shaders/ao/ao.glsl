@@ -1,7 +1,9 @@
 // SSAO estimators (GTAO's in gtao.glsl). Each returns occlusion in [0, 1] for one sampling pattern; `pattern` indexes
 // the pattern sequences of patterns.glsl (rotation and range scale, or the sphere's points).
-// Requires g_position, g_normal, g_position_1..3 (ao_position_chain.comp's levels) and
-// random_vectors to be declared by the including shader.
+// The images they read are parameters, as XeGTAO passes its own: `position` (the G-buffer's)
+// and `position_1..3` (ao_position_chain.comp's point-sampled levels), `normals`, and
+// `rotations` (the 4x4 random vectors). The parameter block (ao_params.glsl) is the only
+// resource the header declares.
 #ifndef AO_GLSL
 #define AO_GLSL
 
@@ -31,12 +33,12 @@ uint ao_tap_level(float dist_px) {
 }
 
 // The G-buffer position a tap at `q_pixel`, `dist_px` pixels from the shaded pixel, reads.
-vec4 ao_tap_position(ivec2 q_pixel, float dist_px) {
+vec4 ao_tap_position(texture2D position, texture2D position_1, texture2D position_2, texture2D position_3, ivec2 q_pixel, float dist_px) {
     uint level = ao_tap_level(dist_px);
-    if (level == 0u) return texelFetch(g_position, q_pixel, 0);
-    if (level == 1u) return texelFetch(g_position_1, q_pixel >> 1, 0);
-    if (level == 2u) return texelFetch(g_position_2, q_pixel >> 2, 0);
-    return texelFetch(g_position_3, q_pixel >> 3, 0);
+    if (level == 0u) return texelFetch(position, q_pixel, 0);
+    if (level == 1u) return texelFetch(position_1, q_pixel >> 1, 0);
+    if (level == 2u) return texelFetch(position_2, q_pixel >> 2, 0);
+    return texelFetch(position_3, q_pixel >> 3, 0);
 }
 
 // The full-resolution pixel whose position ao_tap_position returns: a level-L texel holds its
@@ -50,8 +52,8 @@ ivec2 ao_tap_pixel(ivec2 q_pixel, float dist_px) {
 }
 
 // Per-pixel rotation from the 4x4 random-vector texture (unit 2D vectors).
-vec2 pixel_rotation(ivec2 pixel) {
-    return texelFetch(random_vectors, pixel & 3, 0).xy;
+vec2 ao_pixel_rotation(texture2D rotations, ivec2 pixel) {
+    return texelFetch(rotations, pixel & 3, 0).xy;
 }
 
 vec2 rotate2(vec2 v, vec2 cs) {
@@ -63,7 +65,8 @@ vec2 rotate2(vec2 v, vec2 cs) {
 // The sum of taps [first, end) of the pattern (tap k: direction k / steps, step k % steps);
 // over every tap, divided by their count, the estimate. Spread passes split a pattern's taps
 // over lanes with it.
-float ao_thesis_taps(ivec2 pixel, vec3 p, vec3 n, uint pattern, uint first, uint end) {
+float ao_thesis_taps(texture2D position, texture2D position_1, texture2D position_2, texture2D position_3, texture2D rotations, ivec2 pixel, vec3 p, vec3 n,
+                     uint pattern, uint first, uint end) {
     uint dirs = ao.directions;
     uint steps = ao.steps;
     float radius = ao.radius * frame.scene_radius;
@@ -81,7 +84,7 @@ float ao_thesis_taps(ivec2 pixel, vec3 p, vec3 n, uint pattern, uint first, uint
     float scale = rotation_scale.y;
     float angle = rotation_scale.x;
     // The 4x4 random vectors perturb the pattern per pixel (the thesis's Figure 3.8 b).
-    vec2 rot = rotate2(pixel_rotation(pixel), vec2(cos(angle), sin(angle)));
+    vec2 rot = rotate2(ao_pixel_rotation(rotations, pixel), vec2(cos(angle), sin(angle)));
     vec2 center = vec2(pixel) + 0.5;
     // Eq 8's steps are the same in every direction: computed once (pow is dear on a CPU
     // device), at most AO_MAX_STEPS of them (AoConfig::directions_steps).
@@ -105,7 +108,7 @@ float ao_thesis_taps(ivec2 pixel, vec3 p, vec3 n, uint pattern, uint first, uint
             ivec2 q_pixel = ivec2(floor(center + dir * s));
             if (outside_frame(q_pixel))
                 continue;
-            vec4 q = ao_tap_position(q_pixel, s);
+            vec4 q = ao_tap_position(position, position_1, position_2, position_3, q_pixel, s);
             if (q.w == 0.0) continue;
             vec3 v = q.xyz - p;
             float d2 = dot(v, v);
@@ -126,13 +129,14 @@ float ao_thesis_taps(ivec2 pixel, vec3 p, vec3 n, uint pattern, uint first, uint
 // points of patterns 0, 1, ... fill the ball uniformly (patterns.glsl), so the radius is not
 // scaled per pattern: their radii already vary continuously.
 // Occluded points among points [first, end) of the pattern.
-float ao_crytek_taps(ivec2 pixel, vec3 p, uint pattern, uint first, uint end) {
+float ao_crytek_taps(texture2D position, texture2D position_1, texture2D position_2, texture2D position_3, texture2D rotations, ivec2 pixel, vec3 p, uint pattern,
+                     uint first, uint end) {
     uint count = ao.samples;
     float radius = ao.radius * frame.scene_radius;
     vec3 view_dir = safe_normalize(p - frame.camera_pos, vec3(0.0, 0.0, -1.0));
     vec3 t = safe_normalize(cross(view_dir, abs(view_dir.y) < 0.99 ? vec3(0, 1, 0) : vec3(1, 0, 0)), vec3(1, 0, 0));
     vec3 b = cross(view_dir, t);
-    vec2 rot = pixel_rotation(pixel);
+    vec2 rot = ao_pixel_rotation(rotations, pixel);
     float occluded = 0.0;
     for (uint k = first; k < end; ++k) {
         vec3 o = crytek_offset(k, count, pattern);
@@ -145,7 +149,7 @@ float ao_crytek_taps(ivec2 pixel, vec3 p, uint pattern, uint first, uint end) {
         ivec2 q_pixel = texel_of(q_screen, vec2(frame.size));
         if (outside_frame(q_pixel))
             continue;
-        vec4 q = ao_tap_position(q_pixel, distance(q_screen, vec2(pixel) + 0.5));
+        vec4 q = ao_tap_position(position, position_1, position_2, position_3, q_pixel, distance(q_screen, vec2(pixel) + 0.5));
         if (q.w == 0.0) continue;
         float scene_depth = (frame.view_proj * vec4(q.xyz, 1.0)).w;
         float gap = clip.w - scene_depth;
@@ -161,13 +165,14 @@ float ao_crytek_taps(ivec2 pixel, vec3 p, uint pattern, uint first, uint end) {
 // directions, bases 2 and 5, and random steps r in [0, r_max)), back-projected; the occlusion
 // is the fraction that lie behind the visible surface (hemisphere.glsl). Pattern j takes
 // Halton indices j K .. j K + K - 1, so accumulated patterns continue one sequence.
-float ao_szentandrasi_taps(ivec2 pixel, vec3 p, vec3 n, uint pattern, uint first, uint end) {
+float ao_szentandrasi_taps(texture2D position, texture2D normals, ivec2 pixel, vec3 p, vec3 n,
+                           uint pattern, uint first, uint end) {
     uint count = ao.samples;
     float r_max = ao.radius * frame.scene_radius;
     float occluded = 0.0;
     for (uint k = first; k < end; ++k) {
         vec4 w = hemisphere_sample(pattern * count + k, pixel, n, r_max);
-        if (hemisphere_tap(p + w.w * w.xyz, r_max).occluded) occluded += 1.0;
+        if (hemisphere_tap(position, normals, p + w.w * w.xyz, r_max).occluded) occluded += 1.0;
     }
     return occluded;
 }
@@ -191,21 +196,27 @@ uint ao_taps() {
 
 // The sum of taps [first, end) of pattern `pattern` of the estimator: over every tap
 // (ao_taps()), divided by their count, that pattern's occlusion.
-float ao_taps_sum(ivec2 pixel, vec3 p, vec3 n, uint pattern, uint first, uint end) {
+float ao_taps_sum(texture2D position, texture2D position_1, texture2D position_2, texture2D position_3, texture2D normals, texture2D rotations,
+                  ivec2 pixel, vec3 p, vec3 n, uint pattern, uint first, uint end) {
     uint estimator = AO_ESTIMATOR;
-    if (estimator == AO_CRYTEK) return ao_crytek_taps(pixel, p, pattern, first, end);
-    if (estimator == AO_SZENTANDRASI) return ao_szentandrasi_taps(pixel, p, n, pattern, first, end);
-    if (estimator == AO_GTAO) return ao_gtao_taps(pixel, p, n, pattern, first, end);
-    return ao_thesis_taps(pixel, p, n, pattern, first, end);
+    if (estimator == AO_CRYTEK)
+        return ao_crytek_taps(position, position_1, position_2, position_3, rotations, pixel, p, pattern, first, end);
+    if (estimator == AO_SZENTANDRASI)
+        return ao_szentandrasi_taps(position, normals, pixel, p, n, pattern, first, end);
+    if (estimator == AO_GTAO)
+        return ao_gtao_taps(position, position_1, position_2, position_3, normals, pixel, p, n, pattern, first, end);
+    return ao_thesis_taps(position, position_1, position_2, position_3, rotations, pixel, p, n, pattern, first, end);
 }
 
 // Occlusion averaged over `patterns` consecutive patterns starting at `first` (a whole number:
 // pattern indices arrive as floats from the history's count channel, exact below 2^24).
-float ao_estimate(ivec2 pixel, vec3 p, vec3 n, float first, uint patterns) {
+float ao_estimate(texture2D position, texture2D position_1, texture2D position_2, texture2D position_3, texture2D normals, texture2D rotations,
+                  ivec2 pixel, vec3 p, vec3 n, float first, uint patterns) {
     uint taps = ao_taps();
     float sum = 0.0;
     for (uint j = 0u; j < patterns; ++j)
-        sum += ao_taps_sum(pixel, p, n, uint(first) + j, 0u, taps) / float(taps);
+        sum += ao_taps_sum(position, position_1, position_2, position_3, normals, rotations, pixel, p, n, uint(first) + j, 0u, taps) /
+               float(taps);
     return sum / float(max(patterns, 1u));
 }
 

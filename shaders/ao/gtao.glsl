@@ -76,7 +76,8 @@ bool gtao_on_ray(vec2 s, vec3 q, vec3 n_q, vec3 right, vec3 down, vec3 forward, 
 // every slice (ao.directions), divided by their count, that pattern's occlusion. Pattern j
 // turns every slice by the same angle (pattern_point's golden sequence), so any set of
 // patterns keeps the slices evenly spread; the per-pixel rotation comes on top.
-float ao_gtao_taps(ivec2 pixel, vec3 p, vec3 n, uint pattern, uint first, uint end) {
+float ao_gtao_taps(texture2D position, texture2D position_1, texture2D position_2, texture2D position_3, texture2D normals, ivec2 pixel, vec3 p, vec3 n,
+                   uint pattern, uint first, uint end) {
     uint slices = max(ao.directions, 1u);
     uint steps = max(ao.steps, 1u);
     float radius = ao.radius * frame.scene_radius;
@@ -170,10 +171,10 @@ float ao_gtao_taps(ivec2 pixel, vec3 p, vec3 n, uint pattern, uint first, uint e
                 bool off_image = inside != q_pixel;
                 q_pixel = inside;
                 if (q_pixel == pixel) continue;
-                vec4 q = ao_tap_position(q_pixel, s_px);
+                vec4 q = ao_tap_position(position, position_1, position_2, position_3, q_pixel, s_px);
                 if (q.w == 0.0) continue;
                 // The normal of the texel the position came from (a level's centre pixel).
-                vec3 n_q = texelFetch(g_normal, ao_tap_pixel(q_pixel, s_px), 0).xyz;
+                vec3 n_q = texelFetch(normals, ao_tap_pixel(q_pixel, s_px), 0).xyz;
                 vec3 hit;
                 if (!gtao_on_ray(center + offset, q.xyz, n_q, right, down, forward, hit) && off_image) continue;
                 vec3 w = hit - p;

@@ -87,7 +87,9 @@ void main() {
         uint slice = u % slices;
         bool live = refreshed && pattern < limit;
         float part = 0.0;
-        if (live) part = ao_taps_sum(pixel, p, n, pattern, slice * taps / slices, (slice + 1u) * taps / slices);
+        if (live)
+            part = ao_taps_sum(g_position, g_position_1, g_position_2, g_position_3, g_normal, random_vectors, pixel, p, n, pattern, slice * taps / slices,
+                               (slice + 1u) * taps / slices);
         slice_sum[t] = part;
         barrier();
         // REFRESH_THREADS is a multiple of `slices`: a pattern's ranges sit in one round.
@@ -127,7 +129,7 @@ void main() {
             vec3 n = texelFetch(g_normal, pixel, 0).xyz;
             vec4 h = imageLoad(history, pixel);
             // Each pixel walks through patterns 0, 1, ... in the order it accumulates them.
-            float fresh = 1.0 - ao_estimate(pixel, p, n, h.a, 1u);
+            float fresh = 1.0 - ao_estimate(g_position, g_position_1, g_position_2, g_position_3, g_normal, random_vectors, pixel, p, n, h.a, 1u);
 #ifdef SPLIT
             imageStore(raw, pixel, vec4(fresh, 0.0, 0.0, 1.0));
 #else

@@ -32,7 +32,8 @@ void main() {
         float visibility = 1.0;
         if (position.w != 0.0) {
             vec3 n = texelFetch(g_normal, pixel, 0).xyz;
-            visibility = 1.0 - ao_estimate(pixel, position.xyz, n, float(ao.pattern_base), ao.patterns);
+            visibility = 1.0 - ao_estimate(g_position, g_position_1, g_position_2, g_position_3, g_normal, random_vectors, pixel, position.xyz, n,
+                                           float(ao.pattern_base), ao.patterns);
             atomicAdd(block_computed, 1u);
         }
         imageStore(ao_out, pixel, vec4(visibility, 0.0, 0.0, float(ao.patterns)));

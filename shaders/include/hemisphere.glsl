@@ -1,5 +1,5 @@
 // Screen-space visibility of a point of the hemisphere (Szentandrasi section 3.2.1, Ritschel
-// et al. 2009), shared by the hemisphere-sampling effects. Requires g_position and g_normal.
+// et al. 2009), shared by the hemisphere-sampling effects. The G-buffer it reads is a parameter.
 #ifndef HEMISPHERE_GLSL
 #define HEMISPHERE_GLSL
 
@@ -20,7 +20,7 @@ struct HemisphereTap {
 // less than r_max. The tangent-plane test is exact for planes at any slant, where a plain
 // depth comparison needs a bias that grows at grazing angles; the range test keeps a surface
 // far in front of the hemisphere (another object) from darkening p.
-HemisphereTap hemisphere_tap(vec3 s, float r_max) {
+HemisphereTap hemisphere_tap(texture2D position, texture2D normals, vec3 s, float r_max) {
     HemisphereTap tap;
     tap.occluded = false;
     tap.on_screen = false;
@@ -32,9 +32,9 @@ HemisphereTap hemisphere_tap(vec3 s, float r_max) {
     vec2 uv = clip.xy / clip.w * 0.5 + 0.5;
     ivec2 q_pixel = texel_of(uv * vec2(frame.size), vec2(frame.size));
     if (outside_frame(q_pixel)) return tap;
-    vec4 q = texelFetch(g_position, q_pixel, 0);
+    vec4 q = texelFetch(position, q_pixel, 0);
     if (q.w == 0.0) return tap;
-    vec3 qn = texelFetch(g_normal, q_pixel, 0).xyz;
+    vec3 qn = texelFetch(normals, q_pixel, 0).xyz;
     float gap = clip.w - (frame.view_proj * vec4(q.xyz, 1.0)).w;
     tap.on_screen = true;
     tap.q = q.xyz;

@@ -80,15 +80,15 @@ uint shade(ivec2 texel) {
         // The same K samples every frame (Halton indices 0 .. K - 1, shifted per pixel).
         uint first = 0u;
 #ifdef DIRECTIONAL
-        float m = ssdo_pixel(texel, position.xyz, n, first, count, count, false).a;
+        float m = ssdo_pixel(g_position, g_normal, texel, position.xyz, n, first, count, count, false).a;
         result = vec4(sender_radiance(pixel) * m, m);
 #elif defined(BOUNCE)
-        vec3 e = ssdo_pixel(texel, position.xyz, n, first, count, count, true).rgb;
+        vec3 e = ssdo_pixel(g_position, g_normal, texel, position.xyz, n, first, count, count, true).rgb;
         result = vec4(e, texelFetch(lit, texel, 0).a);
 #elif defined(SSAO)
-        result = vec4(ssao_pixel(texel, position.xyz, n, first, count));
+        result = vec4(ssao_pixel(g_position, g_normal, texel, position.xyz, n, first, count));
 #else
-        result = ssdo_pixel(texel, position.xyz, n, first, count, count, true);
+        result = ssdo_pixel(g_position, g_normal, texel, position.xyz, n, first, count, count, true);
         result.rgb *= result.a;
 #endif
     }

@@ -1,6 +1,7 @@
 // Screen-space directional occlusion (Szentandrasi section 3.2, Ritschel et al. 2009) with this
-// renderer's lights. Requires g_position, g_normal (hemisphere.glsl) and a `sender_radiance`
-// function of a pixel defined before inclusion.
+// renderer's lights. The G-buffer it reads is a parameter; what a sender emits is the includer's
+// `sender_radiance(pixel)`, defined before inclusion (this frame's direct light, or the
+// reprojected last frame's: the two passes differ there).
 #ifndef SSDO_GLSL
 #define SSDO_GLSL
 
@@ -46,8 +47,8 @@ float ssdo_incident(vec3 p, vec3 omega) {
 // into one estimate of K times the rotation limit, that many, so the accumulated bounce
 // converges to the many-sample one rather than to a K-sample floor's (36x larger at K = 10).
 // `texel` (SSDO's grid) picks the Halton shift. Returns (bounce rgb, modulation).
-vec4 ssdo_pixel(ivec2 texel, vec3 p, vec3 n, uint first_sample, uint count, uint floor_count,
-                bool bounce) {
+vec4 ssdo_pixel(texture2D position, texture2D normals, ivec2 texel, vec3 p, vec3 n,
+                uint first_sample, uint count, uint floor_count, bool bounce) {
     float r_max = ssdo.radius * frame.scene_radius;
     float area = PI * r_max * r_max / float(max(count, 1u));
     float d2_floor = PI * r_max * r_max / float(max(floor_count, 1u)) / TWO_PI;
@@ -56,7 +57,7 @@ vec4 ssdo_pixel(ivec2 texel, vec3 p, vec3 n, uint first_sample, uint count, uint
     vec3 e_bounce = vec3(0.0);
     for (uint k = 0u; k < count; ++k) {
         vec4 w = hemisphere_sample(first_sample + k, texel, n, r_max);
-        HemisphereTap tap = hemisphere_tap(p + w.w * w.xyz, r_max);
+        HemisphereTap tap = hemisphere_tap(position, normals, p + w.w * w.xyz, r_max);
         float weight = ssdo_incident(p, w.xyz) * max(dot(n, w.xyz), 0.0);
         unoccluded += weight;
         if (!tap.occluded) {
@@ -78,12 +79,13 @@ vec4 ssdo_pixel(ivec2 texel, vec3 p, vec3 n, uint first_sample, uint count, uint
 
 // Section 3.1's SSAO with the same samples: the fraction of the `count` points from Halton index
 // `first_sample` that are not occluded.
-float ssao_pixel(ivec2 texel, vec3 p, vec3 n, uint first_sample, uint count) {
+float ssao_pixel(texture2D position, texture2D normals, ivec2 texel, vec3 p, vec3 n,
+                 uint first_sample, uint count) {
     float r_max = ssdo.radius * frame.scene_radius;
     float occluded = 0.0;
     for (uint k = 0u; k < count; ++k) {
         vec4 w = hemisphere_sample(first_sample + k, texel, n, r_max);
-        if (hemisphere_tap(p + w.w * w.xyz, r_max).occluded) occluded += 1.0;
+        if (hemisphere_tap(position, normals, p + w.w * w.xyz, r_max).occluded) occluded += 1.0;
     }
     return 1.0 - occluded / float(max(count, 1u));
 }

@@ -86,9 +86,9 @@ uint sample_count(ivec2 pixel) {
 vec4 estimate(ivec2 pixel, vec3 p, vec3 n, uint pattern, uint count) {
     uint first = pattern * count;
 #ifdef SSAO
-    return vec4(0.0, 0.0, 0.0, ssao_pixel(pixel, p, n, first, count));
+    return vec4(0.0, 0.0, 0.0, ssao_pixel(g_position, g_normal, pixel, p, n, first, count));
 #else
-    vec4 e = ssdo_pixel(pixel, p, n, first, count, count * frame.rotation_limit, true);
+    vec4 e = ssdo_pixel(g_position, g_normal, pixel, p, n, first, count, count * frame.rotation_limit, true);
     vec3 bounce = clamp(e.rgb, vec3(0.0), vec3(HISTORY_MAX));
     return vec4(bounce, clamp(e.a, 0.0, 1.0));
 #endif

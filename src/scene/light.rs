@@ -30,6 +30,30 @@ pub fn check_intensity(intensity: [f32; 3], scene_radius: f32) -> Result<(), Str
     ))
 }
 
+/// The kinds of light a scene file's `[light]` table may describe (its `kind`; `spot` when it
+/// has none). This enum is their one list of names: the scene-file parser reads `kind` into it
+/// (an unknown name is refused with these, file:line), and a kind's own keys are checked and
+/// turned into what the renderer draws where the scene file is read (`scene_file`'s
+/// `check_light`, `scene_load`'s `light`).
+#[derive(
+    Clone,
+    Copy,
+    Debug,
+    Default,
+    PartialEq,
+    Eq,
+    serde::Serialize,
+    serde::Deserialize,
+    clap::ValueEnum,
+)]
+#[serde(rename_all = "lowercase")]
+pub enum LightKind {
+    /// A point source with a smooth cone falloff ([`SpotLight`]): `position`, `target` or
+    /// `direction`, and optional cone angles, intensity and shadow-map depth range.
+    #[default]
+    Spot,
+}
+
 #[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct SpotLight {
     #[serde(with = "super::serde_vec3")]

@@ -33,7 +33,7 @@ mod world;
 pub use builder::MeshBuilder;
 pub use camera::{depth_range_problem, pixel_to_ndc, Camera, MAX_DEPTH_RATIO};
 pub use error::SceneError;
-pub use light::{check_intensity, max_intensity, SpotLight, MAX_SCENE_IRRADIANCE};
+pub use light::{check_intensity, max_intensity, LightKind, SpotLight, MAX_SCENE_IRRADIANCE};
 pub use mesh::{
     Aabb, DrawRange, LoadStats, Material, Mesh, TextureImage, Vertex, VERTEX_NORMAL_OFFSET,
     VERTEX_UV_OFFSET,

@@ -24,6 +24,7 @@
 //! far = 50
 //!
 //! [light]                            # optional: automatic, a headlight at the camera
+//! kind = "spot"                      # optional: spot (LightKind's names)
 //! position = [..]
 //! target = [..]                      # or direction = [..]
 //! outer_deg = 45                     # optional; inner_deg: 0.8 x outer
@@ -35,6 +36,7 @@
 //! Errors name the file, the line and the key (`file:line: key: message`).
 
 use super::error::SceneError;
+use super::light::LightKind;
 use super::object::ObjectKey;
 use super::path::Keyframe;
 use super::toml_locate::{key_at, locate};
@@ -92,6 +94,9 @@ pub struct CameraEntry {
 #[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct LightEntry {
+    /// Which kind of light (`spot`, the default): the names are `LightKind`'s.
+    #[serde(default, skip_serializing_if = "is_default")]
+    pub kind: LightKind,
     pub position: [f32; 3],
     /// Aim: a point (`target`) or an axis (`direction`), exactly one of them.
     #[serde(default, skip_serializing_if = "Option::is_none")]
@@ -496,7 +501,18 @@ fn check_camera(c: &CameraEntry) -> Result<(), Fault> {
     check_range("camera", c.near, c.far)
 }
 
+fn is_default<T: Default + PartialEq>(v: &T) -> bool {
+    *v == T::default()
+}
+
+/// A light entry's keys, by its kind.
 fn check_light(l: &LightEntry) -> Result<(), Fault> {
+    match l.kind {
+        LightKind::Spot => check_spot(l),
+    }
+}
+
+fn check_spot(l: &LightEntry) -> Result<(), Fault> {
     point(l.position).map_err(|m| fault("light", 0, "position", m))?;
     match (l.target, l.direction) {
         (Some(t), None) => {
@@ -600,6 +616,19 @@ mod tests {
         assert!(f.camera.is_none() && f.light.is_none());
     }
 
+    /// A light's kind is `spot` unless the table names another of LightKind's.
+    #[test]
+    fn a_light_is_a_spot_by_default() {
+        let light = "position = [0, 1, 0]\ntarget = [0, 0, 0]\n";
+        let plain = parse(&format!("[[mesh]]\nmodel = \"a\"\n[light]\n{light}")).unwrap();
+        let named = parse(&format!(
+            "[[mesh]]\nmodel = \"a\"\n[light]\nkind = \"spot\"\n{light}"
+        ))
+        .unwrap();
+        assert_eq!(plain.light.as_ref().unwrap().kind, LightKind::Spot);
+        assert_eq!(plain, named);
+    }
+
     #[test]
     fn errors_name_line_and_key() {
         let cases = [
@@ -640,6 +669,11 @@ mod tests {
             (
                 "[[mesh]]\nmodel = \"a\"\n[light]\nposition = [0, 1, 0]\n",
                 "s.toml:4: light.position: the light needs a target",
+            ),
+            // A kind LightKind does not name, refused with the names it does.
+            (
+                "[[mesh]]\nmodel = \"a\"\n[light]\nkind = \"candle\"\nposition = [0, 1, 0]\n",
+                "s.toml:4: light.kind: unknown variant `candle`, expected `spot`",
             ),
             (
                 "[[mesh]]\nmodel = \"a\"\n[light]\nposition = [0, 1, 0]\ntarget = [0, 0, 0]\n[[light_keyframes]]\ntime = 1\nposition = [0, 1, 0]\ntarget = [0, 0, 0]\n[[light_keyframes]]\ntime = 0.5\nposition = [0, 1, 0]\ntarget = [1, 0, 0]\n",

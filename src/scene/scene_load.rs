@@ -5,7 +5,7 @@
 use super::builder::MeshBuilder;
 use super::camera::Camera;
 use super::error::SceneError;
-use super::light::{check_intensity, SpotLight};
+use super::light::{check_intensity, LightKind, SpotLight};
 use super::mesh::{Aabb, Mesh};
 use super::object::{euler_deg, DynamicObject};
 use super::path::{CameraPath, LightPath, Orbit};
@@ -333,9 +333,16 @@ fn camera(c: &CameraEntry, bounds: &Aabb) -> Camera {
     }
 }
 
+/// The light a light entry describes, by its kind.
+fn light(l: &LightEntry, bounds: &Aabb, path: Option<&LightPath>) -> SpotLight {
+    match l.kind {
+        LightKind::Spot => spot(l, bounds, path),
+    }
+}
+
 /// The spot a light entry describes; without a depth range its shadow map reaches the whole
 /// scene from the light and from every key of its path.
-fn light(l: &LightEntry, bounds: &Aabb, path: Option<&LightPath>) -> SpotLight {
+fn spot(l: &LightEntry, bounds: &Aabb, path: Option<&LightPath>) -> SpotLight {
     let position = Vec3::from(l.position);
     let (direction, aim) = match (l.target, l.direction) {
         (Some(t), _) => {
@@ -445,6 +452,7 @@ impl LoadedScene {
                 far: Some(c.far),
             }),
             light: Some(LightEntry {
+                kind: LightKind::Spot,
                 position: v(l.position),
                 target: None,
                 direction: Some(v(l.direction)),
