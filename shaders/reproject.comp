@@ -399,23 +399,47 @@ bool in_rect(ivec2 pixel, uvec4 rect) {
     return all(greaterThanEqual(uvec2(pixel), rect.xy)) && all(lessThan(uvec2(pixel), rect.zw));
 }
 
-// One lane's history, moments, registration and state; `lane` is (active, history_valid,
-// block shift, 0). The history's pattern count (a) and the moments' count of estimates in the
-// gated mean (z) are the blend's (blend_count), divided where the registration says the value
-// has been magnified or displaced (at least one estimate stays: the value is not thrown
-// away). A pixel in the refresh tile (`refreshed`) is recomputed at its own point this frame,
-// as is a new one: their registration restarts.
-uint lane_state(Reprojected r, uvec4 lane, float reach_radius, bool refreshed, bool start,
-                bool stop, texture2D history_prev,
-                texture2D moments_prev, texture2D registration_prev, out vec4 history,
-                out vec4 moments, out vec4 registration, out bool invalidated) {
-    history = vec4(0.0);
-    moments = vec4(0.0);
-    registration = vec4(r.p, 1.0);
-    invalidated = false;
-    if (!r.geometry) return STATE_BACKGROUND;
+// What a lane's pixel takes from the frame: its push constants' lane (active, history_valid,
+// block shift, moving objects' reach), the reach's sampling radius, whether the pixel is in the
+// lane's refresh tile, and whether the lane starts or stops re-accumulating this frame.
+struct LaneInput {
+    uvec4 lane;
+    float reach_radius;
+    bool refreshed;
+    bool start;
+    bool stop;
+};
+
+// What it writes: the state, the resampled history, moments and registration, and whether a
+// moving object took the history.
+struct LaneOutput {
+    uint state;
+    vec4 history;
+    vec4 moments;
+    vec4 registration;
+    bool invalidated;
+};
+
+// One lane's history, moments, registration and state from last frame's images. The history's
+// pattern count (a) and the moments' count of estimates in the gated mean (z) are the blend's
+// (blend_count), divided where the registration says the value has been magnified or displaced
+// (at least one estimate stays: the value is not thrown away). A pixel in the refresh tile
+// (`refreshed`) is recomputed at its own point this frame, as is a new one: their registration
+// restarts.
+LaneOutput lane_state(Reprojected r, LaneInput lane_in, texture2D history_prev,
+                      texture2D moments_prev, texture2D registration_prev) {
+    uvec4 lane = lane_in.lane;
+    bool refreshed = lane_in.refreshed;
+    bool start = lane_in.start;
+    bool stop = lane_in.stop;
+    vec4 history = vec4(0.0);
+    vec4 moments = vec4(0.0);
+    vec4 registration = vec4(r.p, 1.0);
+    bool invalidated = false;
+    if (!r.geometry)
+        return LaneOutput(STATE_BACKGROUND, history, moments, registration, invalidated);
     uint state = STATE_NEW;
-    invalidated = lane.y != 0u && r.found && moved_reaches(lane.w, reach_radius, r.p);
+    invalidated = lane.y != 0u && r.found && moved_reaches(lane.w, lane_in.reach_radius, r.p);
     if (lane.y != 0u && r.found && !invalidated) {
         r = pick_registered(r, registration_prev);
         // An unmoved eye on an unmoved surface: the texel itself, as it is.
@@ -480,35 +504,35 @@ uint lane_state(Reprojected r, uvec4 lane, float reach_radius, bool refreshed, b
         }
     }
     if (refreshed) registration = vec4(r.p, 1.0);
-    return state;
+    return LaneOutput(state, history, moments, registration, invalidated);
 }
 
 bool needs_work(uint state) {
     return state == STATE_NEW || state == STATE_ACCUMULATING || state == STATE_REFRESH;
 }
 
-// The lane's images at `pixel` and its group tallies.
+// The lane's images at `pixel` and its group tallies. Lanes are macros over k because each
+// lane's images are bindings of their own (their formats differ by effect, so no binding array
+// can hold them, and GLSL cannot index separate bindings by a variable).
 #define LANE_PIXEL(k)                                                                          \
     if (lanes.lane_##k.x != 0u) {                                                              \
-        vec4 history, moments;                                                                 \
-        vec4 registration;                                                                     \
-        bool invalidated;                                                                      \
-        bool refreshed = r.geometry && in_rect(pixel, lanes.refresh_rect_##k);                 \
-        bool start = (lanes.reaccumulate.x >> k & 1u) != 0u;                                   \
-        bool stop = (lanes.reaccumulate.y >> k & 1u) != 0u;                                    \
-        uint state = lane_state(r, lanes.lane_##k, lanes.reach_radius[k], refreshed, start,    \
-                                stop, history_prev_##k, moments_prev_##k,                      \
-                                registration_prev_##k, history, moments, registration,         \
-                                invalidated);                                                  \
-        if (invalidated) atomicAdd(group_invalidated[k], 1u);                                  \
-        else if (state == STATE_NEW) atomicAdd(group_disoccluded[k], 1u);                      \
-        if (refreshed) state = STATE_REFRESH;                                                  \
-        imageStore(history_cur_##k, pixel, history);                                           \
-        imageStore(moments_cur_##k, pixel, moments);                                           \
-        imageStore(registration_cur_##k, pixel, registration);                                 \
-        imageStore(state_out_##k, pixel, uvec4(state));                                        \
-        if (needs_work(state)) atomicOr(quadrant_mask[k], quadrant_bit);                       \
-        if (lanes.lane_##k.z == 0u && (state == STATE_NEW || state == STATE_ACCUMULATING))     \
+        LaneInput lane_in;                                                                     \
+        lane_in.lane = lanes.lane_##k;                                                         \
+        lane_in.reach_radius = lanes.reach_radius[k];                                          \
+        lane_in.refreshed = r.geometry && in_rect(pixel, lanes.refresh_rect_##k);              \
+        lane_in.start = (lanes.reaccumulate.x >> k & 1u) != 0u;                                \
+        lane_in.stop = (lanes.reaccumulate.y >> k & 1u) != 0u;                                 \
+        LaneOutput o = lane_state(r, lane_in, history_prev_##k, moments_prev_##k,              \
+                                  registration_prev_##k);                                      \
+        if (o.invalidated) atomicAdd(group_invalidated[k], 1u);                                \
+        else if (o.state == STATE_NEW) atomicAdd(group_disoccluded[k], 1u);                    \
+        if (lane_in.refreshed) o.state = STATE_REFRESH;                                        \
+        imageStore(history_cur_##k, pixel, o.history);                                         \
+        imageStore(moments_cur_##k, pixel, o.moments);                                         \
+        imageStore(registration_cur_##k, pixel, o.registration);                               \
+        imageStore(state_out_##k, pixel, uvec4(o.state));                                      \
+        if (needs_work(o.state)) atomicOr(quadrant_mask[k], quadrant_bit);                     \
+        if (lanes.lane_##k.z == 0u && (o.state == STATE_NEW || o.state == STATE_ACCUMULATING)) \
             list_slot[k] = atomicAdd(group_listed[k], 1u);                                     \
     }
 
