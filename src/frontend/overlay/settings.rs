@@ -1,7 +1,7 @@
 //! The overlay's live settings: effect and reuse switches (the viewer's key actions) and
 //! sweep keys (AO estimator, indirect filter, accumulation, VPLs, refresh budget). Widgets
 //! only ask; the viewer applies each request through the command line's parsers and
-//! `RenderConfig::validate`, as a script's `set=KEY:VALUE` (`window/app.rs`).
+//! `RenderConfig::validate`, as a script's `set=KEY:VALUE` (`window/app/actions.rs`).
 
 use crate::config::antialias::AaMode;
 use crate::config::parse::AccumulateMode;
