@@ -11,6 +11,7 @@ mod builder;
 mod camera;
 pub mod decimate;
 mod error;
+pub mod flat_bvh;
 mod framing;
 pub mod input;
 mod light;
