@@ -85,14 +85,14 @@ float bvh_triangle(uint i, vec3 o, vec3 d, float t_min, float t_max) {
 }
 
 // The closest triangle along d (unit or not: t is in units of d) from o with t in
-// [t_min, t_max], ignoring the mesh's triangle `skip` (BVH_NONE: none).
-BvhHit bvh_closest(vec3 o, vec3 d, float t_min, float t_max, uint skip) {
+// [t_min, t_max], ignoring the mesh's triangle `skip` (BVH_NONE: none); with `first_hit` any
+// triangle in range ends the walk (shadow and visibility rays), not only the closest.
+BvhHit bvh_walk(vec3 o, vec3 d, float t_min, float t_max, uint skip, bool first_hit) {
     BvhHit hit = BvhHit(t_max, BVH_NONE);
     vec3 inv_d = bvh_inverse(d);
     uint stack[BVH_STACK];
-    uint depth = 0u;
     stack[0] = 0u;
-    depth = 1u;
+    uint depth = 1u;
     // A full stack ends the walk (a tree deeper than flat_bvh.rs allows: cannot happen). In
     // the loop's condition, not as a `break` beside the loop's `continue`s: llvmpipe (Mesa
     // 22.3) compiled that form into a walk that stopped early (tests/gpu_bvh.rs).
@@ -118,39 +118,18 @@ BvhHit bvh_closest(vec3 o, vec3 d, float t_min, float t_max, uint skip) {
             float t = bvh_triangle(i, o, d, t_min, hit.t);
             if (t >= 0.0 && (hit.triangle == BVH_NONE || t < hit.t)) hit = BvhHit(t, id);
         }
+        if (first_hit && hit.triangle != BVH_NONE) return hit;
     }
     return hit;
 }
 
-// Whether any triangle but `skip` lies along d from o with t in [t_min, t_max] (shadow and
-// visibility rays: the first hit ends the search).
+BvhHit bvh_closest(vec3 o, vec3 d, float t_min, float t_max, uint skip) {
+    return bvh_walk(o, d, t_min, t_max, skip, false);
+}
+
+// Whether any triangle but `skip` lies along d from o with t in [t_min, t_max].
 bool bvh_any(vec3 o, vec3 d, float t_min, float t_max, uint skip) {
-    vec3 inv_d = bvh_inverse(d);
-    uint stack[BVH_STACK];
-    uint depth = 0u;
-    stack[0] = 0u;
-    depth = 1u;
-    // A full stack ends the walk (a tree deeper than flat_bvh.rs allows: cannot happen). In
-    // the loop's condition, not as a `break` beside the loop's `continue`s: llvmpipe (Mesa
-    // 22.3) compiled that form into a walk that stopped early (tests/gpu_bvh.rs).
-    while (depth > 0u && depth < BVH_STACK - 1u) {
-        depth -= 1u;
-        uint node = stack[depth];
-        if (bvh_enter(node, o, inv_d, t_min, t_max) < 0.0) continue;
-        uint count = bvh_nodes[node].count;
-        uint first = bvh_nodes[node].first;
-        if (count == 0u) {
-            stack[depth] = first;
-            stack[depth + 1u] = first + 1u;
-            depth += 2u;
-            continue;
-        }
-        for (uint i = first; i < first + count; ++i) {
-            if (floatBitsToUint(bvh_triangles[i].v0.w) == skip) continue;
-            if (bvh_triangle(i, o, d, t_min, t_max) >= 0.0) return true;
-        }
-    }
-    return false;
+    return bvh_walk(o, d, t_min, t_max, skip, true).triangle != BVH_NONE;
 }
 
 #endif // BVH_GLSL

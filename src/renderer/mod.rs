@@ -734,14 +734,11 @@ fn resolve_target<'a>(
     match target {
         // The recompute mask: the state of the lowest-ranked effect that has one
         // (`Registration::recompute_mask`).
-        Target::State => {
-            let mut ranked: Vec<(u8, EffectId)> = crate::effects::REGISTRY
-                .iter()
-                .filter_map(|r| r.recompute_mask.map(|rank| (rank, r.id)))
-                .collect();
-            ranked.sort_unstable_by_key(|(rank, _)| *rank);
-            ranked.into_iter().find_map(|(_, id)| of(id))
-        }
+        Target::State => crate::effects::REGISTRY
+            .iter()
+            .filter_map(|r| Some((r.recompute_mask?, of(r.id)?)))
+            .min_by_key(|(rank, _)| *rank)
+            .map(|(_, image)| image),
         _ => targets.get(target, parity).or_else(|| {
             effects
                 .iter()

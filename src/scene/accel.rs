@@ -34,16 +34,7 @@ impl Accel {
     /// Build over every triangle of `mesh` (obvhs's "medium" preset: its build time is a few
     /// hundred milliseconds for the shared models, small against a reference's tracing).
     pub fn new(mesh: &Mesh) -> Self {
-        let tris: Vec<Triangle> = (0..mesh.triangle_count())
-            .map(|t| {
-                let [a, b, c] = mesh.triangle(t);
-                Triangle {
-                    v0: a.into(),
-                    v1: b.into(),
-                    v2: c.into(),
-                }
-            })
-            .collect();
+        let tris = obvhs_triangles(mesh);
         if tris.is_empty() {
             return Self {
                 bvh: None,
@@ -120,6 +111,21 @@ impl Accel {
             self.triangles[id].intersect(ray)
         })
     }
+}
+
+/// Every triangle of `mesh` as obvhs builds over them, in the mesh's order (the CPU tracer's
+/// CWBVH and the GPU's flattened BVH2 both start from these).
+pub fn obvhs_triangles(mesh: &Mesh) -> Vec<Triangle> {
+    (0..mesh.triangle_count())
+        .map(|t| {
+            let [a, b, c] = mesh.triangle(t);
+            Triangle {
+                v0: a.into(),
+                v1: b.into(),
+                v2: c.into(),
+            }
+        })
+        .collect()
 }
 
 /// Barycentric weights (of v1, v2) of a point on the triangle's plane.

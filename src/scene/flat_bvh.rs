@@ -3,9 +3,9 @@
 //! the CPU reference walks, wants a traversal of its own) as 32-byte nodes, and the triangles
 //! in leaf order, so a leaf indexes them directly with no second lookup.
 
+use super::accel::obvhs_triangles;
 use super::mesh::Mesh;
 use obvhs::bvh2::builder::build_bvh2_from_tris;
-use obvhs::triangle::Triangle;
 use obvhs::BvhBuildParams;
 
 /// Deepest tree the shaders' traversal stack holds (bvh.glsl's BVH_STACK): a node at depth d
@@ -32,16 +32,7 @@ impl FlatBvh {
     /// Over every triangle of `mesh` (obvhs's "medium" build, as the CPU reference's). A mesh
     /// without triangles gets one empty root box, which every ray misses.
     pub fn new(mesh: &Mesh) -> Result<Self, String> {
-        let tris: Vec<Triangle> = (0..mesh.triangle_count())
-            .map(|t| {
-                let [a, b, c] = mesh.triangle(t);
-                Triangle {
-                    v0: a.into(),
-                    v1: b.into(),
-                    v2: c.into(),
-                }
-            })
-            .collect();
+        let tris = obvhs_triangles(mesh);
         if tris.is_empty() {
             let mut nodes = Vec::with_capacity(NODE_BYTES);
             push_node(&mut nodes, [f32::MAX; 3], 0, [-f32::MAX; 3], 0);
